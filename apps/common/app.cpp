@@ -1,0 +1,130 @@
+#include "common/app.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+namespace mcws::app {
+
+int run(const char* program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const UsageError& e) {
+    std::cerr << program << ": " << e.what() << " (see --help)\n";
+    return kExitUsage;
+  } catch (const po::error& e) {
+    std::cerr << program << ": " << e.what() << " (see --help)\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << program << ": " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+CommandLine::CommandLine(std::string usage, std::string summary)
+    : usage_(std::move(usage)), summary_(std::move(summary)), options_("Options") {
+  options_.add_options()("help", "print this help and exit");
+}
+
+bool CommandLine::parse(int argc, char** argv) {
+  const auto style = po::command_line_style::allow_long | po::command_line_style::long_allow_adjacent |
+                     po::command_line_style::long_allow_next;
+  po::store(po::command_line_parser(argc, argv).options(options_).style(style).run(), values_);
+  if (values_.count("help")) {
+    std::cout << "Usage: " << usage_ << "\n\n" << summary_ << "\n\n" << options_ << "\n";
+    return false;
+  }
+  po::notify(values_);
+  return true;
+}
+
+std::string CommandLine::required(const std::string& flag) const {
+  if (!has(flag)) throw UsageError("missing --" + flag);
+  return values_[flag].as<std::string>();
+}
+
+std::string CommandLine::text(const std::string& flag, const std::string& fallback) const {
+  return has(flag) ? values_[flag].as<std::string>() : fallback;
+}
+
+std::vector<std::string> CommandLine::all(const std::string& flag) const {
+  return has(flag) ? values_[flag].as<std::vector<std::string>>() : std::vector<std::string>{};
+}
+
+double parseNumber(const std::string& text, const std::string& flag) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(begin, &end);
+  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(value)) {
+    throw UsageError("--" + flag + ": '" + text + "' is not a finite number");
+  }
+  return value;
+}
+
+std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const long long value = std::strtoll(begin, &end, 10);
+  if (text.empty() || end != begin + text.size() || errno == ERANGE) {
+    throw UsageError("--" + flag + ": '" + text + "' is not a whole number");
+  }
+  if (value < minimum) {
+    throw UsageError("--" + flag + ": " + text + " is less than " + std::to_string(minimum));
+  }
+  return value;
+}
+
+Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag) {
+  std::string spaced = text;
+  for (char& c : spaced) {
+    if (c == ',') c = ' ';
+  }
+  std::istringstream in(spaced);
+  std::vector<double> values;
+  for (std::string word; in >> word;) values.push_back(parseNumber(word, flag));
+  if (values.empty()) throw UsageError("--" + flag + ": no numbers in '" + text + "'");
+  return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+std::vector<std::pair<std::string, double>> parseAssignments(const std::string& text,
+                                                             const std::string& flag) {
+  std::vector<std::pair<std::string, double>> pairs;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const auto equals = item.find('=');
+    if (equals == std::string::npos || equals == 0) {
+      throw UsageError("--" + flag + ": '" + item + "' is not name=value");
+    }
+    pairs.emplace_back(item.substr(0, equals), parseNumber(item.substr(equals + 1), flag));
+  }
+  if (pairs.empty()) throw UsageError("--" + flag + ": nothing in '" + text + "'");
+  return pairs;
+}
+
+Progress::Progress(std::string program, std::string what)
+    : program_(std::move(program)),
+      what_(std::move(what)),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_) {}
+
+double Progress::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Progress::update(std::size_t done, std::size_t total) {
+  const auto now = std::chrono::steady_clock::now();
+  const bool finished = done >= total;
+  if (std::chrono::duration<double>(now - start_).count() < 1.0 && !shown_) return;
+  if (!finished && std::chrono::duration<double>(now - last_).count() < 0.5) return;
+  last_ = now;
+  shown_ = true;
+  const int percent = total ? static_cast<int>(100.0 * static_cast<double>(done) / total) : 100;
+  std::cerr << program_ << ": " << percent << "% (" << done << "/" << total << " " << what_
+            << ")\n";
+}
+
+}  // namespace mcws::app

@@ -1,0 +1,87 @@
+#pragma once
+/// \file
+/// \brief What every mcws_* stage tool shares: flag parsing that tells a missing flag from a
+/// malformed one, exit codes, one-line errors, progress on stderr.
+
+#include <Eigen/Core>
+#include <boost/program_options.hpp>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/core/error.h"
+
+namespace mcws::app {
+
+namespace po = boost::program_options;
+
+constexpr int kExitOk = 0;       ///< success, or --help
+constexpr int kExitFailure = 1;  ///< a failed load, save or computation
+constexpr int kExitUsage = 2;    ///< a bad command line
+
+/// \brief A bad command line (exit code 2).
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// \brief Runs a tool's body: mcws::app::UsageError and Boost.Program_options errors print
+/// "program: message" and return 2, every other error prints it and returns 1.
+int run(const char* program, const std::function<int()>& body);
+
+/// \brief Flags of one tool (long options only, so "--q '-1 0.5'" reads as a value).
+class CommandLine {
+ public:
+  /// \param usage first help line, e.g. "mcws_fk --robot FILE --q \"q1 q2 ...\" [options]".
+  /// \param summary what the tool does, one paragraph.
+  CommandLine(std::string usage, std::string summary);
+  /// \brief Where flags are declared.
+  po::options_description_easy_init add() { return options_.add_options(); }
+  /// \brief Parses argv. \return false when --help was given (help printed to stdout).
+  /// \throws UsageError for unknown flags, missing values or repeated single flags.
+  bool parse(int argc, char** argv);
+
+  bool has(const std::string& flag) const { return values_.count(flag) > 0; }
+  /// \brief The text of a flag that must be present. \throws UsageError when missing.
+  std::string required(const std::string& flag) const;
+  /// \brief The text of a flag, or `fallback`.
+  std::string text(const std::string& flag, const std::string& fallback) const;
+  /// \brief Every value of a repeatable flag.
+  std::vector<std::string> all(const std::string& flag) const;
+
+ private:
+  std::string usage_, summary_;
+  po::options_description options_;
+  po::variables_map values_;
+};
+
+/// \brief A real number; "0.5x", "", "nan" are errors naming the flag.
+double parseNumber(const std::string& text, const std::string& flag);
+/// \brief A whole number >= minimum; "10x", "-3", "1e3" are errors naming the flag.
+std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum);
+/// \brief Numbers separated by spaces or commas, e.g. "0.1 -2, 3".
+Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag);
+/// \brief "name=value" pairs separated by commas, e.g. "theta3=0,a2=30".
+std::vector<std::pair<std::string, double>> parseAssignments(const std::string& text,
+                                                             const std::string& flag);
+
+/// \brief Progress lines "program: 45% (4500000/10000000)" on stderr, only for runs longer than
+/// about a second and at most twice a second.
+class Progress {
+ public:
+  explicit Progress(std::string program, std::string what);
+  void update(std::size_t done, std::size_t total);
+  /// \brief Seconds since construction.
+  double seconds() const;
+
+ private:
+  std::string program_, what_;
+  std::chrono::steady_clock::time_point start_, last_;
+  bool shown_{false};
+};
+
+}  // namespace mcws::app

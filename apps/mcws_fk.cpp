@@ -1,0 +1,56 @@
+// mcws_fk: forward kinematics of one joint vector: the 4x4 tool (or flange) pose.
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "common/app.h"
+#include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/kinematics/robot_yaml.h"
+
+int main(int argc, char** argv) {
+  using namespace mcws;
+  return app::run("mcws_fk", [&] {
+    app::CommandLine cli(
+        "mcws_fk --robot FILE --q \"q1 q2 ...\" [options]",
+        "Prints the homogeneous 4x4 pose of the tool frame (or the flange) in the world frame for\n"
+        "one joint vector. Joint values are in rad (revolute) and in the robot file's length unit\n"
+        "(prismatic); the pose's translation is in that length unit.");
+    cli.add()("robot", app::po::value<std::string>(), "robot description (.yaml)")(
+        "q", app::po::value<std::string>(), "joint values, separated by spaces or commas")(
+        "frame", app::po::value<std::string>(), "tool | flange (default tool)")(
+        "ignore-limits", "accept joint values outside the joint limits")(
+        "json", "print one JSON object on stdout");
+    if (!cli.parse(argc, argv)) return app::kExitOk;
+
+    const std::string q_text = cli.required("q");
+    const std::string frame = cli.text("frame", "tool");
+    if (frame != "tool" && frame != "flange") {
+      throw app::UsageError("--frame: '" + frame + "' is not tool or flange");
+    }
+    const Eigen::VectorXd q = app::parseNumberList(q_text, "q");
+    const Robot robot = loadRobot(cli.required("robot"));
+    if (q.size() != robot.dof()) {
+      throw app::UsageError("--q: robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
+                            " joints but " + std::to_string(q.size()) + " values were given");
+    }
+    if (!cli.has("ignore-limits")) robot.checkJointVector(q);
+
+    const ChainPoses poses = chainPoses(robot, q);
+    const Eigen::Matrix4d T = (frame == "tool" ? poses.T_world_tool : poses.T_world_flange).matrix();
+    if (cli.has("json")) {
+      nlohmann::json out;
+      out["robot"] = robot.name;
+      out["unit"] = unitName(robot.length_unit);
+      out["frame"] = frame;
+      out["q"] = std::vector<double>(q.data(), q.data() + q.size());
+      for (int r = 0; r < 4; ++r) out["pose"].push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
+      out["position"] = {T(0, 3), T(1, 3), T(2, 3)};
+      std::cout << out.dump() << "\n";
+    } else {
+      for (int r = 0; r < 4; ++r) {
+        std::printf("%12.6f %12.6f %12.6f %14.6f\n", T(r, 0), T(r, 1), T(r, 2), T(r, 3));
+      }
+    }
+    return app::kExitOk;
+  });
+}

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs mcws's build and test dependencies from Debian 12 packages.
+# Idempotent: runs apt-get only when a package is missing.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config
+  libpcl-dev pcl-tools          # point clouds, PCD I/O, KdTreeFLANN, pcl_viewer & co.
+  libeigen3-dev                 # linear algebra, poses
+  libflann-dev                  # nearest-neighbour search behind pcl::KdTreeFLANN
+  libboost-program-options-dev  # command-line parsing of the stage tools
+  libyaml-cpp-dev               # robot description files
+  libgtest-dev                  # unit tests
+  libbenchmark-dev              # benchmarks
+  liborocos-kdl-dev             # independent kinematics oracle in tests
+  nlohmann-json3-dev            # --json output of the stage tools
+  gnuplot-nox                   # PNG pictures of clouds
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "install_deps: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" >/dev/null
+else
+  echo "install_deps: all packages present" >&2
+fi

@@ -1,0 +1,20 @@
+#pragma once
+/// \file
+/// \brief The one exception type of mcws.
+
+#include <stdexcept>
+#include <string>
+
+namespace mcws {
+
+/// \brief A configuration or programmer error: a bad robot file, flag or argument.
+///
+/// The message is one line and names the file, row, joint or flag and the bad value.
+/// Expected outcomes (no IK solution, a collision, a planner timeout) are never thrown;
+/// they come back as a status or std::optional.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(const std::string& message) : std::runtime_error(message) {}
+};
+
+}  // namespace mcws

@@ -1,0 +1,143 @@
+#pragma once
+/// \file
+/// \brief Writes a PCD file chunk by chunk, so a cloud never has to be held in memory whole.
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_cloud.h>
+
+#include <cinttypes>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mcws/core/error.h"
+#include "mcws/io/atomic_file.h"
+
+namespace mcws::io {
+
+/// \brief PCD encoding.
+enum class PcdFormat { kBinary, kAscii };
+
+/// \brief Streams points of type PointT into a PCD file whose point count is known up front.
+///
+/// The header is PCL's own (pcl::PCDWriter::generateHeader), and binary data is packed exactly as
+/// pcl::PCDWriter::writeBinary packs it, so the file is byte for byte what pcl::io::savePCDFileBinary
+/// would write for the same cloud. The file is written under a temporary name and appears only
+/// on commit() (see AtomicFile).
+template <typename PointT>
+class PcdStreamWriter {
+ public:
+  /// \param path target file.
+  /// \param points number of points that will be written (at most INT_MAX, as in PCL).
+  /// \param format binary (default) or ASCII.
+  /// \throws mcws::Error when the path cannot be written or `points` is too large.
+  PcdStreamWriter(const std::string& path, std::size_t points, PcdFormat format = PcdFormat::kBinary)
+      : file_(path), declared_(points), format_(format) {
+    if (points > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+      throw Error("cannot write '" + path + "': a PCD file holds at most 2^31-1 points");
+    }
+    for (const pcl::PCLPointField& field : pcl::getFields<PointT>()) {
+      if (field.name != "_") fields_.push_back(field);
+    }
+    for (const pcl::PCLPointField& field : fields_) {
+      record_size_ += pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
+    }
+    const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
+    const std::string header = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
+                               (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
+    file_.write(header.data(), header.size());
+  }
+
+  /// \brief Appends `count` points. \throws mcws::Error on a write error or too many points.
+  void write(const PointT* points, std::size_t count) {
+    if (written_ + count > declared_) {
+      throw Error("cannot write '" + file_.path() + "': more points than the header declares");
+    }
+    buffer_.clear();
+    if (format_ == PcdFormat::kBinary) {
+      buffer_.resize(count * record_size_);
+      char* out = buffer_.data();
+      for (std::size_t i = 0; i < count; ++i) {
+        const char* point = reinterpret_cast<const char*>(&points[i]);
+        for (const pcl::PCLPointField& field : fields_) {
+          const std::size_t size =
+              pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
+          std::memcpy(out, point + field.offset, size);
+          out += size;
+        }
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) appendAscii(reinterpret_cast<const char*>(&points[i]));
+    }
+    file_.write(buffer_.data(), buffer_.size());
+    written_ += count;
+  }
+
+  /// \brief Closes the file and gives it its name.
+  /// \throws mcws::Error when fewer points were written than declared, or on a write error.
+  void commit() {
+    if (written_ != declared_) {
+      throw Error("cannot write '" + file_.path() + "': " + std::to_string(written_) + " of " +
+                  std::to_string(declared_) + " points written");
+    }
+    file_.commit();
+  }
+
+ private:
+  void appendAscii(const char* point) {
+    char text[64];
+    bool first = true;
+    for (const pcl::PCLPointField& field : fields_) {
+      const std::size_t size = pcl::getFieldSize(field.datatype);
+      for (std::uint32_t k = 0; k < std::max<std::uint32_t>(field.count, 1); ++k) {
+        const char* value = point + field.offset + k * size;
+        int length = 0;
+        switch (field.datatype) {
+          case pcl::PCLPointField::FLOAT32: {
+            float v;
+            std::memcpy(&v, value, sizeof v);
+            length = std::snprintf(text, sizeof text, "%.9g", static_cast<double>(v));
+            break;
+          }
+          case pcl::PCLPointField::FLOAT64: {
+            double v;
+            std::memcpy(&v, value, sizeof v);
+            length = std::snprintf(text, sizeof text, "%.17g", v);
+            break;
+          }
+          case pcl::PCLPointField::UINT32: {
+            std::uint32_t v;
+            std::memcpy(&v, value, sizeof v);
+            length = std::snprintf(text, sizeof text, "%" PRIu32, v);
+            break;
+          }
+          case pcl::PCLPointField::INT32: {
+            std::int32_t v;
+            std::memcpy(&v, value, sizeof v);
+            length = std::snprintf(text, sizeof text, "%" PRId32, v);
+            break;
+          }
+          default:
+            throw Error("cannot write '" + file_.path() + "': field '" + field.name +
+                        "' has a type the ASCII writer does not handle");
+        }
+        if (!first) buffer_.push_back(' ');
+        buffer_.insert(buffer_.end(), text, text + length);
+        first = false;
+      }
+    }
+    buffer_.push_back('\n');
+  }
+
+  AtomicFile file_;
+  std::vector<pcl::PCLPointField> fields_;
+  std::size_t record_size_{0};
+  std::size_t declared_{0};
+  std::size_t written_{0};
+  PcdFormat format_;
+  std::vector<char> buffer_;
+};
+
+}  // namespace mcws::io

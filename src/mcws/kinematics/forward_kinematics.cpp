@@ -1,0 +1,57 @@
+#include "mcws/kinematics/forward_kinematics.h"
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+void checkSize(const Robot& robot, const Eigen::VectorXd& q) {
+  if (q.size() != robot.dof()) {
+    throw Error("robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
+                " joints but " + std::to_string(q.size()) + " joint values were given");
+  }
+}
+
+}  // namespace
+
+Eigen::Isometry3d jointMotion(const Joint& joint, double q) {
+  Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
+  if (joint.type == JointType::kRevolute) {
+    M.linear() = Eigen::AngleAxisd(q, joint.axis).toRotationMatrix();
+  } else {
+    M.translation() = q * joint.axis;
+  }
+  return M;
+}
+
+ChainPoses chainPoses(const Robot& robot, const Eigen::VectorXd& q) {
+  checkSize(robot, q);
+  ChainPoses poses;
+  poses.T_world_joint.reserve(robot.joints.size());
+  poses.T_world_link.reserve(robot.joints.size());
+  Eigen::Isometry3d T = robot.T_world_base;
+  for (int i = 0; i < robot.dof(); ++i) {
+    T = T * robot.joints[i].T_parent_joint;
+    poses.T_world_joint.push_back(T);
+    T = T * jointMotion(robot.joints[i], q[i]);
+    poses.T_world_link.push_back(T);
+  }
+  poses.T_world_flange = T * robot.T_last_flange;
+  poses.T_world_tool = poses.T_world_flange * robot.T_flange_tool;
+  return poses;
+}
+
+Eigen::Isometry3d flangePose(const Robot& robot, const Eigen::VectorXd& q) {
+  checkSize(robot, q);
+  Eigen::Isometry3d T = robot.T_world_base;
+  for (int i = 0; i < robot.dof(); ++i) {
+    T = T * robot.joints[i].T_parent_joint * jointMotion(robot.joints[i], q[i]);
+  }
+  return T * robot.T_last_flange;
+}
+
+Eigen::Isometry3d toolPose(const Robot& robot, const Eigen::VectorXd& q) {
+  return flangePose(robot, q) * robot.T_flange_tool;
+}
+
+}  // namespace mcws

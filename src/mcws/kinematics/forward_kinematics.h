@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// \brief Forward kinematics of a serial chain (poses in the world frame, lengths in the robot's
+/// length unit).
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+
+namespace mcws {
+
+/// \brief Every frame of a chain at one joint vector, all expressed in the world frame.
+struct ChainPoses {
+  std::vector<Eigen::Isometry3d> T_world_joint;  ///< joint i's frame before its motion
+  std::vector<Eigen::Isometry3d> T_world_link;   ///< joint i's frame after its motion (link i)
+  Eigen::Isometry3d T_world_flange{Eigen::Isometry3d::Identity()};  ///< end of the bare arm
+  Eigen::Isometry3d T_world_tool{Eigen::Isometry3d::Identity()};    ///< tool point
+};
+
+/// \brief Motion of one joint: rotation by q [rad] about, or translation by q [length unit]
+/// along, its axis.
+Eigen::Isometry3d jointMotion(const Joint& joint, double q);
+
+/// \brief All frames of the chain.
+/// \param q joint values [rad | length unit], one per joint (limits are not checked).
+/// \throws mcws::Error when q has the wrong size.
+ChainPoses chainPoses(const Robot& robot, const Eigen::VectorXd& q);
+
+/// \brief Flange pose T_world_flange(q) (seed 002's point P).
+/// \throws mcws::Error when q has the wrong size.
+Eigen::Isometry3d flangePose(const Robot& robot, const Eigen::VectorXd& q);
+
+/// \brief Tool pose T_world_tool(q) (seed 002's point T).
+/// \throws mcws::Error when q has the wrong size.
+Eigen::Isometry3d toolPose(const Robot& robot, const Eigen::VectorXd& q);
+
+}  // namespace mcws

@@ -1,0 +1,58 @@
+#pragma once
+/// \file
+/// \brief Fast forward kinematics of one point fixed to the flange, for Monte Carlo sampling.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+
+namespace mcws {
+
+/// \brief World position of a point fixed to the flange, as a function of the joint values.
+///
+/// Equal to `(flangePose(robot, q) * p_flange)` but about four times cheaper: each joint axis is
+/// turned onto z once, at construction, so that a revolute joint costs one sincos and a 2-D
+/// rotation and a prismatic joint one addition; the point is carried from the flange back to the
+/// world frame through fixed 3x4 transforms, never composing 4x4 matrices.
+class PointKinematics {
+ public:
+  /// \param robot the chain.
+  /// \param p_flange the point in the flange frame [length unit] (zero: the flange origin; the
+  ///   tool frame's translation: the tool point).
+  PointKinematics(const Robot& robot, const Eigen::Vector3d& p_flange);
+
+  /// \brief Number of joint values position() reads.
+  int dof() const { return static_cast<int>(revolute_.size()); }
+
+  /// \brief World position [length unit] for joint values q[0..dof()) [rad | length unit].
+  Eigen::Vector3d position(const double* q) const {
+    double x = p_last_[0], y = p_last_[1], z = p_last_[2];
+    for (int i = dof() - 1; i >= 0; --i) {
+      if (revolute_[i]) {
+        const double c = std::cos(q[i]), s = std::sin(q[i]);
+        const double xr = c * x - s * y;
+        y = s * x + c * y;
+        x = xr;
+      } else {
+        z += q[i];
+      }
+      const double* E = fixed_[i].data();
+      const double xn = E[0] * x + E[1] * y + E[2] * z + E[3];
+      const double yn = E[4] * x + E[5] * y + E[6] * z + E[7];
+      z = E[8] * x + E[9] * y + E[10] * z + E[11];
+      x = xn;
+      y = yn;
+    }
+    return {x, y, z};
+  }
+
+ private:
+  std::vector<std::array<double, 12>> fixed_;  ///< row-major 3x4 transform before joint i
+  std::vector<bool> revolute_;
+  Eigen::Vector3d p_last_;  ///< the point in the frame after the last joint's motion
+};
+
+}  // namespace mcws

@@ -1,0 +1,108 @@
+#include "mcws/kinematics/robot.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+
+const char* unitName(LengthUnit unit) {
+  switch (unit) {
+    case LengthUnit::kMetre:
+      return "m";
+    case LengthUnit::kCentimetre:
+      return "cm";
+    case LengthUnit::kMillimetre:
+      return "mm";
+  }
+  return "?";
+}
+
+double unitInMetres(LengthUnit unit) {
+  switch (unit) {
+    case LengthUnit::kMetre:
+      return 1.0;
+    case LengthUnit::kCentimetre:
+      return 0.01;
+    case LengthUnit::kMillimetre:
+      return 0.001;
+  }
+  return 1.0;
+}
+
+const char* jointTypeName(JointType type) {
+  return type == JointType::kRevolute ? "revolute" : "prismatic";
+}
+
+int Robot::jointIndex(const std::string& joint_name) const {
+  for (int i = 0; i < dof(); ++i) {
+    if (joints[i].name == joint_name) return i;
+  }
+  std::ostringstream names;
+  for (const Joint& joint : joints) names << (names.tellp() > 0 ? ", " : "") << joint.name;
+  throw Error("robot '" + name + "' has no joint '" + joint_name + "' (joints: " + names.str() +
+              ")");
+}
+
+Eigen::VectorXd Robot::lowerLimits() const {
+  Eigen::VectorXd limits(dof());
+  for (int i = 0; i < dof(); ++i) limits[i] = joints[i].lower;
+  return limits;
+}
+
+Eigen::VectorXd Robot::upperLimits() const {
+  Eigen::VectorXd limits(dof());
+  for (int i = 0; i < dof(); ++i) limits[i] = joints[i].upper;
+  return limits;
+}
+
+void Robot::checkJointVector(const Eigen::VectorXd& q) const {
+  if (q.size() != dof()) {
+    throw Error("robot '" + name + "' has " + std::to_string(dof()) + " joints but " +
+                std::to_string(q.size()) + " joint values were given");
+  }
+  for (int i = 0; i < dof(); ++i) {
+    const Joint& joint = joints[i];
+    std::ostringstream msg;
+    if (!std::isfinite(q[i])) {
+      msg << "joint '" << joint.name << "' value " << q[i] << " is not a finite number";
+      throw Error(msg.str());
+    }
+    if (q[i] < joint.lower || q[i] > joint.upper) {
+      msg << "joint '" << joint.name << "' value " << q[i] << " is outside its limits ["
+          << joint.lower << ", " << joint.upper << "] "
+          << (joint.type == JointType::kRevolute ? "rad" : unitName(length_unit));
+      throw Error(msg.str());
+    }
+  }
+}
+
+Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
+  T.translate(Eigen::Vector3d(a, 0.0, d));  // Tz(d) * Tx(a) commute
+  T.rotate(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
+  return T;
+}
+
+Eigen::Isometry3d dhModified(double a, double alpha, double d, double theta) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.rotate(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
+  T.translate(Eigen::Vector3d(a, 0.0, 0.0));
+  T.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
+  T.translate(Eigen::Vector3d(0.0, 0.0, d));
+  return T;
+}
+
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = xyz;
+  T.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  return T;
+}
+
+}  // namespace mcws

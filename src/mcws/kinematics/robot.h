@@ -1,0 +1,76 @@
+#pragma once
+/// \file
+/// \brief Serial robot model: a chain of (fixed transform, joint axis, joint type).
+
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+namespace mcws {
+
+/// \brief Kind of a one-degree-of-freedom joint.
+enum class JointType { kRevolute, kPrismatic };
+
+/// \brief Length unit of a robot description; every length of a robot is in this unit.
+enum class LengthUnit { kMetre, kCentimetre, kMillimetre };
+
+/// \brief Short name of a unit ("m", "cm", "mm").
+const char* unitName(LengthUnit unit);
+/// \brief Size of one unit in metres (1, 0.01, 0.001).
+double unitInMetres(LengthUnit unit);
+/// \brief Name of a joint type ("revolute", "prismatic").
+const char* jointTypeName(JointType type);
+
+/// \brief One joint of a serial chain.
+///
+/// The joint frame is reached from the previous link frame by the fixed transform
+/// `T_parent_joint`; the joint then rotates about, or translates along, `axis` (a unit vector in
+/// the joint frame). The frame after that motion is this joint's link frame.
+struct Joint {
+  std::string name;
+  JointType type{JointType::kRevolute};
+  Eigen::Isometry3d T_parent_joint{Eigen::Isometry3d::Identity()};
+  Eigen::Vector3d axis{Eigen::Vector3d::UnitZ()};
+  double lower{0.0};  ///< lower limit [rad] or [length unit]
+  double upper{0.0};  ///< upper limit [rad] or [length unit]
+};
+
+/// \brief A serial manipulator.
+///
+/// T_world_tool(q) = T_world_base * prod_i (T_parent_joint_i * M_i(q_i)) * T_last_flange *
+/// T_flange_tool, where M_i is the motion of joint i. The flange is the end of the bare arm
+/// (seed 002's point P); the tool point is seed 002's point T. Every length is in `length_unit`.
+struct Robot {
+  std::string name;
+  std::string source;  ///< file the robot was read from, for messages
+  LengthUnit length_unit{LengthUnit::kMetre};
+  Eigen::Isometry3d T_world_base{Eigen::Isometry3d::Identity()};
+  std::vector<Joint> joints;
+  Eigen::Isometry3d T_last_flange{Eigen::Isometry3d::Identity()};
+  Eigen::Isometry3d T_flange_tool{Eigen::Isometry3d::Identity()};
+
+  /// \brief Number of joints.
+  int dof() const { return static_cast<int>(joints.size()); }
+  /// \brief Index of the joint called `joint_name`.
+  /// \throws mcws::Error naming the robot and the joint when there is no such joint.
+  int jointIndex(const std::string& joint_name) const;
+  /// \brief Lower limits [rad | length unit].
+  Eigen::VectorXd lowerLimits() const;
+  /// \brief Upper limits [rad | length unit].
+  Eigen::VectorXd upperLimits() const;
+  /// \brief Checks that q has dof() finite entries, each within its joint's limits.
+  /// \throws mcws::Error naming the joint, its value and its limits.
+  void checkJointVector(const Eigen::VectorXd& q) const;
+};
+
+/// \brief Transform of one row of a standard (distal) D-H table:
+/// Rz(theta) * Tz(d) * Tx(a) * Rx(alpha). Lengths in any unit, angles [rad].
+Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta);
+/// \brief Transform of one row of a modified (proximal, Craig) D-H table:
+/// Rx(alpha) * Tx(a) * Rz(theta) * Tz(d). Lengths in any unit, angles [rad].
+Eigen::Isometry3d dhModified(double a, double alpha, double d, double theta);
+/// \brief Pose from a translation and fixed-axis roll, pitch, yaw (as URDF):
+/// R = Rz(yaw) * Ry(pitch) * Rx(roll). Angles [rad].
+Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+
+}  // namespace mcws

@@ -1,0 +1,221 @@
+#include "mcws/kinematics/robot_yaml.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+/// Reads one document and turns every mistake into a message with file and line.
+class RobotYamlReader {
+ public:
+  explicit RobotYamlReader(std::string source) : source_(std::move(source)) {}
+
+  Robot read(const YAML::Node& root) {
+    if (!root.IsMap()) fail(root, "the document must be a map of robot fields");
+    checkKeys(root, "robot", {"name", "description", "units", "convention", "base", "tool", "joints"});
+
+    Robot robot;
+    robot.source = source_;
+    robot.name = scalar(root, "name", "robot");
+    if (robot.name.empty()) fail(root["name"], "name: must not be empty");
+    readUnits(require(root, "units", "robot"), robot);
+
+    const std::string convention = scalar(root, "convention", "robot");
+    if (convention != "standard" && convention != "modified") {
+      fail(root["convention"],
+           "convention: '" + convention + "' is not a D-H convention (standard or modified)");
+    }
+    if (root["base"]) robot.T_world_base = readPose(root["base"], "base");
+    if (root["tool"]) robot.T_flange_tool = readPose(root["tool"], "tool");
+
+    const YAML::Node joints = require(root, "joints", "robot");
+    if (!joints.IsSequence() || joints.size() == 0) {
+      fail(joints, "joints: must be a non-empty list of joints");
+    }
+    std::set<std::string> names;
+    Eigen::Isometry3d T_previous_fixed = Eigen::Isometry3d::Identity();
+    for (std::size_t i = 0; i < joints.size(); ++i) {
+      const YAML::Node row = joints[i];
+      const std::string where = "joint " + std::to_string(i + 1);
+      if (!row.IsMap()) fail(row, where + ": must be a map of D-H fields");
+      checkKeys(row, where, {"name", "type", "a", "alpha", "d", "theta", "limits"});
+      Joint joint;
+      joint.name = scalar(row, "name", where);
+      const std::string label = where + " '" + joint.name + "'";
+      if (joint.name.empty()) fail(row["name"], where + ": name must not be empty");
+      if (!names.insert(joint.name).second) fail(row["name"], label + ": duplicate joint name");
+      const std::string type = scalar(row, "type", label);
+      if (type == "revolute") {
+        joint.type = JointType::kRevolute;
+      } else if (type == "prismatic") {
+        joint.type = JointType::kPrismatic;
+      } else {
+        fail(row["type"], label + ": type '" + type + "' is not revolute or prismatic");
+      }
+      const double a = number(row, "a", label);
+      const double alpha = number(row, "alpha", label) * angle_scale_;
+      const double d = number(row, "d", label);
+      const double theta = row["theta"] ? number(row, "theta", label) * angle_scale_ : 0.0;
+      readLimits(row, label, joint);
+
+      // Motion about / along the joint frame's z axis in both conventions; see robot.h.
+      joint.axis = Eigen::Vector3d::UnitZ();
+      if (convention == "standard") {
+        // Rz(theta + q) Tz(d) Tx(a) Rx(alpha) = Rz(q) * G, or Tz(q) * G for a prismatic joint,
+        // with G = Rz(theta) Tz(d) Tx(a) Rx(alpha) fixed and applied after the motion.
+        joint.T_parent_joint = T_previous_fixed;
+        T_previous_fixed = dhStandard(a, alpha, d, theta);
+      } else {
+        // Rx(alpha) Tx(a) Rz(theta + q) Tz(d) = G * Rz(q), or G * Tz(q) when prismatic.
+        joint.T_parent_joint = dhModified(a, alpha, d, theta);
+      }
+      robot.joints.push_back(joint);
+    }
+    robot.T_last_flange = convention == "standard" ? T_previous_fixed : Eigen::Isometry3d::Identity();
+    return robot;
+  }
+
+ private:
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const {
+    std::ostringstream msg;
+    msg << source_;
+    if (node.IsDefined() && node.Mark().line >= 0) msg << ":" << node.Mark().line + 1;
+    msg << ": " << what;
+    throw Error(msg.str());
+  }
+
+  void checkKeys(const YAML::Node& map, const std::string& where,
+                 const std::set<std::string>& allowed) const {
+    for (const auto& item : map) {
+      const std::string key = item.first.as<std::string>();
+      if (!allowed.count(key)) {
+        std::string list;
+        for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
+        fail(item.first, where + ": unknown key '" + key + "' (allowed: " + list + ")");
+      }
+    }
+  }
+
+  YAML::Node require(const YAML::Node& map, const std::string& key, const std::string& where) const {
+    const YAML::Node node = map[key];
+    if (!node) fail(map, where + ": missing field '" + key + "'");
+    return node;
+  }
+
+  std::string scalar(const YAML::Node& map, const std::string& key, const std::string& where) const {
+    const YAML::Node node = require(map, key, where);
+    if (!node.IsScalar()) fail(node, where + ": field '" + key + "' must be a single value");
+    return node.Scalar();
+  }
+
+  double toNumber(const YAML::Node& node, const std::string& what) const {
+    if (!node.IsScalar()) fail(node, what + " must be a number");
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + ": '" + node.Scalar() + "' is not a number");
+    }
+    if (!std::isfinite(value)) fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
+    return value;
+  }
+
+  double number(const YAML::Node& map, const std::string& key, const std::string& where) const {
+    return toNumber(require(map, key, where), where + ": field '" + key + "'");
+  }
+
+  void readUnits(const YAML::Node& units, Robot& robot) {
+    if (!units.IsMap()) fail(units, "units: must be a map with 'length' and 'angle'");
+    checkKeys(units, "units", {"length", "angle"});
+    const std::string length = scalar(units, "length", "units");
+    if (length == "m") {
+      robot.length_unit = LengthUnit::kMetre;
+    } else if (length == "cm") {
+      robot.length_unit = LengthUnit::kCentimetre;
+    } else if (length == "mm") {
+      robot.length_unit = LengthUnit::kMillimetre;
+    } else {
+      fail(units["length"], "units: length unit '" + length + "' is not m, cm or mm");
+    }
+    const std::string angle = scalar(units, "angle", "units");
+    if (angle == "deg") {
+      angle_scale_ = kDegree;
+    } else if (angle == "rad") {
+      angle_scale_ = 1.0;
+    } else {
+      fail(units["angle"], "units: angle unit '" + angle + "' is not deg or rad");
+    }
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& map, const std::string& key,
+                          const std::string& where) const {
+    const YAML::Node node = map[key];
+    if (!node) return Eigen::Vector3d::Zero();
+    if (!node.IsSequence() || node.size() != 3) fail(node, where + ": " + key + " must be [x, y, z]");
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) v[k] = toNumber(node[k], where + ": " + key);
+    return v;
+  }
+
+  Eigen::Isometry3d readPose(const YAML::Node& node, const std::string& where) const {
+    if (!node.IsMap()) fail(node, where + ": must be a map with 'xyz' and/or 'rpy'");
+    checkKeys(node, where, {"xyz", "rpy"});
+    return poseFromXyzRpy(vector3(node, "xyz", where), vector3(node, "rpy", where) * angle_scale_);
+  }
+
+  void readLimits(const YAML::Node& row, const std::string& label, Joint& joint) const {
+    const YAML::Node limits = require(row, "limits", label);
+    if (!limits.IsSequence() || limits.size() != 2) {
+      fail(limits, label + ": limits must be [min, max]");
+    }
+    const double scale = joint.type == JointType::kRevolute ? angle_scale_ : 1.0;
+    const double lower = toNumber(limits[0], label + ": limits min");
+    const double upper = toNumber(limits[1], label + ": limits max");
+    if (lower > upper) {
+      std::ostringstream msg;
+      msg << label << ": limits min " << lower << " is greater than max " << upper;
+      fail(limits, msg.str());
+    }
+    joint.lower = lower * scale;
+    joint.upper = upper * scale;
+  }
+
+  std::string source_;
+  double angle_scale_{kDegree};
+};
+
+}  // namespace
+
+Robot parseRobotYaml(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+  }
+  return RobotYamlReader(source).read(root);
+}
+
+Robot loadRobot(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": robot file is not a regular file");
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open robot file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(path + ": cannot read robot file");
+  return parseRobotYaml(text.str(), path);
+}
+
+}  // namespace mcws

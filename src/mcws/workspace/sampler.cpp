@@ -1,0 +1,184 @@
+#include "mcws/workspace/sampler.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <limits>
+#include <sstream>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+constexpr std::size_t kBlock = 4096;       ///< samples per parallel work item
+constexpr std::size_t kChunk = 1u << 18;   ///< samples per write in writeSamples()
+
+Eigen::Vector3d samplePointInFlange(const Robot& robot, SamplePoint point) {
+  return point == SamplePoint::kTool ? Eigen::Vector3d(robot.T_flange_tool.translation())
+                                     : Eigen::Vector3d::Zero();
+}
+
+}  // namespace
+
+RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& options)
+    : rng_(options.seed),
+      kinematics_(robot, samplePointInFlange(robot, options.point)),
+      lower_(robot.lowerLimits()),
+      range_(robot.upperLimits() - robot.lowerLimits()) {
+  if (robot.dof() > kMaxJoints) {
+    throw Error("robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
+                " joints; a workspace point records at most " + std::to_string(kMaxJoints));
+  }
+  for (const auto& [name, value] : options.fixed) {
+    const int i = robot.jointIndex(name);
+    const Joint& joint = robot.joints[i];
+    if (!std::isfinite(value) || value < joint.lower || value > joint.upper) {
+      std::ostringstream msg;
+      msg << "fixed value " << value << " of joint '" << name << "' is outside its limits ["
+          << joint.lower << ", " << joint.upper << "] "
+          << (joint.type == JointType::kRevolute ? "rad" : unitName(robot.length_unit));
+      throw Error(msg.str());
+    }
+    lower_[i] = value;
+    range_[i] = 0.0;
+  }
+}
+
+void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const {
+  const int n = kinematics_.dof();
+  double q[kMaxJoints];
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint64_t index = first + k;
+    for (int j = 0; j < n; ++j) q[j] = lower_[j] + range_[j] * rng_.uniform(index, j);
+    const Eigen::Vector3d p = kinematics_.position(q);
+    WorkspacePoint& point = out[k];
+    point = WorkspacePoint();
+    point.x = static_cast<float>(p.x());
+    point.y = static_cast<float>(p.y());
+    point.z = static_cast<float>(p.z());
+    for (int j = 0; j < n; ++j) point.q[j] = static_cast<float>(q[j]);
+  }
+}
+
+Shape parseShape(const std::string& name) {
+  if (name == "disk") return Shape::kDisk;
+  if (name == "annulus") return Shape::kAnnulus;
+  if (name == "ball") return Shape::kBall;
+  if (name == "box") return Shape::kBox;
+  throw Error("unknown shape '" + name + "' (known: disk, annulus, ball, box)");
+}
+
+double shapeMeasure(Shape shape) {
+  switch (shape) {
+    case Shape::kDisk:
+      return M_PI;
+    case Shape::kAnnulus:
+      return 0.75 * M_PI;
+    case Shape::kBall:
+      return 4.0 * M_PI / 3.0;
+    case Shape::kBox:
+      return 1.0;
+  }
+  return 0.0;
+}
+
+bool shapeIsPlanar(Shape shape) { return shape == Shape::kDisk || shape == Shape::kAnnulus; }
+
+void ShapeSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const {
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint64_t i = first + k;
+    const double u0 = rng_.uniform(i, 0), u1 = rng_.uniform(i, 1), u2 = rng_.uniform(i, 2);
+    double x = 0.0, y = 0.0, z = 0.0;
+    switch (shape_) {
+      case Shape::kDisk:
+      case Shape::kAnnulus: {
+        // Uniform in area: P(r < s) is proportional to s^2 - r_inner^2.
+        const double r_inner2 = shape_ == Shape::kDisk ? 0.0 : 0.25;
+        const double r = std::sqrt(r_inner2 + (1.0 - r_inner2) * u0);
+        x = r * std::cos(2.0 * M_PI * u1);
+        y = r * std::sin(2.0 * M_PI * u1);
+        break;
+      }
+      case Shape::kBall: {
+        // Uniform in volume: r = cbrt(u), direction uniform on the sphere (Archimedes).
+        const double r = std::cbrt(u0);
+        const double cos_polar = 1.0 - 2.0 * u1;
+        const double sin_polar = std::sqrt(std::max(0.0, 1.0 - cos_polar * cos_polar));
+        x = r * sin_polar * std::cos(2.0 * M_PI * u2);
+        y = r * sin_polar * std::sin(2.0 * M_PI * u2);
+        z = r * cos_polar;
+        break;
+      }
+      case Shape::kBox:
+        x = u0 - 0.5;
+        y = u1 - 0.5;
+        z = u2 - 0.5;
+        break;
+    }
+    out[k] = WorkspacePoint();
+    out[k].x = static_cast<float>(x);
+    out[k].y = static_cast<float>(y);
+    out[k].z = static_cast<float>(z);
+  }
+}
+
+void generateParallel(const PointGenerator& generator, std::uint64_t first, std::size_t count,
+                      WorkspacePoint* out, int threads) {
+  const int n_threads = threads > 0 ? threads : omp_get_num_procs();
+  const std::int64_t blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(static) num_threads(n_threads)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::size_t begin = static_cast<std::size_t>(b) * kBlock;
+    generator.generate(first + begin, std::min(kBlock, count - begin), out + begin);
+  }
+}
+
+pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std::size_t n,
+                                            int threads) {
+  pcl::PointCloud<WorkspacePoint> cloud;
+  cloud.resize(n);
+  generateParallel(generator, 0, n, cloud.data(), threads);
+  cloud.width = static_cast<std::uint32_t>(n);
+  cloud.height = 1;
+  cloud.is_dense = true;
+  return cloud;
+}
+
+SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const std::string& path,
+                           io::PcdFormat format, int threads,
+                           const std::function<void(std::size_t, std::size_t)>& progress) {
+  io::PcdStreamWriter<WorkspacePoint> writer(path, n, format);
+  SampleSummary summary;
+  summary.min.setConstant(std::numeric_limits<double>::infinity());
+  summary.max.setConstant(-std::numeric_limits<double>::infinity());
+
+  // Two buffers: the next chunk is computed while the previous one is being written.
+  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> buffers[2];
+  std::future<void> pending;
+  for (std::size_t begin = 0, chunk = 0; begin < n; begin += kChunk, ++chunk) {
+    const std::size_t count = std::min(kChunk, n - begin);
+    auto& buffer = buffers[chunk % 2];
+    buffer.resize(count);
+    generateParallel(generator, begin, count, buffer.data(), threads);
+    for (const WorkspacePoint& p : buffer) {
+      const Eigen::Vector3d v(p.x, p.y, p.z);
+      summary.min = summary.min.cwiseMin(v);
+      summary.max = summary.max.cwiseMax(v);
+    }
+    if (pending.valid()) pending.get();  // rethrows a write error
+    pending = std::async(std::launch::async, [&writer, &buffer, count] {
+      writer.write(buffer.data(), count);
+    });
+    if (progress) progress(begin + count, n);
+  }
+  if (pending.valid()) pending.get();
+  writer.commit();
+  summary.points = n;
+  if (n == 0) summary.min = summary.max = Eigen::Vector3d::Zero();
+  return summary;
+}
+
+}  // namespace mcws

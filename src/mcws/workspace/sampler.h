@@ -1,0 +1,138 @@
+#pragma once
+/// \file
+/// \brief Monte Carlo workspace sampling (seed 000 section 3, seed 002 eq. (5)) and validation
+/// shapes of known area or volume.
+
+#include <pcl/point_cloud.h>
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/io/pcd_stream_writer.h"
+#include "mcws/kinematics/point_kinematics.h"
+#include "mcws/kinematics/robot.h"
+#include "mcws/workspace/point_types.h"
+
+namespace mcws {
+
+/// \brief Counter-based uniform random numbers: the value for (index, stream) depends only on
+/// the seed and those two numbers, never on the order or thread in which it is drawn.
+///
+/// It is the SplitMix64 generator (Steele, Lea, Flood, "Fast splittable pseudorandom number
+/// generators", OOPSLA 2014) evaluated at position index * kStreams + stream of the sequence
+/// whose start is derived from the seed.
+class CounterRng {
+ public:
+  /// \brief Random numbers one sample may draw.
+  static constexpr std::uint64_t kStreams = 16;
+
+  explicit CounterRng(std::uint64_t seed) : start_(mix(seed)) {}
+
+  /// \brief Uniform number in [0, 1) with 53 random bits.
+  double uniform(std::uint64_t index, std::uint64_t stream) const {
+    const std::uint64_t bits = mix(start_ + (index * kStreams + stream) * kGolden);
+    return static_cast<double>(bits >> 11) * 0x1.0p-53;
+  }
+
+ private:
+  static constexpr std::uint64_t kGolden = 0x9E3779B97F4A7C15ULL;
+  static std::uint64_t mix(std::uint64_t x) {
+    x += kGolden;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+  }
+  std::uint64_t start_;
+};
+
+/// \brief Anything that turns sample indices into workspace points, deterministically.
+class PointGenerator {
+ public:
+  virtual ~PointGenerator() = default;
+  /// \brief Writes samples first .. first+count-1 to out[0 .. count).
+  virtual void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const = 0;
+};
+
+/// \brief Which point of the robot a sample records (seed 002's P and T clouds).
+enum class SamplePoint { kTool, kFlange };
+
+/// \brief Options of RobotSampler.
+struct RobotSamplerOptions {
+  std::uint64_t seed{1};
+  SamplePoint point{SamplePoint::kTool};
+  /// Joints pinned to a value [rad | length unit] instead of sampled, by name.
+  std::vector<std::pair<std::string, double>> fixed;
+};
+
+/// \brief Joint values uniform within their limits (seed 002 eq. (5):
+/// q_i = q_i,min + (q_i,max - q_i,min) t_i, t_i uniform in [0, 1)), mapped through forward
+/// kinematics. The point carries x y z [length unit], q1..qn and label 0.
+class RobotSampler : public PointGenerator {
+ public:
+  /// \throws mcws::Error for a robot with more than kMaxJoints joints, an unknown joint in
+  ///   `fixed`, or a fixed value outside its joint's limits.
+  RobotSampler(const Robot& robot, const RobotSamplerOptions& options);
+  void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override;
+
+ private:
+  CounterRng rng_;
+  PointKinematics kinematics_;
+  Eigen::VectorXd lower_, range_;  ///< range 0 for a fixed joint
+};
+
+/// \brief Regions with a known area or volume, sampled uniformly in area or volume.
+enum class Shape {
+  kDisk,     ///< unit disk in the x-y plane (z = 0), area pi
+  kAnnulus,  ///< annulus 0.5 <= r <= 1 in the x-y plane, area 0.75 pi
+  kBall,     ///< unit ball, volume 4 pi / 3
+  kBox,      ///< unit cube [-0.5, 0.5]^3, volume 1
+};
+
+/// \brief Shape from its name (disk, annulus, ball, box).
+/// \throws mcws::Error naming the unknown shape and the known ones.
+Shape parseShape(const std::string& name);
+/// \brief Exact area (2-D shapes) or volume (3-D shapes).
+double shapeMeasure(Shape shape);
+/// \brief True for the planar shapes (disk, annulus).
+bool shapeIsPlanar(Shape shape);
+
+/// \brief Uniform samples of a validation shape (q fields zero, label 0).
+class ShapeSampler : public PointGenerator {
+ public:
+  ShapeSampler(Shape shape, std::uint64_t seed) : shape_(shape), rng_(seed) {}
+  void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override;
+
+ private:
+  Shape shape_;
+  CounterRng rng_;
+};
+
+/// \brief generator.generate() over [first, first+count) split across `threads` threads
+/// (0: all cores). The result does not depend on `threads`.
+void generateParallel(const PointGenerator& generator, std::uint64_t first, std::size_t count,
+                      WorkspacePoint* out, int threads);
+
+/// \brief Samples 0 .. n-1 as a cloud in memory.
+pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std::size_t n,
+                                            int threads);
+
+/// \brief What writeSamples() wrote.
+struct SampleSummary {
+  std::size_t points{0};
+  Eigen::Vector3d min{Eigen::Vector3d::Zero()};  ///< bounding box [length unit]
+  Eigen::Vector3d max{Eigen::Vector3d::Zero()};
+};
+
+/// \brief Streams samples 0 .. n-1 into a PCD file chunk by chunk (memory: two chunks), so
+/// clouds larger than memory can be written; the file appears only when complete.
+/// \param progress called after each chunk with (points done, n); may be empty.
+/// \throws mcws::Error when the file cannot be written.
+SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const std::string& path,
+                           io::PcdFormat format, int threads,
+                           const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace mcws
