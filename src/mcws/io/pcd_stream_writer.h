@@ -41,8 +41,16 @@ class PcdStreamWriter {
     for (const pcl::PCLPointField& field : pcl::getFields<PointT>()) {
       if (field.name != "_") fields_.push_back(field);
     }
+    // Fields that follow each other in memory are copied as one run.
     for (const pcl::PCLPointField& field : fields_) {
-      record_size_ += pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
+      const std::size_t size =
+          pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
+      if (!runs_.empty() && runs_.back().offset + runs_.back().size == field.offset) {
+        runs_.back().size += size;
+      } else {
+        runs_.push_back({field.offset, size});
+      }
+      record_size_ += size;
     }
     const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
     const std::string header = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
@@ -61,11 +69,9 @@ class PcdStreamWriter {
       char* out = buffer_.data();
       for (std::size_t i = 0; i < count; ++i) {
         const char* point = reinterpret_cast<const char*>(&points[i]);
-        for (const pcl::PCLPointField& field : fields_) {
-          const std::size_t size =
-              pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
-          std::memcpy(out, point + field.offset, size);
-          out += size;
+        for (const Run& run : runs_) {
+          std::memcpy(out, point + run.offset, run.size);
+          out += run.size;
         }
       }
     } else {
@@ -131,8 +137,13 @@ class PcdStreamWriter {
     buffer_.push_back('\n');
   }
 
+  struct Run {
+    std::size_t offset, size;  ///< bytes in the point struct
+  };
+
   AtomicFile file_;
   std::vector<pcl::PCLPointField> fields_;
+  std::vector<Run> runs_;
   std::size_t record_size_{0};
   std::size_t declared_{0};
   std::size_t written_{0};

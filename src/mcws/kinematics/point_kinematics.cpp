@@ -1,5 +1,15 @@
 #include "mcws/kinematics/point_kinematics.h"
 
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__FAST_MATH__)
+// glibc's libmvec has vector sin and cos; <bits/math-vector.h> declares them only under
+// -ffast-math. Declared here as glibc does, so `#pragma omp simd` loops call them while the rest
+// of the arithmetic keeps IEEE semantics (this file is compiled with -fno-math-errno).
+extern "C" {
+__attribute__((__simd__("notinbranch"))) double sin(double) noexcept;
+__attribute__((__simd__("notinbranch"))) double cos(double) noexcept;
+}
+#endif
+
 namespace mcws {
 namespace {
 
@@ -40,6 +50,43 @@ PointKinematics::PointKinematics(const Robot& robot, const Eigen::Vector3d& p_fl
   E_last.linear() = R_previous_inverse;
   p_last_ = n == 0 ? Eigen::Vector3d(robot.T_world_base * robot.T_last_flange * p_flange)
                    : Eigen::Vector3d(E_last * robot.T_last_flange * p_flange);
+}
+
+void PointKinematics::positions(const double* q, double* x, double* y, double* z) const {
+  double c[kLanes], s[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    x[k] = p_last_[0];
+    y[k] = p_last_[1];
+    z[k] = p_last_[2];
+  }
+  for (int i = dof() - 1; i >= 0; --i) {
+    const double* qi = q + i * kLanes;
+    if (revolute_[i]) {
+      // Separate loops: together GCC would fuse them into a scalar sincos call first.
+#pragma omp simd
+      for (int k = 0; k < kLanes; ++k) c[k] = std::cos(qi[k]);
+#pragma omp simd
+      for (int k = 0; k < kLanes; ++k) s[k] = std::sin(qi[k]);
+#pragma omp simd
+      for (int k = 0; k < kLanes; ++k) {
+        const double xr = c[k] * x[k] - s[k] * y[k];
+        y[k] = s[k] * x[k] + c[k] * y[k];
+        x[k] = xr;
+      }
+    } else {
+#pragma omp simd
+      for (int k = 0; k < kLanes; ++k) z[k] += qi[k];
+    }
+    const double* E = fixed_[i].data();
+#pragma omp simd
+    for (int k = 0; k < kLanes; ++k) {
+      const double xn = E[0] * x[k] + E[1] * y[k] + E[2] * z[k] + E[3];
+      const double yn = E[4] * x[k] + E[5] * y[k] + E[6] * z[k] + E[7];
+      z[k] = E[8] * x[k] + E[9] * y[k] + E[10] * z[k] + E[11];
+      x[k] = xn;
+      y[k] = yn;
+    }
+  }
 }
 
 }  // namespace mcws

@@ -24,8 +24,18 @@ class PointKinematics {
   ///   tool frame's translation: the tool point).
   PointKinematics(const Robot& robot, const Eigen::Vector3d& p_flange);
 
+  /// \brief Samples positions() computes together.
+  static constexpr int kLanes = 8;
+
   /// \brief Number of joint values position() reads.
   int dof() const { return static_cast<int>(revolute_.size()); }
+
+  /// \brief World positions of kLanes samples at once, vectorised (sin and cos from glibc's
+  /// libmvec where available). Each sample's result depends only on its own joint values, not on
+  /// its lane or its neighbours, and agrees with position() to about 1e-15 relative.
+  /// \param q joint values, q[j * kLanes + k] = joint j of sample k [rad | length unit].
+  /// \param x,y,z the positions of the kLanes samples [length unit].
+  void positions(const double* q, double* x, double* y, double* z) const;
 
   /// \brief World position [length unit] for joint values q[0..dof()) [rad | length unit].
   Eigen::Vector3d position(const double* q) const {

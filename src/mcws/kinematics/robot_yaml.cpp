@@ -48,11 +48,11 @@ class RobotYamlReader {
       const YAML::Node row = joints[i];
       const std::string where = "joint " + std::to_string(i + 1);
       if (!row.IsMap()) fail(row, where + ": must be a map of D-H fields");
-      checkKeys(row, where, {"name", "type", "a", "alpha", "d", "theta", "limits"});
       Joint joint;
       joint.name = scalar(row, "name", where);
-      const std::string label = where + " '" + joint.name + "'";
       if (joint.name.empty()) fail(row["name"], where + ": name must not be empty");
+      const std::string label = where + " '" + joint.name + "'";
+      checkKeys(row, label, {"name", "type", "a", "alpha", "d", "theta", "limits"});
       if (!names.insert(joint.name).second) fail(row["name"], label + ": duplicate joint name");
       const std::string type = scalar(row, "type", label);
       if (type == "revolute") {

@@ -2,7 +2,6 @@
 /// \file
 /// \brief The workspace point type: a position, the joint values that produced it, a label.
 
-#define PCL_NO_PRECOMPILE
 #include <pcl/point_types.h>
 #include <pcl/register_point_struct.h>
 

@@ -48,18 +48,28 @@ RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& option
 }
 
 void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const {
+  // kLanes samples at a time through the vectorised kernel; a last, partial batch is padded so
+  // that every sample takes the same code path whatever the batch boundaries.
+  constexpr int kLanes = PointKinematics::kLanes;
   const int n = kinematics_.dof();
-  double q[kMaxJoints];
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::uint64_t index = first + k;
-    for (int j = 0; j < n; ++j) q[j] = lower_[j] + range_[j] * rng_.uniform(index, j);
-    const Eigen::Vector3d p = kinematics_.position(q);
-    WorkspacePoint& point = out[k];
-    point = WorkspacePoint();
-    point.x = static_cast<float>(p.x());
-    point.y = static_cast<float>(p.y());
-    point.z = static_cast<float>(p.z());
-    for (int j = 0; j < n; ++j) point.q[j] = static_cast<float>(q[j]);
+  double q[kMaxJoints * kLanes], x[kLanes], y[kLanes], z[kLanes];
+  for (std::size_t begin = 0; begin < count; begin += kLanes) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, count - begin));
+    for (int j = 0; j < n; ++j) {
+      for (int k = 0; k < kLanes; ++k) {
+        const std::uint64_t index = first + begin + static_cast<std::uint64_t>(std::min(k, lanes - 1));
+        q[j * kLanes + k] = lower_[j] + range_[j] * rng_.uniform(index, j);
+      }
+    }
+    kinematics_.positions(q, x, y, z);
+    for (int k = 0; k < lanes; ++k) {
+      WorkspacePoint& point = out[begin + k];
+      point = WorkspacePoint();
+      point.x = static_cast<float>(x[k]);
+      point.y = static_cast<float>(y[k]);
+      point.z = static_cast<float>(z[k]);
+      for (int j = 0; j < n; ++j) point.q[j] = static_cast<float>(q[j * kLanes + k]);
+    }
   }
 }
 

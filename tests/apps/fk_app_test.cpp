@@ -1,0 +1,77 @@
+// mcws_fk through its command line, checked against seed 003's printed pose matrix.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kFk = MCWS_FK_EXE;
+const std::string kInspection = " --robot " + test::robotPath("inspection6");
+// pi/3 pi/6 pi/2 pi/4 pi/3 pi/6, seed 003 section 1.1
+const std::string kSeedQ = " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 "
+                           "0.7853981633974483 1.0471975511965976 0.5235987755982988'";
+
+TEST(FkApp, HelpExitsZero) {
+  const test::RunResult r = test::run(kFk + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--robot"));
+  EXPECT_THAT(r.out, HasSubstr("--q"));
+}
+
+TEST(FkApp, JsonPoseMatchesSeedMatrix) {
+  const test::RunResult r = test::run(kFk + kInspection + kSeedQ + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(json["pose"][0][3].get<double>(), -39.3043, 0.5e-4);
+  EXPECT_NEAR(json["pose"][1][3].get<double>(), 731.9230, 0.5e-4);
+  EXPECT_NEAR(json["pose"][2][3].get<double>(), -569.2371, 0.5e-4);
+  EXPECT_NEAR(json["pose"][2][1].get<double>(), 0.9012, 0.5e-4);
+  EXPECT_EQ(json["q"].size(), 6u);
+}
+
+TEST(FkApp, NegativeValuesAndCommasParse) {
+  const test::RunResult r =
+      test::run(kFk + " --robot " + test::robotPath("deicing") + " --q '-0.5,0.2,-1,30' --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  // eq. (1) of seed 000 with t3 = -0.5, t1 = 0.2, t2 = -1, a2 = 30
+  const double radial = 50 * std::cos(0.2) + 30 * std::cos(-0.8);
+  EXPECT_NEAR(json["position"][0].get<double>(), std::cos(-0.5) * radial, 1e-9);
+  EXPECT_NEAR(json["position"][2].get<double>(), 50 * std::sin(0.2) + 30 * std::sin(-0.8), 1e-9);
+}
+
+TEST(FkApp, BadJointVectors) {
+  struct Case {
+    std::string args;
+    int exit_code;
+    std::string message;
+  };
+  const Case cases[] = {
+      {kInspection + " --q '1 2 3'", 2, "robot 'inspection6' has 6 joints but 3 values were given"},
+      {kInspection + " --q '1 2 3 4 5 nan'", 2, "--q: 'nan' is not a finite number"},
+      {kInspection + " --q '1 2 3 4 5 6x'", 2, "--q: '6x' is not a finite number"},
+      {kInspection + " --q '0 0 0 0 0 4'", 1, "joint 'j6' value 4 is outside its limits"},
+      {kInspection, 2, "missing --q"},
+      {" --robot /nonexistent.yaml --q 0", 1, "/nonexistent.yaml: robot file does not exist"},
+  };
+  for (const Case& c : cases) {
+    const test::RunResult r = test::run(kFk + c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.message)) << c.args;
+    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+}
+
+TEST(FkApp, IgnoreLimitsAcceptsValuesOutsideThem) {
+  EXPECT_EQ(test::run(kFk + kInspection + " --q '0 0 0 0 0 4' --ignore-limits").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace mcws

@@ -1,0 +1,156 @@
+// mcws_sample through its command line: --help, every bad input of the foundation issue (one-line
+// message, exit code, no output left behind), and real runs.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+
+#include <nlohmann/json.hpp>
+
+#include "mcws/workspace/point_types.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+const std::string kSample = MCWS_SAMPLE_EXE;
+
+class SampleApp : public ::testing::Test {
+ protected:
+  std::string out() const { return dir_.file("ws.pcd"); }
+  std::string deicing() const { return test::robotPath("deicing"); }
+
+  /// Runs mcws_sample and checks a failure: exit code, one line on stderr containing `message`,
+  /// nothing written into the output directory.
+  void expectFailure(const std::string& args, int exit_code, const std::string& message) {
+    const test::RunResult r = test::run(kSample + " " + args);
+    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
+    EXPECT_THAT(r.err, StartsWith("mcws_sample: ")) << args;
+    EXPECT_THAT(r.err, HasSubstr(message)) << args;
+    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(dir_.fileCount(), 0u) << args;
+  }
+
+  test::TempDir dir_;
+};
+
+TEST_F(SampleApp, HelpExitsZeroAndDescribesTheFlags) {
+  const test::RunResult r = test::run(kSample + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag : {"--robot", "--shape", "--samples", "--seed", "--fix", "--point",
+                           "--threads", "--ascii", "--json"}) {
+    EXPECT_THAT(r.out, HasSubstr(flag));
+  }
+}
+
+TEST_F(SampleApp, MissingOrUnreadableRobotFile) {
+  expectFailure("--robot /nonexistent.yaml --output " + out(), 1,
+                "/nonexistent.yaml: robot file does not exist");
+  expectFailure("--robot " + dir_.file("") + " --output " + out(), 1, "is not a regular file");
+}
+
+TEST_F(SampleApp, UnknownYamlKeyAndReversedLimits) {
+  test::TempDir robots;
+  std::string text = test::readFile(deicing());
+  const std::string bad_key = robots.file("bad_key.yaml");
+  test::writeFile(bad_key, text + "colour: red\n");
+  expectFailure("--robot " + bad_key + " --output " + out(), 1, "unknown key 'colour'");
+  const std::string reversed = robots.file("reversed.yaml");
+  text.replace(text.find("limits: [-45, 45]"), 17, "limits: [45, -45]");
+  test::writeFile(reversed, text);
+  expectFailure("--robot " + reversed + " --output " + out(), 1,
+                "joint 2 'theta1': limits min 45 is greater than max -45");
+}
+
+TEST_F(SampleApp, BadSampleCounts) {
+  const std::string base = "--robot " + deicing() + " --output " + out();
+  expectFailure(base + " --samples 0", 2, "--samples: 0 is less than 1");
+  expectFailure(base + " --samples=-5", 2, "--samples: -5 is less than 1");
+  expectFailure(base + " --samples 10x", 2, "--samples: '10x' is not a whole number");
+  expectFailure(base + " --samples 1e3", 2, "--samples: '1e3' is not a whole number");
+  expectFailure(base + " --threads two", 2, "--threads: 'two' is not a whole number");
+}
+
+TEST_F(SampleApp, BadFixedJoints) {
+  const std::string base = "--robot " + deicing() + " --output " + out();
+  expectFailure(base + " --fix theta9=0", 1, "robot 'deicing' has no joint 'theta9'");
+  expectFailure(base + " --fix a2=80", 1, "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
+  expectFailure(base + " --fix theta3=0.5x", 2, "--fix: '0.5x' is not a finite number");
+  expectFailure(base + " --fix theta3", 2, "--fix: 'theta3' is not name=value");
+}
+
+TEST_F(SampleApp, BadShapeAndFlagCombinations) {
+  expectFailure("--shape torus --output " + out(), 2,
+                "--shape: unknown shape 'torus' (known: disk, annulus, ball, box)");
+  expectFailure("--output " + out(), 2, "give one of --robot and --shape");
+  expectFailure("--shape disk --robot " + deicing() + " --output " + out(), 2,
+                "give one of --robot and --shape");
+  expectFailure("--shape disk", 2, "missing --output");
+  expectFailure("--shape disk --output " + out() + " --point elbow", 2,
+                "--point: 'elbow' is not tool or flange");
+  expectFailure("--shape disk --output " + out() + " --colour red", 2, "unrecognised option");
+}
+
+TEST_F(SampleApp, OutputDirectoryMissingOrNotADirectory) {
+  expectFailure("--shape disk --output " + dir_.file("no/such/dir/ws.pcd"), 1,
+                "/no/such/dir' does not exist");
+  expectFailure("--shape disk --output /proc/mcws_ws.pcd", 1, "cannot write '/proc/mcws_ws.pcd'");
+}
+
+TEST_F(SampleApp, UnwritableOutputDirectory) {
+  // Root may write anywhere, so as root the tool runs as user nobody (setpriv, util-linux).
+  std::string runner;
+  if (::geteuid() == 0) {
+    if (test::run("command -v setpriv").exit_code != 0) GTEST_SKIP() << "root without setpriv";
+    runner = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  }
+  test::TempDir locked;
+  std::filesystem::permissions(locked.file(""), std::filesystem::perms::owner_read |
+                                                    std::filesystem::perms::owner_exec |
+                                                    std::filesystem::perms::others_read |
+                                                    std::filesystem::perms::others_exec);
+  const test::RunResult r = test::run(runner + kSample + " --shape disk --output " + locked.file("ws.pcd"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("' is not writable"));
+  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  EXPECT_EQ(locked.fileCount(), 0u);
+}
+
+TEST_F(SampleApp, DeicingPlaneCloudWithJson) {
+  const test::RunResult r =
+      test::run(kSample + " --robot " + deicing() +
+                " --samples 6000 --seed 1 --fix theta3=0 --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["points"], 6000);
+  EXPECT_EQ(json["robot"], "deicing");
+  EXPECT_EQ(json["unit"], "cm");
+  // In the X-Z plane the reach is at most a1 + a2max = 120 cm.
+  EXPECT_LE(json["bbox"]["max"][0].get<double>(), 120.0 + 1e-3);
+  EXPECT_NEAR(json["bbox"]["max"][1].get<double>(), 0.0, 1e-4);
+  pcl::PointCloud<WorkspacePoint> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(out(), cloud), 0);
+  ASSERT_EQ(cloud.size(), 6000u);
+  EXPECT_EQ(dir_.fileCount(), 1u);
+}
+
+TEST_F(SampleApp, SameFileForOneAndTwoThreads) {
+  const std::string robot = " --robot " + test::robotPath("ta1400") + " --samples 300001 --seed 9";
+  ASSERT_EQ(test::run(kSample + robot + " --threads 1 --output " + dir_.file("a.pcd")).exit_code, 0);
+  ASSERT_EQ(test::run(kSample + robot + " --threads 2 --output " + dir_.file("b.pcd")).exit_code, 0);
+  EXPECT_EQ(test::readFile(dir_.file("a.pcd")), test::readFile(dir_.file("b.pcd")));
+}
+
+TEST_F(SampleApp, ShapeJsonGivesTheExactMeasure) {
+  const test::RunResult r =
+      test::run(kSample + " --shape ball --samples 1000 --ascii --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(json["volume"].get<double>(), 4.0 * M_PI / 3.0, 1e-12);
+  EXPECT_THAT(test::readFile(out()), HasSubstr("DATA ascii"));
+}
+
+}  // namespace
+}  // namespace mcws

@@ -1,0 +1,153 @@
+#include "mcws/kinematics/robot_yaml.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mcws/core/error.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maintenance4",
+                                      "insulator_cleaner"};
+
+// A valid two-joint robot; the tests below break one thing at a time.
+const std::string kValid = R"(name: two
+units: {length: mm, angle: deg}
+convention: standard
+joints:
+  - {name: j1, type: revolute, a: 100, alpha: 0, d: 0, limits: [-90, 90]}
+  - {name: j2, type: prismatic, a: 0, alpha: 0, d: 10, limits: [0, 50]}
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+std::string errorOf(const std::string& yaml) {
+  try {
+    parseRobotYaml(yaml, "bad.yaml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << yaml;
+  return "";
+}
+
+TEST(RobotYaml, LoadsEveryShippedRobot) {
+  for (const char* name : kShippedRobots) {
+    const Robot robot = loadRobot(test::robotPath(name));
+    EXPECT_EQ(robot.name, name);
+    EXPECT_GE(robot.dof(), 4);
+    for (const Joint& joint : robot.joints) EXPECT_LE(joint.lower, joint.upper) << joint.name;
+  }
+}
+
+TEST(RobotYaml, ConvertsDegreesToRadiansButKeepsLengths) {
+  const Robot robot = parseRobotYaml(kValid, "two.yaml");
+  ASSERT_EQ(robot.dof(), 2);
+  EXPECT_DOUBLE_EQ(robot.joints[0].lower, -M_PI / 2);
+  EXPECT_DOUBLE_EQ(robot.joints[0].upper, M_PI / 2);
+  EXPECT_DOUBLE_EQ(robot.joints[1].upper, 50.0);  // prismatic limits stay in mm
+  EXPECT_EQ(robot.length_unit, LengthUnit::kMillimetre);
+  EXPECT_EQ(robot.joints[1].type, JointType::kPrismatic);
+}
+
+TEST(RobotYaml, NamesTheDeicingJointsAsThePaper) {
+  const Robot robot = loadRobot(test::robotPath("deicing"));
+  EXPECT_EQ(robot.jointIndex("theta3"), 0);
+  EXPECT_EQ(robot.jointIndex("theta1"), 1);
+  EXPECT_EQ(robot.jointIndex("theta2"), 2);
+  EXPECT_EQ(robot.jointIndex("a2"), 3);
+  EXPECT_EQ(robot.length_unit, LengthUnit::kCentimetre);
+}
+
+TEST(RobotYaml, ReportsMissingFile) {
+  try {
+    loadRobot("/nonexistent/robot.yaml");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/robot.yaml: robot file does not exist");
+  }
+}
+
+TEST(RobotYaml, ReportsADirectoryGivenAsRobotFile) {
+  test::TempDir dir;
+  try {
+    loadRobot(dir.file(""));
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("is not a regular file"));
+  }
+}
+
+TEST(RobotYaml, ReportsUnknownKeyWithLine) {
+  const std::string msg = errorOf(replace(kValid, "d: 10,", "d: 10, offset: 3,"));
+  EXPECT_THAT(msg, HasSubstr("bad.yaml:6: joint 2 'j2': unknown key 'offset'"));
+}
+
+TEST(RobotYaml, ReportsUnknownTopLevelKey) {
+  EXPECT_THAT(errorOf(kValid + "colour: red\n"), HasSubstr("bad.yaml:7: robot: unknown key 'colour'"));
+}
+
+TEST(RobotYaml, ReportsMissingLimits) {
+  const std::string msg = errorOf(replace(kValid, ", limits: [0, 50]", ""));
+  EXPECT_THAT(msg, HasSubstr("joint 2 'j2': missing field 'limits'"));
+}
+
+TEST(RobotYaml, ReportsLimitsInTheWrongOrder) {
+  const std::string msg = errorOf(replace(kValid, "[-90, 90]", "[90, -90]"));
+  EXPECT_THAT(msg, HasSubstr("bad.yaml:5: joint 1 'j1': limits min 90 is greater than max -90"));
+}
+
+TEST(RobotYaml, ReportsNaNAndInfinity) {
+  EXPECT_THAT(errorOf(replace(kValid, "a: 100", "a: .nan")),
+              HasSubstr("joint 1 'j1': field 'a': '.nan' is not a finite number"));
+  EXPECT_THAT(errorOf(replace(kValid, "[0, 50]", "[0, .inf]")),
+              HasSubstr("joint 2 'j2': limits max: '.inf' is not a finite number"));
+}
+
+TEST(RobotYaml, ReportsTextWhereANumberBelongs) {
+  EXPECT_THAT(errorOf(replace(kValid, "a: 100", "a: 100x")),
+              HasSubstr("joint 1 'j1': field 'a': '100x' is not a number"));
+}
+
+TEST(RobotYaml, ReportsBadUnits) {
+  EXPECT_THAT(errorOf(replace(kValid, "length: mm", "length: ''")),
+              HasSubstr("units: length unit '' is not m, cm or mm"));
+  EXPECT_THAT(errorOf(replace(kValid, "length: mm", "length: inch")),
+              HasSubstr("units: length unit 'inch' is not m, cm or mm"));
+  EXPECT_THAT(errorOf(replace(kValid, "angle: deg", "angle: grad")),
+              HasSubstr("units: angle unit 'grad' is not deg or rad"));
+}
+
+TEST(RobotYaml, ReportsBadConventionTypeAndDuplicates) {
+  EXPECT_THAT(errorOf(replace(kValid, "convention: standard", "convention: craig")),
+              HasSubstr("bad.yaml:3: convention: 'craig' is not a D-H convention"));
+  EXPECT_THAT(errorOf(replace(kValid, "type: prismatic", "type: spherical")),
+              HasSubstr("joint 2 'j2': type 'spherical' is not revolute or prismatic"));
+  EXPECT_THAT(errorOf(replace(kValid, "name: j2", "name: j1")),
+              HasSubstr("joint 2 'j1': duplicate joint name"));
+}
+
+TEST(RobotYaml, ReportsEmptyJointListAndSyntaxErrors) {
+  const std::string no_joints = kValid.substr(0, kValid.find("joints:")) + "joints: []\n";
+  EXPECT_THAT(errorOf(no_joints), HasSubstr("joints: must be a non-empty list"));
+  EXPECT_THAT(errorOf("name: [unclosed\n"), HasSubstr("bad.yaml:2: YAML syntax"));
+  EXPECT_THAT(errorOf("just text"), HasSubstr("the document must be a map"));
+}
+
+TEST(RobotYaml, ReportsBadToolPose) {
+  EXPECT_THAT(errorOf(kValid + "tool: {xyz: [1, 2]}\n"), HasSubstr("tool: xyz must be [x, y, z]"));
+  EXPECT_THAT(errorOf(kValid + "tool: {rot: [1, 2, 3]}\n"), HasSubstr("tool: unknown key 'rot'"));
+}
+
+}  // namespace
+}  // namespace mcws

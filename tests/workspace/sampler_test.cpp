@@ -1,0 +1,229 @@
+#include "mcws/workspace/sampler.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <pcl/common/common.h>
+#include <pcl/io/pcd_io.h>
+
+#include "mcws/core/error.h"
+#include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/kinematics/robot_yaml.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+bool sameBytes(const pcl::PointCloud<WorkspacePoint>& a, const pcl::PointCloud<WorkspacePoint>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].x != b[i].x || a[i].y != b[i].y || a[i].z != b[i].z || a[i].label != b[i].label ||
+        std::memcmp(a[i].q, b[i].q, sizeof a[i].q) != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(CounterRng, IsUniformAndDependsOnlyOnSeedIndexAndStream) {
+  const CounterRng rng(42);
+  double sum = 0.0, sum2 = 0.0;
+  constexpr int n = 200000;
+  for (int i = 0; i < n; ++i) {
+    const double u = rng.uniform(i, 3);
+    ASSERT_GE(u, 0.0);
+    ASSERT_LT(u, 1.0);
+    sum += u;
+    sum2 += u * u;
+  }
+  // Mean 1/2 and variance 1/12; the mean's standard error is sqrt(1/12/n) = 6.5e-4: 5 sigma.
+  EXPECT_NEAR(sum / n, 0.5, 5 * 6.5e-4);
+  EXPECT_NEAR(sum2 / n - (sum / n) * (sum / n), 1.0 / 12.0, 2e-3);
+  EXPECT_EQ(CounterRng(42).uniform(12345, 2), rng.uniform(12345, 2));
+  EXPECT_NE(CounterRng(43).uniform(12345, 2), rng.uniform(12345, 2));
+  EXPECT_NE(rng.uniform(12345, 1), rng.uniform(12345, 2));
+}
+
+TEST(RobotSampler, SameCloudForAnyThreadCountAndAnySplit) {
+  const Robot robot = loadRobot(test::robotPath("ta1400"));
+  const RobotSampler sampler(robot, {});
+  const auto one = sampleCloud(sampler, 50001, 1);
+  EXPECT_TRUE(sameBytes(one, sampleCloud(sampler, 50001, 2)));
+  EXPECT_TRUE(sameBytes(one, sampleCloud(sampler, 50001, 3)));
+  // Sample i does not depend on where a batch starts: generate [7, 1007) on its own.
+  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> part(1000);
+  sampler.generate(7, part.size(), part.data());
+  for (std::size_t k = 0; k < part.size(); ++k) {
+    ASSERT_EQ(part[k].x, one[7 + k].x);
+    ASSERT_EQ(part[k].z, one[7 + k].z);
+    ASSERT_EQ(part[k].q6, one[7 + k].q6);
+  }
+}
+
+TEST(RobotSampler, DifferentSeedsGiveDifferentClouds) {
+  const Robot robot = loadRobot(test::robotPath("deicing"));
+  RobotSamplerOptions options;
+  options.seed = 2;
+  EXPECT_FALSE(sameBytes(sampleCloud(RobotSampler(robot, {}), 100, 1),
+                         sampleCloud(RobotSampler(robot, options), 100, 1)));
+}
+
+TEST(RobotSampler, PointsAreTheForwardKinematicsOfTheirJointValues) {
+  for (const char* name : {"deicing", "ta1400", "inspection6", "maintenance4", "insulator_cleaner"}) {
+    SCOPED_TRACE(name);
+    const Robot robot = loadRobot(test::robotPath(name));
+    for (SamplePoint which : {SamplePoint::kTool, SamplePoint::kFlange}) {
+      RobotSamplerOptions options;
+      options.point = which;
+      const auto cloud = sampleCloud(RobotSampler(robot, options), 2000, 2);
+      for (const WorkspacePoint& p : cloud) {
+        Eigen::VectorXd q(robot.dof());
+        for (int j = 0; j < robot.dof(); ++j) {
+          q[j] = p.q[j];
+          ASSERT_GE(q[j], robot.joints[j].lower - 1e-6);
+          ASSERT_LE(q[j], robot.joints[j].upper + 1e-6);
+        }
+        for (int j = robot.dof(); j < kMaxJoints; ++j) ASSERT_EQ(p.q[j], 0.0f);
+        ASSERT_EQ(p.label, kLabelFree);
+        const Eigen::Isometry3d T =
+            which == SamplePoint::kTool ? toolPose(robot, q) : flangePose(robot, q);
+        // q was rounded to float when stored: positions agree to a few float ulps of the reach.
+        const double tolerance = 1e-5 * (1.0 + T.translation().norm()) + 1e-4;
+        ASSERT_NEAR(p.x, T.translation().x(), tolerance);
+        ASSERT_NEAR(p.y, T.translation().y(), tolerance);
+        ASSERT_NEAR(p.z, T.translation().z(), tolerance);
+      }
+    }
+  }
+}
+
+TEST(RobotSampler, FixedJointStaysAtItsValue) {
+  const Robot robot = loadRobot(test::robotPath("deicing"));
+  RobotSamplerOptions options;
+  options.fixed = {{"theta3", 0.0}};
+  const auto cloud = sampleCloud(RobotSampler(robot, options), 5000, 2);
+  for (const WorkspacePoint& p : cloud) {
+    ASSERT_EQ(p.q1, 0.0f);
+    ASSERT_NEAR(p.y, 0.0f, 1e-5);  // seed 000's X-Z plane
+  }
+}
+
+TEST(RobotSampler, ReportsUnknownOrOutOfRangeFixedJoint) {
+  const Robot robot = loadRobot(test::robotPath("deicing"));
+  RobotSamplerOptions options;
+  options.fixed = {{"theta9", 0.0}};
+  try {
+    RobotSampler sampler(robot, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_THAT(e.what(), HasSubstr("robot 'deicing' has no joint 'theta9'"));
+  }
+  options.fixed = {{"a2", 80.0}};
+  try {
+    RobotSampler sampler(robot, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
+  }
+}
+
+TEST(RobotSampler, RefusesMoreJointsThanThePointRecords) {
+  Robot robot = loadRobot(test::robotPath("ta1400"));
+  robot.joints.insert(robot.joints.end(), robot.joints.begin(), robot.joints.begin() + 3);
+  EXPECT_THROW(RobotSampler(robot, {}), Error);
+}
+
+// ---- validation shapes: the fraction of samples inside radius s must follow the region's
+// measure; with n samples the binomial standard error is sqrt(p(1-p)/n), and we allow 5 sigma.
+
+double fractionWithin(const pcl::PointCloud<WorkspacePoint>& cloud, double radius) {
+  std::size_t inside = 0;
+  for (const auto& p : cloud) inside += std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z) < radius;
+  return static_cast<double>(inside) / cloud.size();
+}
+
+void expectFraction(double measured, double expected, std::size_t n) {
+  EXPECT_NEAR(measured, expected, 5.0 * std::sqrt(expected * (1.0 - expected) / n));
+}
+
+TEST(ShapeSampler, DiskIsUniformInArea) {
+  constexpr std::size_t n = 100000;
+  const auto cloud = sampleCloud(ShapeSampler(Shape::kDisk, 1), n, 2);
+  for (const auto& p : cloud) {
+    ASSERT_EQ(p.z, 0.0f);
+    ASSERT_LE(p.x * p.x + p.y * p.y, 1.0f + 1e-6f);
+  }
+  expectFraction(fractionWithin(cloud, 0.5), 0.25, n);
+  std::size_t right = 0;
+  for (const auto& p : cloud) right += p.x > 0;
+  expectFraction(static_cast<double>(right) / n, 0.5, n);
+}
+
+TEST(ShapeSampler, AnnulusIsUniformInArea) {
+  constexpr std::size_t n = 100000;
+  const auto cloud = sampleCloud(ShapeSampler(Shape::kAnnulus, 1), n, 2);
+  for (const auto& p : cloud) {
+    const float r = std::sqrt(p.x * p.x + p.y * p.y);
+    ASSERT_GE(r, 0.5f - 1e-6f);
+    ASSERT_LE(r, 1.0f + 1e-6f);
+  }
+  expectFraction(fractionWithin(cloud, 0.75), (0.75 * 0.75 - 0.25) / 0.75, n);
+}
+
+TEST(ShapeSampler, BallIsUniformInVolume) {
+  constexpr std::size_t n = 100000;
+  const auto cloud = sampleCloud(ShapeSampler(Shape::kBall, 1), n, 2);
+  EXPECT_LE(fractionWithin(cloud, 1.0 + 1e-6), 1.0);
+  expectFraction(fractionWithin(cloud, 0.5), 0.125, n);
+  std::size_t top = 0;
+  for (const auto& p : cloud) top += p.z > 0.5f;
+  // Spherical cap above z = 0.5: volume pi h^2 (3 - h) / 3 with h = 0.5, over 4 pi / 3.
+  expectFraction(static_cast<double>(top) / n, (M_PI * 0.25 * 2.5 / 3.0) / (4.0 * M_PI / 3.0), n);
+}
+
+TEST(ShapeSampler, BoxIsTheCentredUnitCube) {
+  constexpr std::size_t n = 100000;
+  const auto cloud = sampleCloud(ShapeSampler(Shape::kBox, 1), n, 1);
+  std::size_t corner = 0;
+  for (const auto& p : cloud) {
+    ASSERT_LE(std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}), 0.5f);
+    corner += p.x > 0 && p.y > 0 && p.z > 0;
+  }
+  expectFraction(static_cast<double>(corner) / n, 0.125, n);
+}
+
+TEST(ShapeSampler, NamesAndMeasures) {
+  EXPECT_EQ(parseShape("annulus"), Shape::kAnnulus);
+  EXPECT_DOUBLE_EQ(shapeMeasure(Shape::kDisk), M_PI);
+  EXPECT_DOUBLE_EQ(shapeMeasure(Shape::kBall), 4.0 * M_PI / 3.0);
+  try {
+    parseShape("torus");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "unknown shape 'torus' (known: disk, annulus, ball, box)");
+  }
+}
+
+TEST(WriteSamples, StreamedFileEqualsTheCloudInMemory) {
+  test::TempDir dir;
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  const RobotSampler sampler(robot, {});
+  constexpr std::size_t n = 600000;  // more than two chunks, and not a multiple of one
+  const SampleSummary summary =
+      writeSamples(sampler, n, dir.file("ws.pcd"), io::PcdFormat::kBinary, 2);
+  const auto cloud = sampleCloud(sampler, n, 1);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(dir.file("pcl.pcd"), cloud), 0);
+  EXPECT_EQ(test::readFile(dir.file("ws.pcd")), test::readFile(dir.file("pcl.pcd")));
+  WorkspacePoint min, max;
+  pcl::getMinMax3D(cloud, min, max);
+  EXPECT_EQ(summary.points, n);
+  EXPECT_FLOAT_EQ(summary.min.x(), min.x);
+  EXPECT_FLOAT_EQ(summary.max.z(), max.z);
+}
+
+}  // namespace
+}  // namespace mcws
