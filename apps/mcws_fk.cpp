@@ -29,14 +29,16 @@ int main(int argc, char** argv) {
     }
     const Eigen::VectorXd q = app::parseNumberList(q_text, "q");
     const Robot robot = loadRobot(cli.required("robot"));
-    if (q.size() != robot.dof()) {
-      throw app::UsageError("--q: robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
-                            " joints but " + std::to_string(q.size()) + " values were given");
+    try {
+      robot.checkSize(q);
+    } catch (const Error& e) {
+      throw app::UsageError(std::string("--q: ") + e.what());
     }
     if (!cli.has("ignore-limits")) robot.checkJointVector(q);
 
     const ChainPoses poses = chainPoses(robot, q);
-    const Eigen::Matrix4d T = (frame == "tool" ? poses.T_world_tool : poses.T_world_flange).matrix();
+    const Eigen::Matrix4d T =
+        (frame == "tool" ? poses.T_world_tool : poses.T_world_flange).matrix();
     if (cli.has("json")) {
       nlohmann::json out;
       out["robot"] = robot.name;

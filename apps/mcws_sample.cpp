@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   return app::run("mcws_sample", [&] {
     app::CommandLine cli(
         "mcws_sample (--robot FILE | --shape NAME) --output FILE [options]",
-        "Draws joint values uniformly within their limits (sample i's random numbers depend only on\n"
+        "Draws joint values uniformly within their limits (sample i's random numbers depend only "
+        "on\n"
         "--seed and i, so the file is the same for any --threads) and writes the tool or flange\n"
         "positions with the joint values that produced them (fields x y z q1..q8 label) to a PCD\n"
         "file. Joint values on the command line are in rad (revolute) and in the robot file's\n"
@@ -26,10 +27,10 @@ int main(int argc, char** argv) {
         "output", app::po::value<std::string>(), "output PCD file")(
         "fix", app::po::value<std::vector<std::string>>(),
         "pin joints instead of sampling them: name=value[,name=value] (repeatable)")(
-        "point", app::po::value<std::string>(), "tool | flange: which point to record (default tool)")(
+        "point", app::po::value<std::string>(),
+        "tool | flange: which point to record (default tool)")(
         "threads", app::po::value<std::string>(), "worker threads, 0 = all cores (default 0)")(
-        "ascii", "write ASCII PCD instead of binary")(
-        "json", "print a JSON summary on stdout");
+        "ascii", "write ASCII PCD instead of binary")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
 
     const auto samples = app::parseInteger(cli.text("samples", "6000"), "samples", 1);
@@ -40,7 +41,8 @@ int main(int argc, char** argv) {
     if (point != "tool" && point != "flange") {
       throw app::UsageError("--point: '" + point + "' is not tool or flange");
     }
-    if (cli.has("robot") == cli.has("shape")) throw app::UsageError("give one of --robot and --shape");
+    if (cli.has("robot") == cli.has("shape"))
+      throw app::UsageError("give one of --robot and --shape");
     if (cli.has("shape") && (cli.has("fix") || cli.has("point"))) {
       throw app::UsageError("--fix and --point need --robot");
     }
@@ -53,7 +55,8 @@ int main(int argc, char** argv) {
       options.seed = static_cast<std::uint64_t>(seed);
       options.point = point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
       for (const std::string& fix : cli.all("fix")) {
-        for (const auto& pinned : app::parseAssignments(fix, "fix")) options.fixed.push_back(pinned);
+        for (const auto& pinned : app::parseAssignments(fix, "fix"))
+          options.fixed.push_back(pinned);
       }
       generator = std::make_unique<RobotSampler>(robot, options);
       summary["robot"] = robot.name;
@@ -73,10 +76,11 @@ int main(int argc, char** argv) {
     }
 
     app::Progress progress("mcws_sample", "samples");
-    const SampleSummary result = writeSamples(
-        *generator, static_cast<std::size_t>(samples), output,
-        cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary, static_cast<int>(threads),
-        [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+    const SampleSummary result =
+        writeSamples(*generator, static_cast<std::size_t>(samples), output,
+                     cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary,
+                     static_cast<int>(threads),
+                     [&](std::size_t done, std::size_t total) { progress.update(done, total); });
 
     summary["output"] = output;
     summary["points"] = result.points;
@@ -87,8 +91,8 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       std::cout << summary.dump() << "\n";
     } else {
-      std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : "
-                << result.points << " points] -> " << output << "\n";
+      std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000)
+                << " ms : " << result.points << " points] -> " << output << "\n";
     }
     return app::kExitOk;
   });

@@ -37,7 +37,10 @@ BENCHMARK(BM_SampleForwardKinematics)
 
 void BM_PcdStreamWriter(benchmark::State& state) {
   std::vector<mcws::WorkspacePoint, Eigen::aligned_allocator<mcws::WorkspacePoint>> points(kBatch);
-  const std::string path = std::getenv("MCWS_BENCH_DIR") ? std::string(std::getenv("MCWS_BENCH_DIR")) + "/mcws_bench_writer.pcd" : "/tmp/mcws_bench_writer.pcd";
+  const std::string path =
+      std::getenv("MCWS_BENCH_DIR")
+          ? std::string(std::getenv("MCWS_BENCH_DIR")) + "/mcws_bench_writer.pcd"
+          : "/tmp/mcws_bench_writer.pcd";
   for (auto _ : state) {
     mcws::io::PcdStreamWriter<mcws::WorkspacePoint> writer(path, 8 * kBatch);
     for (int k = 0; k < 8; ++k) writer.write(points.data(), kBatch);

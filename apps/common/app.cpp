@@ -29,7 +29,8 @@ CommandLine::CommandLine(std::string usage, std::string summary)
 }
 
 bool CommandLine::parse(int argc, char** argv) {
-  const auto style = po::command_line_style::allow_long | po::command_line_style::long_allow_adjacent |
+  const auto style = po::command_line_style::allow_long |
+                     po::command_line_style::long_allow_adjacent |
                      po::command_line_style::long_allow_next;
   po::store(po::command_line_parser(argc, argv).options(options_).style(style).run(), values_);
   if (values_.count("help")) {

@@ -14,8 +14,9 @@ using ::testing::HasSubstr;
 const std::string kFk = MCWS_FK_EXE;
 const std::string kInspection = " --robot " + test::robotPath("inspection6");
 // pi/3 pi/6 pi/2 pi/4 pi/3 pi/6, seed 003 section 1.1
-const std::string kSeedQ = " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 "
-                           "0.7853981633974483 1.0471975511965976 0.5235987755982988'";
+const std::string kSeedQ =
+    " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 "
+    "0.7853981633974483 1.0471975511965976 0.5235987755982988'";
 
 TEST(FkApp, HelpExitsZero) {
   const test::RunResult r = test::run(kFk + " --help");
@@ -53,7 +54,8 @@ TEST(FkApp, BadJointVectors) {
     std::string message;
   };
   const Case cases[] = {
-      {kInspection + " --q '1 2 3'", 2, "robot 'inspection6' has 6 joints but 3 values were given"},
+      {kInspection + " --q '1 2 3'", 2,
+       "--q: robot 'inspection6' has 6 joints but 3 joint values were given"},
       {kInspection + " --q '1 2 3 4 5 nan'", 2, "--q: 'nan' is not a finite number"},
       {kInspection + " --q '1 2 3 4 5 6x'", 2, "--q: '6x' is not a finite number"},
       {kInspection + " --q '0 0 0 0 0 4'", 1, "joint 'j6' value 4 is outside its limits"},

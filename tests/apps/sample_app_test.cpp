@@ -76,7 +76,8 @@ TEST_F(SampleApp, BadSampleCounts) {
 TEST_F(SampleApp, BadFixedJoints) {
   const std::string base = "--robot " + deicing() + " --output " + out();
   expectFailure(base + " --fix theta9=0", 1, "robot 'deicing' has no joint 'theta9'");
-  expectFailure(base + " --fix a2=80", 1, "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
+  expectFailure(base + " --fix a2=80", 1,
+                "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
   expectFailure(base + " --fix theta3=0.5x", 2, "--fix: '0.5x' is not a finite number");
   expectFailure(base + " --fix theta3", 2, "--fix: 'theta3' is not name=value");
 }
@@ -111,7 +112,8 @@ TEST_F(SampleApp, UnwritableOutputDirectory) {
                                                     std::filesystem::perms::owner_exec |
                                                     std::filesystem::perms::others_read |
                                                     std::filesystem::perms::others_exec);
-  const test::RunResult r = test::run(runner + kSample + " --shape disk --output " + locked.file("ws.pcd"));
+  const test::RunResult r =
+      test::run(runner + kSample + " --shape disk --output " + locked.file("ws.pcd"));
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_THAT(r.err, HasSubstr("' is not writable"));
   EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
@@ -138,9 +140,40 @@ TEST_F(SampleApp, DeicingPlaneCloudWithJson) {
 
 TEST_F(SampleApp, SameFileForOneAndTwoThreads) {
   const std::string robot = " --robot " + test::robotPath("ta1400") + " --samples 300001 --seed 9";
-  ASSERT_EQ(test::run(kSample + robot + " --threads 1 --output " + dir_.file("a.pcd")).exit_code, 0);
-  ASSERT_EQ(test::run(kSample + robot + " --threads 2 --output " + dir_.file("b.pcd")).exit_code, 0);
+  ASSERT_EQ(test::run(kSample + robot + " --threads 1 --output " + dir_.file("a.pcd")).exit_code,
+            0);
+  ASSERT_EQ(test::run(kSample + robot + " --threads 2 --output " + dir_.file("b.pcd")).exit_code,
+            0);
   EXPECT_EQ(test::readFile(dir_.file("a.pcd")), test::readFile(dir_.file("b.pcd")));
+}
+
+TEST_F(SampleApp, ReproducesTheReferenceCloudsByteForByte) {
+  const std::string clouds = std::string(MCWS_CLOUDS_DIR) + "/";
+  ASSERT_EQ(test::run(kSample + " --robot " + deicing() +
+                      " --samples 6000 --seed 1 --fix theta3=0"
+                      " --threads 2 --output " +
+                      dir_.file("xz.pcd"))
+                .exit_code,
+            0);
+  EXPECT_EQ(test::readFile(dir_.file("xz.pcd")), test::readFile(clouds + "deicing_xz_seed1.pcd"));
+  ASSERT_EQ(test::run(kSample + " --shape annulus --samples 2000 --seed 1 --ascii --output " +
+                      dir_.file("annulus.pcd"))
+                .exit_code,
+            0);
+  EXPECT_EQ(test::readFile(dir_.file("annulus.pcd")),
+            test::readFile(clouds + "annulus_2000_seed1.pcd"));
+}
+
+TEST_F(SampleApp, PclToolsConvertTheCloud) {
+  ASSERT_EQ(
+      test::run(kSample + " --robot " + deicing() + " --samples 500 --output " + out()).exit_code,
+      0);
+  const test::RunResult r = test::run("pcl_pcd2ply " + out() + " " + dir_.file("ws.ply"));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::string ply = test::readFile(dir_.file("ws.ply"));
+  EXPECT_THAT(ply, HasSubstr("element vertex 500"));
+  EXPECT_THAT(ply, HasSubstr("property float q4"));
+  EXPECT_THAT(ply, HasSubstr("property uint label"));
 }
 
 TEST_F(SampleApp, ShapeJsonGivesTheExactMeasure) {

@@ -27,7 +27,8 @@ const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maint
 Eigen::VectorXd randomJoints(const Robot& robot, std::mt19937_64& rng) {
   Eigen::VectorXd q(robot.dof());
   for (int i = 0; i < robot.dof(); ++i) {
-    q[i] = std::uniform_real_distribution<double>(robot.joints[i].lower, robot.joints[i].upper)(rng);
+    q[i] =
+        std::uniform_real_distribution<double>(robot.joints[i].lower, robot.joints[i].upper)(rng);
   }
   return q;
 }
@@ -62,7 +63,7 @@ TEST(ForwardKinematics, InspectionArmReproducesSeedPoseMatrix) {
   const Robot robot = loadRobot(test::robotPath("inspection6"));
   Eigen::VectorXd q(6);
   q << M_PI / 3, M_PI / 6, M_PI / 2, M_PI / 4, M_PI / 3, M_PI / 6;
-  Eigen::Matrix<double, 3, 4> paper;  // as printed, 4 decimals
+  Eigen::Matrix<double, 3, 4> paper;            // as printed, 4 decimals
   paper << -0.9234, 0.3837, -0.0148, -39.3043,  //
       -0.0993, -0.2015, 0.9744, 731.9230,       //
       0.3709, 0.9012, 0.2241, -569.2371;
@@ -82,10 +83,10 @@ KDL::Chain kdlChainFromFile(const std::string& path) {
   auto pose = [&](const YAML::Node& node) {
     if (!node) return KDL::Frame::Identity();
     auto v = [&](const char* key, double scale) {
-      return node[key] ? KDL::Vector(node[key][0].as<double>() * scale,
-                                     node[key][1].as<double>() * scale,
-                                     node[key][2].as<double>() * scale)
-                       : KDL::Vector::Zero();
+      return node[key]
+                 ? KDL::Vector(node[key][0].as<double>() * scale, node[key][1].as<double>() * scale,
+                               node[key][2].as<double>() * scale)
+                 : KDL::Vector::Zero();
     };
     const KDL::Vector rpy = v("rpy", angle);
     return KDL::Frame(KDL::Rotation::RPY(rpy.x(), rpy.y(), rpy.z()), v("xyz", 1.0));
@@ -97,7 +98,8 @@ KDL::Chain kdlChainFromFile(const std::string& path) {
     const double theta = r["theta"] ? r["theta"].as<double>() * angle : 0.0;
     const double a = r["a"].as<double>(), alpha = r["alpha"].as<double>() * angle;
     const double d = r["d"].as<double>();
-    return modified ? KDL::Frame::DH_Craig1989(a, alpha, d, theta) : KDL::Frame::DH(a, alpha, d, theta);
+    return modified ? KDL::Frame::DH_Craig1989(a, alpha, d, theta)
+                    : KDL::Frame::DH(a, alpha, d, theta);
   };
   KDL::Chain chain;
   // Standard D-H: joint motion, then the row's frame. Modified: the row's frame, then the motion,
@@ -151,7 +153,8 @@ void expectMatchesKdl(const std::string& path) {
     ASSERT_NEAR((toolPose(robot, q).matrix() - poses.T_world_tool.matrix()).norm(), 0.0, 1e-9);
     for (int i = 0; i <= robot.dof(); ++i) {  // frame of joint i+1 = end of KDL segment i
       ASSERT_GE(solver.JntToCart(q_kdl, F, i + 1), 0);
-      const Eigen::Isometry3d mine = i < robot.dof() ? poses.T_world_joint[i] : poses.T_world_flange;
+      const Eigen::Isometry3d mine =
+          i < robot.dof() ? poses.T_world_joint[i] : poses.T_world_flange;
       ASSERT_LT(poseDifference(mine.matrix(), toEigen(F), length), kRelativeTolerance)
           << path << " frame " << i << ", q = " << q.transpose();
     }

@@ -94,7 +94,8 @@ TEST(RobotYaml, ReportsUnknownKeyWithLine) {
 }
 
 TEST(RobotYaml, ReportsUnknownTopLevelKey) {
-  EXPECT_THAT(errorOf(kValid + "colour: red\n"), HasSubstr("bad.yaml:7: robot: unknown key 'colour'"));
+  EXPECT_THAT(errorOf(kValid + "colour: red\n"),
+              HasSubstr("bad.yaml:7: robot: unknown key 'colour'"));
 }
 
 TEST(RobotYaml, ReportsMissingLimits) {

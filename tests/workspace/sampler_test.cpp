@@ -3,10 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <cstring>
 #include <pcl/common/common.h>
 #include <pcl/io/pcd_io.h>
+#include <cmath>
+#include <cstring>
 
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -73,7 +73,8 @@ TEST(RobotSampler, DifferentSeedsGiveDifferentClouds) {
 }
 
 TEST(RobotSampler, PointsAreTheForwardKinematicsOfTheirJointValues) {
-  for (const char* name : {"deicing", "ta1400", "inspection6", "maintenance4", "insulator_cleaner"}) {
+  for (const char* name :
+       {"deicing", "ta1400", "inspection6", "maintenance4", "insulator_cleaner"}) {
     SCOPED_TRACE(name);
     const Robot robot = loadRobot(test::robotPath(name));
     for (SamplePoint which : {SamplePoint::kTool, SamplePoint::kFlange}) {

@@ -23,9 +23,9 @@ enum class PcdFormat { kBinary, kAscii };
 /// \brief Streams points of type PointT into a PCD file whose point count is known up front.
 ///
 /// The header is PCL's own (pcl::PCDWriter::generateHeader), and binary data is packed exactly as
-/// pcl::PCDWriter::writeBinary packs it, so the file is byte for byte what pcl::io::savePCDFileBinary
-/// would write for the same cloud. The file is written under a temporary name and appears only
-/// on commit() (see AtomicFile).
+/// pcl::PCDWriter::writeBinary packs it, so the file is byte for byte what
+/// pcl::io::savePCDFileBinary would write for the same cloud. The file is written under a temporary
+/// name and appears only on commit() (see AtomicFile).
 template <typename PointT>
 class PcdStreamWriter {
  public:
@@ -33,7 +33,8 @@ class PcdStreamWriter {
   /// \param points number of points that will be written (at most INT_MAX, as in PCL).
   /// \param format binary (default) or ASCII.
   /// \throws mcws::Error when the path cannot be written or `points` is too large.
-  PcdStreamWriter(const std::string& path, std::size_t points, PcdFormat format = PcdFormat::kBinary)
+  PcdStreamWriter(const std::string& path, std::size_t points,
+                  PcdFormat format = PcdFormat::kBinary)
       : file_(path), declared_(points), format_(format) {
     if (points > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
       throw Error("cannot write '" + path + "': a PCD file holds at most 2^31-1 points");
@@ -53,8 +54,9 @@ class PcdStreamWriter {
       record_size_ += size;
     }
     const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
-    const std::string header = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
-                               (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
+    const std::string header =
+        pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
+        (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
     file_.write(header.data(), header.size());
   }
 
@@ -75,7 +77,8 @@ class PcdStreamWriter {
         }
       }
     } else {
-      for (std::size_t i = 0; i < count; ++i) appendAscii(reinterpret_cast<const char*>(&points[i]));
+      for (std::size_t i = 0; i < count; ++i)
+        appendAscii(reinterpret_cast<const char*>(&points[i]));
     }
     file_.write(buffer_.data(), buffer_.size());
     written_ += count;

@@ -1,19 +1,6 @@
 #include "mcws/kinematics/forward_kinematics.h"
 
-#include "mcws/core/error.h"
-
 namespace mcws {
-namespace {
-
-void checkSize(const Robot& robot, const Eigen::VectorXd& q) {
-  if (q.size() != robot.dof()) {
-    throw Error("robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
-                " joints but " + std::to_string(q.size()) + " joint values were given");
-  }
-}
-
-}  // namespace
-
 Eigen::Isometry3d jointMotion(const Joint& joint, double q) {
   Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
   if (joint.type == JointType::kRevolute) {
@@ -25,7 +12,7 @@ Eigen::Isometry3d jointMotion(const Joint& joint, double q) {
 }
 
 ChainPoses chainPoses(const Robot& robot, const Eigen::VectorXd& q) {
-  checkSize(robot, q);
+  robot.checkSize(q);
   ChainPoses poses;
   poses.T_world_joint.reserve(robot.joints.size());
   poses.T_world_link.reserve(robot.joints.size());
@@ -42,7 +29,7 @@ ChainPoses chainPoses(const Robot& robot, const Eigen::VectorXd& q) {
 }
 
 Eigen::Isometry3d flangePose(const Robot& robot, const Eigen::VectorXd& q) {
-  checkSize(robot, q);
+  robot.checkSize(q);
   Eigen::Isometry3d T = robot.T_world_base;
   for (int i = 0; i < robot.dof(); ++i) {
     T = T * robot.joints[i].T_parent_joint * jointMotion(robot.joints[i], q[i]);

@@ -57,11 +57,15 @@ Eigen::VectorXd Robot::upperLimits() const {
   return limits;
 }
 
-void Robot::checkJointVector(const Eigen::VectorXd& q) const {
+void Robot::checkSize(const Eigen::VectorXd& q) const {
   if (q.size() != dof()) {
     throw Error("robot '" + name + "' has " + std::to_string(dof()) + " joints but " +
                 std::to_string(q.size()) + " joint values were given");
   }
+}
+
+void Robot::checkJointVector(const Eigen::VectorXd& q) const {
+  checkSize(q);
   for (int i = 0; i < dof(); ++i) {
     const Joint& joint = joints[i];
     std::ostringstream msg;

@@ -58,6 +58,8 @@ struct Robot {
   Eigen::VectorXd lowerLimits() const;
   /// \brief Upper limits [rad | length unit].
   Eigen::VectorXd upperLimits() const;
+  /// \brief Checks that q has dof() entries. \throws mcws::Error naming both counts.
+  void checkSize(const Eigen::VectorXd& q) const;
   /// \brief Checks that q has dof() finite entries, each within its joint's limits.
   /// \throws mcws::Error naming the joint, its value and its limits.
   void checkJointVector(const Eigen::VectorXd& q) const;

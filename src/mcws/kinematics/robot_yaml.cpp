@@ -22,7 +22,8 @@ class RobotYamlReader {
 
   Robot read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of robot fields");
-    checkKeys(root, "robot", {"name", "description", "units", "convention", "base", "tool", "joints"});
+    checkKeys(root, "robot",
+              {"name", "description", "units", "convention", "base", "tool", "joints"});
 
     Robot robot;
     robot.source = source_;
@@ -81,7 +82,8 @@ class RobotYamlReader {
       }
       robot.joints.push_back(joint);
     }
-    robot.T_last_flange = convention == "standard" ? T_previous_fixed : Eigen::Isometry3d::Identity();
+    robot.T_last_flange =
+        convention == "standard" ? T_previous_fixed : Eigen::Isometry3d::Identity();
     return robot;
   }
 
@@ -106,13 +108,15 @@ class RobotYamlReader {
     }
   }
 
-  YAML::Node require(const YAML::Node& map, const std::string& key, const std::string& where) const {
+  YAML::Node require(const YAML::Node& map, const std::string& key,
+                     const std::string& where) const {
     const YAML::Node node = map[key];
     if (!node) fail(map, where + ": missing field '" + key + "'");
     return node;
   }
 
-  std::string scalar(const YAML::Node& map, const std::string& key, const std::string& where) const {
+  std::string scalar(const YAML::Node& map, const std::string& key,
+                     const std::string& where) const {
     const YAML::Node node = require(map, key, where);
     if (!node.IsScalar()) fail(node, where + ": field '" + key + "' must be a single value");
     return node.Scalar();
@@ -126,7 +130,8 @@ class RobotYamlReader {
     } catch (const YAML::Exception&) {
       fail(node, what + ": '" + node.Scalar() + "' is not a number");
     }
-    if (!std::isfinite(value)) fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
+    if (!std::isfinite(value))
+      fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
     return value;
   }
 
@@ -161,7 +166,8 @@ class RobotYamlReader {
                           const std::string& where) const {
     const YAML::Node node = map[key];
     if (!node) return Eigen::Vector3d::Zero();
-    if (!node.IsSequence() || node.size() != 3) fail(node, where + ": " + key + " must be [x, y, z]");
+    if (!node.IsSequence() || node.size() != 3)
+      fail(node, where + ": " + key + " must be [x, y, z]");
     Eigen::Vector3d v;
     for (int k = 0; k < 3; ++k) v[k] = toNumber(node[k], where + ": " + key);
     return v;
@@ -209,7 +215,8 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
 Robot loadRobot(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": robot file is not a regular file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw Error(path + ": robot file is not a regular file");
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open robot file");
   std::ostringstream text;

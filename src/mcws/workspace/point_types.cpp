@@ -2,5 +2,4 @@
 // the library rather than of its first user.
 #include "mcws/workspace/point_types.h"
 
-
 static_assert(sizeof(mcws::WorkspacePoint) % 16 == 0, "WorkspacePoint must stay 16-byte aligned");

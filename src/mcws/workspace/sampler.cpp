@@ -13,8 +13,8 @@
 namespace mcws {
 namespace {
 
-constexpr std::size_t kBlock = 4096;       ///< samples per parallel work item
-constexpr std::size_t kChunk = 1u << 18;   ///< samples per write in writeSamples()
+constexpr std::size_t kBlock = 4096;      ///< samples per parallel work item
+constexpr std::size_t kChunk = 1u << 18;  ///< samples per write in writeSamples()
 
 Eigen::Vector3d samplePointInFlange(const Robot& robot, SamplePoint point) {
   return point == SamplePoint::kTool ? Eigen::Vector3d(robot.T_flange_tool.translation())
@@ -57,7 +57,8 @@ void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoi
     const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, count - begin));
     for (int j = 0; j < n; ++j) {
       for (int k = 0; k < kLanes; ++k) {
-        const std::uint64_t index = first + begin + static_cast<std::uint64_t>(std::min(k, lanes - 1));
+        const std::uint64_t index =
+            first + begin + static_cast<std::uint64_t>(std::min(k, lanes - 1));
         q[j * kLanes + k] = lower_[j] + range_[j] * rng_.uniform(index, j);
       }
     }
@@ -179,9 +180,8 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
       summary.max = summary.max.cwiseMax(v);
     }
     if (pending.valid()) pending.get();  // rethrows a write error
-    pending = std::async(std::launch::async, [&writer, &buffer, count] {
-      writer.write(buffer.data(), count);
-    });
+    pending = std::async(std::launch::async,
+                         [&writer, &buffer, count] { writer.write(buffer.data(), count); });
     if (progress) progress(begin + count, n);
   }
   if (pending.valid()) pending.get();

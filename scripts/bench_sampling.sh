@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Sampling benchmarks for BENCHMARKS.md: (1) Google Benchmark of the sampler's forward kinematics
+# (file writing excluded) and of the PCD writer alone; (2) timed whole runs of mcws_sample with
+# 10 million samples (/usr/bin/time -v: wall time, peak memory) beside dd writing the same number
+# of bytes to the same disk. Medians of 5 (benchmarks) and 3 (whole runs) in one run of this script.
+# Usage: scripts/bench_sampling.sh [BUILD_DIR]   (needs a release build)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$root/build}
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcws_bench.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+
+echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
+echo
+echo "## Google Benchmark (median of 5)"
+"$build/bench/bench_sampler" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+  --benchmark_min_time=0.5 2>/dev/null | grep -E "_median" | sed 's/_median//'
+echo
+
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+echo "## Whole runs, 10000000 samples, --threads 2 (median of 3)"
+echo "| robot | wall s | peak RSS MB | file MB | RSS / file | dd same bytes s |"
+echo "|---|---|---|---|---|---|"
+for robot in ta1400 inspection6; do
+  : >"$tmp/wall"; : >"$tmp/rss"; : >"$tmp/dd"
+  for _ in 1 2 3; do
+    rm -f "$tmp/ws.pcd"; sync
+    /usr/bin/time -v "$build/apps/mcws_sample" --robot "$root/robots/$robot.yaml" \
+      --samples 10000000 --threads 2 --output "$tmp/ws.pcd" 2>"$tmp/time.log"
+    awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
+      "$tmp/time.log" >>"$tmp/wall"
+    awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss"
+    bytes=$(stat -c %s "$tmp/ws.pcd")
+    rm -f "$tmp/ws.pcd" "$tmp/dd.bin"; sync
+    start=$(date +%s.%N)
+    head -c "$bytes" /dev/zero | dd of="$tmp/dd.bin" bs=12M iflag=fullblock status=none
+    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/dd"
+    rm -f "$tmp/dd.bin"
+  done
+  wall=$(median <"$tmp/wall"); rss=$(median <"$tmp/rss"); dd_s=$(median <"$tmp/dd")
+  awk -v r="$robot" -v w="$wall" -v rss="$rss" -v bytes="$bytes" -v d="$dd_s" 'BEGIN {
+    mb = bytes / 1048576; printf "| %s | %.2f | %.0f | %.1f | %.2f | %.2f |\n", r, w, rss, mb, rss / mb, d }'
+done
