@@ -36,8 +36,10 @@ struct EIGEN_ALIGN16 WorkspacePoint {
 
 }  // namespace mcws
 
-POINT_CLOUD_REGISTER_POINT_STRUCT(
-    mcws::WorkspacePoint,
-    (float, x, x)(float, y, y)(float, z, z)(float, q1, q1)(float, q2, q2)(float, q3, q3)(
-        float, q4, q4)(float, q5, q5)(float, q6, q6)(float, q7, q7)(float, q8, q8)(std::uint32_t,
-                                                                                   label, label))
+// clang-format off
+POINT_CLOUD_REGISTER_POINT_STRUCT(mcws::WorkspacePoint,
+    (float, x, x) (float, y, y) (float, z, z)
+    (float, q1, q1) (float, q2, q2) (float, q3, q3) (float, q4, q4)
+    (float, q5, q5) (float, q6, q6) (float, q7, q7) (float, q8, q8)
+    (std::uint32_t, label, label))
+// clang-format on
