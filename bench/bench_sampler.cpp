@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/sampler.h"
 
@@ -34,6 +35,27 @@ BENCHMARK(BM_SampleForwardKinematics)
     ->ArgNames({"robot", "threads"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+
+// The general chain (toolPose: 4x4 products, Eigen AngleAxis per joint) on the same random joint
+// values, one thread: what the sampling kernel is compared with.
+void BM_ChainToolPose(benchmark::State& state) {
+  const std::string name = kRobots[state.range(0)];
+  const mcws::Robot robot = mcws::loadRobot(std::string(MCWS_ROBOTS_DIR) + "/" + name + ".yaml");
+  const mcws::CounterRng rng(1);
+  Eigen::VectorXd q(robot.dof());
+  std::uint64_t index = 0;
+  for (auto _ : state) {
+    for (int j = 0; j < robot.dof(); ++j) {
+      q[j] = robot.joints[j].lower +
+             (robot.joints[j].upper - robot.joints[j].lower) * rng.uniform(index, j);
+    }
+    benchmark::DoNotOptimize(mcws::toolPose(robot, q).translation());
+    ++index;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+  state.SetLabel(name);
+}
+BENCHMARK(BM_ChainToolPose)->DenseRange(0, 2);
 
 void BM_PcdStreamWriter(benchmark::State& state) {
   std::vector<mcws::WorkspacePoint, Eigen::aligned_allocator<mcws::WorkspacePoint>> points(kBatch);
