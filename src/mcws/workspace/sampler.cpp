@@ -98,6 +98,24 @@ double shapeMeasure(Shape shape) {
 
 bool shapeIsPlanar(Shape shape) { return shape == Shape::kDisk || shape == Shape::kAnnulus; }
 
+double shapeBoundaryDistance(Shape shape, const Eigen::Vector3d& p) {
+  const double r2d = p.head<2>().norm();
+  switch (shape) {
+    case Shape::kDisk:
+      return std::abs(1.0 - r2d);
+    case Shape::kAnnulus:
+      return std::min(std::abs(1.0 - r2d), std::abs(r2d - 0.5));
+    case Shape::kBall:
+      return std::abs(1.0 - p.norm());
+    case Shape::kBox: {
+      const Eigen::Vector3d outside = (p.cwiseAbs().array() - 0.5).matrix();
+      if (outside.maxCoeff() <= 0.0) return -outside.maxCoeff();  // inside: nearest face
+      return outside.cwiseMax(0.0).norm();
+    }
+  }
+  return 0.0;
+}
+
 void ShapeSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const {
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint64_t i = first + k;

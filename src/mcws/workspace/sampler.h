@@ -99,6 +99,9 @@ Shape parseShape(const std::string& name);
 double shapeMeasure(Shape shape);
 /// \brief True for the planar shapes (disk, annulus).
 bool shapeIsPlanar(Shape shape);
+/// \brief Distance from p to the shape's boundary (for a planar shape, within its plane z = 0):
+/// the rim of the disk, both circles of the annulus, the sphere, the cube's faces.
+double shapeBoundaryDistance(Shape shape, const Eigen::Vector3d& p);
 
 /// \brief Uniform samples of a validation shape (q fields zero, label 0).
 class ShapeSampler : public PointGenerator {

@@ -1,0 +1,70 @@
+// Boundary quality on the validation shapes: precision (share of reported points within two mean
+// spacings of the true boundary) and recall (share of the points within half a spacing of the
+// true boundary that are reported), mean over seeds, with the filter's time.
+// Usage: boundary_quality SHAPE N SEEDS [axis|outward|both] [auto-factor]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "mcws/filters/orthant_boundary.h"
+#include "mcws/workspace/sampler.h"
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    std::fprintf(stderr, "usage: boundary_quality SHAPE N SEEDS [axis|outward|both] [factor]\n");
+    return 2;
+  }
+  const mcws::Shape shape = mcws::parseShape(argv[1]);
+  const std::size_t n = std::strtoull(argv[2], nullptr, 10);
+  const int seeds = std::atoi(argv[3]);
+  const std::string frames = argc > 4 ? argv[4] : "both";
+  const double factor = argc > 5 ? std::atof(argv[5]) : 0.0;
+  const bool planar = mcws::shapeIsPlanar(shape);
+  const double h = std::pow(mcws::shapeMeasure(shape) / n, planar ? 0.5 : 1.0 / 3.0);
+
+  double precision = 0, recall = 0, seconds = 0, radius = 0, reported = 0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const auto cloud = std::make_shared<pcl::PointCloud<mcws::WorkspacePoint>>(
+        mcws::sampleCloud(mcws::ShapeSampler(shape, seed), n, 0));
+    mcws::OrthantBoundary<mcws::WorkspacePoint> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(planar ? mcws::BoundaryPlane::kXY : mcws::BoundaryPlane::k3D);
+    filter.setAutoRadius(factor);
+    filter.setFrames(frames == "axis"      ? 1u
+                     : frames == "outward" ? 2u
+                     : frames == "both"    ? 3u
+                     : frames == "any"     ? 4u
+                                           : 0u);
+    pcl::Indices kept;
+    const auto start = std::chrono::steady_clock::now();
+    filter.filter(kept);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    radius += filter.usedRadius() / h;
+    std::vector<char> is_reported(n, 0);
+    std::size_t close = 0;
+    for (const auto i : kept) {
+      is_reported[i] = 1;
+      close +=
+          mcws::shapeBoundaryDistance(shape, (*cloud)[i].getVector3fMap().cast<double>()) <= 2 * h;
+    }
+    std::size_t near = 0, found = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (mcws::shapeBoundaryDistance(shape, (*cloud)[i].getVector3fMap().cast<double>()) <=
+          0.5 * h) {
+        ++near;
+        found += is_reported[i];
+      }
+    }
+    precision += kept.empty() ? 0.0 : static_cast<double>(close) / kept.size();
+    recall += near ? static_cast<double>(found) / near : 1.0;
+    reported += kept.size();
+  }
+  std::printf(
+      "%-8s N=%-8zu frames=%-7s r=%.2fh  reported=%.0f  precision=%.4f  recall=%.4f  "
+      "filter=%.3fs\n",
+      argv[1], n, frames.c_str(), radius / seeds, reported / seeds, precision / seeds,
+      recall / seeds, seconds / seeds);
+  return 0;
+}

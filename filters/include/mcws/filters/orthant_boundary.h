@@ -1,0 +1,146 @@
+#pragma once
+/// \file
+/// \brief Boundary points of a point cloud by the local quadrant (2-D) or octant (3-D) test of
+/// seed 000 (Yin, Wang, Yu 2010, section 4.3).
+
+#include <pcl/filters/filter_indices.h>
+
+#include "mcws/filters/boundary_geometry.h"
+
+namespace mcws {
+
+/// \brief Keeps the points on the boundary of a sampled region (negative mode: the interior).
+///
+/// **Rule.** Around each point p, the neighbours within radius r (pcl::KdTreeFLANN over the
+/// whole input, in the chosen plane or in 3-D) are sorted into the 4 quadrants (2-D) or 8 octants
+/// (3-D) of a local frame centred on p. p is a boundary point when at least one orthant holds no
+/// neighbour in at least one of the enabled frames:
+/// - kAxisFrame: the coordinate axes (seed 000's rule);
+/// - kOutwardFrame: a frame turned so that one orthant is centred on the outward direction
+///   -(c - p), c the centroid of the neighbours. A point a distance d inside a flat boundary then
+///   has an empty outward orthant with probability exp(-density * d^2) (2-D), whatever r is,
+///   where the axis frame needs the two thin strips between p and a boundary parallel to an axis
+///   both empty. The outward frame is what finds the points just inside the boundary.
+/// - kAnyRotation (2-D only; ignored in 3-D): every rotation of the frame, i.e. some quadrant is
+///   empty in some rotation, which holds exactly when the largest angle between the directions
+///   to consecutive neighbours is at least 90 degrees. It contains the other two frames' tests.
+///   Default: kAnyRotation in 2-D, kAxisFrame | kOutwardFrame in 3-D.
+///
+/// **Radius.** setRadiusSearch(r) fixes it [length unit]. setAutoRadius(c) takes r = c h, h the
+/// mean spacing (meanSpacing()); with N points an interior point's orthant of radius c h is
+/// empty with probability exp(-pi c^2 / 4) (2-D) or exp(-pi c^3 / 6) (3-D), so c must grow like
+/// sqrt(ln N) (2-D) or cbrt(ln N) (3-D) to keep false boundary points rare; c = 0 chooses
+/// c = sqrt(4 / pi ln(32 N)) resp. cbrt(6 / pi ln(32 N)): about half a false point per cloud.
+/// setAdaptiveRadius(k, s) gives each point its own r_i = s d_k(p), d_k the distance to its k-th
+/// nearest neighbour, for clouds whose density varies (joint-space sampling of an arm).
+/// setOuterRadius(R) makes it the paper's two-stage test: points that pass at r are tested again
+/// at R > r, which removes the false boundary points of its Fig. 12; the result equals a single
+/// test at R, reached faster.
+///
+/// **Special points.** Non-finite points are not searched and are removed in both modes (they are
+/// in getRemovedIndices()). A point with no neighbour within r is a boundary point. Duplicates of
+/// p count as neighbours in no orthant.
+///
+/// Multi-threaded (setNumberOfThreads), and the result does not depend on the thread count.
+///
+/// \code
+/// mcws::OrthantBoundary<pcl::PointXYZ> boundary;
+/// boundary.setInputCloud(cloud);
+/// boundary.setPlane(mcws::BoundaryPlane::kXZ);
+/// boundary.setAutoRadius(0.0);
+/// pcl::PointCloud<pcl::PointXYZ> rim;
+/// boundary.filter(rim);
+/// \endcode
+template <typename PointT>
+class OrthantBoundary : public pcl::FilterIndices<PointT> {
+ public:
+  using Ptr = std::shared_ptr<OrthantBoundary<PointT>>;
+  using ConstPtr = std::shared_ptr<const OrthantBoundary<PointT>>;
+
+  /// \brief Frames tested (bit mask).
+  enum Frame : unsigned { kAxisFrame = 1u, kOutwardFrame = 2u, kAnyRotation = 4u };
+
+  explicit OrthantBoundary(bool extract_removed_indices = false)
+      : pcl::FilterIndices<PointT>(extract_removed_indices) {
+    filter_name_ = "OrthantBoundary";
+  }
+
+  /// \brief k3D (octants, ball neighbourhood) or a coordinate plane (quadrants).
+  void setPlane(BoundaryPlane plane) { plane_ = plane; }
+  BoundaryPlane getPlane() const { return plane_; }
+
+  /// \brief Fixed search radius r [length unit] (> 0). Turns the automatic radius off.
+  void setRadiusSearch(double radius) {
+    radius_ = radius;
+    auto_factor_ = -1.0;
+    adaptive_k_ = 0;
+  }
+  double getRadiusSearch() const { return radius_; }
+
+  /// \brief r = factor * mean spacing; factor 0: chosen from the number of points (see above).
+  void setAutoRadius(double factor) {
+    auto_factor_ = factor;
+    adaptive_k_ = 0;
+  }
+
+  /// \brief Per-point radius r_i = scale * (distance to the k-th nearest neighbour).
+  void setAdaptiveRadius(int k, double scale) {
+    adaptive_k_ = k;
+    adaptive_scale_ = scale;
+    auto_factor_ = -1.0;
+  }
+
+  /// \brief Second-stage radius R (0: single stage). With an adaptive radius, R is a factor
+  /// applied to each r_i.
+  void setOuterRadius(double outer) { outer_radius_ = outer; }
+  double getOuterRadius() const { return outer_radius_; }
+
+  /// \brief Frames tested, a mask of Frame values (0: the default for the plane, see above).
+  void setFrames(unsigned frames) { frames_ = frames; }
+  unsigned getFrames() const { return frames_; }
+
+  /// \brief Worker threads; 0 = all cores.
+  void setNumberOfThreads(int threads) { threads_ = threads; }
+
+  /// \brief The radius used by the last filter() call [length unit] (with an adaptive radius,
+  /// the median r_i); the mean spacing it estimated (0 if it did not need it).
+  double usedRadius() const { return used_radius_; }
+  double usedSpacing() const { return used_spacing_; }
+
+ protected:
+  using pcl::PCLBase<PointT>::input_;
+  using pcl::PCLBase<PointT>::indices_;
+  using pcl::Filter<PointT>::filter_name_;
+  using pcl::FilterIndices<PointT>::negative_;
+  using pcl::FilterIndices<PointT>::extract_removed_indices_;
+  using pcl::FilterIndices<PointT>::removed_indices_;
+
+  /// \throws mcws::Error for a radius <= 0 or not finite, an outer radius below the radius, no
+  ///   frame, or adaptive k < 1.
+  void applyFilter(pcl::Indices& indices) override;
+
+ private:
+  BoundaryPlane plane_{BoundaryPlane::k3D};
+  double radius_{0.0};
+  double auto_factor_{-1.0};
+  int adaptive_k_{0};
+  double adaptive_scale_{1.0};
+  double outer_radius_{0.0};
+  unsigned frames_{0};
+  int threads_{0};
+  double used_radius_{0.0};
+  double used_spacing_{0.0};
+};
+
+/// \brief The frames OrthantBoundary tests for `frames` (0: the default) in `dimensions`.
+unsigned orthantFrames(unsigned frames, int dimensions);
+
+/// \brief The automatic radius factor c for n points in `dimensions` dimensions (see
+/// OrthantBoundary).
+double orthantAutoFactor(std::size_t n, int dimensions);
+
+}  // namespace mcws
+
+#ifdef PCL_NO_PRECOMPILE
+#include "mcws/filters/impl/orthant_boundary.hpp"
+#endif
