@@ -30,11 +30,14 @@ int main(int argc, char** argv) {
     const Eigen::VectorXd q = app::parseNumberList(q_text, "q");
     const Robot robot = loadRobot(cli.required("robot"));
     try {
-      robot.checkSize(q);
+      if (cli.has("ignore-limits")) {
+        robot.checkSize(q);
+      } else {
+        robot.checkJointVector(q);
+      }
     } catch (const Error& e) {
       throw app::UsageError(std::string("--q: ") + e.what());
     }
-    if (!cli.has("ignore-limits")) robot.checkJointVector(q);
 
     const ChainPoses poses = chainPoses(robot, q);
     const Eigen::Matrix4d T =

@@ -1,11 +1,16 @@
 // mcws_sample: Monte Carlo workspace sampling of a robot (seed 000 section 3, seed 002 eq. (5)),
 // or of a validation shape with known area or volume. Writes a PCD cloud of mcws::WorkspacePoint.
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "common/app.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/sampler.h"
+
+namespace {
+constexpr std::int64_t kMaxThreads = 256;  ///< more is a typing mistake, not a machine
+}
 
 int main(int argc, char** argv) {
   using namespace mcws;
@@ -33,9 +38,11 @@ int main(int argc, char** argv) {
         "ascii", "write ASCII PCD instead of binary")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
 
-    const auto samples = app::parseInteger(cli.text("samples", "6000"), "samples", 1);
-    const auto seed = app::parseInteger(cli.text("seed", "1"), "seed", 0);
-    const auto threads = app::parseInteger(cli.text("threads", "0"), "threads", 0);
+    const auto samples = app::parseInteger(cli.text("samples", "6000"), "samples", 1,
+                                           std::numeric_limits<int>::max());
+    const auto seed = app::parseInteger(cli.text("seed", "1"), "seed", 0,
+                                        std::numeric_limits<std::int64_t>::max());
+    const auto threads = app::parseInteger(cli.text("threads", "0"), "threads", 0, kMaxThreads);
     const std::string output = cli.required("output");
     const std::string point = cli.text("point", "tool");
     if (point != "tool" && point != "flange") {
@@ -58,7 +65,11 @@ int main(int argc, char** argv) {
         for (const auto& pinned : app::parseAssignments(fix, "fix"))
           options.fixed.push_back(pinned);
       }
-      generator = std::make_unique<RobotSampler>(robot, options);
+      try {
+        generator = std::make_unique<RobotSampler>(robot, options);
+      } catch (const Error& e) {
+        throw app::UsageError(std::string("--fix: ") + e.what());
+      }
       summary["robot"] = robot.name;
       summary["unit"] = unitName(robot.length_unit);
       summary["point"] = point;

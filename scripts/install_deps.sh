@@ -10,11 +10,13 @@ packages=(
   libflann-dev                  # nearest-neighbour search behind pcl::KdTreeFLANN
   libboost-program-options-dev  # command-line parsing of the stage tools
   libyaml-cpp-dev               # robot description files
-  libgtest-dev                  # unit tests
+  libgtest-dev libgmock-dev     # unit tests (GoogleTest, GoogleMock)
   libbenchmark-dev              # benchmarks
   liborocos-kdl-dev             # independent kinematics oracle in tests
   nlohmann-json3-dev            # --json output of the stage tools
   gnuplot-nox                   # PNG pictures of clouds
+  libcgal-dev                   # alpha shapes / Delaunay for areas and volumes
+  time                          # /usr/bin/time -v in the benchmark scripts
 )
 
 missing=()

@@ -13,10 +13,13 @@ bin=$root/build/apps
 mkdir -p "$out"
 
 robot=$root/robots/deicing.yaml
+# JSON summaries are written beside the clouds, under a temporary name until complete.
 "$bin/mcws_sample" --robot "$robot" --samples 6000 --seed 1 --fix theta3=0 \
-  --output "$out/deicing_xz.pcd" --json >"$out/deicing_xz.json"
+  --output "$out/deicing_xz.pcd" --json >"$out/.deicing_xz.json.tmp"
+mv "$out/.deicing_xz.json.tmp" "$out/deicing_xz.json"
 "$bin/mcws_sample" --robot "$robot" --samples 6000 --seed 1 \
-  --output "$out/deicing_3d.pcd" --json >"$out/deicing_3d.json"
+  --output "$out/deicing_3d.pcd" --json >"$out/.deicing_3d.json.tmp"
+mv "$out/.deicing_3d.json.tmp" "$out/deicing_3d.json"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_xz.pcd" --output "$out/deicing_xz.png" \
   --view xz --unit cm --title "De-icing arm: workspace in the X-Z plane (6000 samples)"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_3d.pcd" --output "$out/deicing_3d.png" \

@@ -32,12 +32,30 @@ bool CommandLine::parse(int argc, char** argv) {
   const auto style = po::command_line_style::allow_long |
                      po::command_line_style::long_allow_adjacent |
                      po::command_line_style::long_allow_next;
-  po::store(po::command_line_parser(argc, argv).options(options_).style(style).run(), values_);
+  const po::positional_options_description no_positionals;
+  po::store(po::command_line_parser(argc, argv)
+                .options(options_)
+                .positional(no_positionals)
+                .style(style)
+                .run(),
+            values_);
   if (values_.count("help")) {
     std::cout << "Usage: " << usage_ << "\n\n" << summary_ << "\n\n" << options_ << "\n";
     return false;
   }
   po::notify(values_);
+  for (const auto& [flag, value] : values_) {
+    const auto* text = boost::any_cast<std::string>(&value.value());
+    if (text && text->rfind("--", 0) == 0) {
+      throw UsageError("--" + flag + " has no value (next comes '" + *text + "')");
+    }
+    if (const auto* texts = boost::any_cast<std::vector<std::string>>(&value.value())) {
+      for (const std::string& t : *texts) {
+        if (t.rfind("--", 0) == 0)
+          throw UsageError("--" + flag + " has no value (next comes '" + t + "')");
+      }
+    }
+  }
   return true;
 }
 
@@ -65,7 +83,8 @@ double parseNumber(const std::string& text, const std::string& flag) {
   return value;
 }
 
-std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum) {
+std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum,
+                          std::int64_t maximum) {
   const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
@@ -75,6 +94,9 @@ std::int64_t parseInteger(const std::string& text, const std::string& flag, std:
   }
   if (value < minimum) {
     throw UsageError("--" + flag + ": " + text + " is less than " + std::to_string(minimum));
+  }
+  if (value > maximum) {
+    throw UsageError("--" + flag + ": " + text + " is more than " + std::to_string(maximum));
   }
   return value;
 }

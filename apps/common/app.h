@@ -42,7 +42,8 @@ class CommandLine {
   /// \brief Where flags are declared.
   po::options_description_easy_init add() { return options_.add_options(); }
   /// \brief Parses argv. \return false when --help was given (help printed to stdout).
-  /// \throws UsageError for unknown flags, missing values or repeated single flags.
+  /// \throws UsageError for unknown flags, stray arguments, missing values (a value that starts
+  ///   with "--" is taken for a forgotten value) or repeated single flags.
   bool parse(int argc, char** argv);
 
   bool has(const std::string& flag) const { return values_.count(flag) > 0; }
@@ -61,8 +62,9 @@ class CommandLine {
 
 /// \brief A real number; "0.5x", "", "nan" are errors naming the flag.
 double parseNumber(const std::string& text, const std::string& flag);
-/// \brief A whole number >= minimum; "10x", "-3", "1e3" are errors naming the flag.
-std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum);
+/// \brief A whole number in [minimum, maximum]; "10x", "-3", "1e3" are errors naming the flag.
+std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum,
+                          std::int64_t maximum);
 /// \brief Numbers separated by spaces or commas, e.g. "0.1 -2, 3".
 Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag);
 /// \brief "name=value" pairs separated by commas, e.g. "theta3=0,a2=30".

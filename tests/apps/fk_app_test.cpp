@@ -58,7 +58,10 @@ TEST(FkApp, BadJointVectors) {
        "--q: robot 'inspection6' has 6 joints but 3 joint values were given"},
       {kInspection + " --q '1 2 3 4 5 nan'", 2, "--q: 'nan' is not a finite number"},
       {kInspection + " --q '1 2 3 4 5 6x'", 2, "--q: '6x' is not a finite number"},
-      {kInspection + " --q '0 0 0 0 0 4'", 1, "joint 'j6' value 4 is outside its limits"},
+      {kInspection + " --q '0 0 0 0 0 4'", 2,
+       "--q: joint 'j6' value 4 is outside its limits [-3.141592654, 3.141592654] rad ([-180, "
+       "180] deg)"},
+      {kInspection + " --q 0 0 0 0 0 0", 2, "too many positional options"},
       {kInspection, 2, "missing --q"},
       {" --robot /nonexistent.yaml --q 0", 1, "/nonexistent.yaml: robot file does not exist"},
   };

@@ -71,13 +71,17 @@ TEST_F(SampleApp, BadSampleCounts) {
   expectFailure(base + " --samples 10x", 2, "--samples: '10x' is not a whole number");
   expectFailure(base + " --samples 1e3", 2, "--samples: '1e3' is not a whole number");
   expectFailure(base + " --threads two", 2, "--threads: 'two' is not a whole number");
+  expectFailure(base + " --threads 100000", 2, "--threads: 100000 is more than 256");
+  expectFailure(base + " --samples 3000000000", 2, "--samples: 3000000000 is more than 2147483647");
 }
 
 TEST_F(SampleApp, BadFixedJoints) {
   const std::string base = "--robot " + deicing() + " --output " + out();
-  expectFailure(base + " --fix theta9=0", 1, "robot 'deicing' has no joint 'theta9'");
-  expectFailure(base + " --fix a2=80", 1,
-                "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
+  expectFailure(base + " --fix theta9=0", 2, "--fix: robot 'deicing' has no joint 'theta9'");
+  expectFailure(base + " --fix a2=80", 2,
+                "--fix: fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
+  expectFailure(base + " --fix theta3=0 --fix theta3=0.5", 2,
+                "--fix: joint 'theta3' is fixed twice");
   expectFailure(base + " --fix theta3=0.5x", 2, "--fix: '0.5x' is not a finite number");
   expectFailure(base + " --fix theta3", 2, "--fix: 'theta3' is not name=value");
 }
@@ -92,21 +96,59 @@ TEST_F(SampleApp, BadShapeAndFlagCombinations) {
   expectFailure("--shape disk --output " + out() + " --point elbow", 2,
                 "--point: 'elbow' is not tool or flange");
   expectFailure("--shape disk --output " + out() + " --colour red", 2, "unrecognised option");
+  expectFailure("--shape disk stray --output " + out(), 2, "too many positional options");
+  expectFailure("--shape disk --output --json", 2, "--output has no value (next comes '--json')");
 }
 
 TEST_F(SampleApp, OutputDirectoryMissingOrNotADirectory) {
   expectFailure("--shape disk --output " + dir_.file("no/such/dir/ws.pcd"), 1,
                 "/no/such/dir' does not exist");
+  test::writeFile(dir_.file("plain"), "x");
+  const test::RunResult r =
+      test::run(kSample + " --shape disk --output " + dir_.file("plain/ws.pcd"));
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("/plain' is not a directory"));
+  std::filesystem::remove(dir_.file("plain"));
   expectFailure("--shape disk --output /proc/mcws_ws.pcd", 1, "cannot write '/proc/mcws_ws.pcd'");
 }
 
+/// Root may read and write anywhere, so as root a permission test runs the tool as user nobody
+/// (setpriv, from util-linux). Empty when not root.
+std::string unprivileged() {
+  if (::geteuid() != 0) return "";
+  return test::run("command -v setpriv").exit_code == 0
+             ? "setpriv --reuid=65534 --regid=65534 --clear-groups "
+             : "";
+}
+
+TEST_F(SampleApp, UnreadableRobotFile) {
+  const std::string runner = unprivileged();
+  if (::geteuid() == 0 && runner.empty()) GTEST_SKIP() << "root without setpriv";
+  test::TempDir robots;
+  std::filesystem::permissions(robots.file(""), std::filesystem::perms::all);
+  const std::string secret = robots.file("secret.yaml");
+  test::writeFile(secret, test::readFile(deicing()));
+  std::filesystem::permissions(secret, std::filesystem::perms::owner_write);
+  std::filesystem::permissions(dir_.file(""), std::filesystem::perms::all);
+  const test::RunResult r =
+      test::run(runner + kSample + " --robot " + secret + " --output " + out());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr(secret + ": cannot open robot file: Permission denied"));
+  EXPECT_EQ(dir_.fileCount(), 0u);
+}
+
+TEST_F(SampleApp, RunStoppedBySignalLeavesNoFile) {
+  // 40 million samples take several seconds; SIGTERM after half a second.
+  const test::RunResult r =
+      test::run("(" + kSample + " --shape ball --samples 40000000 --output " + out() +
+                " & pid=$!; sleep 0.5; kill -TERM $pid; wait $pid; echo \"status $?\")");
+  EXPECT_THAT(r.out, HasSubstr("status 143"));  // 128 + SIGTERM: ended by the signal
+  EXPECT_EQ(dir_.fileCount(), 0u);
+}
+
 TEST_F(SampleApp, UnwritableOutputDirectory) {
-  // Root may write anywhere, so as root the tool runs as user nobody (setpriv, util-linux).
-  std::string runner;
-  if (::geteuid() == 0) {
-    if (test::run("command -v setpriv").exit_code != 0) GTEST_SKIP() << "root without setpriv";
-    runner = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
-  }
+  const std::string runner = unprivileged();
+  if (::geteuid() == 0 && runner.empty()) GTEST_SKIP() << "root without setpriv";
   test::TempDir locked;
   std::filesystem::permissions(locked.file(""), std::filesystem::perms::owner_read |
                                                     std::filesystem::perms::owner_exec |

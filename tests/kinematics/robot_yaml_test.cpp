@@ -145,6 +145,35 @@ TEST(RobotYaml, ReportsEmptyJointListAndSyntaxErrors) {
   EXPECT_THAT(errorOf("just text"), HasSubstr("the document must be a map"));
 }
 
+TEST(RobotYaml, ReportsDuplicateAndNonScalarKeys) {
+  EXPECT_THAT(errorOf(replace(kValid, "a: 100,", "a: 100, a: 5,")),
+              HasSubstr("joint 1 'j1': key 'a' given twice"));
+  EXPECT_THAT(errorOf(kValid + "name: again\n"), HasSubstr("robot: key 'name' given twice"));
+  EXPECT_THAT(errorOf(kValid + "[1, 2]: 3\n"),
+              HasSubstr("bad.yaml:7: robot: a key must be a plain name"));
+}
+
+TEST(RobotYaml, ReportsSeveralDocumentsEmptyFileAndOddNames) {
+  EXPECT_THAT(errorOf(kValid + "---\n" + kValid), HasSubstr("bad.yaml: holds 2 YAML documents"));
+  EXPECT_THAT(errorOf(""), HasSubstr("bad.yaml: the document must be a map"));
+  EXPECT_THAT(errorOf(replace(kValid, "name: j2", "name: 'j 2'")),
+              HasSubstr("joint 2: name 'j 2' contains '=', ',' or a space"));
+}
+
+TEST(RobotYaml, ReportsNumbersTooLargeForCoordinates) {
+  EXPECT_THAT(errorOf(replace(kValid, "[0, 50]", "[0, 1e308]")),
+              HasSubstr("joint 2 'j2': limits max: 1e308 is out of range"));
+}
+
+TEST(RobotYaml, ReportsEmptyFileName) {
+  try {
+    loadRobot("");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "robot file name is empty");
+  }
+}
+
 TEST(RobotYaml, ReportsBadToolPose) {
   EXPECT_THAT(errorOf(kValid + "tool: {xyz: [1, 2]}\n"), HasSubstr("tool: xyz must be [x, y, z]"));
   EXPECT_THAT(errorOf(kValid + "tool: {rot: [1, 2, 3]}\n"), HasSubstr("tool: unknown key 'rot'"));

@@ -130,6 +130,22 @@ TEST(RobotSampler, ReportsUnknownOrOutOfRangeFixedJoint) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "fixed value 80 of joint 'a2' is outside its limits [25, 70] cm");
   }
+  options.fixed = {{"theta1", 1.0472}};  // pi/3 rounded up: outside, and the message shows why
+  try {
+    RobotSampler sampler(robot, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "fixed value 1.0472 of joint 'theta1' is outside its limits [-0.7853981634, "
+                 "0.7853981634] rad ([-45, 45] deg)");
+  }
+  options.fixed = {{"theta3", 0.0}, {"theta3", 0.5}};
+  try {
+    RobotSampler sampler(robot, options);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "joint 'theta3' is fixed twice");
+  }
 }
 
 TEST(RobotSampler, RefusesMoreJointsThanThePointRecords) {
@@ -178,7 +194,7 @@ TEST(ShapeSampler, AnnulusIsUniformInArea) {
 TEST(ShapeSampler, BallIsUniformInVolume) {
   constexpr std::size_t n = 100000;
   const auto cloud = sampleCloud(ShapeSampler(Shape::kBall, 1), n, 2);
-  EXPECT_LE(fractionWithin(cloud, 1.0 + 1e-6), 1.0);
+  EXPECT_EQ(fractionWithin(cloud, 1.0 + 1e-6), 1.0);  // every point inside the unit sphere
   expectFraction(fractionWithin(cloud, 0.5), 0.125, n);
   std::size_t top = 0;
   for (const auto& p : cloud) top += p.z > 0.5f;

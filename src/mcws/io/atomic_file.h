@@ -14,7 +14,8 @@ void checkOutputPath(const std::string& path);
 
 /// \brief A file written under a temporary name beside its target and renamed onto the target
 /// by commit(). Destroyed without commit(), it removes the temporary file: a failed run leaves
-/// no partial output.
+/// no partial output. A run stopped by SIGINT, SIGTERM or SIGHUP removes its temporary files too
+/// (a handler installed with the first AtomicFile, which then lets the signal end the process).
 class AtomicFile {
  public:
   /// \throws mcws::Error when the target's directory is missing or not writable.
@@ -36,6 +37,7 @@ class AtomicFile {
   std::string path_;
   std::string temp_path_;
   std::FILE* file_{nullptr};
+  int signal_slot_{-1};
 };
 
 }  // namespace mcws::io

@@ -74,12 +74,25 @@ void Robot::checkJointVector(const Eigen::VectorXd& q) const {
       throw Error(msg.str());
     }
     if (q[i] < joint.lower || q[i] > joint.upper) {
-      msg << "joint '" << joint.name << "' value " << q[i] << " is outside its limits ["
-          << joint.lower << ", " << joint.upper << "] "
-          << (joint.type == JointType::kRevolute ? "rad" : unitName(length_unit));
+      msg.precision(10);
+      msg << "joint '" << joint.name << "' value " << q[i] << " is outside its limits "
+          << describeLimits(joint, length_unit);
       throw Error(msg.str());
     }
   }
+}
+
+std::string describeLimits(const Joint& joint, LengthUnit unit) {
+  std::ostringstream text;
+  text.precision(10);
+  text << "[" << joint.lower << ", " << joint.upper << "] ";
+  if (joint.type == JointType::kRevolute) {
+    text << "rad ([" << joint.lower * 180.0 / M_PI << ", " << joint.upper * 180.0 / M_PI
+         << "] deg)";
+  } else {
+    text << unitName(unit);
+  }
+  return text.str();
 }
 
 Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta) {

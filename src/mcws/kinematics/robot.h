@@ -65,6 +65,10 @@ struct Robot {
   void checkJointVector(const Eigen::VectorXd& q) const;
 };
 
+/// \brief A joint's limits for messages, at full precision and, for revolute joints, in degrees
+/// too: "[-1.047197551, 1.047197551] rad ([-60, 60] deg)" or "[25, 70] cm".
+std::string describeLimits(const Joint& joint, LengthUnit unit);
+
 /// \brief Transform of one row of a standard (distal) D-H table:
 /// Rz(theta) * Tz(d) * Tx(a) * Rx(alpha). Lengths in any unit, angles [rad].
 Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta);

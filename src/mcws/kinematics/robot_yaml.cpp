@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -14,6 +16,8 @@ namespace mcws {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
+/// Lengths and angles beyond this are typing mistakes, and would overflow the float coordinates.
+constexpr double kLargestValue = 1e9;
 
 /// Reads one document and turns every mistake into a message with file and line.
 class RobotYamlReader {
@@ -52,6 +56,9 @@ class RobotYamlReader {
       Joint joint;
       joint.name = scalar(row, "name", where);
       if (joint.name.empty()) fail(row["name"], where + ": name must not be empty");
+      if (joint.name.find_first_of("=, \t") != std::string::npos) {
+        fail(row["name"], where + ": name '" + joint.name + "' contains '=', ',' or a space");
+      }
       const std::string label = where + " '" + joint.name + "'";
       checkKeys(row, label, {"name", "type", "a", "alpha", "d", "theta", "limits"});
       if (!names.insert(joint.name).second) fail(row["name"], label + ": duplicate joint name");
@@ -98,8 +105,11 @@ class RobotYamlReader {
 
   void checkKeys(const YAML::Node& map, const std::string& where,
                  const std::set<std::string>& allowed) const {
+    std::set<std::string> seen;
     for (const auto& item : map) {
-      const std::string key = item.first.as<std::string>();
+      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
+      const std::string key = item.first.Scalar();
+      if (!seen.insert(key).second) fail(item.first, where + ": key '" + key + "' given twice");
       if (!allowed.count(key)) {
         std::string list;
         for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
@@ -132,6 +142,9 @@ class RobotYamlReader {
     }
     if (!std::isfinite(value))
       fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
+    if (std::abs(value) > kLargestValue) {
+      fail(node, what + ": " + node.Scalar() + " is out of range (at most 1e9 in size)");
+    }
     return value;
   }
 
@@ -203,22 +216,26 @@ class RobotYamlReader {
 }  // namespace
 
 Robot parseRobotYaml(const std::string& text, const std::string& source) {
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& e) {
     throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
   }
-  return RobotYamlReader(source).read(root);
+  if (documents.size() > 1)
+    throw Error(source + ": holds " + std::to_string(documents.size()) +
+                " YAML documents; a robot file holds one");
+  return RobotYamlReader(source).read(documents.empty() ? YAML::Node() : documents.front());
 }
 
 Robot loadRobot(const std::string& path) {
+  if (path.empty()) throw Error("robot file name is empty");
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error(path + ": robot file is not a regular file");
   std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open robot file");
+  if (!in) throw Error(path + ": cannot open robot file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw Error(path + ": cannot read robot file");

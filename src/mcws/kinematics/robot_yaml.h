@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Robot descriptions in YAML (see robots/README.md for the format).
+/// \brief Robot descriptions in YAML (the format: README.md, "Robot descriptions").
 
 #include <string>
 

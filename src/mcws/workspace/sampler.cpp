@@ -32,14 +32,17 @@ RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& option
     throw Error("robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
                 " joints; a workspace point records at most " + std::to_string(kMaxJoints));
   }
+  std::vector<bool> pinned(robot.dof(), false);
   for (const auto& [name, value] : options.fixed) {
     const int i = robot.jointIndex(name);
     const Joint& joint = robot.joints[i];
+    if (pinned[i]) throw Error("joint '" + name + "' is fixed twice");
+    pinned[i] = true;
     if (!std::isfinite(value) || value < joint.lower || value > joint.upper) {
       std::ostringstream msg;
-      msg << "fixed value " << value << " of joint '" << name << "' is outside its limits ["
-          << joint.lower << ", " << joint.upper << "] "
-          << (joint.type == JointType::kRevolute ? "rad" : unitName(robot.length_unit));
+      msg.precision(10);
+      msg << "fixed value " << value << " of joint '" << name << "' is outside its limits "
+          << describeLimits(joint, robot.length_unit);
       throw Error(msg.str());
     }
     lower_[i] = value;
