@@ -31,12 +31,17 @@ int main(int argc, char** argv) {
     mcws::OrthantBoundary<mcws::WorkspacePoint> filter;
     filter.setInputCloud(cloud);
     filter.setPlane(planar ? mcws::BoundaryPlane::kXY : mcws::BoundaryPlane::k3D);
-    filter.setAutoRadius(factor);
+    if (factor < 0) {
+      filter.setAdaptiveRadius(static_cast<int>(-factor), 2.0);  // negative factor: adaptive k
+    } else {
+      filter.setAutoRadius(factor);
+    }
     filter.setFrames(frames == "axis"      ? 1u
                      : frames == "outward" ? 2u
                      : frames == "both"    ? 3u
                      : frames == "any"     ? 4u
                                            : 0u);
+    if (std::getenv("GAP")) filter.setMinimumGap(std::atof(std::getenv("GAP")) * M_PI / 180.0);
     pcl::Indices kept;
     const auto start = std::chrono::steady_clock::now();
     filter.filter(kept);

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_set>
+#include <vector>
 
 #include "mcws/core/error.h"
 
@@ -48,19 +48,20 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
     for (int k = 0; k < dimensions; ++k) measure *= std::max(extent[k], floor);
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);
   }
+  std::vector<std::uint64_t> keys(n);
   for (int round = 0; round < 2; ++round) {
     const double cell = 2.0 * h;  // 2^d cells of spacing h: 4 points (2-D) or 8 (3-D) each
-    std::unordered_set<std::uint64_t> occupied;
-    occupied.reserve(n / 4);
-    for (const auto& p : projected) {
+    for (std::size_t i = 0; i < n; ++i) {
       std::uint64_t key = 0;
       for (int k = 0; k < dimensions; ++k) {
-        const auto c = static_cast<std::uint64_t>((p.data[k] - min.data[k]) / cell);
+        const auto c = static_cast<std::uint64_t>((projected[i].data[k] - min.data[k]) / cell);
         key = key * 2097152u + std::min<std::uint64_t>(c, 2097151u);  // 21 bits per axis
       }
-      occupied.insert(key);
+      keys[i] = key;
     }
-    const double measure = static_cast<double>(occupied.size()) * std::pow(cell, dimensions);
+    std::sort(keys.begin(), keys.end());
+    const auto occupied = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
+    const double measure = occupied * std::pow(cell, dimensions);
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);
   }
   return h;

@@ -39,7 +39,7 @@ namespace mcws {
 ///
 /// **Special points.** Non-finite points are not searched and are removed in both modes (they are
 /// in getRemovedIndices()). A point with no neighbour within r is a boundary point. Duplicates of
-/// p count as neighbours in no orthant.
+/// p count as neighbours in no orthant, so a cloud of identical points is all boundary.
 ///
 /// Multi-threaded (setNumberOfThreads), and the result does not depend on the thread count.
 ///
@@ -99,6 +99,11 @@ class OrthantBoundary : public pcl::FilterIndices<PointT> {
   void setFrames(unsigned frames) { frames_ = frames; }
   unsigned getFrames() const { return frames_; }
 
+  /// \brief kAnyRotation only: the empty sector that makes a boundary point [rad], in
+  /// [pi/2, pi). pi/2 is the quadrant; a wider sector trades recall for precision.
+  void setMinimumGap(double radians) { minimum_gap_ = radians; }
+  double getMinimumGap() const { return minimum_gap_; }
+
   /// \brief Worker threads; 0 = all cores.
   void setNumberOfThreads(int threads) { threads_ = threads; }
 
@@ -127,6 +132,7 @@ class OrthantBoundary : public pcl::FilterIndices<PointT> {
   double adaptive_scale_{1.0};
   double outer_radius_{0.0};
   unsigned frames_{0};
+  double minimum_gap_{M_PI / 2};
   int threads_{0};
   double used_radius_{0.0};
   double used_spacing_{0.0};

@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <pcl/common/common.h>
 #include <pcl/kdtree/kdtree_flann.h>
+#include <future>
 
 #include <algorithm>
 #include <cmath>
@@ -39,15 +40,16 @@ inline float pseudoAngle(float x, float y) {
   return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
 }
 
-/// True when the directions from p to its neighbours (x-y plane) leave a gap of at least 90
-/// degrees, i.e. some rotation of the local frame has an empty quadrant. Exact, without
-/// trigonometry: consecutive directions u, v (by angle) are less than 90 degrees apart exactly
-/// when cross(u, v) > 0 and dot(u, v) > 0.
+/// True when the directions from p to its neighbours (x-y plane) leave an empty sector of at
+/// least `gap` radians (pi/2: some rotation of the local frame has an empty quadrant). Exact and
+/// without trigonometry: consecutive directions u, v (by angle) are less than `gap` apart exactly
+/// when cross(u, v) > 0 and dot(u, v) > |u| |v| cos(gap), `cos_gap` = cos(gap) <= 0.
 struct Direction {
   float angle, x, y;
 };
-inline bool hasQuarterTurnGap(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
-                              const pcl::Indices& neighbours, std::vector<Direction>& directions) {
+inline bool hasEmptySector(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
+                           const pcl::Indices& neighbours, float cos_gap,
+                           std::vector<Direction>& directions) {
   const pcl::PointXYZ& p = cloud[i];
   directions.clear();
   for (const auto j : neighbours) {
@@ -58,9 +60,14 @@ inline bool hasQuarterTurnGap(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::
   std::sort(directions.begin(), directions.end(),
             [](const Direction& a, const Direction& b) { return a.angle < b.angle; });
   if (directions.front().angle == directions.back().angle) return true;  // one direction only
-  auto apart = [](const Direction& u, const Direction& v) {  // v at least 90 degrees after u
+  const float cos2 = cos_gap * cos_gap;
+  auto apart = [&](const Direction& u, const Direction& v) {  // v at least `gap` after u
     if (u.angle == v.angle) return false;
-    return !(u.x * v.y - u.y * v.x > 0.0f && u.x * v.x + u.y * v.y > 0.0f);
+    if (!(u.x * v.y - u.y * v.x > 0.0f)) return true;  // 180 degrees or more
+    const float dot = u.x * v.x + u.y * v.y;
+    if (dot >= 0.0f)
+      return cos_gap >= 0.0f && dot <= 0.0f;  // under 90: apart only if gap = 90 and dot = 0
+    return dot * dot >= cos2 * (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
   };
   for (std::size_t k = 1; k < directions.size(); ++k) {
     if (apart(directions[k - 1], directions[k])) return true;
@@ -128,8 +135,9 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
 /// The whole test of one point (frames already resolved by orthantFrames()).
 inline bool isBoundaryPoint(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
                             const pcl::Indices& neighbours, int dimensions, unsigned frames,
-                            std::vector<Direction>& scratch) {
-  if (dimensions == 2 && (frames & 4u)) return hasQuarterTurnGap(cloud, i, neighbours, scratch);
+                            float cos_gap, std::vector<Direction>& scratch) {
+  if (dimensions == 2 && (frames & 4u))
+    return hasEmptySector(cloud, i, neighbours, cos_gap, scratch);
   return hasEmptyOrthant(cloud, i, neighbours, dimensions, frames);
 }
 
@@ -159,6 +167,9 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   if (outer_radius_ < 0.0 || !std::isfinite(outer_radius_)) {
     throw Error(filter_name_ + ": outer radius must be 0 (off) or positive");
   }
+  if (!(minimum_gap_ >= M_PI / 2 - 1e-9 && minimum_gap_ < M_PI)) {
+    throw Error(filter_name_ + ": minimum gap must be in [pi/2, pi) rad");
+  }
   if (frames_ & ~(kAxisFrame | kOutwardFrame | kAnyRotation)) {
     throw Error(filter_name_ + ": unknown frame bits " + std::to_string(frames_));
   }
@@ -168,7 +179,12 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   projectToPlane(*input_, *indices_, plane_, *projected, source);
   const std::size_t n = projected->size();
 
-  // Radius.
+  // The tree is built in the background while the radius is chosen (both are serial work).
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);  // unsorted results: the test needs no order
+  auto built = std::async(std::launch::async, [&] {
+    if (n > 0) tree.setInputCloud(projected);
+  });
+
   used_spacing_ = 0.0;
   double radius = radius_;
   if (automatic) {
@@ -177,6 +193,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     radius = factor * used_spacing_;
   }
   if (!adaptive && !automatic && outer_radius_ > 0.0 && outer_radius_ < radius) {
+    built.wait();
     std::ostringstream msg;
     msg << filter_name_ << ": outer radius " << outer_radius_ << " is smaller than radius "
         << radius;
@@ -184,34 +201,33 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   }
   used_radius_ = radius;
 
-  std::vector<char> boundary(n, 0);
+  // A cloud of identical points (spacing 0) has no neighbour at a distinct position: every point
+  // is alone, hence a boundary point, as with any fixed radius.
+  std::vector<char> boundary(n, automatic && !(radius > 0.0) ? 1 : 0);
   if (n > 0 && (adaptive || radius > 0.0)) {
-    pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);  // unsorted results: the test needs no order
-    tree.setInputCloud(projected);
-
     // Query in a spatially sorted order (cells of about one radius), so that consecutive
     // searches walk the same part of the tree; the result is stored per point, so the order does
     // not change it.
     std::vector<pcl::index_t> order(n);
-    std::iota(order.begin(), order.end(), 0);
     {
       Eigen::Vector4f min, max;
       pcl::getMinMax3D(*projected, min, max);
       const float extent = (max - min).head<3>().maxCoeff();
       const float cell = radius > 0.0 ? static_cast<float>(radius)
                                       : extent / std::max(1.0f, std::cbrt(static_cast<float>(n)));
-      std::vector<std::uint64_t> key(n);
+      std::vector<std::pair<std::uint64_t, pcl::index_t>> keyed(n);
       for (std::size_t k = 0; k < n; ++k) {
         const Eigen::Vector3f c =
             ((*projected)[k].getVector3fMap() - min.head<3>()) / std::max(cell, 1e-30f);
-        key[k] = (static_cast<std::uint64_t>(std::min(c.z(), 2.0e6f)) << 42) |
-                 (static_cast<std::uint64_t>(std::min(c.y(), 2.0e6f)) << 21) |
-                 static_cast<std::uint64_t>(std::min(c.x(), 2.0e6f));
+        keyed[k] = {(static_cast<std::uint64_t>(std::min(c.z(), 2.0e6f)) << 42) |
+                        (static_cast<std::uint64_t>(std::min(c.y(), 2.0e6f)) << 21) |
+                        static_cast<std::uint64_t>(std::min(c.x(), 2.0e6f)),
+                    static_cast<pcl::index_t>(k)};
       }
-      std::sort(order.begin(), order.end(), [&](pcl::index_t a, pcl::index_t b) {
-        return key[a] != key[b] ? key[a] < key[b] : a < b;
-      });
+      std::sort(keyed.begin(), keyed.end());
+      for (std::size_t k = 0; k < n; ++k) order[k] = keyed[k].second;
     }
+    built.wait();
 
     std::vector<float> point_radius;
     if (adaptive) {
@@ -234,6 +250,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     }
 
     const unsigned frames = orthantFrames(frames_, dimensions);
+    const auto cos_gap = static_cast<float>(std::cos(minimum_gap_));
     // A test that more neighbours can only pass (no frame built from the neighbourhood) decides
     // most interior points from the nearest few: if those within r already fill every orthant,
     // the full neighbourhood does too.
@@ -254,13 +271,16 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
         const double R = outer_radius_ > 0.0 ? (adaptive ? outer_radius_ * r : outer_radius_) : r;
         if (monotone) {
           tree.radiusSearch((*projected)[i], detail::kPrefilterRadius * R, nn, d2);
-          if (!detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, scratch)) continue;
+          if (!detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch))
+            continue;
         }
         tree.radiusSearch((*projected)[i], r, nn, d2);
-        bool is_boundary = detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, scratch);
+        bool is_boundary =
+            detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch);
         if (is_boundary && outer_radius_ > 0.0) {
           tree.radiusSearch((*projected)[i], R, nn, d2);
-          is_boundary = detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, scratch);
+          is_boundary =
+              detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch);
         }
         boundary[i] = is_boundary;
       }

@@ -1,0 +1,89 @@
+#include "common/cloud_io.h"
+
+#include <pcl/common/common.h>
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "mcws/core/error.h"
+
+namespace mcws::app {
+
+namespace {
+
+/// PCL's reader crashes on some files that are not PCD, so the header is checked first: a FIELDS
+/// line, then a DATA line (ascii, binary or binary_compressed) within the first 64 lines.
+bool looksLikePcd(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  bool fields = false;
+  std::string line;
+  for (int k = 0; k < 64 && std::getline(in, line); ++k) {
+    if (line.rfind("FIELDS ", 0) == 0) fields = true;
+    if (line.rfind("DATA ", 0) == 0) {
+      const std::string kind = line.substr(5, line.find_last_not_of(" \r") - 4);
+      return fields && (kind == "ascii" || kind == "binary" || kind == "binary_compressed");
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+WorkspaceCloud::Ptr loadCloud(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw Error(
+        path + ": " +
+        (std::filesystem::exists(path, ec) ? "not a regular file" : "cloud file does not exist"));
+  }
+  if (!looksLikePcd(path)) throw Error(path + ": not a readable PCD file");
+  pcl::PCLPointCloud2 blob;
+  pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our own one-line errors instead
+  pcl::PCDReader reader;
+  const int status = reader.read(path, blob);
+  pcl::console::setVerbosityLevel(level);
+  if (status < 0) throw Error(path + ": not a readable PCD file");
+  for (const char* axis : {"x", "y", "z"}) {
+    if (pcl::getFieldIndex(blob, axis) < 0) {
+      throw Error(path + ": has no field '" + axis + "'");
+    }
+  }
+  auto cloud = std::make_shared<WorkspaceCloud>();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // missing q/label fields are fine
+  pcl::fromPCLPointCloud2(blob, *cloud);
+  pcl::console::setVerbosityLevel(level);
+  if (cloud->empty()) throw Error(path + ": the cloud has no points");
+  return cloud;
+}
+
+void requireVolume(const WorkspaceCloud& cloud, const std::string& path) {
+  WorkspacePoint min, max;
+  pcl::getMinMax3D(cloud, min, max);
+  const Eigen::Vector3f extent = max.getVector3fMap() - min.getVector3fMap();
+  const char* axis = "xyz";
+  for (int k = 0; k < 3; ++k) {
+    if (!(extent[k] > 1e-6f * extent.maxCoeff())) {
+      throw Error(path + ": the cloud is flat (" + axis[k] +
+                  " extent 0), so in 3-D every point "
+                  "is on its boundary; give --plane");
+    }
+  }
+}
+
+void saveCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const std::string& path) {
+  io::PcdStreamWriter<WorkspacePoint> writer(path, indices.size());
+  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> chunk;
+  chunk.reserve(std::min<std::size_t>(indices.size(), 1u << 16));
+  for (std::size_t begin = 0; begin < indices.size(); begin += 1u << 16) {
+    chunk.clear();
+    const std::size_t end = std::min(indices.size(), begin + (1u << 16));
+    for (std::size_t k = begin; k < end; ++k) chunk.push_back(cloud[indices[k]]);
+    writer.write(chunk.data(), chunk.size());
+  }
+  writer.commit();
+}
+
+}  // namespace mcws::app

@@ -1,0 +1,123 @@
+// mcws_boundary through its command line: bad input (one line, exit code, nothing written) and a
+// real run whose boundary and interior partition the cloud.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <pcl/io/pcd_io.h>
+
+#include <nlohmann/json.hpp>
+
+#include "mcws/io/pcd_stream_writer.h"
+#include "mcws/workspace/sampler.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kBoundary = MCWS_BOUNDARY_EXE;
+const std::string kSample = MCWS_SAMPLE_EXE;
+
+class BoundaryApp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    disk_ = inputs_.file("disk.pcd");
+    ASSERT_EQ(test::run(kSample + " --shape disk --samples 20000 --output " + disk_).exit_code, 0);
+    ball_ = inputs_.file("ball.pcd");
+    ASSERT_EQ(test::run(kSample + " --shape ball --samples 20000 --output " + ball_).exit_code, 0);
+  }
+  std::string out(const std::string& name = "b.pcd") const { return dir_.file(name); }
+
+  void expectFailure(const std::string& args, int exit_code, const std::string& message) {
+    const test::RunResult r = test::run(kBoundary + " " + args);
+    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(message)) << args;
+    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+    EXPECT_EQ(dir_.fileCount(), 0u) << args;
+  }
+
+  test::TempDir inputs_, dir_;
+  std::string disk_, ball_;
+};
+
+TEST_F(BoundaryApp, HelpExitsZero) {
+  const test::RunResult r = test::run(kBoundary + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag :
+       {"--input", "--output", "--interior", "--plane", "--radius", "--auto-radius", "--adaptive",
+        "--outer-radius", "--min-gap", "--json"}) {
+    EXPECT_THAT(r.out, HasSubstr(flag));
+  }
+}
+
+TEST_F(BoundaryApp, BadFlags) {
+  const std::string io = "--input " + disk_ + " --output " + out();
+  expectFailure(io + " --plane xw", 2, "--plane: unknown plane 'xw' (known: xy, xz, yz)");
+  expectFailure(io + " --plane xy --radius 0", 2, "--radius: must be positive, not 0");
+  expectFailure(io + " --plane xy --radius=-0.1", 2, "--radius: must be positive, not -0.1");
+  expectFailure(io + " --plane xy --radius 0.1x", 2, "--radius: '0.1x' is not a finite number");
+  expectFailure(io + " --plane xy --radius 0.1 --adaptive 8", 2, "give at most one of");
+  expectFailure(io + " --plane xy --min-gap 45", 2, "--min-gap: must be in [90, 180)");
+  expectFailure(io + " --plane xy --radius 0.1 --outer-radius 0.05", 1,
+                "outer radius 0.05 is smaller than radius 0.1");
+  expectFailure("--input " + disk_, 2, "missing --output");
+}
+
+TEST_F(BoundaryApp, BadInputs) {
+  expectFailure("--input " + inputs_.file("none.pcd") + " --output " + out(), 1,
+                "none.pcd: cloud file does not exist");
+  test::writeFile(inputs_.file("text.pcd"), "not a point cloud\n");
+  expectFailure("--input " + inputs_.file("text.pcd") + " --output " + out(), 1,
+                "text.pcd: not a readable PCD file");
+  test::writeFile(inputs_.file("empty.pcd"),
+                  "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 0\n"
+                  "HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 0\nDATA ascii\n");
+  expectFailure("--input " + inputs_.file("empty.pcd") + " --output " + out(), 1,
+                "empty.pcd: the cloud has no points");
+  // A 2-D region without --plane: every point would be on its 3-D boundary.
+  expectFailure(
+      "--input " + disk_ + " --output " + out(), 1,
+      "the cloud is flat (z extent 0), so in 3-D every point is on its boundary; give --plane");
+}
+
+TEST_F(BoundaryApp, BoundaryAndInteriorPartitionTheCloudWithoutNaN) {
+  // The disk with two NaN points appended.
+  pcl::PointCloud<WorkspacePoint> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(disk_, cloud), 0);
+  WorkspacePoint bad;
+  bad.x = std::numeric_limits<float>::quiet_NaN();
+  cloud.push_back(bad);
+  cloud.push_back(bad);
+  const std::string with_nan = inputs_.file("nan.pcd");
+  ASSERT_EQ(pcl::io::savePCDFileBinary(with_nan, cloud), 0);
+
+  const test::RunResult r =
+      test::run(kBoundary + " --input " + with_nan + " --plane xy --json --output " + out() +
+                " --interior " + out("i.pcd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["points"], 20002);
+  EXPECT_EQ(json["boundary"].get<int>() + json["interior"].get<int>(), 20000);
+  EXPECT_EQ(json["plane"], "xy");
+  pcl::PointCloud<pcl::PointXYZ> rim, inside;
+  ASSERT_EQ(pcl::io::loadPCDFile(out(), rim), 0);
+  ASSERT_EQ(pcl::io::loadPCDFile(out("i.pcd"), inside), 0);
+  EXPECT_EQ(rim.size(), json["boundary"].get<std::size_t>());
+  // Rim points lie near the unit circle: within 5 spacings of it.
+  const double h = std::sqrt(M_PI / 20000);
+  for (const auto& p : rim) EXPECT_LT(1.0 - std::hypot(p.x, p.y), 5 * h);
+}
+
+TEST_F(BoundaryApp, BallIn3D) {
+  const test::RunResult r =
+      test::run(kBoundary + " --input " + ball_ + " --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["plane"], "3d");
+  // A shell one or two spacings thick: roughly 4 pi N^(2/3) (4pi/3)^(-2/3) points, ~1800 here.
+  EXPECT_GT(json["boundary"].get<int>(), 1000);
+  EXPECT_LT(json["boundary"].get<int>(), 4000);
+}
+
+}  // namespace
+}  // namespace mcws

@@ -1,0 +1,264 @@
+#include "mcws/filters/orthant_boundary.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mcws/core/error.h"
+#include "mcws/workspace/sampler.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The issue's goals for boundary quality on the validation shapes.
+constexpr double kMinPrecision = 0.99;
+constexpr double kMinRecall = 0.97;
+
+template <typename PointT>
+typename pcl::PointCloud<PointT>::Ptr gridCloud(int n, int dimensions) {
+  auto cloud = std::make_shared<pcl::PointCloud<PointT>>();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      for (int k = 0; k < (dimensions == 3 ? n : 1); ++k) {
+        PointT p;
+        p.x = static_cast<float>(i);
+        p.y = static_cast<float>(j);
+        p.z = static_cast<float>(k);
+        cloud->push_back(p);
+      }
+    }
+  }
+  return cloud;
+}
+
+bool onGridRim(const pcl::PointXYZ& p, int n, int dimensions) {
+  auto edge = [&](float v) { return v == 0.0f || v == static_cast<float>(n - 1); };
+  return edge(p.x) || edge(p.y) || (dimensions == 3 && edge(p.z));
+}
+
+template <typename PointT>
+class OrthantBoundaryTyped : public ::testing::Test {};
+using PointTypes = ::testing::Types<pcl::PointXYZ, WorkspacePoint>;
+TYPED_TEST_SUITE(OrthantBoundaryTyped, PointTypes);
+
+TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheRimOfASquareGridInEveryFrame) {
+  constexpr int n = 21;
+  const auto cloud = gridCloud<TypeParam>(n, 2);
+  for (unsigned frames : {1u, 2u, 4u, 0u}) {
+    OrthantBoundary<TypeParam> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setRadiusSearch(1.5);  // the 8 grid neighbours
+    filter.setFrames(frames);
+    pcl::Indices kept;
+    filter.filter(kept);
+    EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << "frames " << frames;
+    for (const auto i : kept) {
+      const auto& p = (*cloud)[i];
+      EXPECT_TRUE(onGridRim(pcl::PointXYZ(p.x, p.y, p.z), n, 2)) << p.x << "," << p.y;
+    }
+  }
+}
+
+TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheSurfaceOfACubeGrid) {
+  constexpr int n = 7;
+  const auto cloud = gridCloud<TypeParam>(n, 3);
+  OrthantBoundary<TypeParam> filter;
+  filter.setInputCloud(cloud);
+  filter.setRadiusSearch(1.8);  // the 26 grid neighbours
+  pcl::Indices kept;
+  filter.filter(kept);
+  EXPECT_EQ(kept.size(), static_cast<std::size_t>(n * n * n - (n - 2) * (n - 2) * (n - 2)));
+  for (const auto i : kept) {
+    const auto& p = (*cloud)[i];
+    EXPECT_TRUE(onGridRim(pcl::PointXYZ(p.x, p.y, p.z), n, 3));
+  }
+}
+
+TYPED_TEST(OrthantBoundaryTyped, KeptAndRemovedPartitionTheInputAndNaNIsAlwaysRemoved) {
+  auto cloud = std::make_shared<pcl::PointCloud<TypeParam>>();
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kDisk, 3), 20000, 2), *cloud);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  (*cloud)[5].x = nan;
+  (*cloud)[77].z = nan;
+  for (bool negative : {false, true}) {
+    OrthantBoundary<TypeParam> filter(true);
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setAdaptiveRadius(24, 2.0);
+    filter.setNegative(negative);
+    pcl::Indices kept;
+    filter.filter(kept);
+    const auto& removed = *filter.getRemovedIndices();
+    EXPECT_EQ(kept.size() + removed.size(), cloud->size());
+    pcl::Indices all = kept;
+    all.insert(all.end(), removed.begin(), removed.end());
+    std::sort(all.begin(), all.end());
+    for (std::size_t i = 0; i < all.size(); ++i) ASSERT_EQ(all[i], static_cast<pcl::index_t>(i));
+    EXPECT_EQ(std::count(kept.begin(), kept.end(), 5), 0);
+    EXPECT_EQ(std::count(kept.begin(), kept.end(), 77), 0);
+    if (negative) {
+      EXPECT_GT(kept.size(), 19000u);  // the interior
+    } else {
+      EXPECT_LT(kept.size(), 1000u);  // the rim
+    }
+  }
+}
+
+struct Quality {
+  double precision, recall;
+};
+
+/// Precision and recall as the issue defines them: reported points within two mean spacings of
+/// the true boundary, points within half a spacing that are reported.
+Quality quality(Shape shape, std::size_t n, const pcl::Indices& kept,
+                const pcl::PointCloud<WorkspacePoint>& cloud) {
+  const double h = std::pow(shapeMeasure(shape) / n, shapeIsPlanar(shape) ? 0.5 : 1.0 / 3.0);
+  std::vector<char> reported(cloud.size(), 0);
+  std::size_t close = 0;
+  for (const auto i : kept) {
+    reported[i] = 1;
+    close += shapeBoundaryDistance(shape, cloud[i].getVector3fMap().cast<double>()) <= 2.0 * h;
+  }
+  std::size_t near = 0, found = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (shapeBoundaryDistance(shape, cloud[i].getVector3fMap().cast<double>()) <= 0.5 * h) {
+      ++near;
+      found += reported[i];
+    }
+  }
+  return {static_cast<double>(close) / kept.size(), static_cast<double>(found) / near};
+}
+
+Quality runOnShape(Shape shape, std::size_t n, int k, std::uint64_t seed) {
+  const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+      sampleCloud(ShapeSampler(shape, seed), n, 0));
+  OrthantBoundary<WorkspacePoint> filter;
+  filter.setInputCloud(cloud);
+  filter.setPlane(shapeIsPlanar(shape) ? BoundaryPlane::kXY : BoundaryPlane::k3D);
+  filter.setAdaptiveRadius(k, 2.0);
+  filter.setMinimumGap(92.0 * M_PI / 180.0);  // mcws_boundary's default
+  pcl::Indices kept;
+  filter.filter(kept);
+  return quality(shape, n, kept, *cloud);
+}
+
+TEST(OrthantBoundary, MeetsPrecisionAndRecallOnDiskAnnulusAndBall) {
+  for (std::uint64_t seed : {1, 2}) {
+    const Quality disk = runOnShape(Shape::kDisk, 100000, 24, seed);
+    EXPECT_GE(disk.precision, kMinPrecision);
+    EXPECT_GE(disk.recall, kMinRecall);
+    const Quality annulus = runOnShape(Shape::kAnnulus, 100000, 24, seed);
+    EXPECT_GE(annulus.precision, kMinPrecision);
+    EXPECT_GE(annulus.recall, kMinRecall);
+    const Quality ball = runOnShape(Shape::kBall, 50000, 16, seed);
+    EXPECT_GE(ball.precision, kMinPrecision);
+    EXPECT_GE(ball.recall, kMinRecall);
+  }
+}
+
+TEST(OrthantBoundary, FindsTheInnerCircleOfTheAnnulus) {
+  constexpr std::size_t n = 50000;
+  const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+      sampleCloud(ShapeSampler(Shape::kAnnulus, 4), n, 0));
+  OrthantBoundary<WorkspacePoint> filter;
+  filter.setInputCloud(cloud);
+  filter.setPlane(BoundaryPlane::kXY);
+  filter.setAdaptiveRadius(24, 2.0);
+  pcl::Indices kept;
+  filter.filter(kept);
+  const double h = std::sqrt(shapeMeasure(Shape::kAnnulus) / n);
+  std::size_t inner = 0, inner_near = 0;
+  for (const auto i : kept) inner += (*cloud)[i].getVector3fMap().norm() < 0.5 + 2 * h;
+  for (const auto& p : *cloud) inner_near += p.getVector3fMap().norm() < 0.5 + 0.5 * h;
+  // The inner circle is half as long as the outer: about a third of the boundary points.
+  EXPECT_GT(inner, kept.size() / 4);
+  EXPECT_GE(static_cast<double>(inner) / inner_near, kMinRecall);
+}
+
+TEST(OrthantBoundary, SameResultForAnyThreadCount) {
+  const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+      sampleCloud(ShapeSampler(Shape::kBall, 5), 30000, 0));
+  pcl::Indices kept[2];
+  for (int threads : {1, 2}) {
+    OrthantBoundary<WorkspacePoint> filter;
+    filter.setInputCloud(cloud);
+    filter.setAdaptiveRadius(16, 2.0);
+    filter.setNumberOfThreads(threads);
+    filter.filter(kept[threads - 1]);
+  }
+  EXPECT_EQ(kept[0], kept[1]);
+}
+
+TEST(OrthantBoundary, TwoStageTestEqualsOneTestAtTheOuterRadius) {
+  const auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kDisk, 6), 20000, 0), *cloud);
+  auto run = [&](double r, double R) {
+    OrthantBoundary<pcl::PointXYZ> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setFrames(OrthantBoundary<pcl::PointXYZ>::kAxisFrame);  // seed 000's own test
+    filter.setRadiusSearch(r);
+    filter.setOuterRadius(R);
+    pcl::Indices kept;
+    filter.filter(kept);
+    return kept;
+  };
+  const pcl::Indices two_stage = run(0.02, 0.05), single = run(0.05, 0.0);
+  EXPECT_EQ(two_stage, single);
+  EXPECT_LT(single.size(), run(0.02, 0.0).size());  // R removes false points of r (Fig. 12)
+}
+
+TEST(OrthantBoundary, DegenerateClouds) {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  OrthantBoundary<pcl::PointXYZ> filter;
+  filter.setPlane(BoundaryPlane::kXY);
+  filter.setAutoRadius(0.0);
+  filter.setInputCloud(cloud);
+  pcl::Indices kept;
+  filter.filter(kept);
+  EXPECT_TRUE(kept.empty());  // empty in, empty out
+  cloud->push_back(pcl::PointXYZ(1, 2, 3));
+  filter.filter(kept);
+  EXPECT_EQ(kept.size(), 1u);  // a lonely point is a boundary point
+  cloud->resize(100, pcl::PointXYZ(1, 2, 3));
+  filter.filter(kept);
+  EXPECT_EQ(kept.size(), 100u);  // identical points: each is alone
+}
+
+TEST(OrthantBoundary, RejectsBadParameters) {
+  const auto cloud =
+      std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(10, 1, pcl::PointXYZ(0, 0, 0));
+  auto message = [&](auto configure) {
+    OrthantBoundary<pcl::PointXYZ> filter;
+    filter.setInputCloud(cloud);
+    configure(filter);
+    pcl::Indices kept;
+    try {
+      filter.filter(kept);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(message([](auto& f) { f.setRadiusSearch(0.0); }),
+              HasSubstr("radius 0 must be a positive number"));
+  EXPECT_THAT(message([](auto& f) { f.setRadiusSearch(-1.0); }),
+              HasSubstr("radius -1 must be a positive number"));
+  EXPECT_THAT(message([](auto& f) {
+                f.setRadiusSearch(2.0);
+                f.setOuterRadius(1.0);
+              }),
+              HasSubstr("outer radius 1 is smaller than radius 2"));
+  EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(8, -2.0); }),
+              HasSubstr("adaptive radius scale must be a positive number"));
+  EXPECT_THROW(parseBoundaryPlane("xw"), Error);
+}
+
+}  // namespace
+}  // namespace mcws
