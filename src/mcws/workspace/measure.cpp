@@ -1,0 +1,266 @@
+#include "mcws/workspace/measure.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+constexpr int kNeighbour = 8;
+
+/// Local spacing at every point: distance to the k-th nearest neighbour over its mean for a
+/// uniform cloud of mean spacing 1, sqrt(k / pi) in 2-D and (3k / (4 pi))^(1/3) in 3-D.
+std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+                                 int dimensions) {
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);
+  tree.setInputCloud(cloud);
+  const double scale =
+      dimensions == 2 ? std::sqrt(kNeighbour / M_PI) : std::cbrt(3.0 * kNeighbour / (4.0 * M_PI));
+  std::vector<double> spacing(cloud->size());
+#pragma omp parallel
+  {
+    pcl::Indices nn;
+    std::vector<float> d2;
+#pragma omp for schedule(static)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(cloud->size()); ++i) {
+      const int found = tree.nearestKSearch((*cloud)[i], kNeighbour + 1, nn, d2);
+      float largest = 0.0f;
+      for (int k = 0; k < found; ++k) largest = std::max(largest, d2[k]);
+      spacing[i] = std::sqrt(static_cast<double>(largest)) / scale;
+    }
+  }
+  return spacing;
+}
+
+RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
+                        const std::vector<double>& spacing, double alpha_factor) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
+  using Fb = CGAL::Triangulation_face_base_with_info_2<char, K>;
+  using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
+  std::vector<std::pair<K::Point_2, std::uint32_t>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    input.emplace_back(K::Point_2(points[i].x, points[i].y), static_cast<std::uint32_t>(i));
+  }
+  Delaunay dt(input.begin(), input.end());
+  if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
+
+  RegionMeasure result;
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = 0;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
+    const double local = std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
+    const double limit = alpha_factor * local;
+    if (CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit) {
+      f->info() = 1;
+      result.uncorrected += std::abs(CGAL::area(a->point(), b->point(), c->point()));
+    }
+  }
+  std::vector<Delaunay::Vertex_handle> boundary;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    auto f = dt.incident_faces(v), done = f;
+    bool kept = false, dropped = false;
+    do {
+      (f->info() ? kept : dropped) = true;
+    } while (++f != done);
+    if (kept && dropped) boundary.push_back(v);
+  }
+  result.points = dt.number_of_vertices();
+  result.boundary_vertices = boundary.size();
+  // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
+  for (const auto v : boundary) {
+    const K::Point_2 p = v->point();
+    const std::uint32_t index = v->info();
+    dt.remove(v);
+    const auto f = dt.locate(p);
+    bool covered = false;
+    if (!dt.is_infinite(f)) {
+      const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
+      const double limit =
+          alpha_factor * std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
+      covered = CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit;
+    }
+    result.outside += !covered;
+    dt.insert(p)->info() = index;
+  }
+  return result;
+}
+
+RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
+                        const std::vector<double>& spacing, double alpha_factor) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
+  using Cb = CGAL::Triangulation_cell_base_with_info_3<char, K>;
+  using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
+  std::vector<std::pair<K::Point_3, std::uint32_t>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    input.emplace_back(K::Point_3(points[i].x, points[i].y, points[i].z),
+                       static_cast<std::uint32_t>(i));
+  }
+  Delaunay dt(input.begin(), input.end());
+  if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
+
+  RegionMeasure result;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = 0;
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    double local = 0.0;
+    for (int k = 0; k < 4; ++k) local = std::max(local, spacing[c->vertex(k)->info()]);
+    const double limit = alpha_factor * local;
+    const auto &p = c->vertex(0)->point(), &q = c->vertex(1)->point(), &r = c->vertex(2)->point(),
+               &s = c->vertex(3)->point();
+    if (CGAL::squared_radius(p, q, r, s) <= limit * limit) {
+      c->info() = 1;
+      result.uncorrected += std::abs(CGAL::volume(p, q, r, s));
+    }
+  }
+  std::vector<Delaunay::Vertex_handle> boundary;
+  std::vector<Delaunay::Cell_handle> cells;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    cells.clear();
+    dt.incident_cells(v, std::back_inserter(cells));
+    bool kept = false, dropped = false;
+    for (const auto& c : cells) (c->info() ? kept : dropped) = true;
+    if (kept && dropped) boundary.push_back(v);
+  }
+  result.points = dt.number_of_vertices();
+  result.boundary_vertices = boundary.size();
+  // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
+  for (const auto v : boundary) {
+    const K::Point_3 p = v->point();
+    const std::uint32_t index = v->info();
+    dt.remove(v);
+    const auto c = dt.locate(p);
+    bool covered = false;
+    if (!dt.is_infinite(c)) {
+      double local = 0.0;
+      for (int k = 0; k < 4; ++k) local = std::max(local, spacing[c->vertex(k)->info()]);
+      const double limit = alpha_factor * local;
+      covered = CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
+                                     c->vertex(2)->point(), c->vertex(3)->point()) <= limit * limit;
+    }
+    result.outside += !covered;
+    dt.insert(p)->info() = index;
+  }
+  return result;
+}
+
+}  // namespace
+
+RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
+                              double alpha_factor) {
+  if (dimensions != 2 && dimensions != 3) throw Error("dimensions must be 2 or 3");
+  if (!(alpha_factor > 0.0 && std::isfinite(alpha_factor))) {
+    std::ostringstream msg;
+    msg << "alpha factor " << alpha_factor << " must be a positive number";
+    throw Error(msg.str());
+  }
+  if (points.size() < static_cast<std::size_t>(dimensions + 1)) {
+    throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
+                std::to_string(points.size()));
+  }
+  auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(points);
+  if (dimensions == 2) {
+    for (auto& p : *flat) p.z = 0.0f;
+  }
+  const std::vector<double> spacing = localSpacing(flat, dimensions);
+  RegionMeasure result = dimensions == 2 ? measure2d(*flat, spacing, alpha_factor)
+                                         : measure3d(*flat, spacing, alpha_factor);
+  result.alpha_factor = alpha_factor;
+  // With a handful of points every vertex is outside the others' region; the estimate then says
+  // nothing, and the share is capped at one half rather than dividing by zero.
+  const double missing = std::min(0.5, static_cast<double>(result.outside) / result.points);
+  result.measure = result.uncorrected / (1.0 - missing);
+  return result;
+}
+
+ColumnArea columnArea(const pcl::PointCloud<pcl::PointXYZ>& boundary, double width, double gap) {
+  if (boundary.size() < 3) {
+    throw Error("the column method needs at least 3 boundary points, got " +
+                std::to_string(boundary.size()));
+  }
+  if (width < 0.0 || gap < 0.0 || !std::isfinite(width) || !std::isfinite(gap)) {
+    throw Error("column width and gap must be 0 (automatic) or positive");
+  }
+  ColumnArea result;
+  float min_x = boundary[0].x, max_x = boundary[0].x;
+  for (const auto& p : boundary) {
+    min_x = std::min(min_x, p.x);
+    max_x = std::max(max_x, p.x);
+  }
+  if (width == 0.0) {
+    // About sqrt(n) columns for n boundary points: each crossing then holds a few points, so no
+    // column misses a side, and columns stay narrow next to the region.
+    width = (max_x - min_x) / std::sqrt(static_cast<double>(boundary.size()));
+    if (!(width > 0.0)) throw Error("the boundary points have no extent in x: no columns");
+  }
+  if (gap == 0.0) gap = 3.0 * width;
+  result.width = width;
+  result.gap = gap;
+
+  std::vector<std::pair<std::int64_t, float>> cells;  // (column, y)
+  cells.reserve(boundary.size());
+  for (const auto& p : boundary) {
+    cells.emplace_back(static_cast<std::int64_t>((p.x - min_x) / width), p.y);
+  }
+  std::sort(cells.begin(), cells.end());
+  for (std::size_t begin = 0; begin < cells.size();) {
+    std::size_t end = begin;
+    while (end < cells.size() && cells[end].first == cells[begin].first) ++end;
+    // Crossings of this column: (lowest y, highest y, mean y).
+    struct Crossing {
+      double low, high, sum;
+      std::size_t count;
+    };
+    std::vector<Crossing> crossings;
+    for (std::size_t k = begin; k < end; ++k) {
+      const double y = cells[k].second;
+      if (crossings.empty() || y - crossings.back().high > gap) {
+        crossings.push_back({y, y, y, 1});
+      } else {
+        crossings.back().high = y;
+        crossings.back().sum += y;
+        ++crossings.back().count;
+      }
+    }
+    std::vector<double> ys;
+    if (crossings.size() % 2 == 1) {
+      ++result.odd_columns;
+      std::size_t tallest = 0;
+      for (std::size_t k = 1; k < crossings.size(); ++k) {
+        if (crossings[k].high - crossings[k].low >
+            crossings[tallest].high - crossings[tallest].low) {
+          tallest = k;
+        }
+      }
+      for (std::size_t k = 0; k < crossings.size(); ++k) {
+        if (k == tallest) {
+          ys.push_back(crossings[k].low);
+          ys.push_back(crossings[k].high);
+        } else {
+          ys.push_back(crossings[k].sum / crossings[k].count);
+        }
+      }
+    } else {
+      for (const Crossing& c : crossings) ys.push_back(c.sum / c.count);
+    }
+    for (std::size_t j = 0; j + 1 < ys.size(); j += 2) result.area += width * (ys[j + 1] - ys[j]);
+    ++result.columns;
+    begin = end;
+  }
+  return result;
+}
+
+}  // namespace mcws

@@ -1,0 +1,71 @@
+#pragma once
+/// \file
+/// \brief Area (2-D) and volume (3-D) of a sampled region.
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstddef>
+
+namespace mcws {
+
+/// \brief Result of delaunayMeasure().
+struct RegionMeasure {
+  double measure{0.0};               ///< corrected area [unit^2] or volume [unit^3]
+  double uncorrected{0.0};           ///< the kept simplices' total, before the edge correction
+  std::size_t points{0};             ///< distinct points triangulated
+  std::size_t boundary_vertices{0};  ///< vertices between kept and dropped simplices
+  std::size_t outside{0};            ///< boundary vertices outside the region of the other points
+  double alpha_factor{0.0};
+};
+
+/// \brief Area or volume of the region a cloud samples, from its Delaunay triangulation (CGAL).
+///
+/// A triangle (2-D) or tetrahedron (3-D) belongs to the region when its circumradius is at most
+/// `alpha_factor` times the local spacing at its sparsest vertex; the local spacing at a point is
+/// its distance to the k-th nearest neighbour (k = 8) scaled to the mean spacing of a uniform
+/// cloud. Kept simplices sum to A_N, which misses a thin band along the edge. Efron's identity
+/// for uniform samples (Efron 1965; Ripley and Rasson 1977, "Finding the edge of a Poisson
+/// forest") says the missing share equals the chance that one more sample falls outside. Leave
+/// one out estimates it: V, the number of points that lie outside the region built from all the
+/// others (found by removing each boundary vertex from the triangulation, locating it and putting
+/// it back), over N. The result is A_N / (1 - V / N); for a convex hull V is exactly its vertex
+/// count. The missing share is capped at 1/2 (clouds of a handful of points).
+/// \param points the region's points; for a planar region x and y hold the plane's coordinates
+///   and z is ignored (dimensions = 2).
+/// \param dimensions 2 (area) or 3 (volume).
+/// \param alpha_factor the circumradius limit in local spacings (> 0; 3 keeps every interior
+///   simplex of a uniform cloud of up to 10^8 points and bridges no gap wider than 6 spacings).
+/// \throws mcws::Error for fewer than dimensions + 1 points, all points on a line (2-D) or a
+///   plane (3-D), or a bad alpha factor.
+RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
+                              double alpha_factor = 3.0);
+
+/// \brief Result of columnArea().
+struct ColumnArea {
+  double area{0.0};            ///< [unit^2]
+  double width{0.0};           ///< column width L used [unit]
+  double gap{0.0};             ///< crossing gap used [unit]
+  std::size_t columns{0};      ///< columns holding boundary points
+  std::size_t odd_columns{0};  ///< columns whose crossings had to be completed (see below)
+};
+
+/// \brief Seed 000's rectangle method (section 5, eqs. (2) to (4)): the plane is cut into columns
+/// of width L along x; in column i the boundary crossings y_i1 < y_i2 < ... pair up and
+/// S = L sum_i sum_j (y_i,2j - y_i,2j-1).
+///
+/// Taken literally, every boundary point is a "crossing" and pairing neighbours measures the
+/// thickness of the boundary band, not the region. Here the boundary points of a column are first
+/// grouped into crossings: sorted by y, a new crossing starts where consecutive points are more
+/// than `gap` apart; a crossing's y is its points' mean. A column with an odd number of crossings
+/// (where the boundary runs steeply, top and bottom merge) splits its tallest crossing into its
+/// lowest and highest point.
+/// \param boundary boundary points, x and y being the plane's coordinates.
+/// \param width L [unit]; 0: the x extent over sqrt(number of boundary points). Narrow columns
+///   (a few times the boundary points' spacing) miss sides; this keeps several points per crossing.
+/// \param gap [unit]; 0: three times L.
+/// \throws mcws::Error for fewer than 3 points or a negative width or gap.
+ColumnArea columnArea(const pcl::PointCloud<pcl::PointXYZ>& boundary, double width = 0.0,
+                      double gap = 0.0);
+
+}  // namespace mcws

@@ -1,0 +1,73 @@
+// mcws_measure through its command line.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kMeasure = MCWS_MEASURE_EXE;
+
+class MeasureApp : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    disk_ = dir_.file("disk.pcd");
+    rim_ = dir_.file("rim.pcd");
+    ASSERT_EQ(
+        test::run(std::string(MCWS_SAMPLE_EXE) + " --shape disk --samples 50000 --output " + disk_)
+            .exit_code,
+        0);
+    ASSERT_EQ(test::run(std::string(MCWS_BOUNDARY_EXE) + " --input " + disk_ +
+                        " --plane xy --output " + rim_)
+                  .exit_code,
+              0);
+  }
+  void expectFailure(const std::string& args, int exit_code, const std::string& message) {
+    const test::RunResult r = test::run(kMeasure + " " + args);
+    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(message)) << args;
+    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
+  test::TempDir dir_;
+  std::string disk_, rim_;
+};
+
+TEST_F(MeasureApp, HelpExitsZero) {
+  const test::RunResult r = test::run(kMeasure + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("--boundary"));
+}
+
+TEST_F(MeasureApp, DiskAreaWithColumnCrossCheck) {
+  const test::RunResult r =
+      test::run(kMeasure + " --input " + disk_ + " --plane xy --boundary " + rim_ + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["method"], "delaunay");
+  EXPECT_NEAR(json["area"].get<double>() / M_PI, 1.0, 0.002);
+  EXPECT_NEAR(json["cross_check"]["area"].get<double>() / M_PI, 1.0, 0.02);
+  const test::RunResult column =
+      test::run(kMeasure + " --input " + disk_ + " --plane xy --boundary " + rim_ +
+                " --method column --json");
+  ASSERT_EQ(column.exit_code, 0) << column.err;
+  EXPECT_EQ(nlohmann::json::parse(column.out)["area"], json["cross_check"]["area"]);
+}
+
+TEST_F(MeasureApp, BadInput) {
+  expectFailure("--input " + disk_ + " --plane xy --method voxels", 2, "--method: 'voxels' is not");
+  expectFailure("--input " + disk_ + " --plane xy --method column", 2,
+                "--method column measures an area: give --plane and --boundary");
+  expectFailure("--input " + disk_ + " --plane xq", 2, "--plane: unknown plane 'xq'");
+  expectFailure("--input " + disk_ + " --plane xy --alpha 0", 2, "--alpha: must be positive");
+  expectFailure("--input " + disk_, 1, "the cloud is flat (z extent 0)");
+  expectFailure("--input " + dir_.file("none.pcd"), 1, "cloud file does not exist");
+}
+
+}  // namespace
+}  // namespace mcws

@@ -1,0 +1,117 @@
+#include "mcws/workspace/measure.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mcws/core/error.h"
+#include "mcws/workspace/sampler.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+pcl::PointCloud<pcl::PointXYZ> shapeCloud(Shape shape, std::size_t n, std::uint64_t seed) {
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(shape, seed), n, 0), cloud);
+  return cloud;
+}
+
+double relativeError(Shape shape, std::size_t n, std::uint64_t seed) {
+  const RegionMeasure m = delaunayMeasure(shapeCloud(shape, n, seed), shapeIsPlanar(shape) ? 2 : 3);
+  return m.measure / shapeMeasure(shape) - 1.0;
+}
+
+// Tolerances: about four times the mean absolute error measured over 10 seeds (BENCHMARKS.md),
+// so a single seed passes with a wide margin while a broken correction (errors of 0.5 % to 2.5 %
+// without it) fails.
+TEST(DelaunayMeasure, AreaOfDiskAndAnnulus) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    EXPECT_NEAR(relativeError(Shape::kDisk, 50000, seed), 0.0, 0.0015);
+    EXPECT_NEAR(relativeError(Shape::kAnnulus, 50000, seed), 0.0, 0.002);
+  }
+}
+
+TEST(DelaunayMeasure, VolumeOfBallAndCube) {
+  for (std::uint64_t seed : {1, 2}) {
+    EXPECT_NEAR(relativeError(Shape::kBall, 50000, seed), 0.0, 0.004);
+    EXPECT_NEAR(relativeError(Shape::kBox, 50000, seed), 0.0, 0.004);
+  }
+}
+
+TEST(DelaunayMeasure, TheEdgeCorrectionIsWhatMakesItAccurate) {
+  const RegionMeasure m = delaunayMeasure(shapeCloud(Shape::kDisk, 20000, 4), 2);
+  EXPECT_LT(m.uncorrected, M_PI * (1 - 0.004));  // the band along the rim is missing
+  EXPECT_NEAR(m.measure / M_PI, 1.0, 0.002);
+  EXPECT_GT(m.boundary_vertices, m.outside);  // dents of the rim are inside the others' region
+  EXPECT_GT(m.outside, 0u);
+}
+
+TEST(DelaunayMeasure, SquareOfFourPointsIsItsArea) {
+  pcl::PointCloud<pcl::PointXYZ> square;
+  for (float x : {0.f, 2.f}) {
+    for (float y : {0.f, 2.f}) square.push_back(pcl::PointXYZ(x, y, 0));
+  }
+  const RegionMeasure m = delaunayMeasure(square, 2);
+  EXPECT_DOUBLE_EQ(m.uncorrected, 4.0);
+  EXPECT_EQ(m.outside, 4u);          // every corner is outside the triangle of the other three
+  EXPECT_DOUBLE_EQ(m.measure, 8.0);  // the capped correction: 4 / (1 - 1/2)
+}
+
+TEST(DelaunayMeasure, RejectsDegenerateInput) {
+  pcl::PointCloud<pcl::PointXYZ> line;
+  for (int i = 0; i < 10; ++i) line.push_back(pcl::PointXYZ(i, 2 * i, 0));
+  try {
+    delaunayMeasure(line, 2);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "the points lie on a line: no area");
+  }
+  pcl::PointCloud<pcl::PointXYZ> plane;
+  for (int i = 0; i < 10; ++i) plane.push_back(pcl::PointXYZ(i % 3, i / 3, 1));
+  EXPECT_THROW(delaunayMeasure(plane, 3), Error);
+  EXPECT_THAT(
+      [&] {
+        try {
+          delaunayMeasure(pcl::PointCloud<pcl::PointXYZ>(2, 1), 2);
+        } catch (const Error& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      }(),
+      HasSubstr("a region needs at least 3 points, got 2"));
+  EXPECT_THROW(delaunayMeasure(shapeCloud(Shape::kDisk, 100, 1), 2, -1.0), Error);
+}
+
+TEST(ColumnArea, DiskFromItsExactRim) {
+  pcl::PointCloud<pcl::PointXYZ> rim;
+  for (int k = 0; k < 4000; ++k) {
+    const double t = 2 * M_PI * k / 4000;
+    rim.push_back(pcl::PointXYZ(std::cos(t), std::sin(t), 0));
+  }
+  const ColumnArea c = columnArea(rim);
+  EXPECT_EQ(c.columns, 64u);  // 2 / sqrt(4000) wide
+  EXPECT_NEAR(c.area / M_PI, 1.0, 0.01);
+}
+
+TEST(ColumnArea, AnnulusPairsFourCrossings) {
+  pcl::PointCloud<pcl::PointXYZ> rims;
+  for (int k = 0; k < 4000; ++k) {
+    const double t = 2 * M_PI * k / 4000;
+    rims.push_back(pcl::PointXYZ(std::cos(t), std::sin(t), 0));
+    if (k % 2 == 0) rims.push_back(pcl::PointXYZ(0.5 * std::cos(t), 0.5 * std::sin(t), 0));
+  }
+  EXPECT_NEAR(columnArea(rims).area / (0.75 * M_PI), 1.0, 0.02);
+}
+
+TEST(ColumnArea, RejectsTooFewPointsAndBadWidth) {
+  EXPECT_THROW(columnArea(pcl::PointCloud<pcl::PointXYZ>(2, 1)), Error);
+  pcl::PointCloud<pcl::PointXYZ> rim(10, 1, pcl::PointXYZ(1, 2, 0));
+  EXPECT_THROW(columnArea(rim, -1.0), Error);
+  EXPECT_THROW(columnArea(rim), Error);  // no extent in x
+}
+
+}  // namespace
+}  // namespace mcws
