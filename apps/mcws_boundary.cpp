@@ -2,12 +2,14 @@
 // seed 000 (section 4.3), on a plane (--plane) or in 3-D.
 #include <pcl/common/common.h>
 
+#include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "mcws/filters/orthant_boundary.h"
+#include "mcws/io/atomic_file.h"
 
 namespace {
 // 90 degrees is seed 000's quadrant. 92 trades a little recall for precision: on uniform disks
@@ -39,7 +41,9 @@ int main(int argc, char** argv) {
         "r = c x mean spacing (default: c automatic)")(
         "adaptive", app::po::value<std::string>(),
         "k: per-point r = 2 x distance to k-th neighbour (default)")(
-        "outer-radius", app::po::value<std::string>(), "R > r: seed 000's second stage at R")(
+        "outer-radius", app::po::value<std::string>(),
+        "seed 000's second stage at R: a length > r with --radius/--auto-radius, else a factor > 1 "
+        "of each point's radius")(
         "min-gap", app::po::value<std::string>(),
         "2-D: empty sector that makes a boundary point, 90..179 deg (default 92)")(
         "threads", app::po::value<std::string>(), "worker threads, 0 = all cores (default 0)")(
@@ -78,6 +82,15 @@ int main(int argc, char** argv) {
     boundary.setMinimumGap(gap * M_PI / 180.0);
     boundary.setNumberOfThreads(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
 
+    // Both destinations are checked before any work, so neither is written when the other cannot
+    // be.
+    io::checkOutputPath(output);
+    if (cli.has("interior")) {
+      if (cli.required("interior") == output) {
+        throw app::UsageError("--interior and --output name the same file");
+      }
+      io::checkOutputPath(cli.required("interior"));
+    }
     app::Progress clock("mcws_boundary", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
     if (boundary.getPlane() == BoundaryPlane::k3D) app::requireVolume(*cloud, input);
@@ -90,7 +103,12 @@ int main(int argc, char** argv) {
       for (const auto i : *boundary.getRemovedIndices()) {
         if (pcl::isFinite((*cloud)[i])) interior.push_back(i);
       }
-      app::saveCloud(*cloud, interior, cli.required("interior"));
+      try {
+        app::saveCloud(*cloud, interior, cli.required("interior"));
+      } catch (...) {
+        std::remove(output.c_str());  // all or nothing
+        throw;
+      }
     }
 
     nlohmann::json summary = {{"input", input},

@@ -18,7 +18,9 @@ int main(int argc, char** argv) {
         "local\n"
         "spacings, corrected for the band the samples miss along the edge by leave-one-out "
         "(Efron's\n"
-        "identity). Method 'column': seed 000's rectangles, eqs. (2)-(4), over --boundary points\n"
+        "identity; it assumes the density near the edge is about that inside, as for uniform\n"
+        "samples: refine joint-space clouds first). Method 'column': seed 000's rectangles,\n"
+        "eqs. (2)-(4), over --boundary points\n"
         "grouped into crossings per column. With --boundary the default also reports the column\n"
         "method as a cross-check.");
     cli.add()("input", app::po::value<std::string>(), "workspace cloud (PCD)")(
@@ -65,10 +67,11 @@ int main(int argc, char** argv) {
     };
     nlohmann::json out = {
         {"input", input}, {"plane", boundaryPlaneName(plane)}, {"method", method}};
+    const pcl::PointCloud<pcl::PointXYZ> region = projected(input);  // validated for every method
     std::optional<ColumnArea> column;
     if (cli.has("boundary")) column = columnArea(projected(cli.required("boundary")), width);
     if (method == "delaunay") {
-      const RegionMeasure m = delaunayMeasure(projected(input), dimensions, alpha);
+      const RegionMeasure m = delaunayMeasure(region, dimensions, alpha);
       out[key] = m.measure;
       out["alpha"] = alpha;
       out["points"] = m.points;

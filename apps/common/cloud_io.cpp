@@ -4,8 +4,10 @@
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "mcws/core/error.h"
 
@@ -60,9 +62,19 @@ WorkspaceCloud::Ptr loadCloud(const std::string& path) {
 }
 
 void requireVolume(const WorkspaceCloud& cloud, const std::string& path) {
-  WorkspacePoint min, max;
-  pcl::getMinMax3D(cloud, min, max);
-  const Eigen::Vector3f extent = max.getVector3fMap() - min.getVector3fMap();
+  Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f max = -min;
+  std::size_t finite = 0;
+  for (const auto& p : cloud) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+      continue;
+    }
+    min = min.cwiseMin(p.getVector3fMap());
+    max = max.cwiseMax(p.getVector3fMap());
+    ++finite;
+  }
+  if (finite == 0) throw Error(path + ": the cloud has no finite points");
+  const Eigen::Vector3f extent = max - min;
   const char* axis = "xyz";
   for (int k = 0; k < 3; ++k) {
     if (!(extent[k] > 1e-6f * extent.maxCoeff())) {

@@ -103,9 +103,33 @@ TEST_F(BoundaryApp, BoundaryAndInteriorPartitionTheCloudWithoutNaN) {
   ASSERT_EQ(pcl::io::loadPCDFile(out(), rim), 0);
   ASSERT_EQ(pcl::io::loadPCDFile(out("i.pcd"), inside), 0);
   EXPECT_EQ(rim.size(), json["boundary"].get<std::size_t>());
+  EXPECT_EQ(inside.size(), json["interior"].get<std::size_t>());
+  for (const auto& p : inside) EXPECT_TRUE(std::isfinite(p.x));
   // Rim points lie near the unit circle: within 5 spacings of it.
   const double h = std::sqrt(M_PI / 20000);
   for (const auto& p : rim) EXPECT_LT(1.0 - std::hypot(p.x, p.y), 5 * h);
+}
+
+TEST_F(BoundaryApp, InteriorThatCannotBeWrittenLeavesNoBoundaryEither) {
+  expectFailure("--input " + disk_ + " --plane xy --output " + out() + " --interior " +
+                    dir_.file("missing/i.pcd"),
+                1, "/missing' does not exist");
+  expectFailure("--input " + disk_ + " --plane xy --output " + out() + " --interior " + out(), 2,
+                "--interior and --output name the same file");
+}
+
+TEST_F(BoundaryApp, InfinitePointsAreDroppedNotTakenForExtent) {
+  pcl::PointCloud<WorkspacePoint> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(ball_, cloud), 0);
+  WorkspacePoint far;
+  far.x = std::numeric_limits<float>::infinity();
+  cloud.push_back(far);
+  const std::string with_inf = inputs_.file("inf.pcd");
+  ASSERT_EQ(pcl::io::savePCDFileBinary(with_inf, cloud), 0);
+  const test::RunResult r =
+      test::run(kBoundary + " --input " + with_inf + " --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(nlohmann::json::parse(r.out)["boundary"].get<int>(), 1000);
 }
 
 TEST_F(BoundaryApp, BallIn3D) {

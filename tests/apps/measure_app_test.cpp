@@ -67,6 +67,9 @@ TEST_F(MeasureApp, BadInput) {
   expectFailure("--input " + disk_ + " --plane xy --alpha 0", 2, "--alpha: must be positive");
   expectFailure("--input " + disk_, 1, "the cloud is flat (z extent 0)");
   expectFailure("--input " + dir_.file("none.pcd"), 1, "cloud file does not exist");
+  expectFailure(
+      "--input " + dir_.file("none.pcd") + " --plane xy --method column --boundary " + rim_, 1,
+      "none.pcd: cloud file does not exist");
 }
 
 }  // namespace

@@ -65,6 +65,26 @@ TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheRimOfASquareGridInEveryFrame) {
   }
 }
 
+TEST(OrthantBoundary, KeepsExactlyTheRimOfAnOffsetGridWithInexactCoordinates) {
+  // Spacing 0.1: coordinates are not exact in float, so exactly collinear
+  // directions must still be ordered exactly (a float pseudo-angle once misordered them).
+  constexpr int n = 60;
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) cloud->push_back(pcl::PointXYZ(0.1f * i, 0.1f * j, 0));
+  }
+  for (double gap_degrees : {90.0, 92.0}) {
+    OrthantBoundary<pcl::PointXYZ> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setAdaptiveRadius(24, 2.0);  // mcws_boundary's default: many collinear directions
+    filter.setMinimumGap(gap_degrees * M_PI / 180.0);
+    pcl::Indices kept;
+    filter.filter(kept);
+    EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << gap_degrees;
+  }
+}
+
 TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheSurfaceOfACubeGrid) {
   constexpr int n = 7;
   const auto cloud = gridCloud<TypeParam>(n, 3);
@@ -86,6 +106,7 @@ TYPED_TEST(OrthantBoundaryTyped, KeptAndRemovedPartitionTheInputAndNaNIsAlwaysRe
   const float nan = std::numeric_limits<float>::quiet_NaN();
   (*cloud)[5].x = nan;
   (*cloud)[77].z = nan;
+  pcl::Indices positive_removed;
   for (bool negative : {false, true}) {
     OrthantBoundary<TypeParam> filter(true);
     filter.setInputCloud(cloud);
@@ -103,9 +124,16 @@ TYPED_TEST(OrthantBoundaryTyped, KeptAndRemovedPartitionTheInputAndNaNIsAlwaysRe
     EXPECT_EQ(std::count(kept.begin(), kept.end(), 5), 0);
     EXPECT_EQ(std::count(kept.begin(), kept.end(), 77), 0);
     if (negative) {
-      EXPECT_GT(kept.size(), 19000u);  // the interior
+      // The interior is exactly what positive mode removed, less the two NaN points.
+      pcl::Indices expected;
+      for (const auto i : positive_removed) {
+        if (i != 5 && i != 77) expected.push_back(i);
+      }
+      EXPECT_EQ(kept, expected);
+      EXPECT_GT(kept.size(), 19000u);
     } else {
       EXPECT_LT(kept.size(), 1000u);  // the rim
+      positive_removed = removed;
     }
   }
 }
@@ -231,6 +259,42 @@ TEST(OrthantBoundary, DegenerateClouds) {
   EXPECT_EQ(kept.size(), 100u);  // identical points: each is alone
 }
 
+TEST(OrthantBoundary, CopiesOfAPointGetItsAnswer) {
+  const auto disk = sampleCloud(ShapeSampler(Shape::kDisk, 9), 5000, 0);
+  auto once = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::copyPointCloud(disk, *once);
+  auto thrice = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  for (int copy = 0; copy < 3; ++copy) *thrice += *once;
+  pcl::Indices kept_once, kept_thrice;
+  for (auto [cloud, kept] : {std::pair{once, &kept_once}, std::pair{thrice, &kept_thrice}}) {
+    OrthantBoundary<pcl::PointXYZ> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setAdaptiveRadius(24, 2.0);  // copies must not shrink the k-th neighbour distance
+    filter.filter(*kept);
+  }
+  ASSERT_EQ(kept_thrice.size(), 3 * kept_once.size());
+  for (std::size_t k = 0; k < kept_once.size(); ++k) {
+    EXPECT_EQ(kept_thrice[k], kept_once[k]);
+    EXPECT_EQ(kept_thrice[2 * kept_once.size() + k], kept_once[k] + 10000);
+  }
+}
+
+TEST(OrthantBoundary, ALonelyPointIsBoundaryInEveryFrame) {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  cloud->push_back(pcl::PointXYZ(0, 0, 0));
+  cloud->push_back(pcl::PointXYZ(10, 0, 0));
+  for (unsigned frames : {1u, 2u, 3u}) {
+    OrthantBoundary<pcl::PointXYZ> filter;
+    filter.setInputCloud(cloud);
+    filter.setRadiusSearch(1.0);
+    filter.setFrames(frames);
+    pcl::Indices kept;
+    filter.filter(kept);
+    EXPECT_EQ(kept.size(), 2u) << "frames " << frames;
+  }
+}
+
 TEST(OrthantBoundary, RejectsBadParameters) {
   const auto cloud =
       std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(10, 1, pcl::PointXYZ(0, 0, 0));
@@ -257,6 +321,12 @@ TEST(OrthantBoundary, RejectsBadParameters) {
               HasSubstr("outer radius 1 is smaller than radius 2"));
   EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(8, -2.0); }),
               HasSubstr("adaptive radius scale must be a positive number"));
+  EXPECT_THAT(
+      message([](auto& f) {
+        f.setAdaptiveRadius(8, 2.0);
+        f.setOuterRadius(0.5);
+      }),
+      HasSubstr("outer radius is a factor of each point's radius and must exceed 1, not 0.5"));
   EXPECT_THROW(parseBoundaryPlane("xw"), Error);
 }
 

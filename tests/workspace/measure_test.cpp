@@ -49,15 +49,46 @@ TEST(DelaunayMeasure, TheEdgeCorrectionIsWhatMakesItAccurate) {
   EXPECT_GT(m.outside, 0u);
 }
 
-TEST(DelaunayMeasure, SquareOfFourPointsIsItsArea) {
+std::string measureError(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions) {
+  try {
+    delaunayMeasure(cloud, dimensions);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(DelaunayMeasure, TooFewPointsForTheEdgeCorrection) {
+  // Every corner of a square lies outside the triangle of the other three: no estimate.
   pcl::PointCloud<pcl::PointXYZ> square;
   for (float x : {0.f, 2.f}) {
     for (float y : {0.f, 2.f}) square.push_back(pcl::PointXYZ(x, y, 0));
   }
-  const RegionMeasure m = delaunayMeasure(square, 2);
-  EXPECT_DOUBLE_EQ(m.uncorrected, 4.0);
-  EXPECT_EQ(m.outside, 4u);          // every corner is outside the triangle of the other three
-  EXPECT_DOUBLE_EQ(m.measure, 8.0);  // the capped correction: 4 / (1 - 1/2)
+  EXPECT_THAT(measureError(square, 2), HasSubstr("too few points for the edge correction: 4 of 4"));
+  // Three points, and a tetrahedron: removing one leaves a lower-dimensional set (once a crash).
+  EXPECT_THAT(measureError(pcl::PointCloud<pcl::PointXYZ>(3, 1), 2), HasSubstr("lie on a line"));
+  pcl::PointCloud<pcl::PointXYZ> triangle;
+  triangle.push_back(pcl::PointXYZ(0, 0, 0));
+  triangle.push_back(pcl::PointXYZ(1, 0, 0));
+  triangle.push_back(pcl::PointXYZ(0, 1, 0));
+  EXPECT_THAT(measureError(triangle, 2), HasSubstr("too few points for the edge correction"));
+  pcl::PointCloud<pcl::PointXYZ> tetrahedron = triangle;
+  tetrahedron.push_back(pcl::PointXYZ(0, 0, 1));
+  EXPECT_THAT(measureError(tetrahedron, 3), HasSubstr("too few points for the edge correction"));
+  // A fan: collinear points and one off the line.
+  pcl::PointCloud<pcl::PointXYZ> fan;
+  for (int i = 0; i < 20; ++i) fan.push_back(pcl::PointXYZ(i, 0, 0));
+  fan.push_back(pcl::PointXYZ(5, 3, 0));
+  EXPECT_NE(measureError(fan, 2), "");
+}
+
+TEST(DelaunayMeasure, DuplicatePointsDoNotChangeTheArea) {
+  const auto disk = shapeCloud(Shape::kDisk, 5000, 7);
+  pcl::PointCloud<pcl::PointXYZ> repeated;
+  for (int copy = 0; copy < 5; ++copy) repeated += disk;
+  const RegionMeasure once = delaunayMeasure(disk, 2), five = delaunayMeasure(repeated, 2);
+  EXPECT_EQ(five.points, 5000u);  // CGAL keeps one vertex per position
+  EXPECT_DOUBLE_EQ(five.measure, once.measure);
 }
 
 TEST(DelaunayMeasure, RejectsDegenerateInput) {
@@ -72,6 +103,12 @@ TEST(DelaunayMeasure, RejectsDegenerateInput) {
   pcl::PointCloud<pcl::PointXYZ> plane;
   for (int i = 0; i < 10; ++i) plane.push_back(pcl::PointXYZ(i % 3, i / 3, 1));
   EXPECT_THROW(delaunayMeasure(plane, 3), Error);
+  // A disk on a tilted plane: after float rounding not exactly flat, but no tetrahedron is kept.
+  pcl::PointCloud<pcl::PointXYZ> tilted;
+  for (const auto& p : shapeCloud(Shape::kDisk, 2000, 8)) {
+    tilted.push_back(pcl::PointXYZ(p.x, p.y, -p.x - p.y));
+  }
+  EXPECT_THAT(measureError(tilted, 3), HasSubstr("passes the alpha limit"));
   EXPECT_THAT(
       [&] {
         try {

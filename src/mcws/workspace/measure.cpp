@@ -14,12 +14,16 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/workspace/unique_positions.h"
 
 namespace mcws {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 constexpr int kNeighbour = 8;
+/// More points outside the others' region than this share: the cloud is too small to estimate
+/// the band it misses (a uniform cloud of 100 points in a disk has about 15 %).
+constexpr double kLargestMissingShare = 0.5;
 
 /// Local spacing at every point: distance to the k-th nearest neighbour over its mean for a
 /// uniform cloud of mean spacing 1, sqrt(k / pi) in 2-D and (3k / (4 pi))^(1/3) in 3-D.
@@ -85,9 +89,10 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
     const K::Point_2 p = v->point();
     const std::uint32_t index = v->info();
     dt.remove(v);
-    const auto f = dt.locate(p);
     bool covered = false;
-    if (!dt.is_infinite(f)) {
+    // Without v the others may span only a line: then p is outside their region.
+    const auto f = dt.dimension() == 2 ? dt.locate(p) : Delaunay::Face_handle();
+    if (f != Delaunay::Face_handle() && !dt.is_infinite(f)) {
       const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
       const double limit =
           alpha_factor * std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
@@ -142,9 +147,10 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
     const K::Point_3 p = v->point();
     const std::uint32_t index = v->info();
     dt.remove(v);
-    const auto c = dt.locate(p);
     bool covered = false;
-    if (!dt.is_infinite(c)) {
+    // Without v the others may span only a plane: then p is outside their region.
+    const auto c = dt.dimension() == 3 ? dt.locate(p) : Delaunay::Cell_handle();
+    if (c != Delaunay::Cell_handle() && !dt.is_infinite(c)) {
       double local = 0.0;
       for (int k = 0; k < 4; ++k) local = std::max(local, spacing[c->vertex(k)->info()]);
       const double limit = alpha_factor * local;
@@ -171,17 +177,30 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
     throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
                 std::to_string(points.size()));
   }
-  auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(points);
+  pcl::PointCloud<pcl::PointXYZ> projected = points;
   if (dimensions == 2) {
-    for (auto& p : *flat) p.z = 0.0f;
+    for (auto& p : projected) p.z = 0.0f;
   }
+  // One position per set of copies (CGAL would merge them anyway), so copies neither shrink the
+  // local spacing nor count as points.
+  std::vector<pcl::index_t> position_of;
+  auto flat =
+      std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(projected, position_of));
   const std::vector<double> spacing = localSpacing(flat, dimensions);
   RegionMeasure result = dimensions == 2 ? measure2d(*flat, spacing, alpha_factor)
                                          : measure3d(*flat, spacing, alpha_factor);
   result.alpha_factor = alpha_factor;
-  // With a handful of points every vertex is outside the others' region; the estimate then says
-  // nothing, and the share is capped at one half rather than dividing by zero.
-  const double missing = std::min(0.5, static_cast<double>(result.outside) / result.points);
+  if (!(result.uncorrected > 0.0)) {
+    throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +
+                " passes the alpha limit: the points are (nearly) " +
+                (dimensions == 2 ? "collinear" : "coplanar") + " or too sparse for alpha " +
+                std::to_string(alpha_factor));
+  }
+  const double missing = static_cast<double>(result.outside) / result.points;
+  if (missing > kLargestMissingShare) {
+    throw Error("too few points for the edge correction: " + std::to_string(result.outside) +
+                " of " + std::to_string(result.points) + " lie outside the region of the others");
+  }
   result.measure = result.uncorrected / (1.0 - missing);
   return result;
 }

@@ -30,14 +30,17 @@ struct RegionMeasure {
 /// one out estimates it: V, the number of points that lie outside the region built from all the
 /// others (found by removing each boundary vertex from the triangulation, locating it and putting
 /// it back), over N. The result is A_N / (1 - V / N); for a convex hull V is exactly its vertex
-/// count. The missing share is capped at 1/2 (clouds of a handful of points).
+/// count. The correction assumes the density is uniform near the edge, as for the validation
+/// shapes; a cloud much sparser along its edge than inside (a projected ball, joint-space samples
+/// near the workspace's tips) comes out low, and refining the boundary is the remedy.
 /// \param points the region's points; for a planar region x and y hold the plane's coordinates
 ///   and z is ignored (dimensions = 2).
 /// \param dimensions 2 (area) or 3 (volume).
 /// \param alpha_factor the circumradius limit in local spacings (> 0; 3 keeps every interior
 ///   simplex of a uniform cloud of up to 10^8 points and bridges no gap wider than 6 spacings).
 /// \throws mcws::Error for fewer than dimensions + 1 points, all points on a line (2-D) or a
-///   plane (3-D), or a bad alpha factor.
+///   plane (3-D), no simplex within the alpha limit, more than half the points outside the region
+///   of the others (too few points to correct for the edge), or a bad alpha factor.
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               double alpha_factor = 3.0);
 

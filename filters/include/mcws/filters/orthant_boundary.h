@@ -12,9 +12,10 @@ namespace mcws {
 /// \brief Keeps the points on the boundary of a sampled region (negative mode: the interior).
 ///
 /// **Rule.** Around each point p, the neighbours within radius r (pcl::KdTreeFLANN over the
-/// whole input, in the chosen plane or in 3-D) are sorted into the 4 quadrants (2-D) or 8 octants
-/// (3-D) of a local frame centred on p. p is a boundary point when at least one orthant holds no
-/// neighbour in at least one of the enabled frames:
+/// input's indices, in the chosen plane or in 3-D; copies of a point count as one position) are
+/// sorted into the 4 quadrants (2-D) or 8 octants (3-D) of a local frame centred on p. p is a
+/// boundary point when at least one orthant holds no neighbour in at least one of the enabled
+/// frames:
 /// - kAxisFrame: the coordinate axes (seed 000's rule);
 /// - kOutwardFrame: a frame turned so that one orthant is centred on the outward direction
 ///   -(c - p), c the centroid of the neighbours. A point a distance d inside a flat boundary then
@@ -23,19 +24,23 @@ namespace mcws {
 ///   both empty. The outward frame is what finds the points just inside the boundary.
 /// - kAnyRotation (2-D only; ignored in 3-D): every rotation of the frame, i.e. some quadrant is
 ///   empty in some rotation, which holds exactly when the largest angle between the directions
-///   to consecutive neighbours is at least 90 degrees. It contains the other two frames' tests.
+///   to consecutive neighbours is at least 90 degrees (setMinimumGap: a wider sector). At 90
+///   degrees it contains the other two frames' tests.
 ///   Default: kAnyRotation in 2-D, kAxisFrame | kOutwardFrame in 3-D.
 ///
 /// **Radius.** setRadiusSearch(r) fixes it [length unit]. setAutoRadius(c) takes r = c h, h the
 /// mean spacing (meanSpacing()); with N points an interior point's orthant of radius c h is
 /// empty with probability exp(-pi c^2 / 4) (2-D) or exp(-pi c^3 / 6) (3-D), so c must grow like
 /// sqrt(ln N) (2-D) or cbrt(ln N) (3-D) to keep false boundary points rare; c = 0 chooses
-/// c = sqrt(4 / pi ln(32 N)) resp. cbrt(6 / pi ln(32 N)): about half a false point per cloud.
+/// c = sqrt(4 / pi ln(32 N)) resp. cbrt(6 / pi ln(32 N)): about half a false point per cloud for
+/// the fixed frames (the any-rotation test, which can find its gap in any direction, gives a few).
 /// setAdaptiveRadius(k, s) gives each point its own r_i = s d_k(p), d_k the distance to its k-th
 /// nearest neighbour, for clouds whose density varies (joint-space sampling of an arm).
 /// setOuterRadius(R) makes it the paper's two-stage test: points that pass at r are tested again
-/// at R > r, which removes the false boundary points of its Fig. 12; the result equals a single
-/// test at R, reached faster.
+/// at R > r, which removes the false boundary points of its Fig. 12. For the tests that more
+/// neighbours can only fill (2-D any-rotation, or the axis frame alone) the result equals a single
+/// test at R, reached faster; the outward frame depends on the neighbourhood, so with it the two
+/// differ slightly. With an adaptive radius R is a factor (> 1) of each point's radius.
 ///
 /// **Special points.** Non-finite points are not searched and are removed in both modes (they are
 /// in getRemovedIndices()). A point with no neighbour within r is a boundary point. Duplicates of

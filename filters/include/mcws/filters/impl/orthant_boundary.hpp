@@ -12,6 +12,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/filters/orthant_boundary.h"
+#include "mcws/workspace/unique_positions.h"
 
 namespace mcws {
 namespace detail {
@@ -34,40 +35,55 @@ inline unsigned octant(float x, float y, float z) {
   return q + (up ? 4u : 0u);
 }
 
-/// Monotone stand-in for the polar angle of (x, y), in [0, 4): sorting by it sorts by angle.
-inline float pseudoAngle(float x, float y) {
-  if (y >= 0) return x >= 0 ? y / (x + y) : 1 - x / (-x + y);
-  return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
+/// A direction from p to a neighbour, in the x-y plane.
+struct Direction {
+  float x, y;
+};
+
+/// Cross and dot products in double: exact for float inputs up to the final rounding, which
+/// keeps their signs, so directions are ordered and compared without rounding errors.
+inline double cross(const Direction& a, const Direction& b) {
+  return static_cast<double>(a.x) * b.y - static_cast<double>(a.y) * b.x;
 }
+inline double dot(const Direction& a, const Direction& b) {
+  return static_cast<double>(a.x) * b.x + static_cast<double>(a.y) * b.y;
+}
+/// Polar angle in [0, pi) rather than [pi, 2 pi).
+inline bool upperHalf(const Direction& d) { return d.y > 0 || (d.y == 0 && d.x > 0); }
 
 /// True when the directions from p to its neighbours (x-y plane) leave an empty sector of at
-/// least `gap` radians (pi/2: some rotation of the local frame has an empty quadrant). Exact and
-/// without trigonometry: consecutive directions u, v (by angle) are less than `gap` apart exactly
-/// when cross(u, v) > 0 and dot(u, v) > |u| |v| cos(gap), `cos_gap` = cos(gap) <= 0.
-struct Direction {
-  float angle, x, y;
-};
+/// least `gap` radians (pi/2: some rotation of the local frame has an empty quadrant). Directions
+/// are sorted by angle exactly (half-plane, then the sign of the cross product); consecutive
+/// directions u, v are less than `gap` apart exactly when cross(u, v) > 0 and
+/// dot(u, v) > |u| |v| cos(gap), `cos_gap` = cos(gap) <= 0 up to rounding at 90 degrees.
 inline bool hasEmptySector(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
-                           const pcl::Indices& neighbours, float cos_gap,
+                           const pcl::Indices& neighbours, double cos_gap,
                            std::vector<Direction>& directions) {
   const pcl::PointXYZ& p = cloud[i];
   directions.clear();
   for (const auto j : neighbours) {
-    const float dx = cloud[j].x - p.x, dy = cloud[j].y - p.y;
-    if (dx != 0.0f || dy != 0.0f) directions.push_back({pseudoAngle(dx, dy), dx, dy});
+    const Direction d{cloud[j].x - p.x, cloud[j].y - p.y};
+    if (d.x != 0.0f || d.y != 0.0f) directions.push_back(d);
   }
   if (directions.empty()) return true;
-  std::sort(directions.begin(), directions.end(),
-            [](const Direction& a, const Direction& b) { return a.angle < b.angle; });
-  if (directions.front().angle == directions.back().angle) return true;  // one direction only
-  const float cos2 = cos_gap * cos_gap;
+  std::sort(directions.begin(), directions.end(), [](const Direction& a, const Direction& b) {
+    const bool ua = upperHalf(a), ub = upperHalf(b);
+    return ua != ub ? ua : cross(a, b) > 0.0;
+  });
+  auto same = [](const Direction& u, const Direction& v) {
+    return cross(u, v) == 0.0 && dot(u, v) > 0.0;
+  };
+  if (same(directions.front(), directions.back()) &&
+      upperHalf(directions.front()) == upperHalf(directions.back())) {
+    return true;  // a single direction: everything else is empty
+  }
+  const double cos2 = cos_gap * cos_gap;
   auto apart = [&](const Direction& u, const Direction& v) {  // v at least `gap` after u
-    if (u.angle == v.angle) return false;
-    if (!(u.x * v.y - u.y * v.x > 0.0f)) return true;  // 180 degrees or more
-    const float dot = u.x * v.x + u.y * v.y;
-    if (dot >= 0.0f)
-      return cos_gap >= 0.0f && dot <= 0.0f;  // under 90: apart only if gap = 90 and dot = 0
-    return dot * dot >= cos2 * (u.x * u.x + u.y * u.y) * (v.x * v.x + v.y * v.y);
+    if (same(u, v)) return false;
+    if (!(cross(u, v) > 0.0)) return true;  // 180 degrees or more
+    const double d = dot(u, v);
+    if (d >= 0.0) return cos_gap >= 0.0 && d == 0.0;  // at most 90 degrees
+    return d * d >= cos2 * dot(u, u) * dot(v, v);
   };
   for (std::size_t k = 1; k < directions.size(); ++k) {
     if (apart(directions[k - 1], directions[k])) return true;
@@ -85,13 +101,19 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
   bool use_outward = frames & 2u;
   Eigen::Matrix3f E = Eigen::Matrix3f::Identity();  // rows: the outward frame's axes
   if (use_outward) {
-    Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-    for (const auto j : neighbours) centroid += cloud[j].getVector3fMap();
-    Eigen::Vector3f n =
-        p - centroid / static_cast<float>(std::max<std::size_t>(1, neighbours.size()));
+    // The centroid's offset from p, summed as offsets so that far from the origin no precision
+    // is lost; "symmetric" is judged against the neighbourhood's own size.
+    Eigen::Vector3f offset = Eigen::Vector3f::Zero();
+    float size = 0.0f;
+    for (const auto j : neighbours) {
+      const Eigen::Vector3f v = cloud[j].getVector3fMap() - p;
+      offset += v;
+      size = std::max(size, v.norm());
+    }
+    Eigen::Vector3f n = -offset / static_cast<float>(std::max<std::size_t>(1, neighbours.size()));
     if (dimensions == 2) n.z() = 0;
     const float length = n.norm();
-    if (!(length > 1e-6f * (1.0f + p.norm()))) {
+    if (!(length > 1e-6f * size)) {
       use_outward = false;  // no outward direction: a symmetric neighbourhood is interior
     } else {
       n /= length;
@@ -111,6 +133,10 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
       }
     }
   }
+  const bool alone = std::all_of(neighbours.begin(), neighbours.end(), [&](pcl::index_t j) {
+    return cloud[j].getVector3fMap() == p;  // the search returns p itself
+  });
+  if (alone) return true;  // every orthant is empty
   if (!use_axis && !use_outward) return false;
   unsigned axis_mask = use_axis ? 0u : full;
   unsigned outward_mask = use_outward ? 0u : full;
@@ -135,7 +161,7 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
 /// The whole test of one point (frames already resolved by orthantFrames()).
 inline bool isBoundaryPoint(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
                             const pcl::Indices& neighbours, int dimensions, unsigned frames,
-                            float cos_gap, std::vector<Direction>& scratch) {
+                            double cos_gap, std::vector<Direction>& scratch) {
   if (dimensions == 2 && (frames & 4u))
     return hasEmptySector(cloud, i, neighbours, cos_gap, scratch);
   return hasEmptyOrthant(cloud, i, neighbours, dimensions, frames);
@@ -174,9 +200,14 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     throw Error(filter_name_ + ": unknown frame bits " + std::to_string(frames_));
   }
 
-  pcl::PointCloud<pcl::PointXYZ>::Ptr projected(new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::PointCloud<pcl::PointXYZ> finite;
   pcl::Indices source;
-  projectToPlane(*input_, *indices_, plane_, *projected, source);
+  projectToPlane(*input_, *indices_, plane_, finite, source);
+  // Copies of a point are one position: the spacing, the search and the test see each position
+  // once, and every copy gets its position's answer.
+  std::vector<pcl::index_t> position_of;
+  const auto projected =
+      std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(finite, position_of));
   const std::size_t n = projected->size();
 
   // The tree is built in the background while the radius is chosen (both are serial work).
@@ -192,7 +223,14 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     const double factor = auto_factor_ > 0.0 ? auto_factor_ : orthantAutoFactor(n, dimensions);
     radius = factor * used_spacing_;
   }
-  if (!adaptive && !automatic && outer_radius_ > 0.0 && outer_radius_ < radius) {
+  if (adaptive && outer_radius_ > 0.0 && outer_radius_ <= 1.0) {
+    built.wait();
+    std::ostringstream msg;
+    msg << filter_name_ << ": with an adaptive radius the outer radius is a factor of each point's "
+        << "radius and must exceed 1, not " << outer_radius_;
+    throw Error(msg.str());
+  }
+  if (!adaptive && outer_radius_ > 0.0 && outer_radius_ < radius) {
     built.wait();
     std::ostringstream msg;
     msg << filter_name_ << ": outer radius " << outer_radius_ << " is smaller than radius "
@@ -250,7 +288,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     }
 
     const unsigned frames = orthantFrames(frames_, dimensions);
-    const auto cos_gap = static_cast<float>(std::cos(minimum_gap_));
+    const double cos_gap = std::cos(minimum_gap_);
     // A test that more neighbours can only pass (no frame built from the neighbourhood) decides
     // most interior points from the nearest few: if those within r already fill every orthant,
     // the full neighbourhood does too.
@@ -295,7 +333,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   for (const auto index : *indices_) {
     bool keep = false;
     if (next < source.size() && source[next] == index) {
-      keep = (boundary[next] != 0) != negative_;
+      keep = (boundary[position_of[next]] != 0) != negative_;
       ++next;
     }
     if (keep) {
