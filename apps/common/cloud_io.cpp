@@ -5,6 +5,7 @@
 #include <pcl/console/print.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -15,20 +16,25 @@ namespace mcws::app {
 
 namespace {
 
-/// PCL's reader crashes on some files that are not PCD, so the header is checked first: a FIELDS
-/// line, then a DATA line (ascii, binary or binary_compressed) within the first 64 lines.
-bool looksLikePcd(const std::string& path) {
+/// PCL's reader crashes on some files that are not PCD and binds references into empty vectors
+/// for clouds of no points, so the header is checked first: a FIELDS line, then a DATA line
+/// (ascii, binary or binary_compressed) within the first 64 lines. Returns the POINTS count
+/// (-1: not PCD).
+long pcdPointCount(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   bool fields = false;
+  long points = -1;
   std::string line;
   for (int k = 0; k < 64 && std::getline(in, line); ++k) {
     if (line.rfind("FIELDS ", 0) == 0) fields = true;
+    if (line.rfind("POINTS ", 0) == 0) points = std::strtol(line.c_str() + 7, nullptr, 10);
     if (line.rfind("DATA ", 0) == 0) {
       const std::string kind = line.substr(5, line.find_last_not_of(" \r") - 4);
-      return fields && (kind == "ascii" || kind == "binary" || kind == "binary_compressed");
+      const bool known = kind == "ascii" || kind == "binary" || kind == "binary_compressed";
+      return fields && known && points >= 0 ? points : -1;
     }
   }
-  return false;
+  return -1;
 }
 
 }  // namespace
@@ -40,7 +46,9 @@ WorkspaceCloud::Ptr loadCloud(const std::string& path) {
         path + ": " +
         (std::filesystem::exists(path, ec) ? "not a regular file" : "cloud file does not exist"));
   }
-  if (!looksLikePcd(path)) throw Error(path + ": not a readable PCD file");
+  const long count = pcdPointCount(path);
+  if (count < 0) throw Error(path + ": not a readable PCD file");
+  if (count == 0) throw Error(path + ": the cloud has no points");
   pcl::PCLPointCloud2 blob;
   pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // our own one-line errors instead
