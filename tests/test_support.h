@@ -78,4 +78,19 @@ inline int lineCount(const std::string& text) {
   return lines;
 }
 
+/// Runs a stage tool that must fail: its exit code, one line on stderr "tool: ...message...",
+/// nothing on stdout, and nothing written into `output_dir`.
+inline void expectToolFailure(const std::string& tool, const std::string& args, int exit_code,
+                              const std::string& message, const TempDir& output_dir) {
+  const RunResult r = run(tool + " " + args);
+  const std::string name = std::filesystem::path(tool).filename().string();
+  EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind(name + ": ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(message), std::string::npos)
+      << args << "\nwanted: " << message << "\ngot: " << r.err;
+  EXPECT_EQ(lineCount(r.err), 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_EQ(output_dir.fileCount(), 0u) << args;
+}
+
 }  // namespace mcws::test

@@ -29,11 +29,7 @@ class BoundaryApp : public ::testing::Test {
   std::string out(const std::string& name = "b.pcd") const { return dir_.file(name); }
 
   void expectFailure(const std::string& args, int exit_code, const std::string& message) {
-    const test::RunResult r = test::run(kBoundary + " " + args);
-    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
-    EXPECT_THAT(r.err, HasSubstr(message)) << args;
-    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-    EXPECT_EQ(dir_.fileCount(), 0u) << args;
+    test::expectToolFailure(kBoundary, args, exit_code, message, dir_);
   }
 
   test::TempDir inputs_, dir_;

@@ -28,13 +28,9 @@ class MeasureApp : public ::testing::Test {
               0);
   }
   void expectFailure(const std::string& args, int exit_code, const std::string& message) {
-    const test::RunResult r = test::run(kMeasure + " " + args);
-    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
-    EXPECT_THAT(r.err, HasSubstr(message)) << args;
-    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-    EXPECT_TRUE(r.out.empty());
+    test::expectToolFailure(kMeasure, args, exit_code, message, nothing_written_);
   }
-  test::TempDir dir_;
+  test::TempDir dir_, nothing_written_;  // inputs; a directory that must stay empty
   std::string disk_, rim_;
 };
 

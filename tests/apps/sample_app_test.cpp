@@ -22,15 +22,8 @@ class SampleApp : public ::testing::Test {
   std::string out() const { return dir_.file("ws.pcd"); }
   std::string deicing() const { return test::robotPath("deicing"); }
 
-  /// Runs mcws_sample and checks a failure: exit code, one line on stderr containing `message`,
-  /// nothing written into the output directory.
   void expectFailure(const std::string& args, int exit_code, const std::string& message) {
-    const test::RunResult r = test::run(kSample + " " + args);
-    EXPECT_EQ(r.exit_code, exit_code) << args << "\n" << r.err;
-    EXPECT_THAT(r.err, StartsWith("mcws_sample: ")) << args;
-    EXPECT_THAT(r.err, HasSubstr(message)) << args;
-    EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
-    EXPECT_EQ(dir_.fileCount(), 0u) << args;
+    test::expectToolFailure(kSample, args, exit_code, message, dir_);
   }
 
   test::TempDir dir_;
