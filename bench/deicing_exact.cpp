@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   mcws::test::DeicingMeasures exact{};
   for (double step : {0.2, 0.1, 0.05, 0.025}) {
     exact = mcws::test::integrateDeicing(step);
-    std::printf("  step %.3f cm: area %.3f cm^2, volume %.1f cm^3\n", step, exact.area, exact.volume);
+    std::printf("  step %.3f cm: area %.3f cm^2, volume %.1f cm^3\n", step, exact.area,
+                exact.volume);
   }
   const mcws::Robot robot = mcws::loadRobot(std::string(MCWS_ROBOTS_DIR) + "/deicing.yaml");
   std::vector<std::size_t> sizes;
@@ -33,9 +34,10 @@ int main(int argc, char** argv) {
     pcl::PointCloud<pcl::PointXYZ> points;
     pcl::copyPointCloud(full, points);
     const auto volume = mcws::delaunayMeasure(points, 3);
-    std::printf("| %zu | %.1f | %+.3f %% | %+.3f %% | %.0f | %+.3f %% | %+.3f %% |\n", n, area.measure,
-                100 * (area.measure / exact.area - 1), 100 * (area.uncorrected / exact.area - 1),
-                volume.measure, 100 * (volume.measure / exact.volume - 1),
+    std::printf("| %zu | %.1f | %+.3f %% | %+.3f %% | %.0f | %+.3f %% | %+.3f %% |\n", n,
+                area.measure, 100 * (area.measure / exact.area - 1),
+                100 * (area.uncorrected / exact.area - 1), volume.measure,
+                100 * (volume.measure / exact.volume - 1),
                 100 * (volume.uncorrected / exact.volume - 1));
   }
 }
