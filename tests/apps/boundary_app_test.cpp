@@ -28,6 +28,19 @@ class BoundaryApp : public ::testing::Test {
   }
   std::string out(const std::string& name = "b.pcd") const { return dir_.file(name); }
 
+  /// A copy of `source` with `count` points at x = `x` appended (NaN, infinity, ...).
+  std::string withExtraPoints(const std::string& source, float x, int count,
+                              const std::string& name) {
+    pcl::PointCloud<WorkspacePoint> cloud;
+    EXPECT_EQ(pcl::io::loadPCDFile(source, cloud), 0);
+    WorkspacePoint extra;
+    extra.x = x;
+    for (int k = 0; k < count; ++k) cloud.push_back(extra);
+    const std::string path = inputs_.file(name);
+    EXPECT_EQ(pcl::io::savePCDFileBinary(path, cloud), 0);
+    return path;
+  }
+
   void expectFailure(const std::string& args, int exit_code, const std::string& message) {
     test::expectToolFailure(kBoundary, args, exit_code, message, dir_);
   }
@@ -77,15 +90,8 @@ TEST_F(BoundaryApp, BadInputs) {
 }
 
 TEST_F(BoundaryApp, BoundaryAndInteriorPartitionTheCloudWithoutNaN) {
-  // The disk with two NaN points appended.
-  pcl::PointCloud<WorkspacePoint> cloud;
-  ASSERT_EQ(pcl::io::loadPCDFile(disk_, cloud), 0);
-  WorkspacePoint bad;
-  bad.x = std::numeric_limits<float>::quiet_NaN();
-  cloud.push_back(bad);
-  cloud.push_back(bad);
-  const std::string with_nan = inputs_.file("nan.pcd");
-  ASSERT_EQ(pcl::io::savePCDFileBinary(with_nan, cloud), 0);
+  const std::string with_nan =
+      withExtraPoints(disk_, std::numeric_limits<float>::quiet_NaN(), 2, "nan.pcd");
 
   const test::RunResult r =
       test::run(kBoundary + " --input " + with_nan + " --plane xy --json --output " + out() +
@@ -115,13 +121,8 @@ TEST_F(BoundaryApp, InteriorThatCannotBeWrittenLeavesNoBoundaryEither) {
 }
 
 TEST_F(BoundaryApp, InfinitePointsAreDroppedNotTakenForExtent) {
-  pcl::PointCloud<WorkspacePoint> cloud;
-  ASSERT_EQ(pcl::io::loadPCDFile(ball_, cloud), 0);
-  WorkspacePoint far;
-  far.x = std::numeric_limits<float>::infinity();
-  cloud.push_back(far);
-  const std::string with_inf = inputs_.file("inf.pcd");
-  ASSERT_EQ(pcl::io::savePCDFileBinary(with_inf, cloud), 0);
+  const std::string with_inf =
+      withExtraPoints(ball_, std::numeric_limits<float>::infinity(), 1, "inf.pcd");
   const test::RunResult r =
       test::run(kBoundary + " --input " + with_inf + " --json --output " + out());
   ASSERT_EQ(r.exit_code, 0) << r.err;
