@@ -2,6 +2,8 @@
 
 #include <pcl/common/common.h>
 
+#include <parallel/algorithm>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -59,7 +61,7 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
       }
       keys[i] = key;
     }
-    std::sort(keys.begin(), keys.end());
+    __gnu_parallel::sort(keys.begin(), keys.end());
     const auto occupied = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
     const double measure = occupied * std::pow(cell, dimensions);
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "mcws/core/error.h"
+#include "mcws/filters/impl/orthant_boundary.hpp"
 #include "mcws/workspace/sampler.h"
 
 namespace mcws {
@@ -240,6 +242,109 @@ TEST(OrthantBoundary, TwoStageTestEqualsOneTestAtTheOuterRadius) {
   const pcl::Indices two_stage = run(0.02, 0.05), single = run(0.05, 0.0);
   EXPECT_EQ(two_stage, single);
   EXPECT_LT(single.size(), run(0.02, 0.0).size());  // R removes false points of r (Fig. 12)
+}
+
+/// A cloud whose density varies by orders of magnitude, as joint-space sampling gives: radius
+/// u^3 of a uniform u (dense centre, sparse rim), plus a tight cluster of copies and near-copies.
+pcl::PointCloud<pcl::PointXYZ>::Ptr unevenCloud(std::size_t n, int dimensions) {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  const auto uniform =
+      sampleCloud(ShapeSampler(dimensions == 2 ? Shape::kDisk : Shape::kBall, 9), n, 2);
+  for (const auto& p : uniform) {
+    const Eigen::Vector3f v = p.getVector3fMap();
+    const float r = v.norm();
+    const Eigen::Vector3f w = r > 0 ? Eigen::Vector3f(v * (r * r)) : v;
+    cloud->push_back(pcl::PointXYZ(w.x(), w.y(), w.z()));
+  }
+  for (int k = 0; k < 200; ++k) cloud->push_back(pcl::PointXYZ(0.5f + 1e-6f * (k % 7), 0.5f, 0));
+  return cloud;
+}
+
+TEST(OrthantBoundary, GridSearchGivesTheTreesResult) {
+  // The tree (KdTreeFLANN everywhere) is the reference; the grid must reproduce it exactly,
+  // in every mode, on uniform and very uneven clouds, and on a lattice full of exact ties.
+  struct Case {
+    const char* name;
+    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud;
+    BoundaryPlane plane;
+    std::function<void(OrthantBoundary<pcl::PointXYZ>&)> configure;
+  };
+  auto disk = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kAnnulus, 4), 20000, 2), *disk);
+  auto ball = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kBall, 5), 20000, 2), *ball);
+  auto lattice = gridCloud<pcl::PointXYZ>(40, 2);
+  auto cube = gridCloud<pcl::PointXYZ>(12, 3);
+  const std::vector<Case> cases = {
+      {"annulus adaptive", disk, BoundaryPlane::kXY, [](auto& f) { f.setAdaptiveRadius(24, 2); }},
+      {"annulus auto", disk, BoundaryPlane::kXY, [](auto& f) { f.setAutoRadius(0); }},
+      {"annulus fixed axis", disk, BoundaryPlane::kXY,
+       [](auto& f) { f.setRadiusSearch(0.03), f.setFrames(1u); }},
+      {"annulus two-stage outward", disk, BoundaryPlane::kXY,
+       [](auto& f) { f.setRadiusSearch(0.02), f.setOuterRadius(0.04), f.setFrames(2u); }},
+      {"annulus adaptive outer", disk, BoundaryPlane::kXY,
+       [](auto& f) { f.setAdaptiveRadius(12, 1.5), f.setOuterRadius(1.6); }},
+      {"ball adaptive", ball, BoundaryPlane::k3D, [](auto& f) { f.setAdaptiveRadius(16, 2); }},
+      {"ball axis", ball, BoundaryPlane::k3D,
+       [](auto& f) { f.setAdaptiveRadius(16, 2), f.setFrames(1u); }},
+      {"uneven disk", unevenCloud(30000, 2), BoundaryPlane::kXY,
+       [](auto& f) { f.setAdaptiveRadius(24, 2); }},
+      {"uneven ball", unevenCloud(30000, 3), BoundaryPlane::k3D,
+       [](auto& f) { f.setAdaptiveRadius(16, 2); }},
+      {"lattice adaptive", lattice, BoundaryPlane::kXY,
+       [](auto& f) { f.setAdaptiveRadius(24, 2); }},
+      {"lattice fixed", lattice, BoundaryPlane::kXY, [](auto& f) { f.setRadiusSearch(2.0); }},
+      // Radius 1 on a unit lattice: the 4 nearest neighbours sit exactly on the sphere and the
+      // tree's strict d^2 < r^2 leaves them out, so every point is alone.
+      {"lattice at the tie", lattice, BoundaryPlane::kXY,
+       [](auto& f) { f.setRadiusSearch(1.0), f.setFrames(1u); }},
+      {"cube lattice", cube, BoundaryPlane::k3D, [](auto& f) { f.setAdaptiveRadius(16, 2); }},
+  };
+  for (const auto& c : cases) {
+    pcl::Indices kept[2];
+    for (int grid = 0; grid < 2; ++grid) {
+      OrthantBoundary<pcl::PointXYZ> filter;
+      filter.setInputCloud(c.cloud);
+      filter.setPlane(c.plane);
+      c.configure(filter);
+      filter.setGridSearch(grid == 1);
+      filter.filter(kept[grid]);
+    }
+    EXPECT_EQ(kept[0], kept[1]) << c.name;
+    EXPECT_GT(kept[0].size(), 0u) << c.name;
+  }
+}
+
+TEST(OrthantBoundary, AngleBinsFollowTheAngle) {
+  // Brute force against atan2 in double: every direction's bin holds its angle, up to the error
+  // the quick sector test allows for.
+  const double width = 2 * M_PI / detail::kAngleBins;
+  for (int k = 0; k < 200000; ++k) {
+    const double t = 2 * M_PI * (k + 0.37) / 200000.0;
+    const float scale = k % 3 == 0 ? 1e-3f : (k % 3 == 1 ? 1.0f : 1e4f);
+    const float x = scale * static_cast<float>(std::cos(t)),
+                y = scale * static_cast<float>(std::sin(t));
+    double angle = std::atan2(static_cast<double>(y), static_cast<double>(x));
+    if (angle < 0) angle += 2 * M_PI;
+    const unsigned bin = detail::angleBin(x, y);
+    ASSERT_LT(bin, static_cast<unsigned>(detail::kAngleBins));
+    const double lo = bin * width - detail::kAngleError,
+                 hi = (bin + 1) * width + detail::kAngleError;
+    const bool inside = (angle >= lo && angle <= hi) ||
+                        (bin == 0 && angle >= 2 * M_PI - detail::kAngleError) ||
+                        (bin == detail::kAngleBins - 1 && angle <= detail::kAngleError);
+    ASSERT_TRUE(inside) << "x " << x << " y " << y << " angle " << angle << " bin " << bin;
+  }
+  for (float x : {1.0f, -1.0f, 0.0f}) {  // the axes and diagonals
+    for (float y : {1.0f, -1.0f, 0.0f}) {
+      if (x == 0 && y == 0) continue;
+      double angle = std::atan2(y, x);
+      if (angle < 0) angle += 2 * M_PI;
+      const double bin = detail::angleBin(x, y);
+      EXPECT_LE(std::fabs(bin * width - angle) - detail::kAngleError, width + 1e-9)
+          << x << "," << y;
+    }
+  }
 }
 
 TEST(OrthantBoundary, DegenerateClouds) {

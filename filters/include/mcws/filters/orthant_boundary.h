@@ -46,6 +46,9 @@ namespace mcws {
 /// in getRemovedIndices()). A point with no neighbour within r is a boundary point. Duplicates of
 /// p count as neighbours in no orthant, so a cloud of identical points is all boundary.
 ///
+/// **Search.** Most points are searched on a CellGrid, which returns exactly the neighbourhoods
+/// the tree would; the rest in the KdTreeFLANN (see setGridSearch and filters/README.md).
+///
 /// Multi-threaded (setNumberOfThreads), and the result does not depend on the thread count.
 ///
 /// \code
@@ -109,6 +112,12 @@ class OrthantBoundary : public pcl::FilterIndices<PointT> {
   void setMinimumGap(double radians) { minimum_gap_ = radians; }
   double getMinimumGap() const { return minimum_gap_; }
 
+  /// \brief Search most points on a uniform grid (default) or every point in the
+  /// pcl::KdTreeFLANN. Both give the same result (CellGrid reproduces the tree's distances);
+  /// the tree alone is the reference the tests compare with.
+  void setGridSearch(bool grid) { grid_search_ = grid; }
+  bool getGridSearch() const { return grid_search_; }
+
   /// \brief Worker threads; 0 = all cores.
   void setNumberOfThreads(int threads) { threads_ = threads; }
 
@@ -139,6 +148,7 @@ class OrthantBoundary : public pcl::FilterIndices<PointT> {
   unsigned frames_{0};
   double minimum_gap_{M_PI / 2};
   int threads_{0};
+  bool grid_search_{true};
   double used_radius_{0.0};
   double used_spacing_{0.0};
 };

@@ -3,14 +3,16 @@
 #include <omp.h>
 #include <pcl/common/common.h>
 #include <pcl/kdtree/kdtree_flann.h>
-#include <future>
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numeric>
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/filters/cell_grid.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/workspace/unique_positions.h"
 
@@ -35,6 +37,9 @@ inline unsigned octant(float x, float y, float z) {
   return q + (up ? 4u : 0u);
 }
 
+/// A neighbour of p: its offset from p and squared distance (see CellGrid::Neighbour).
+using Neighbour = CellGrid::Neighbour;
+
 /// A direction from p to a neighbour, in the x-y plane.
 struct Direction {
   float x, y;
@@ -51,21 +56,79 @@ inline double dot(const Direction& a, const Direction& b) {
 /// Polar angle in [0, pi) rather than [pi, 2 pi).
 inline bool upperHalf(const Direction& d) { return d.y > 0 || (d.y == 0 && d.x > 0); }
 
+/// Angular bins of the quick sector test: 8 per octant, so the bin of a direction follows
+/// from its octant and 7 comparisons of min(|x|, |y|) / max(|x|, |y|) with tan(k pi / 32),
+/// without atan2.
+constexpr int kAngleBins = 64;
+/// Bound on how far a direction's bin may lie from its true angle [rad] (the rounding of one
+/// division and of the tangents, about 1e-7, with a wide margin).
+constexpr double kAngleError = 1e-4;
+
+/// The bin of direction (x, y) (not both 0): floor(atan2(y, x) / (2 pi / 64)) mod 64, up to
+/// kAngleError.
+inline unsigned angleBin(float x, float y) {
+  static constexpr float kTan[7] = {0.09849140f, 0.19891237f, 0.30334668f, 0.41421356f,
+                                    0.53451114f, 0.66817864f, 0.82067879f};
+  const float ax = std::fabs(x), ay = std::fabs(y);
+  const float t = std::min(ax, ay) / std::max(ax, ay);  // tan of the angle within the octant
+  unsigned fine = 0;
+  for (const float b : kTan) fine += t > b;
+  // Quadrant 0..3 counter-clockwise; its first octant is the one next to its starting axis.
+  const unsigned quadrant = 2u * (y < 0) + ((x < 0) != (y < 0));
+  const bool first = quadrant % 2 == 0 ? ay <= ax : ay > ax;
+  return 16u * quadrant + (first ? fine : 15u - fine);
+}
+
+/// The empty sector the 2-D any-rotation test looks for: its cosine, and the longest run of
+/// empty angular bins (of kAngleBins) that cannot hold it. Two neighbours on either side of a
+/// run of E empty bins are less than (E + 2) w + 2 kAngleError apart, w the bin width, so a point
+/// whose longest empty run is at most `empty_run_limit` has no such sector.
+struct SectorGap {
+  double cos_gap;
+  int empty_run_limit;
+};
+inline SectorGap sectorGap(double gap) {
+  const double w = 2 * M_PI / kAngleBins;
+  return {std::cos(gap), static_cast<int>(std::ceil((gap - 2 * kAngleError) / w)) - 3};
+}
+
+/// True when the 64-bit mask of occupied bins (circular) has a run of more than `limit` empty
+/// bins; `occupied` is not 0.
+inline bool hasLongEmptyRun(std::uint64_t occupied, int limit) {
+  // Rotated so that bit 0 is occupied, no run of empty bins wraps around.
+  const int s = __builtin_ctzll(occupied);
+  std::uint64_t empty = ~((occupied >> s) | (s ? occupied << (64 - s) : 0));
+  for (int k = 0; k < limit && empty; ++k) empty &= empty >> 1;
+  return empty != 0;
+}
+
 /// True when the directions from p to its neighbours (x-y plane) leave an empty sector of at
 /// least `gap` radians (pi/2: some rotation of the local frame has an empty quadrant). Directions
 /// are sorted by angle exactly (half-plane, then the sign of the cross product); consecutive
 /// directions u, v are less than `gap` apart exactly when cross(u, v) > 0 and
 /// dot(u, v) > |u| |v| cos(gap), `cos_gap` = cos(gap) <= 0 up to rounding at 90 degrees.
-inline bool hasEmptySector(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
-                           const pcl::Indices& neighbours, double cos_gap,
+inline bool hasEmptySector(const std::vector<Neighbour>& neighbours, const SectorGap& gap,
                            std::vector<Direction>& directions) {
-  const pcl::PointXYZ& p = cloud[i];
-  directions.clear();
-  for (const auto j : neighbours) {
-    const Direction d{cloud[j].x - p.x, cloud[j].y - p.y};
-    if (d.x != 0.0f || d.y != 0.0f) directions.push_back(d);
+  // Most interior points are decided by angular bins; the rest by the exact test below. (p
+  // itself, or a duplicate, has no direction.)
+  std::uint64_t occupied = 0;
+  const std::size_t m = neighbours.size();
+  for (std::size_t k = 0; k < m; ++k) {
+    const Neighbour& q = neighbours[k];
+    const bool direction = q.x != 0.0f || q.y != 0.0f;  // angleBin(0, 0) is defined, unused
+    occupied |= std::uint64_t{direction} << angleBin(q.x, q.y);
+    if (k % 8 == 7 && occupied != 0 && gap.empty_run_limit >= 0 &&
+        !hasLongEmptyRun(occupied, gap.empty_run_limit)) {
+      return false;  // the bins so far leave no room for the gap: more neighbours cannot either
+    }
   }
-  if (directions.empty()) return true;
+  if (occupied == 0) return true;
+  if (gap.empty_run_limit >= 0 && !hasLongEmptyRun(occupied, gap.empty_run_limit)) return false;
+  directions.clear();
+  for (const auto& q : neighbours) {
+    if (q.x != 0.0f || q.y != 0.0f) directions.push_back({q.x, q.y});
+  }
+  const double cos_gap = gap.cos_gap;
   std::sort(directions.begin(), directions.end(), [](const Direction& a, const Direction& b) {
     const bool ua = upperHalf(a), ub = upperHalf(b);
     return ua != ub ? ua : cross(a, b) > 0.0;
@@ -93,9 +156,8 @@ inline bool hasEmptySector(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::ind
 
 /// The orthant test of one point against its neighbours (see OrthantBoundary).
 /// \param frames bit 1: axis frame, bit 2: outward frame.
-inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
-                            const pcl::Indices& neighbours, int dimensions, unsigned frames) {
-  const Eigen::Vector3f p = cloud[i].getVector3fMap();
+inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimensions,
+                            unsigned frames) {
   const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
   bool use_axis = frames & 1u;
   bool use_outward = frames & 2u;
@@ -103,14 +165,16 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
   if (use_outward) {
     // The centroid's offset from p, summed as offsets so that far from the origin no precision
     // is lost; "symmetric" is judged against the neighbourhood's own size.
-    Eigen::Vector3f offset = Eigen::Vector3f::Zero();
+    // Summed in double, so that the order of the neighbours (tree or grid) does not matter.
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
     float size = 0.0f;
-    for (const auto j : neighbours) {
-      const Eigen::Vector3f v = cloud[j].getVector3fMap() - p;
-      offset += v;
+    for (const auto& q : neighbours) {
+      const Eigen::Vector3f v(q.x, q.y, q.z);
+      offset += v.cast<double>();
       size = std::max(size, v.norm());
     }
-    Eigen::Vector3f n = -offset / static_cast<float>(std::max<std::size_t>(1, neighbours.size()));
+    Eigen::Vector3f n =
+        (-offset / static_cast<double>(std::max<std::size_t>(1, neighbours.size()))).cast<float>();
     if (dimensions == 2) n.z() = 0;
     const float length = n.norm();
     if (!(length > 1e-6f * size)) {
@@ -133,15 +197,15 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
       }
     }
   }
-  const bool alone = std::all_of(neighbours.begin(), neighbours.end(), [&](pcl::index_t j) {
-    return cloud[j].getVector3fMap() == p;  // the search returns p itself
+  const bool alone = std::all_of(neighbours.begin(), neighbours.end(), [](const Neighbour& q) {
+    return q.x == 0.0f && q.y == 0.0f && q.z == 0.0f;  // the search returns p itself
   });
   if (alone) return true;  // every orthant is empty
   if (!use_axis && !use_outward) return false;
   unsigned axis_mask = use_axis ? 0u : full;
   unsigned outward_mask = use_outward ? 0u : full;
-  for (const auto j : neighbours) {
-    const Eigen::Vector3f v = cloud[j].getVector3fMap() - p;
+  for (const auto& q : neighbours) {
+    const Eigen::Vector3f v(q.x, q.y, q.z);
     if (v.isZero(0.0f)) continue;  // p itself, or a duplicate
     if (dimensions == 2) {
       if (use_axis) axis_mask |= 1u << quadrant(v.x(), v.y());
@@ -159,12 +223,11 @@ inline bool hasEmptyOrthant(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
 }
 
 /// The whole test of one point (frames already resolved by orthantFrames()).
-inline bool isBoundaryPoint(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::index_t i,
-                            const pcl::Indices& neighbours, int dimensions, unsigned frames,
-                            double cos_gap, std::vector<Direction>& scratch) {
-  if (dimensions == 2 && (frames & 4u))
-    return hasEmptySector(cloud, i, neighbours, cos_gap, scratch);
-  return hasEmptyOrthant(cloud, i, neighbours, dimensions, frames);
+inline bool isBoundaryPoint(const std::vector<Neighbour>& neighbours, int dimensions,
+                            unsigned frames, const SectorGap& gap,
+                            std::vector<Direction>& scratch) {
+  if (dimensions == 2 && (frames & 4u)) return hasEmptySector(neighbours, gap, scratch);
+  return hasEmptyOrthant(neighbours, dimensions, frames);
 }
 
 /// A first search at this fraction of the radius: with k random directions a spurious 90-degree
@@ -172,6 +235,134 @@ inline bool isBoundaryPoint(const pcl::PointCloud<pcl::PointXYZ>& cloud, pcl::in
 /// 5 spacings, 80 neighbours) times 0.65 holds about 33: almost every interior point is decided
 /// by the small search. Exact: if a subset of the neighbours leaves no gap, all of them leave none.
 constexpr double kPrefilterRadius = 0.65;
+
+/// The grid's cell side as a fraction of the typical outer radius: the k nearest are then found
+/// within one ring of cells and the radius neighbourhood within two.
+constexpr double kCellPerRadius = 0.55;
+/// How far a grid search may reach [cell sides]; beyond that (sparse regions) the tree searches.
+/// A lonely point at the rim of a uniform cloud needs 4 or 5 cells in 2-D.
+inline double maxReach(int dimensions) { return dimensions == 2 ? 8.0 : 4.0; }
+/// A k-nearest search first collects this many times the typical outer radius, so that the
+/// radius searches after it reuse its candidates.
+constexpr double kFirstReach = 1.15;
+/// A cell holding this many times the expected number of points sends its points to the tree,
+/// which copes better with density far above the mean.
+constexpr double kCrowdedCell = 16.0;
+
+/// Expected distance to the k-th nearest neighbour in a uniform cloud [mean spacings]: the
+/// radius of the disk (ball) holding k + 1 points.
+inline double kthNeighbourDistance(int k, int dimensions) {
+  return dimensions == 2 ? std::sqrt((k + 1) / M_PI) : std::cbrt(3.0 * (k + 1) / (4.0 * M_PI));
+}
+
+/// The filter's searches through pcl::KdTreeFLANN (the reference; it always answers).
+struct TreeSearch {
+  const pcl::KdTreeFLANN<pcl::PointXYZ>& tree;
+  const pcl::PointCloud<pcl::PointXYZ>& cloud;
+  std::vector<float> d2;
+
+  pcl::Indices indices;
+
+  bool kthDistance2(pcl::index_t i, int count, float& kth, std::vector<Neighbour>* nearest) {
+    const int found = tree.nearestKSearch(cloud[i], count, indices, d2);
+    kth = found > 0 ? *std::max_element(d2.begin(), d2.begin() + found) : 0.0f;
+    if (nearest) offsets(i, *nearest);
+    return true;
+  }
+  bool radius(pcl::index_t i, double r, std::vector<Neighbour>& found) {
+    tree.radiusSearch(cloud[i], r, indices, d2);
+    offsets(i, found);
+    return true;
+  }
+  bool adaptiveSubset(pcl::index_t, int, float, std::vector<Neighbour>&) { return false; }
+
+ private:
+  void offsets(pcl::index_t i, std::vector<Neighbour>& out) const {
+    out.resize(indices.size());
+    for (std::size_t k = 0; k < indices.size(); ++k) {
+      const pcl::PointXYZ& q = cloud[indices[k]];
+      out[k] = {q.x - cloud[i].x, q.y - cloud[i].y, q.z - cloud[i].z, d2[k], indices[k]};
+    }
+  }
+};
+
+/// The test of one point with its parameters resolved; `Search` is TreeSearch or CellGridSearch.
+struct PointTest {
+  const pcl::PointCloud<pcl::PointXYZ>* cloud;
+  int dimensions;
+  unsigned frames;
+  SectorGap gap;
+  bool adaptive;
+  int k;
+  double scale;
+  double radius;  // fixed radius (not adaptive)
+  double outer;   // 0, or R (a factor when adaptive)
+  bool monotone;  // more neighbours can only fill the orthants
+
+  struct Scratch {
+    std::vector<Neighbour> nn;
+    std::vector<Direction> directions;
+  };
+
+  bool isBoundary(Scratch& s) const {
+    return isBoundaryPoint(s.nn, dimensions, frames, gap, s.directions);
+  }
+
+  /// Decides point i into `boundary` and, when adaptive, its radius into `*r_i`; false (nothing
+  /// written) if the search cannot answer.
+  template <typename Search>
+  bool decide(Search& search, pcl::index_t i, Scratch& s, char& boundary, float* r_i) const {
+    double r = radius;
+    bool prefiltered = false;
+    if (adaptive && monotone && scale > 1.001 &&
+        search.adaptiveSubset(i, k + 1, static_cast<float>(scale), s.nn)) {
+      if (!isBoundary(s)) {  // decided from a subset; r_i is not needed
+        boundary = 0;
+        *r_i = std::numeric_limits<float>::quiet_NaN();
+        return true;
+      }
+    }
+    if (adaptive) {
+      float d2k = 0.0f;
+      const bool subset = monotone && scale > 1.001;  // the k nearest are tested below
+      if (!search.kthDistance2(i, k + 1, d2k, subset ? &s.nn : nullptr)) return false;
+      const float rk = static_cast<float>(scale) * std::sqrt(d2k);
+      if (!(rk > 0.0f)) {  // all neighbours coincide with the point: it is alone
+        boundary = 1;
+        *r_i = rk;
+        return true;
+      }
+      r = rk;
+      // The k nearest lie within r when the scale exceeds 1: a subset, decisive when monotone.
+      if (subset) {
+        if (!isBoundary(s)) {
+          boundary = 0;
+          *r_i = rk;
+          return true;
+        }
+        prefiltered = true;
+      }
+    }
+    const double R = outer > 0.0 ? (adaptive ? outer * r : outer) : r;
+    if (monotone && !prefiltered) {
+      if (!search.radius(i, kPrefilterRadius * R, s.nn)) return false;
+      if (!isBoundary(s)) {
+        boundary = 0;
+        if (adaptive) *r_i = static_cast<float>(r);
+        return true;
+      }
+    }
+    if (!search.radius(i, r, s.nn)) return false;
+    bool is_boundary = isBoundary(s);
+    if (is_boundary && outer > 0.0) {
+      if (!search.radius(i, R, s.nn)) return false;
+      is_boundary = isBoundary(s);
+    }
+    boundary = is_boundary;
+    if (adaptive) *r_i = static_cast<float>(r);
+    return true;
+  }
+};
 
 }  // namespace detail
 
@@ -206,32 +397,24 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   // Copies of a point are one position: the spacing, the search and the test see each position
   // once, and every copy gets its position's answer.
   std::vector<pcl::index_t> position_of;
-  const auto projected =
+  auto projected =
       std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(finite, position_of));
   const std::size_t n = projected->size();
 
-  // The tree is built in the background while the radius is chosen (both are serial work).
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);  // unsorted results: the test needs no order
-  auto built = std::async(std::launch::async, [&] {
-    if (n > 0) tree.setInputCloud(projected);
-  });
-
   used_spacing_ = 0.0;
   double radius = radius_;
+  if (automatic || adaptive) used_spacing_ = n > 1 ? meanSpacing(*projected, dimensions) : 0.0;
   if (automatic) {
-    used_spacing_ = meanSpacing(*projected, dimensions);
     const double factor = auto_factor_ > 0.0 ? auto_factor_ : orthantAutoFactor(n, dimensions);
     radius = factor * used_spacing_;
   }
   if (adaptive && outer_radius_ > 0.0 && outer_radius_ <= 1.0) {
-    built.wait();
     std::ostringstream msg;
     msg << filter_name_ << ": with an adaptive radius the outer radius is a factor of each point's "
         << "radius and must exceed 1, not " << outer_radius_;
     throw Error(msg.str());
   }
   if (!adaptive && outer_radius_ > 0.0 && outer_radius_ < radius) {
-    built.wait();
     std::ostringstream msg;
     msg << filter_name_ << ": outer radius " << outer_radius_ << " is smaller than radius "
         << radius;
@@ -239,88 +422,96 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   }
   used_radius_ = radius;
 
+  const unsigned frames = orthantFrames(frames_, dimensions);
+  detail::PointTest test{projected.get(), dimensions, frames, detail::sectorGap(minimum_gap_),
+                         adaptive, adaptive_k_, adaptive_scale_, radius, outer_radius_,
+                         // A test that more neighbours can only pass (no frame built from the
+                         // neighbourhood) may decide interior points from a subset.
+                         (dimensions == 2 && (frames & kAnyRotation)) || frames == kAxisFrame};
   // A cloud of identical points (spacing 0) has no neighbour at a distinct position: every point
   // is alone, hence a boundary point, as with any fixed radius.
   std::vector<char> boundary(n, automatic && !(radius > 0.0) ? 1 : 0);
+  std::vector<float> point_radius(adaptive ? n : 0, 0.0f);
   if (n > 0 && (adaptive || radius > 0.0)) {
-    // Query in a spatially sorted order (cells of about one radius), so that consecutive
-    // searches walk the same part of the tree; the result is stored per point, so the order does
-    // not change it.
-    std::vector<pcl::index_t> order(n);
+    // Most points are searched on a grid of cells about half the typical outer radius wide, in
+    // cell order; the grid returns exactly what the tree would (see CellGrid). Points in very
+    // dense cells, or whose radius reaches beyond 3 cells, are searched in the tree, built only
+    // if there are any. The result is stored per point, so neither order nor thread matters.
+    const double typical_radius =
+        adaptive ? adaptive_scale_ * detail::kthNeighbourDistance(adaptive_k_, dimensions) *
+                       used_spacing_
+                 : radius;
+    const double typical_outer = outer_radius_ > 0.0
+                                     ? (adaptive ? outer_radius_ * typical_radius : outer_radius_)
+                                     : typical_radius;
+    std::unique_ptr<CellGrid> grid =
+        std::make_unique<CellGrid>(*projected, dimensions, detail::kCellPerRadius * typical_outer);
     {
-      Eigen::Vector4f min, max;
-      pcl::getMinMax3D(*projected, min, max);
-      const float extent = (max - min).head<3>().maxCoeff();
-      const float cell = radius > 0.0 ? static_cast<float>(radius)
-                                      : extent / std::max(1.0f, std::cbrt(static_cast<float>(n)));
-      std::vector<std::pair<std::uint64_t, pcl::index_t>> keyed(n);
+      // Positions renumbered in cell order, so that neighbours lie close in memory too.
+      auto sorted = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+      sorted->resize(n);
+      std::vector<pcl::index_t> rank(n);
       for (std::size_t k = 0; k < n; ++k) {
-        const Eigen::Vector3f c =
-            ((*projected)[k].getVector3fMap() - min.head<3>()) / std::max(cell, 1e-30f);
-        keyed[k] = {(static_cast<std::uint64_t>(std::min(c.z(), 2.0e6f)) << 42) |
-                        (static_cast<std::uint64_t>(std::min(c.y(), 2.0e6f)) << 21) |
-                        static_cast<std::uint64_t>(std::min(c.x(), 2.0e6f)),
-                    static_cast<pcl::index_t>(k)};
+        (*sorted)[k] = (*projected)[grid->order()[k]];
+        rank[grid->order()[k]] = static_cast<pcl::index_t>(k);
       }
-      std::sort(keyed.begin(), keyed.end());
-      for (std::size_t k = 0; k < n; ++k) order[k] = keyed[k].second;
+      for (auto& position : position_of) position = rank[position];
+      projected = sorted;
+      grid = std::make_unique<CellGrid>(*projected, dimensions, grid->cellSize());
+      test.cloud = projected.get();
     }
-    built.wait();
-
-    std::vector<float> point_radius;
-    if (adaptive) {
-      point_radius.resize(n);
-#pragma omp parallel num_threads(threads_ > 0 ? threads_ : omp_get_num_procs())
-      {
-        pcl::Indices nn;
-        std::vector<float> d2;
-#pragma omp for schedule(dynamic, 1024)
-        for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
-          const pcl::index_t i = order[k];
-          const int found = tree.nearestKSearch((*projected)[i], adaptive_k_ + 1, nn, d2);
-          const float dk = found > 0 ? std::sqrt(*std::max_element(d2.begin(), d2.end())) : 0.0f;
-          point_radius[i] = static_cast<float>(adaptive_scale_) * dk;
-        }
-      }
-      std::vector<float> sorted = point_radius;
-      std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
-      used_radius_ = sorted[n / 2];
-    }
-
-    const unsigned frames = orthantFrames(frames_, dimensions);
-    const double cos_gap = std::cos(minimum_gap_);
-    // A test that more neighbours can only pass (no frame built from the neighbourhood) decides
-    // most interior points from the nearest few: if those within r already fill every orthant,
-    // the full neighbourhood does too.
-    const bool monotone = (dimensions == 2 && (frames & kAnyRotation)) || frames == kAxisFrame;
-#pragma omp parallel num_threads(threads_ > 0 ? threads_ : omp_get_num_procs())
+    const double expected = used_spacing_ > 0.0
+                                ? std::pow(grid->cellSize() / used_spacing_, dimensions)
+                                : static_cast<double>(n);
+    const auto crowded = static_cast<std::size_t>(detail::kCrowdedCell * std::max(1.0, expected));
+    const int threads = threads_ > 0 ? threads_ : omp_get_num_procs();
+    std::vector<char> deferred(n, 0);
+#pragma omp parallel num_threads(threads)
     {
-      pcl::Indices nn;
-      std::vector<float> d2;
-      std::vector<detail::Direction> scratch;
+      CellGridSearch search(*grid, *projected, detail::kFirstReach * typical_outer,
+                            detail::maxReach(dimensions) * grid->cellSize());
+      detail::PointTest::Scratch scratch;
 #pragma omp for schedule(dynamic, 1024)
       for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
-        const pcl::index_t i = order[k];
-        const double r = adaptive ? point_radius[i] : radius;
-        if (!(r > 0.0)) {  // all neighbours coincide with the point: it is alone
-          boundary[i] = 1;
-          continue;
+        const pcl::index_t i = grid->order()[k];
+        deferred[i] =
+            !grid_search_ || grid->population((*projected)[i]) > crowded ||
+            !test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
+      }
+    }
+    std::vector<pcl::index_t> rest;
+    for (const auto i : grid->order()) {
+      if (deferred[i]) rest.push_back(i);
+    }
+    if (!rest.empty()) {
+      pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);  // unsorted results: the test needs no order
+      tree.setInputCloud(projected);
+#pragma omp parallel num_threads(threads)
+      {
+        detail::TreeSearch search{tree, *projected, {}, {}};
+        detail::PointTest::Scratch scratch;
+#pragma omp for schedule(dynamic, 256)
+        for (std::int64_t k = 0; k < static_cast<std::int64_t>(rest.size()); ++k) {
+          const pcl::index_t i = rest[k];
+          test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
         }
-        const double R = outer_radius_ > 0.0 ? (adaptive ? outer_radius_ * r : outer_radius_) : r;
-        if (monotone) {
-          tree.radiusSearch((*projected)[i], detail::kPrefilterRadius * R, nn, d2);
-          if (!detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch))
-            continue;
-        }
-        tree.radiusSearch((*projected)[i], r, nn, d2);
-        bool is_boundary =
-            detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch);
-        if (is_boundary && outer_radius_ > 0.0) {
-          tree.radiusSearch((*projected)[i], R, nn, d2);
-          is_boundary =
-              detail::isBoundaryPoint(*projected, i, nn, dimensions, frames, cos_gap, scratch);
-        }
-        boundary[i] = is_boundary;
+      }
+    }
+    if (adaptive) {
+      // The median r_i over about 1000 points spread through the cloud (interior points decided
+      // from a subset did not need theirs).
+      CellGridSearch search(*grid, *projected, detail::kFirstReach * typical_outer,
+                            detail::maxReach(dimensions) * grid->cellSize());
+      std::vector<float> sample;
+      for (std::size_t i = 0; i < n; i += std::max<std::size_t>(1, n / 1000)) {
+        float d2k = 0.0f;
+        if (std::isnan(point_radius[i]) && search.kthDistance2(i, adaptive_k_ + 1, d2k, nullptr))
+          point_radius[i] = static_cast<float>(adaptive_scale_) * std::sqrt(d2k);
+        if (!std::isnan(point_radius[i])) sample.push_back(point_radius[i]);
+      }
+      if (!sample.empty()) {
+        std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
+        used_radius_ = sample[sample.size() / 2];
       }
     }
   }

@@ -1,0 +1,106 @@
+#pragma once
+/// \file
+/// \brief A uniform grid of cells over a cloud, for exact radius and k-nearest searches that
+/// return what pcl::KdTreeFLANN returns, faster on the nearly uniform clouds of Monte Carlo
+/// sampling.
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace mcws {
+
+/// \brief Points bucketed into square (2-D) or cubic (3-D) cells of side `cell`, stored cell by
+/// cell.
+///
+/// Searches are exact, with the squared distances pcl::KdTreeFLANN computes (float,
+/// (x - x')^2 + (y - y')^2 + (z - z')^2 summed in that order) and its strict comparison
+/// d^2 < float(r * r), so a radius search returns the same set as KdTreeFLANN::radiusSearch and
+/// the k-th nearest distance equals the largest of nearestKSearch's. Cells are visited only where
+/// they meet the search ball. CellGridSearch bounds how far a search may reach; one that would
+/// need more returns false, and the caller falls back to the tree.
+class CellGrid {
+ public:
+  /// \brief A candidate neighbour q of a query point p: its offset q - p [length unit], the
+  /// squared distance [length unit^2] and its index in the cloud.
+  struct Neighbour {
+    Neighbour() {}  // uninitialised: buffers are resized, then written
+    Neighbour(float x, float y, float z, float d2, pcl::index_t index)
+        : x(x), y(y), z(z), d2(d2), index(index) {}
+    float x, y, z;
+    float d2;
+    pcl::index_t index;
+  };
+
+  /// \brief Buckets `cloud` (finite points; z ignored when `dimensions` == 2) into cells of side
+  /// `cell` [length unit], enlarged if the grid would have more than 4 cells per point.
+  CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell);
+
+  /// \brief The cell side actually used [length unit].
+  double cellSize() const { return cell_; }
+  /// \brief Point indices in cell order (rows of cells, x fastest): a spatially sorted order.
+  const std::vector<pcl::index_t>& order() const { return index_; }
+  /// \brief Number of points in the cell holding `p`.
+  std::size_t population(const pcl::PointXYZ& p) const;
+
+  /// \brief Every point of the cells that meet the ball of radius `reach` [length unit] around p
+  /// (so at least every point within `reach`), with its offset and squared distance.
+  void collect(const pcl::PointXYZ& p, double reach, std::vector<Neighbour>& out) const;
+
+ private:
+  std::int64_t cellOf(const pcl::PointXYZ& p, int axis) const;
+
+  int dimensions_;
+  double cell_;
+  Eigen::Vector3d origin_;
+  std::int64_t counts_[3]{1, 1, 1};
+  std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])
+  std::vector<float> x_, y_, z_;      // coordinates in cell order
+  std::vector<pcl::index_t> index_;   // cloud index in cell order
+};
+
+/// \brief A k-nearest and radius search for one thread, on a CellGrid, remembering the candidates
+/// it collected for the last query point so that a radius search after a k-nearest search on the
+/// same point costs no second pass over the cells.
+class CellGridSearch {
+ public:
+  /// \param first_reach the radius a k-nearest search first collects [length unit]: about the
+  ///   radius searches expected next, so that they reuse its candidates.
+  /// \param max_reach the farthest any search may collect [length unit].
+  CellGridSearch(const CellGrid& grid, const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                 double first_reach, double max_reach)
+      : grid_(grid), cloud_(cloud), first_reach_(first_reach), max_reach_(max_reach) {}
+
+  /// \brief The squared distance to the `count`-th nearest point of point i (i itself counted,
+  /// as nearestKSearch counts it), and those `count` points in `*nearest` unless it is null;
+  /// false if it lies beyond the grid's reach.
+  bool kthDistance2(pcl::index_t i, int count, float& d2,
+                    std::vector<CellGrid::Neighbour>* nearest);
+  /// \brief The points j with d^2(i, j) < float(radius^2), i included; false if `radius` is
+  /// beyond the grid's reach.
+  bool radius(pcl::index_t i, double radius, std::vector<CellGrid::Neighbour>& found);
+  /// \brief For the adaptive radius r_i = scale * d, d^2 the squared distance kthDistance2(i,
+  /// count) finds (float arithmetic as there): when so few points lie near i that r_i must
+  /// reach past one cell side, the points within one cell side, a subset of those within r_i,
+  /// in `subset`, and true; false (r_i may be shorter) otherwise.
+  bool adaptiveSubset(pcl::index_t i, int count, float scale,
+                      std::vector<CellGrid::Neighbour>& subset);
+
+ private:
+  /// Candidates of point i up to `reach` (false beyond max_reach_), kept for the next search.
+  bool gather(pcl::index_t i, double reach);
+
+  const CellGrid& grid_;
+  const pcl::PointCloud<pcl::PointXYZ>& cloud_;
+  double first_reach_, max_reach_;
+  pcl::index_t point_{-1};
+  double reach_{0.0};
+  std::vector<CellGrid::Neighbour> candidates_;
+  std::vector<float> smallest_;
+  float hint_{std::numeric_limits<float>::infinity()};
+};
+
+}  // namespace mcws

@@ -1,0 +1,202 @@
+#include "mcws/filters/cell_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mcws {
+
+CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell)
+    : dimensions_(dimensions), cell_(cell) {
+  const std::size_t n = cloud.size();
+  Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  Eigen::Vector3d max = -min;
+  for (const auto& p : cloud) {
+    min = min.cwiseMin(p.getVector3fMap().cast<double>());
+    max = max.cwiseMax(p.getVector3fMap().cast<double>());
+  }
+  origin_ = n > 0 ? min : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d extent = n > 0 ? Eigen::Vector3d(max - min) : Eigen::Vector3d::Zero();
+  const double largest = extent.head(dimensions).maxCoeff();
+  if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = largest > 0.0 ? largest : 1.0;
+  // At most about 4 cells per point: a sparse bounding box (outliers) must not exhaust memory.
+  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
+  for (;;) {
+    double cells = 1.0;
+    for (int k = 0; k < dimensions; ++k) cells *= std::floor(extent[k] / cell_) + 1.0;
+    if (cells <= max_cells) break;
+    cell_ *= std::max(1.01, std::pow(cells / max_cells, 1.0 / dimensions));
+  }
+  std::int64_t total = 1;
+  for (int k = 0; k < dimensions; ++k) {
+    counts_[k] = static_cast<std::int64_t>(std::floor(extent[k] / cell_)) + 1;
+    total *= counts_[k];
+  }
+
+  // Counting sort of the points by cell.
+  std::vector<std::uint32_t> cell_of(n);
+  start_.assign(static_cast<std::size_t>(total) + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int64_t c = 0;
+    for (int k = dimensions - 1; k >= 0; --k) c = c * counts_[k] + cellOf(cloud[i], k);
+    cell_of[i] = static_cast<std::uint32_t>(c);
+    ++start_[c + 1];
+  }
+  for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+  x_.resize(n);
+  y_.resize(n);
+  z_.resize(n);
+  index_.resize(n);
+  std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t slot = next[cell_of[i]]++;
+    x_[slot] = cloud[i].x;
+    y_[slot] = cloud[i].y;
+    z_[slot] = dimensions == 3 ? cloud[i].z : 0.0f;
+    index_[slot] = static_cast<pcl::index_t>(i);
+  }
+}
+
+std::int64_t CellGrid::cellOf(const pcl::PointXYZ& p, int axis) const {
+  const double c = std::floor((static_cast<double>(p.data[axis]) - origin_[axis]) / cell_);
+  return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::max(c, -1.0)), 0,
+                                  counts_[axis] - 1);
+}
+
+std::size_t CellGrid::population(const pcl::PointXYZ& p) const {
+  std::int64_t c = 0;
+  for (int k = dimensions_ - 1; k >= 0; --k) c = c * counts_[k] + cellOf(p, k);
+  return start_[c + 1] - start_[c];
+}
+
+void CellGrid::collect(const pcl::PointXYZ& p, double reach, std::vector<Neighbour>& out) const {
+  out.clear();
+  // The ball, widened for rounding, against the cells' extents [origin + c cell, + cell).
+  const double r = reach * (1.0 + 1e-6) + cell_ * 1e-9;
+  const Eigen::Vector3d q(p.x, p.y, dimensions_ == 3 ? p.z : 0.0f);
+  auto cellAt = [&](double v, int axis) {
+    const double c = std::floor((v - origin_[axis]) / cell_);
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::clamp(c, -1.0, 1e15)), 0,
+                                    counts_[axis] - 1);
+  };
+  auto gapTo = [&](std::int64_t c, int axis) {  // distance from q to cell c's slab
+    const double lo = origin_[axis] + c * cell_, hi = lo + cell_;
+    return q[axis] < lo ? lo - q[axis] : (q[axis] > hi ? q[axis] - hi : 0.0);
+  };
+  std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int k = 0; k < dimensions_; ++k) {
+    lo[k] = cellAt(q[k] - r, k);
+    hi[k] = cellAt(q[k] + r, k);
+  }
+  // Squared distances as FLANN's L2_Simple computes them: float, query minus point, summed
+  // x, y, z in that order (z is 0 - 0 in 2-D and adds nothing).
+  const float px = p.x, py = p.y, pz = dimensions_ == 3 ? p.z : 0.0f;
+  for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz) {
+    const double gz = dimensions_ == 3 ? gapTo(cz, 2) : 0.0;
+    for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
+      const double gy = gapTo(cy, 1);
+      const double left = r * r - gy * gy - gz * gz;
+      if (left < 0.0) continue;  // this row of cells misses the ball
+      const double w = std::sqrt(left);
+      const std::int64_t x0 = cellAt(q.x() - w, 0), x1 = cellAt(q.x() + w, 0);
+      const std::int64_t row = (cz * counts_[1] + cy) * counts_[0];
+      const std::uint32_t begin = start_[row + x0], end = start_[row + x1 + 1];
+      const std::size_t base = out.size();
+      out.resize(base + (end - begin));
+      Neighbour* dst = out.data() + base;
+      for (std::uint32_t s = begin; s < end; ++s, ++dst) {
+        // q - p is exactly -(p - q), so the squares are FLANN's.
+        const float dx = x_[s] - px, dy = y_[s] - py, dz = z_[s] - pz;
+        float d2 = dx * dx;
+        d2 += dy * dy;
+        d2 += dz * dz;
+        *dst = {dx, dy, dz, d2, index_[s]};
+      }
+    }
+  }
+}
+
+bool CellGridSearch::gather(pcl::index_t i, double reach) {
+  if (reach > max_reach_) return false;
+  if (point_ != i || reach_ < reach) {
+    grid_.collect(cloud_[i], reach, candidates_);
+    point_ = i;
+    reach_ = reach;
+  }
+  return true;
+}
+
+bool CellGridSearch::kthDistance2(pcl::index_t i, int count, float& d2,
+                                  std::vector<CellGrid::Neighbour>* nearest) {
+  double reach = std::min(std::max(first_reach_, grid_.cellSize()), max_reach_);
+  for (;; reach = std::min(2 * reach, max_reach_)) {
+    gather(i, reach);
+    // Every point whose float distance is below `limit` lies within reach, so it was collected;
+    // if `count` of them were, the count-th smallest of all points is among them. The previous
+    // query's answer, a little enlarged, usually leaves a short list to select from (a hint
+    // only: the answer does not depend on it).
+    const auto limit = static_cast<float>(reach * reach * (1.0 - 1e-5));
+    std::size_t m = 0;
+    for (const float bound : {std::min(limit, 2.0f * hint_), limit}) {
+      smallest_.resize(candidates_.size());
+      m = 0;
+      for (const auto& c : candidates_) {
+        smallest_[m] = c.d2;
+        m += c.d2 < bound;
+      }
+      if (m >= static_cast<std::size_t>(count) || bound == limit) break;
+    }
+    if (m < static_cast<std::size_t>(count)) {
+      if (reach >= max_reach_) return false;
+      continue;
+    }
+    std::nth_element(smallest_.begin(), smallest_.begin() + (count - 1), smallest_.begin() + m);
+    d2 = smallest_[count - 1];
+    hint_ = d2;
+    if (!nearest) return true;
+    // The points themselves: those strictly closer, then ties at d2 up to `count`.
+    nearest->clear();
+    for (const auto& c : candidates_) {
+      if (c.d2 < d2) nearest->push_back(c);
+    }
+    for (const auto& c : candidates_) {
+      if (c.d2 == d2 && nearest->size() < static_cast<std::size_t>(count)) nearest->push_back(c);
+    }
+    return true;
+  }
+}
+
+bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
+                                    std::vector<CellGrid::Neighbour>& subset) {
+  const double reach = grid_.cellSize();
+  if (!gather(i, reach)) return false;
+  // If fewer than `count` points have d^2 < inner, then d^2 >= inner, r_i >= scale sqrt(inner)
+  // (rounding is monotone) and every point with d^2 < float(r_min^2) lies within r_i.
+  const auto inner = static_cast<float>(reach * reach / (static_cast<double>(scale) * scale));
+  const float r_min = scale * std::sqrt(inner);
+  const auto limit = std::min(static_cast<float>(static_cast<double>(r_min) * r_min),
+                              static_cast<float>(reach * reach * (1.0 - 1e-5)));
+  int near = 0;
+  subset.clear();
+  for (const auto& c : candidates_) {
+    near += c.d2 < inner;
+    if (c.d2 < limit) subset.push_back(c);
+  }
+  return near < count;
+}
+
+bool CellGridSearch::radius(pcl::index_t i, double radius,
+                            std::vector<CellGrid::Neighbour>& found) {
+  if (!gather(i, radius)) return false;
+  const auto limit = static_cast<float>(radius * radius);  // as pcl::KdTreeFLANN::radiusSearch
+  found.resize(candidates_.size());
+  std::size_t m = 0;
+  for (const auto& c : candidates_) {
+    found[m] = c;
+    m += c.d2 < limit;
+  }
+  found.resize(m);
+  return true;
+}
+
+}  // namespace mcws
