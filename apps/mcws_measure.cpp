@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
         "spacings, corrected for the band the samples miss along the edge by leave-one-out "
         "(Efron's\n"
         "identity; it assumes the density near the edge is about that inside, as for uniform\n"
-        "samples: refine joint-space clouds first). Method 'column': seed 000's rectangles,\n"
+        "samples). A cloud from mcws_refine has samples on the edge itself (joint limits):\n"
+        "measure it with --correction none. Method 'column': seed 000's rectangles,\n"
         "eqs. (2)-(4), over --boundary points\n"
         "grouped into crossings per column. With --boundary the default also reports the column\n"
         "method as a cross-check.");
@@ -30,6 +31,8 @@ int main(int argc, char** argv) {
         "method", app::po::value<std::string>(), "delaunay | column (default delaunay)")(
         "alpha", app::po::value<std::string>(),
         "delaunay: simplex size limit, local spacings (default 3)")(
+        "correction", app::po::value<std::string>(),
+        "delaunay: efron | none (default efron; none for refined clouds)")(
         "column-width", app::po::value<std::string>(),
         "column: L [length unit] (default automatic)")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -47,6 +50,9 @@ int main(int argc, char** argv) {
     if (method == "column" && (plane == BoundaryPlane::k3D || !cli.has("boundary"))) {
       throw app::UsageError("--method column measures an area: give --plane and --boundary");
     }
+    const std::string correction = cli.text("correction", "efron");
+    if (correction != "efron" && correction != "none")
+      throw app::UsageError("--correction: '" + correction + "' is not efron or none");
     const double alpha = app::parseNumber(cli.text("alpha", "3"), "alpha");
     if (!(alpha > 0.0))
       throw app::UsageError("--alpha: must be positive, not " + cli.text("alpha", ""));
@@ -72,7 +78,8 @@ int main(int argc, char** argv) {
     if (cli.has("boundary")) column = columnArea(projected(cli.required("boundary")), width);
     if (method == "delaunay") {
       const RegionMeasure m = delaunayMeasure(region, dimensions, alpha);
-      out[key] = m.measure;
+      out[key] = correction == "efron" ? m.measure : m.uncorrected;
+      out["correction"] = correction;
       out["alpha"] = alpha;
       out["points"] = m.points;
       out["uncorrected"] = m.uncorrected;
