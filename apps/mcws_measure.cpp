@@ -97,6 +97,7 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       std::cout << out.dump() << "\n";
     } else {
+      std::cout.precision(10);
       std::cout << key << " " << out[key].get<double>() << "\n";
     }
     return app::kExitOk;

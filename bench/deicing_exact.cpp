@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "deicing_region.h"
+#include "mcws/filters/orthant_boundary.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/measure.h"
+#include "mcws/workspace/refine.h"
 #include "mcws/workspace/sampler.h"
 
 int main(int argc, char** argv) {
@@ -23,21 +25,47 @@ int main(int argc, char** argv) {
   std::vector<std::size_t> sizes;
   for (int k = 1; k < argc; ++k) sizes.push_back(std::strtoull(argv[k], nullptr, 10));
   if (sizes.empty()) sizes = {100000, 1000000};
-  for (const std::size_t n : sizes) {
-    mcws::RobotSamplerOptions plane;
-    plane.fixed = {{"theta3", 0.0}};
-    const auto xz = mcws::sampleCloud(mcws::RobotSampler(robot, plane), n, 0);
-    pcl::PointCloud<pcl::PointXYZ> projected;
-    for (const auto& p : xz) projected.push_back(pcl::PointXYZ(p.x, p.z, 0.0f));
-    const auto area = mcws::delaunayMeasure(projected, 2);
-    const auto full = mcws::sampleCloud(mcws::RobotSampler(robot, {}), n, 0);
+  // Plain: n joint samples, Efron-corrected measure. Refined: n/2 samples, their boundary
+  // (mcws_boundary's defaults), n/2 refined samples (mcws_refine's default spread), measured
+  // without correction (the refined samples lie on the edge itself).
+  auto project = [](const pcl::PointCloud<mcws::WorkspacePoint>& cloud, bool xz) {
     pcl::PointCloud<pcl::PointXYZ> points;
-    pcl::copyPointCloud(full, points);
-    const auto volume = mcws::delaunayMeasure(points, 3);
-    std::printf("| %zu | %.1f | %+.3f %% | %+.3f %% | %.0f | %+.3f %% | %+.3f %% |\n", n,
-                area.measure, 100 * (area.measure / exact.area - 1),
-                100 * (area.uncorrected / exact.area - 1), volume.measure,
-                100 * (volume.measure / exact.volume - 1),
-                100 * (volume.uncorrected / exact.volume - 1));
+    for (const auto& p : cloud) {
+      points.push_back(xz ? pcl::PointXYZ(p.x, p.z, 0.0f) : pcl::PointXYZ(p.x, p.y, p.z));
+    }
+    return points;
+  };
+  auto refined = [&](std::size_t n, const mcws::RobotSamplerOptions& options, bool xz) {
+    auto cloud = std::make_shared<pcl::PointCloud<mcws::WorkspacePoint>>(
+        mcws::sampleCloud(mcws::RobotSampler(robot, options), n / 2, 0));
+    mcws::OrthantBoundary<mcws::WorkspacePoint> boundary;
+    boundary.setInputCloud(cloud);
+    boundary.setPlane(xz ? mcws::BoundaryPlane::kXZ : mcws::BoundaryPlane::k3D);
+    boundary.setAdaptiveRadius(xz ? 24 : 16, 2.0);
+    if (xz) boundary.setMinimumGap(92.0 * M_PI / 180.0);
+    pcl::PointCloud<mcws::WorkspacePoint> rim;
+    boundary.filter(rim);
+    mcws::RefineOptions refine;
+    refine.seed = options.seed + 1000;
+    *cloud += mcws::sampleCloud(mcws::RefineSampler(robot, rim, refine), n - n / 2, 0);
+    return mcws::delaunayMeasure(project(*cloud, xz), xz ? 2 : 3).uncorrected;
+  };
+  std::printf("| joint samples | X-Z area, plain | refined | 3-D volume, plain | refined |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (const std::size_t n : sizes) {
+    mcws::RobotSamplerOptions plane, space;
+    plane.fixed = {{"theta3", 0.0}};
+    const auto area = mcws::delaunayMeasure(
+        project(mcws::sampleCloud(mcws::RobotSampler(robot, plane), n, 0), true), 2);
+    const auto volume = mcws::delaunayMeasure(
+        project(mcws::sampleCloud(mcws::RobotSampler(robot, space), n, 0), false), 3);
+    const double area_refined = refined(n, plane, true), volume_refined = refined(n, space, false);
+    std::printf(
+        "| %zu | %.1f (%+.3f %%) | %.1f (**%+.3f %%**) | %.0f (%+.3f %%) | %.0f (**%+.3f %%**) |\n",
+        n, area.measure, 100 * (area.measure / exact.area - 1), area_refined,
+        100 * (area_refined / exact.area - 1), volume.measure,
+        100 * (volume.measure / exact.volume - 1), volume_refined,
+        100 * (volume_refined / exact.volume - 1));
+    std::fflush(stdout);
   }
 }
