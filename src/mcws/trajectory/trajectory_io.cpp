@@ -142,9 +142,11 @@ std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& tr,
   for (const Joint& joint : robot.joints) {
     (joint.type == JointType::kPrismatic ? any_prismatic : any_revolute) = true;
   }
-  const std::string q_unit = any_prismatic && any_revolute ? "rad | " + unit
-                             : any_prismatic               ? unit
-                                                           : "rad";
+  // Axis unit of the joint panels: "rad", "cm" or "rad | cm", per s and s^2 for the others.
+  auto jointUnit = [&](const std::string& per) {
+    const std::string rad = "rad" + per, length = unit + per;
+    return any_prismatic && any_revolute ? rad + " | " + length : any_prismatic ? length : rad;
+  };
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size 1400,1000 font 'Sans,11'\n"
      << "set output " << quoted(png) << "\n"
@@ -155,8 +157,7 @@ std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& tr,
       {"joint positions", ""}, {"joint velocities", "/s"}, {"joint accelerations", "/s^2"}};
   for (int p = 0; p < 3; ++p) {
     gp << "set title " << quoted(panels[p][0]) << "\n"
-       << "set xlabel 't [s]'\nset ylabel "
-       << quoted(std::string("[") + q_unit + "]" + (p == 0 ? "" : std::string(" ") + panels[p][1]))
+       << "set xlabel 't [s]'\nset ylabel " << quoted("[" + jointUnit(panels[p][1]) + "]")
        << "\nplot ";
     for (int j = 0; j < n; ++j) {
       gp << (j ? ", " : "") << quoted(data) << " every ::1 using 1:" << 2 + p * n + j
@@ -164,11 +165,20 @@ std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& tr,
     }
     gp << "\n";
   }
+  // Tool path in a cube around it (equal scales; a flat or straight path stays visible).
+  const Eigen::MatrixXd xyz = toolPositions(robot, tr);
+  const Eigen::Vector3d low = xyz.colwise().minCoeff(), high = xyz.colwise().maxCoeff();
+  const Eigen::Vector3d middle = (low + high) / 2;
+  double half = 0.55 * (high - low).maxCoeff();
+  if (!(half > 0.0)) half = std::max(1.0, 0.1 * middle.norm());
   const int x = 2 + 3 * n;
-  gp << "set title 'tool path'\nset key outside right top\n"
-     << "set xlabel " << quoted("x [" + unit + "]") << "\nset ylabel " << quoted("y [" + unit + "]")
-     << "\nset zlabel " << quoted("z [" + unit + "]")
-     << " rotate parallel\nset view 60,30\nset view equal xyz\nset xyplane relative 0\n"
+  gp << "set title 'tool path'\nset key inside top right\n";
+  const char* axes[3] = {"x", "y", "z"};
+  for (int k = 0; k < 3; ++k) {
+    gp << "set " << axes[k] << "range [" << middle[k] - half << ":" << middle[k] + half << "]\n"
+       << "set " << axes[k] << "label " << quoted(std::string(axes[k]) + " [" + unit + "]") << "\n";
+  }
+  gp << "set zlabel rotate parallel\nset view 60,30,1.1\nset xyplane relative 0\n"
      << "set xtics offset -0.5,-0.3\nset ytics offset 0.5,-0.3\n"
      << "splot " << quoted(data) << " every ::1 using " << x << ":" << x + 1 << ":" << x + 2
      << " with lines lw 2 lc rgb '#1f77b4' title 'tool', " << quoted(data) << " every ::1::1 using "
