@@ -327,37 +327,45 @@ void checkTrajectoryLimits(const Robot& robot, const JointTrajectory& trajectory
       }
     }
   }
+  // Segment by segment; within the first segment that has any violation, the earliest one
+  // (position before velocity, lower joint index first at equal times).
   for (int k = 0; k < trajectory.segmentCount(); ++k) {
     const double t0 = trajectory.knotTimes()[k];
     const double h = trajectory.knotTimes()[k + 1] - t0;
+    double first_time = std::numeric_limits<double>::infinity();
+    std::string first_message;
+    // Extremes of p on the segment are at its ends or its stationary points.
+    auto check = [&](const Eigen::VectorXd& p, double lower, double upper, const std::string& what,
+                     const std::string& unit) {
+      std::vector<double> xs = rootsIn(derivative(p), h);
+      xs.insert(xs.begin(), 0.0);
+      xs.push_back(h);
+      for (double x : xs) {
+        const double value = horner(p, x);
+        const bool low = value < lower - kLimitTolerance * std::max(1.0, std::abs(lower));
+        const bool high = value > upper + kLimitTolerance * std::max(1.0, std::abs(upper));
+        // Times equal up to rounding keep the lower joint index.
+        if ((!low && !high) || !(t0 + x < first_time - 1e-9 * (1.0 + t0 + h))) continue;
+        std::ostringstream msg;
+        msg.precision(10);
+        msg << what << " reaches " << value << " " << unit << " at t = " << t0 + x << " s, "
+            << (high ? "above its upper" : "below its lower") << " limit " << (high ? upper : lower)
+            << " " << unit;
+        first_time = t0 + x;
+        first_message = msg.str();
+        return;
+      }
+    };
     for (int j = 0; j < robot.dof(); ++j) {
       const Joint& joint = robot.joints[j];
       const Eigen::VectorXd position = trajectory.coefficients(k).row(j).transpose();
-      const Eigen::VectorXd speed = derivative(position);
-      // Candidates for extremes: both ends and the stationary points, in time order.
-      auto check = [&](const Eigen::VectorXd& p, double lower, double upper, const char* what,
-                       const std::string& unit) {
-        std::vector<double> xs = rootsIn(derivative(p), h);
-        xs.insert(xs.begin(), 0.0);
-        xs.push_back(h);
-        for (double x : xs) {
-          const double value = horner(p, x);
-          const bool low = value < lower - kLimitTolerance * std::max(1.0, std::abs(lower));
-          const bool high = value > upper + kLimitTolerance * std::max(1.0, std::abs(upper));
-          if (!low && !high) continue;
-          std::ostringstream msg;
-          msg.precision(10);
-          msg << what << "joint '" << joint.name << "' reaches " << value << " " << unit
-              << " at t = " << t0 + x << " s, " << (high ? "above its upper" : "below its lower")
-              << " limit " << (high ? upper : lower) << " " << unit;
-          throw Error(msg.str());
-        }
-      };
-      check(position, joint.lower, joint.upper, "", unitOf(robot, j));
+      check(position, joint.lower, joint.upper, "joint '" + joint.name + "'", unitOf(robot, j));
       if (check_velocity) {
-        check(speed, -max_velocity[j], max_velocity[j], "velocity of ", unitOf(robot, j) + "/s");
+        check(derivative(position), -max_velocity[j], max_velocity[j],
+              "velocity of joint '" + joint.name + "'", unitOf(robot, j) + "/s");
       }
     }
+    if (!first_message.empty()) throw Error(first_message);
   }
 }
 

@@ -108,8 +108,9 @@ SampledTrajectory sampleTrajectory(const JointTrajectory& trajectory, double rat
 /// \brief Checks the whole trajectory (not only samples) against the robot's joint limits and,
 /// when `max_velocity` is not empty, |qd_j(t)| <= max_velocity[j]. Extremes are found exactly,
 /// from the roots of the derivative of each polynomial piece.
-/// \throws mcws::Error naming the joint, the time [s], the value and the limit of the first
-/// violation, e.g. "joint 'j2' reaches 3.3 rad at t = 4.25 s, above its upper limit 3.14 rad".
+/// \throws mcws::Error naming the joint, the time [s], the value and the limit of the earliest
+///   violation (at a local extreme or a segment end), e.g. "joint 'j2' reaches 3.3 rad at
+///   t = 4.25 s, above its upper limit 3.14 rad".
 void checkTrajectoryLimits(const Robot& robot, const JointTrajectory& trajectory,
                            const Eigen::VectorXd& max_velocity = Eigen::VectorXd());
 
