@@ -128,9 +128,10 @@ int main(int argc, char** argv) {
     csv_file.write(csv.data(), csv.size());
     std::optional<io::AtomicFile> png_file;
     if (!plot.empty()) {
-      const std::string shape =
-          vias.empty() ? profile_name + " move"
-                       : "cubic spline through " + std::to_string(vias.size()) + " via points";
+      const std::string shape = vias.empty()
+                                    ? profile_name + " move"
+                                    : "cubic spline through " + std::to_string(vias.size()) +
+                                          (vias.size() == 1 ? " via point" : " via points");
       const std::string png = renderTrajectoryPng(
           robot, samples, robot.name + ": " + shape + ", " + cli.required("duration") + " s");
       png_file.emplace(plot);
