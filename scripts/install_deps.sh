@@ -10,6 +10,7 @@ packages=(
   libflann-dev                  # nearest-neighbour search behind pcl::KdTreeFLANN
   libboost-program-options-dev  # command-line parsing of the stage tools
   libyaml-cpp-dev               # robot description files
+  liburdfdom-dev                # URDF robot files (urdfdom parser)
   libgtest-dev libgmock-dev     # unit tests (GoogleTest, GoogleMock)
   libbenchmark-dev              # benchmarks
   liborocos-kdl-dev             # independent kinematics oracle in tests

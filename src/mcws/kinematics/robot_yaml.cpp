@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/kinematics/robot_urdf.h"
 
 namespace mcws {
 namespace {
@@ -230,6 +231,7 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
 
 Robot loadRobot(const std::string& path) {
   if (path.empty()) throw Error("robot file name is empty");
+  if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path);
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
   if (!std::filesystem::is_regular_file(path, ec))

@@ -9,7 +9,8 @@
 namespace mcws {
 
 /// \brief Reads a robot description file.
-/// \param path a `.yaml`/`.yml` robot file.
+/// \param path a `.yaml`/`.yml` robot file, or a `.urdf` file: then the chain from the root link
+///   to the single leaf, read by loadRobotUrdf() (robot_urdf.h), lengths in metres.
 /// \return the robot, lengths in the file's length unit, angles converted to [rad].
 /// \throws mcws::Error naming the file, line, joint and field of any mistake: missing or
 ///   unreadable file, YAML syntax, unknown key, missing field, wrong type, NaN or infinite

@@ -1,0 +1,33 @@
+#pragma once
+/// \file
+/// \brief Sampled trajectories as CSV text and as a PNG picture (gnuplot).
+
+#include <Eigen/Core>
+#include <string>
+
+#include "mcws/kinematics/robot.h"
+#include "mcws/trajectory/joint_trajectory.h"
+
+namespace mcws {
+
+/// \brief Tool positions toolPose(robot, q).translation() of every sample (samples x 3) [length
+/// unit of the robot].
+Eigen::MatrixXd toolPositions(const Robot& robot, const SampledTrajectory& trajectory);
+
+/// \brief The trajectory as CSV: a header line, then one line per sample.
+///
+/// Columns: `t` [s]; one per joint position, named by the joint (`j1`, ...) [rad | length unit];
+/// the velocities `j1_vel`, ... [per s]; the accelerations `j1_acc`, ... [per s^2]; the tool
+/// position `x`, `y`, `z` [length unit]. Numbers with 12 significant digits.
+/// \throws mcws::Error when the trajectory does not fit the robot.
+std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& trajectory);
+
+/// \brief Renders the trajectory as a PNG with gnuplot: joint positions, velocities and
+/// accelerations over time (as seed 003's Fig. 5) and the tool path in 3-D (as its Fig. 6).
+/// \param title first line of the picture.
+/// \return the PNG file's bytes.
+/// \throws mcws::Error when gnuplot is missing or fails (its first message line).
+std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& trajectory,
+                                const std::string& title);
+
+}  // namespace mcws

@@ -1,0 +1,209 @@
+#include "mcws/kinematics/robot_urdf.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "mcws/core/error.h"
+#include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/kinematics/robot_yaml.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kInspectionUrdf = std::string(MCWS_ROBOTS_DIR) + "/inspection6.urdf";
+
+// Poses of the same arm from two files differ only by rounding: the YAML is in mm and degrees
+// (converted with pi/180), the URDF in metres and radians printed to 17 digits.
+constexpr double kPositionTolMetre = 1e-12;
+constexpr double kRotationTol = 1e-12;
+
+// A planar arm with every feature of the mapping: a fixed joint between two moving joints, a
+// prismatic joint, a continuous joint, a rotated origin and a fixed tool link after the last
+// joint. Lengths in metres.
+//   base -(j1 revolute z)- l1 -(fixed x+0.3)- l1b -(j2 continuous z, origin x+0.2)- l2
+//   -(j3 prismatic x)- l3 -(fixed x+0.1, yaw 90 deg)- tool
+const std::string kPlanar = R"(<?xml version="1.0"?>
+<robot name="planar">
+  <link name="base"/> <link name="l1"/> <link name="l1b"/> <link name="l2"/> <link name="l3"/>
+  <link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+    <axis xyz="0 0 2"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+  <joint name="mount" type="fixed"><parent link="l1"/><child link="l1b"/>
+    <origin xyz="0.3 0 0"/></joint>
+  <joint name="j2" type="continuous"><parent link="l1b"/><child link="l2"/>
+    <origin xyz="0.2 0 0"/><axis xyz="0 0 1"/></joint>
+  <joint name="j3" type="prismatic"><parent link="l2"/><child link="l3"/>
+    <axis xyz="1 0 0"/><limit lower="0" upper="0.4" effort="1" velocity="1"/></joint>
+  <joint name="flange" type="fixed"><parent link="l3"/><child link="tool"/>
+    <origin xyz="0.1 0 0" rpy="0 0 1.5707963267948966"/></joint>
+</robot>
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+std::string errorOf(const std::string& urdf, const UrdfChainOptions& options = {}) {
+  try {
+    parseRobotUrdf(urdf, "bad.urdf", options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << urdf;
+  return "";
+}
+
+TEST(RobotUrdf, InspectionArmGivesTheYamlPosesOverRandomJointVectors) {
+  const Robot yaml = loadRobot(test::robotPath("inspection6"));
+  const Robot urdf = loadRobot(kInspectionUrdf);  // dispatched on the extension
+  ASSERT_EQ(urdf.dof(), yaml.dof());
+  EXPECT_EQ(urdf.length_unit, LengthUnit::kMetre);
+  const double mm = unitInMetres(yaml.length_unit);
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> angle(-M_PI, M_PI);
+  for (int sample = 0; sample < 1000; ++sample) {
+    Eigen::VectorXd q(6);
+    for (int i = 0; i < 6; ++i) q[i] = angle(rng);
+    const Eigen::Isometry3d T_yaml = toolPose(yaml, q);
+    const Eigen::Isometry3d T_urdf = toolPose(urdf, q);
+    ASSERT_LT((T_yaml.translation() * mm - T_urdf.translation()).norm(), kPositionTolMetre)
+        << "q = " << q.transpose();
+    ASSERT_LT((T_yaml.linear() - T_urdf.linear()).norm(), kRotationTol) << q.transpose();
+  }
+}
+
+TEST(RobotUrdf, InspectionArmKeepsNamesAndLimits) {
+  const Robot robot = loadRobotUrdf(kInspectionUrdf);
+  EXPECT_EQ(robot.name, "inspection6");
+  EXPECT_EQ(robot.source, kInspectionUrdf);
+  ASSERT_EQ(robot.dof(), 6);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(robot.joints[i].name, "j" + std::to_string(i + 1));
+    EXPECT_EQ(robot.joints[i].type, JointType::kRevolute);
+    EXPECT_DOUBLE_EQ(robot.joints[i].lower, -M_PI);
+    EXPECT_DOUBLE_EQ(robot.joints[i].upper, M_PI);
+  }
+}
+
+TEST(RobotUrdf, PlanarChainMatchesClosedForm) {
+  const Robot robot = parseRobotUrdf(kPlanar, "planar.urdf");
+  ASSERT_EQ(robot.dof(), 3);
+  EXPECT_EQ(robot.joints[1].type, JointType::kRevolute);  // continuous: one full turn
+  EXPECT_DOUBLE_EQ(robot.joints[1].lower, -M_PI);
+  EXPECT_DOUBLE_EQ(robot.joints[1].upper, M_PI);
+  EXPECT_EQ(robot.joints[2].type, JointType::kPrismatic);
+  EXPECT_DOUBLE_EQ(robot.joints[2].upper, 0.4);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int sample = 0; sample < 100; ++sample) {
+    const double q1 = -2 + 4 * unit(rng), q2 = -M_PI + 2 * M_PI * unit(rng);
+    const double q3 = 0.4 * unit(rng);
+    const Eigen::Isometry3d T = toolPose(robot, Eigen::Vector3d(q1, q2, q3));
+    // Link 1 of length 0.5 (0.3 fixed + 0.2 origin), then link 2 of length q3 + 0.1.
+    const double x = 0.5 * std::cos(q1) + (q3 + 0.1) * std::cos(q1 + q2);
+    const double y = 0.5 * std::sin(q1) + (q3 + 0.1) * std::sin(q1 + q2);
+    EXPECT_NEAR(T.translation().x(), x, 1e-12);
+    EXPECT_NEAR(T.translation().y(), y, 1e-12);
+    EXPECT_NEAR(T.translation().z(), 0.0, 1e-12);
+    const double heading = q1 + q2 + M_PI / 2;  // tool x axis: fixed yaw of 90 deg
+    EXPECT_NEAR(T.linear()(0, 0), std::cos(heading), 1e-12);
+    EXPECT_NEAR(T.linear()(1, 0), std::sin(heading), 1e-12);
+  }
+}
+
+TEST(RobotUrdf, RootAndTipSelectASubChain) {
+  const Robot full = loadRobotUrdf(kInspectionUrdf);
+  const Robot part = loadRobotUrdf(kInspectionUrdf, {"link2", "link4"});
+  ASSERT_EQ(part.dof(), 2);
+  EXPECT_EQ(part.joints[0].name, "j3");
+  EXPECT_EQ(part.joints[1].name, "j4");
+  const Eigen::VectorXd q = (Eigen::VectorXd(6) << 0.3, -0.7, 1.1, 0.4, -0.2, 0.9).finished();
+  const ChainPoses poses = chainPoses(full, q);
+  // link 4 in link 2's frame
+  const Eigen::Isometry3d expected = poses.T_world_link[1].inverse() * poses.T_world_link[3];
+  const Eigen::Isometry3d got = toolPose(part, q.segment(2, 2));
+  EXPECT_LT((expected.matrix() - got.matrix()).norm(), 1e-12);
+  // The tip alone: from the tree's root.
+  EXPECT_EQ(loadRobotUrdf(kInspectionUrdf, {"", "link3"}).dof(), 3);
+}
+
+TEST(RobotUrdf, ReportsMissingFileAndMalformedXml) {
+  try {
+    loadRobot("/nonexistent/arm.urdf");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/arm.urdf: robot file does not exist");
+  }
+  EXPECT_THAT(errorOf("<robot name='x'><link name='a'></robot>"),
+              HasSubstr("bad.urdf: malformed URDF: "));
+  EXPECT_THAT(errorOf("not xml at all"), HasSubstr("bad.urdf: malformed URDF"));
+  EXPECT_EQ(errorOf("<robot name='x'><link name='a'></robot>").find('\n'), std::string::npos);
+}
+
+TEST(RobotUrdf, MalformedUrdfPrintsNothing) {
+  testing::internal::CaptureStderr();
+  testing::internal::CaptureStdout();
+  errorOf("<robot name='x'><joint name='j' type='revolute'/></robot>");
+  EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
+TEST(RobotUrdf, ReportsTipNotBelowRootAndUnknownLinks) {
+  EXPECT_EQ(errorOf(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below root link 'l2'");
+  EXPECT_EQ(errorOf(kPlanar, {"", "hand"}),
+            "bad.urdf: tip link 'hand' is not a link of robot 'planar'");
+  EXPECT_EQ(errorOf(kPlanar, {"torso", ""}),
+            "bad.urdf: root link 'torso' is not a link of robot 'planar'");
+}
+
+TEST(RobotUrdf, ReportsJointWithoutLimits) {
+  // urdfdom itself rejects a revolute joint without <limit>; its message names the joint.
+  const std::string text =
+      replace(kPlanar, R"(<limit lower="-2" upper="2" effort="1" velocity="1"/>)", "");
+  EXPECT_THAT(errorOf(text), HasSubstr("bad.urdf: malformed URDF: "));
+  EXPECT_THAT(errorOf(text), HasSubstr("j1"));
+}
+
+TEST(RobotUrdf, ReportsFloatingPlanarAndMimicJoints) {
+  EXPECT_EQ(errorOf(replace(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
+            "bad.urdf: joint 'j1': floating joints are not supported (revolute, continuous, "
+            "prismatic, fixed)");
+  EXPECT_THAT(errorOf(replace(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
+              HasSubstr("bad.urdf: joint 'j3': planar joints are not supported"));
+  EXPECT_EQ(errorOf(replace(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
+                            "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>")),
+            "bad.urdf: joint 'j2': mimic joints are not supported in a serial chain");
+}
+
+TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {
+  const std::string branched =
+      replace(kPlanar, "</robot>",
+              "<link name='camera'/><joint name='cam' type='fixed'><parent link='l1'/>"
+              "<child link='camera'/></joint></robot>");
+  EXPECT_EQ(errorOf(branched),
+            "bad.urdf: link 'base' has 2 leaf links below it (tool, camera); choose the tip link");
+  EXPECT_EQ(parseRobotUrdf(branched, "ok.urdf", {"", "camera"}).dof(), 1);
+  EXPECT_EQ(errorOf(kPlanar, {"l3", "tool"}),
+            "bad.urdf: no revolute, continuous or prismatic joint between root link 'l3' and tip "
+            "link 'tool'");
+}
+
+TEST(RobotUrdf, ReportsLimitsInTheWrongOrderZeroAxisAndOddNames) {
+  EXPECT_EQ(errorOf(replace(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0.4" upper="0")")),
+            "bad.urdf: joint 'j3': lower limit 0.4 is greater than upper limit 0");
+  EXPECT_EQ(errorOf(replace(kPlanar, R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 0"/>)")),
+            "bad.urdf: joint 'j1': axis must be a finite non-zero vector");
+  EXPECT_EQ(errorOf(replace(kPlanar, R"("j3" type)", R"("j,3" type)")),
+            "bad.urdf: joint 'j,3': name contains '=', ',' or a space");
+}
+
+}  // namespace
+}  // namespace mcws
