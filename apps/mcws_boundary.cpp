@@ -25,6 +25,7 @@ constexpr int kDefaultGapDegrees = 92;
 
 /// A configured filter and, after it ran, the parameters it used (for --json).
 struct Method {
+  BoundaryPlane plane;
   std::shared_ptr<pcl::FilterIndices<WorkspacePoint>> filter;
   std::function<nlohmann::json()> parameters;
 };
@@ -92,7 +93,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
     throw app::UsageError("--min-gap: must be in [90, 180), not " + cli.text("min-gap", ""));
   boundary->setMinimumGap(gap * M_PI / 180.0);
   boundary->setNumberOfThreads(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
-  return {boundary, [boundary] {
+  return {plane, boundary, [boundary] {
             return nlohmann::json{{"radius", boundary->usedRadius()},
                                   {"spacing", boundary->usedSpacing()}};
           }};
@@ -104,7 +105,7 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(positive(cli, "cell"));
-  return {grid, [grid] {
+  return {plane, grid, [grid] {
             return nlohmann::json{{"cell", grid->usedCellSize()},
                                   {"spacing", grid->usedSpacing()},
                                   {"occupied_cells", grid->occupiedCells()},
@@ -122,7 +123,7 @@ Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   extremum->setPlane(plane);
   if (cli.has("cell")) extremum->setColumnWidth(positive(cli, "cell"));
   if (cli.has("gap")) extremum->setGapThreshold(positive(cli, "gap"));
-  return {extremum, [extremum] {
+  return {plane, extremum, [extremum] {
             return nlohmann::json{{"cell", extremum->usedColumnWidth()},
                                   {"gap", extremum->usedGapThreshold()},
                                   {"spacing", extremum->usedSpacing()},
@@ -210,7 +211,7 @@ int main(int argc, char** argv) {
     nlohmann::json summary = {{"input", input},
                               {"output", output},
                               {"method", name},
-                              {"plane", boundaryPlaneName(plane)},
+                              {"plane", boundaryPlaneName(method.plane)},
                               {"points", cloud->size()},
                               {"boundary", kept.size()},
                               {"seconds", clock.seconds()}};

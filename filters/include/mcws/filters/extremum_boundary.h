@@ -34,8 +34,8 @@ namespace mcws {
 /// one.
 ///
 /// **Special points.** Non-finite points are ignored and removed in both modes (they are in
-/// getRemovedIndices()). Copies of a point share its b; the lowest input index of the copies is
-/// the one kept at an extreme.
+/// getRemovedIndices()). Where points of a column share the extreme b (copies of a point, a row
+/// of a grid), the one with the lowest input index is kept; likewise next to a gap.
 ///
 /// \code
 /// mcws::ExtremumBoundary<pcl::PointXYZ> extremum;
