@@ -4,7 +4,9 @@
 // 5 s, else one run), points reported, precision (share of reported points within 2 mean
 // spacings h of the true boundary), recall (share of the points within h / 2 of it that are
 // reported) and, where the method gives one, the error of its area or volume.
-// Usage: boundary_peers [N] [disk|ball|both] [THREADS]  (defaults: 1000000 both 2)
+// Usage: boundary_peers [N] [disk|ball|both] [THREADS] [ONLY] [BE_RADII]
+//   defaults: 1000000 both 2, all methods, BoundaryEstimation at r = 4h. ONLY: run the methods
+//   whose name contains this text; BE_RADII: BoundaryEstimation radii in h, e.g. "4,6,8".
 #include <CGAL/Alpha_shape_2.h>
 #include <CGAL/Alpha_shape_face_base_2.h>
 #include <CGAL/Alpha_shape_vertex_base_2.h>
@@ -253,7 +255,11 @@ Outcome delaunay(const Context& c) {
   return out;
 }
 
-void report(const Context& c, const char* method, const std::function<Outcome()>& run) {
+/// Methods whose name contains this text run; empty: all.
+std::string only;
+
+void report(const Context& c, const std::string& method, const std::function<Outcome()>& run) {
+  if (method.find(only) == std::string::npos) return;
   std::vector<double> seconds;
   Outcome outcome;
   for (int k = 0; k < 3; ++k) {
@@ -281,7 +287,7 @@ void report(const Context& c, const char* method, const std::function<Outcome()>
     error = text;
   }
   std::printf("| %s | %s | %.2f s (%s) | %zu | %s | %s |\n", c.dimensions == 2 ? "disk" : "ball",
-              method, median, runs.c_str(), outcome.boundary.size(), quality.c_str(),
+              method.c_str(), median, runs.c_str(), outcome.boundary.size(), quality.c_str(),
               error.c_str());
   std::fflush(stdout);
 }
@@ -292,6 +298,13 @@ int main(int argc, char** argv) {
   const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const std::string which = argc > 2 ? argv[2] : "both";
   const int threads = argc > 3 ? std::atoi(argv[3]) : 2;
+  only = argc > 4 ? argv[4] : "";
+  std::vector<double> be_radii;
+  for (std::string list = argc > 5 ? argv[5] : "4"; !list.empty();) {
+    const std::size_t comma = list.find(',');
+    be_radii.push_back(std::atof(list.substr(0, comma).c_str()));
+    list = comma == std::string::npos ? "" : list.substr(comma + 1);
+  }
   std::printf("| cloud | method | time | reported | precision | recall | area / volume error |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const mcws::Shape shape : {mcws::Shape::kDisk, mcws::Shape::kBall}) {
@@ -302,8 +315,13 @@ int main(int argc, char** argv) {
     c.h = std::pow(mcws::shapeMeasure(shape) / n, 1.0 / c.dimensions);
     const double h = c.h;
     if (planar) {
-      report(c, "pcl::NormalEstimationOMP (k = 10) + pcl::BoundaryEstimation (r = 4h, 90 deg)",
-             [&] { return boundaryEstimation(c, 10, 4 * h); });
+      for (const double r : be_radii) {
+        char name[96];
+        std::snprintf(
+            name, sizeof name,
+            "pcl::NormalEstimationOMP (k = 10) + pcl::BoundaryEstimation (r = %gh, 90 deg)", r);
+        report(c, name, [&] { return boundaryEstimation(c, 10, r * h); });
+      }
       report(c, "pcl::ConcaveHull 2-D (alpha = 3h)", [&] { return concaveHull(c, 3 * h); });
       report(c, "CGAL Alpha_shape_2 (alpha = (3h)^2, regularized)",
              [&] { return cgalAlphaShape2(c, 3 * h); });
