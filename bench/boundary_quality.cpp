@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "boundary_metrics.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/workspace/sampler.h"
 
@@ -47,23 +48,10 @@ int main(int argc, char** argv) {
     filter.filter(kept);
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     radius += filter.usedRadius() / h;
-    std::vector<char> is_reported(n, 0);
-    std::size_t close = 0;
-    for (const auto i : kept) {
-      is_reported[i] = 1;
-      close +=
-          mcws::shapeBoundaryDistance(shape, (*cloud)[i].getVector3fMap().cast<double>()) <= 2 * h;
-    }
-    std::size_t near = 0, found = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (mcws::shapeBoundaryDistance(shape, (*cloud)[i].getVector3fMap().cast<double>()) <=
-          0.5 * h) {
-        ++near;
-        found += is_reported[i];
-      }
-    }
-    precision += kept.empty() ? 0.0 : static_cast<double>(close) / kept.size();
-    recall += near ? static_cast<double>(found) / near : 1.0;
+    const mcws::bench::BoundaryQuality quality =
+        mcws::bench::boundaryQuality(shape, *cloud, kept, h);
+    precision += quality.precision;
+    recall += quality.recall;
     reported += kept.size();
   }
   std::printf(

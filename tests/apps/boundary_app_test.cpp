@@ -54,7 +54,7 @@ TEST_F(BoundaryApp, HelpExitsZero) {
   EXPECT_EQ(r.exit_code, 0);
   for (const char* flag :
        {"--input", "--output", "--interior", "--plane", "--radius", "--auto-radius", "--adaptive",
-        "--outer-radius", "--min-gap", "--json"}) {
+        "--outer-radius", "--min-gap", "--json", "--method", "--cell", "--gap"}) {
     EXPECT_THAT(r.out, HasSubstr(flag));
   }
 }
@@ -138,6 +138,68 @@ TEST_F(BoundaryApp, BallIn3D) {
   // A shell one or two spacings thick: roughly 4 pi N^(2/3) (4pi/3)^(-2/3) points, ~1800 here.
   EXPECT_GT(json["boundary"].get<int>(), 1000);
   EXPECT_LT(json["boundary"].get<int>(), 4000);
+}
+
+TEST_F(BoundaryApp, BaselineMethodFlags) {
+  const std::string io = "--input " + disk_ + " --plane xy --output " + out();
+  expectFailure(io + " --method hull", 2,
+                "--method: unknown method 'hull' (known: orthant, grid, extremum)");
+  expectFailure(io + " --method grid --cell 0", 2, "--cell: must be positive, not 0");
+  expectFailure(io + " --method extremum --cell=-0.5", 2, "--cell: must be positive, not -0.5");
+  expectFailure(io + " --method extremum --gap 0.1x", 2, "--gap: '0.1x' is not a finite number");
+  expectFailure(io + " --method grid --radius 0.1", 2, "--radius does not apply to --method grid");
+  expectFailure(io + " --method grid --gap 0.1", 2, "--gap does not apply to --method grid");
+  expectFailure(io + " --cell 0.1", 2, "--cell does not apply to --method orthant");
+  expectFailure("--input " + disk_ + " --output " + out() + " --method extremum", 2,
+                "--method extremum works in a plane: give --plane xy, xz or yz");
+  expectFailure(io + " --method grid --cell 1e-9", 1,
+                "GridBoundary: cell size 1e-09 is too small for the extent");
+}
+
+TEST_F(BoundaryApp, GridMethodOnTheDiskReportsItsCellsAndPartitionsTheCloud) {
+  const test::RunResult r =
+      test::run(kBoundary + " --input " + disk_ + " --plane xy --method grid --cell 0.05 --json" +
+                " --output " + out() + " --interior " + out("i.pcd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["method"], "grid");
+  EXPECT_EQ(json["cell"], 0.05);
+  EXPECT_EQ(json["boundary"], json["boundary_cells"]);  // one point per boundary cell
+  EXPECT_EQ(json["boundary"].get<int>() + json["interior"].get<int>(), 20000);
+  // The occupied cells cover the disk: pi / 0.05^2 = 1257 cells, plus the partial ones.
+  EXPECT_GT(json["occupied_cells"].get<int>(), 1257);
+  EXPECT_LT(json["occupied_cells"].get<int>(), 1257 + 2 * 2 * M_PI / 0.05);
+  pcl::PointCloud<pcl::PointXYZ> rim;
+  ASSERT_EQ(pcl::io::loadPCDFile(out(), rim), 0);
+  ASSERT_EQ(rim.size(), json["boundary"].get<std::size_t>());
+  // A boundary cell touches an empty one: within two cell diagonals of the circle.
+  for (const auto& p : rim) EXPECT_LT(1.0 - std::hypot(p.x, p.y), 2 * M_SQRT2 * 0.05);
+}
+
+TEST_F(BoundaryApp, GridMethodIn3DOnTheBall) {
+  const test::RunResult r = test::run(kBoundary + " --input " + ball_ +
+                                      " --method grid --cell 0.1 --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["plane"], "3d");
+  EXPECT_EQ(json["boundary"], json["boundary_cells"]);
+  // A shell of cells 0.1 wide around the sphere: 4 pi / 0.01 = 1257 cells or more.
+  EXPECT_GT(json["boundary"].get<int>(), 1257);
+}
+
+TEST_F(BoundaryApp, ExtremumMethodKeepsTwoPointsPerColumn) {
+  const test::RunResult r =
+      test::run(kBoundary + " --input " + disk_ + " --plane xy --method extremum --cell 0.05" +
+                " --gap 0.2 --json --output " + out());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["method"], "extremum");
+  EXPECT_EQ(json["cell"], 0.05);
+  EXPECT_EQ(json["gap"], 0.2);
+  // The disk's x extent is just under 2: 40 columns, each with a lowest and a highest point,
+  // and no gap of 0.2 inside a column of ~800 points.
+  EXPECT_EQ(json["columns"], 40);
+  EXPECT_EQ(json["boundary"], 80);
 }
 
 }  // namespace
