@@ -8,6 +8,10 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/workspace/measure.h"
 
+namespace {
+constexpr std::size_t kProgressPoints = 200000;  ///< larger inputs report their phases on stderr
+}
+
 int main(int argc, char** argv) {
   using namespace mcws;
   return app::run("mcws_measure", [&] {
@@ -77,8 +81,17 @@ int main(int argc, char** argv) {
     std::optional<ColumnArea> column;
     if (cli.has("boundary")) column = columnArea(projected(cli.required("boundary")), width);
     if (method == "delaunay") {
-      const RegionMeasure m = delaunayMeasure(region, dimensions, alpha);
-      out[key] = correction == "efron" ? m.measure : m.uncorrected;
+      MeasureOptions options;
+      options.alpha_factor = alpha;
+      options.edge_correction = correction == "efron";
+      if (region.size() >= kProgressPoints) {  // minutes for a million points in 3-D
+        options.phase = [&](const std::string& phase) {
+          std::cerr << "mcws_measure: " << phase << " (" << region.size() << " points, "
+                    << static_cast<int>(clock.seconds()) << " s)\n";
+        };
+      }
+      const RegionMeasure m = delaunayMeasure(region, dimensions, options);
+      out[key] = m.measure;
       out["correction"] = correction;
       out["alpha"] = alpha;
       out["points"] = m.points;

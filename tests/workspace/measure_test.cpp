@@ -152,3 +152,25 @@ TEST(ColumnArea, RejectsTooFewPointsAndBadWidth) {
 
 }  // namespace
 }  // namespace mcws
+
+namespace mcws {
+namespace {
+
+TEST(DelaunayMeasure, WithoutEdgeCorrectionTheMeasureIsTheKeptSimplicesTotal) {
+  pcl::PointCloud<pcl::PointXYZ> disk;
+  pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kDisk, 11), 20000, 2), disk);
+  const RegionMeasure corrected = delaunayMeasure(disk, 2);
+  MeasureOptions options;
+  options.edge_correction = false;
+  std::vector<std::string> phases;
+  options.phase = [&](const std::string& phase) { phases.push_back(phase); };
+  const RegionMeasure plain = delaunayMeasure(disk, 2, options);
+  EXPECT_EQ(plain.measure, corrected.uncorrected);
+  EXPECT_EQ(plain.uncorrected, corrected.uncorrected);
+  EXPECT_EQ(plain.outside, 0u);
+  EXPECT_GT(corrected.measure, plain.measure);  // the band along the edge, added back
+  EXPECT_EQ(phases, (std::vector<std::string>{"local spacing", "triangulation"}));
+}
+
+}  // namespace
+}  // namespace mcws

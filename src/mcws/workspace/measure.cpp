@@ -50,7 +50,8 @@ std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr&
 }
 
 RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
-                        const std::vector<double>& spacing, double alpha_factor) {
+                        const std::vector<double>& spacing, const MeasureOptions& options) {
+  const double alpha_factor = options.alpha_factor;
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
   using Fb = CGAL::Triangulation_face_base_with_info_2<char, K>;
   using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
@@ -59,6 +60,7 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   for (std::size_t i = 0; i < points.size(); ++i) {
     input.emplace_back(K::Point_2(points[i].x, points[i].y), static_cast<std::uint32_t>(i));
   }
+  if (options.phase) options.phase("triangulation");
   Delaunay dt(input.begin(), input.end());
   if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
 
@@ -84,6 +86,8 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
+  if (!options.edge_correction) return result;
+  if (options.phase) options.phase("edge correction");
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
   for (const auto v : boundary) {
     const K::Point_2 p = v->point();
@@ -105,7 +109,8 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
 }
 
 RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
-                        const std::vector<double>& spacing, double alpha_factor) {
+                        const std::vector<double>& spacing, const MeasureOptions& options) {
+  const double alpha_factor = options.alpha_factor;
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
   using Cb = CGAL::Triangulation_cell_base_with_info_3<char, K>;
   using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
@@ -115,6 +120,7 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
     input.emplace_back(K::Point_3(points[i].x, points[i].y, points[i].z),
                        static_cast<std::uint32_t>(i));
   }
+  if (options.phase) options.phase("triangulation");
   Delaunay dt(input.begin(), input.end());
   if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
 
@@ -142,6 +148,8 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
+  if (!options.edge_correction) return result;
+  if (options.phase) options.phase("edge correction");
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
   for (const auto v : boundary) {
     const K::Point_3 p = v->point();
@@ -167,6 +175,14 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
 
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               double alpha_factor) {
+  MeasureOptions options;
+  options.alpha_factor = alpha_factor;
+  return delaunayMeasure(points, dimensions, options);
+}
+
+RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
+                              const MeasureOptions& options) {
+  const double alpha_factor = options.alpha_factor;
   if (dimensions != 2 && dimensions != 3) throw Error("dimensions must be 2 or 3");
   if (!(alpha_factor > 0.0 && std::isfinite(alpha_factor))) {
     std::ostringstream msg;
@@ -186,15 +202,20 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   std::vector<pcl::index_t> position_of;
   auto flat =
       std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(projected, position_of));
+  if (options.phase) options.phase("local spacing");
   const std::vector<double> spacing = localSpacing(flat, dimensions);
-  RegionMeasure result = dimensions == 2 ? measure2d(*flat, spacing, alpha_factor)
-                                         : measure3d(*flat, spacing, alpha_factor);
+  RegionMeasure result =
+      dimensions == 2 ? measure2d(*flat, spacing, options) : measure3d(*flat, spacing, options);
   result.alpha_factor = alpha_factor;
   if (!(result.uncorrected > 0.0)) {
     throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +
                 " passes the alpha limit: the points are (nearly) " +
                 (dimensions == 2 ? "collinear" : "coplanar") + " or too sparse for alpha " +
                 std::to_string(alpha_factor));
+  }
+  if (!options.edge_correction) {
+    result.measure = result.uncorrected;
+    return result;
   }
   const double missing = static_cast<double>(result.outside) / result.points;
   if (missing > kLargestMissingShare) {

@@ -6,6 +6,8 @@
 #include <pcl/point_types.h>
 
 #include <cstddef>
+#include <functional>
+#include <string>
 
 namespace mcws {
 
@@ -43,6 +45,20 @@ struct RegionMeasure {
 ///   of the others (too few points to correct for the edge), or a bad alpha factor.
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               double alpha_factor = 3.0);
+
+/// \brief Options of delaunayMeasure().
+struct MeasureOptions {
+  double alpha_factor{3.0};
+  /// False: no leave-one-out step; measure = uncorrected (for refined clouds, whose samples lie on
+  /// the edge itself: see mcws_refine).
+  bool edge_correction{true};
+  /// Called as each phase starts ("local spacing", "triangulation", "edge correction").
+  std::function<void(const std::string&)> phase;
+};
+
+/// \brief delaunayMeasure() with options.
+RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
+                              const MeasureOptions& options);
 
 /// \brief Result of columnArea().
 struct ColumnArea {
