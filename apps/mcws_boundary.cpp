@@ -52,7 +52,9 @@ void addFlags(app::CommandLine& cli) {
       "extremum: a larger gap inside a column is an inner boundary [length unit] (default: "
       "from the density)")("threads", app::po::value<std::string>(),
                            "orthant: worker threads, 0 = all cores (default 0)")(
-      "json", "print a JSON summary on stdout");
+      "tree-search",
+      "orthant: search every point in the kd-tree, not the cell grid (same "
+      "result, slower; for comparison)")("json", "print a JSON summary on stdout");
 }
 
 double positive(const app::CommandLine& cli, const std::string& flag) {
@@ -93,6 +95,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
     throw app::UsageError("--min-gap: must be in [90, 180), not " + cli.text("min-gap", ""));
   boundary->setMinimumGap(gap * M_PI / 180.0);
   boundary->setNumberOfThreads(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
+  boundary->setGridSearch(!cli.has("tree-search"));
   return {plane, boundary, [boundary] {
             return nlohmann::json{{"radius", boundary->usedRadius()},
                                   {"spacing", boundary->usedSpacing()}};
@@ -101,7 +104,8 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 
 Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   rejectFlags(cli, "grid",
-              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads", "gap"});
+              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads", "gap",
+               "tree-search"});
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(positive(cli, "cell"));
@@ -114,8 +118,9 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 }
 
 Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
-  rejectFlags(cli, "extremum",
-              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads"});
+  rejectFlags(
+      cli, "extremum",
+      {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads", "tree-search"});
   if (plane == BoundaryPlane::k3D) {
     throw app::UsageError("--method extremum works in a plane: give --plane xy, xz or yz");
   }
