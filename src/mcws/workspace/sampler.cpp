@@ -77,6 +77,10 @@ void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoi
   }
 }
 
+void RobotSampler::jointValues(std::uint64_t index, double* q) const {
+  for (int j = 0; j < kinematics_.dof(); ++j) q[j] = lower_[j] + range_[j] * rng_.uniform(index, j);
+}
+
 Shape parseShape(const std::string& name) {
   if (name == "disk") return Shape::kDisk;
   if (name == "annulus") return Shape::kAnnulus;
@@ -199,6 +203,7 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
       const Eigen::Vector3d v(p.x, p.y, p.z);
       summary.min = summary.min.cwiseMin(v);
       summary.max = summary.max.cwiseMax(v);
+      ++summary.label_counts[p.label];
     }
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async,
