@@ -220,11 +220,11 @@ TEST_F(Ta1400, PairsAreTheNonAdjacentLinksAndTheToolAgainstAllButTheLastLink) {
   std::vector<std::string> names;
   for (const CollisionPair& p : checker_.pairs())
     names.push_back(checker_.bodyName(p.body_a) + "-" + checker_.bodyName(p.body_b));
-  // j6 carries no shape; the tool is mounted on j6.
-  EXPECT_THAT(names,
-              ::testing::ElementsAre("base-j2", "base-j3", "base-j4", "base-j5", "j1-j3", "j1-j4",
-                                     "j1-j5", "j2-j4", "j2-j5", "j3-j5", "base-tool", "j1-tool",
-                                     "j2-tool", "j3-tool", "j4-tool", "j5-tool"));
+  // The tool is mounted on j6, the last link.
+  EXPECT_THAT(names, ::testing::ElementsAre("base-j2", "base-j3", "base-j4", "base-j5", "base-j6",
+                                            "j1-j3", "j1-j4", "j1-j5", "j1-j6", "j2-j4", "j2-j5",
+                                            "j2-j6", "j3-j5", "j3-j6", "j4-j6", "base-tool",
+                                            "j1-tool", "j2-tool", "j3-tool", "j4-tool", "j5-tool"));
 }
 
 TEST_F(Ta1400, ZeroPoseIsFreeWithTheTorchTwentyFiveMillimetresFromTheWrist) {
@@ -252,12 +252,33 @@ TEST_F(Ta1400, ElbowFoldedIntoTheBaseCollides) {
   EXPECT_NEAR(base_j4.distance, -250.0, kExact);
 }
 
-TEST_F(Ta1400, TorchBentBackOntoTheForearmCollides) {
-  // q5 = 150 deg at q = 0 otherwise: the flange axis points back at 30 deg to the forearm. The
-  // torch body (radius 30) starts 120 mm out, 120 sin 30 = 60 mm off the forearm axis, where
-  // link j4 (radius 70) lies: penetration 30 + 70 - 60 = 40 mm.
-  const Eigen::VectorXd q = degrees({0, 0, 0, 0, 150 - 1e-7, 0});
+TEST_F(Ta1400, TorchDrivenIntoTheBaseCollidesAsToolLink) {
+  // q2 = 50, q3 = 20 deg: the forearm points back and down, (-0.940, 0, -0.342); the wrist
+  // centre is at (-9.39, 0, -756.36) (mcws_fk --frame flange). q5 = 90 deg turns the torch up
+  // and back, (-0.342, 0, 0.940): its body ends 230 mm out at (-88.05, 0, -540.23), 149.02 mm
+  // from the base segment's lower end (0, 0, -420): penetration 180 + 30 - 149.02 = 60.98 mm.
+  // Nothing else touches (the flange housing is 12.7 mm from the base).
+  const Eigen::VectorXd q = degrees({0, 50, 20, 0, 90, 0});
+  EXPECT_TRUE(
+      flangePose(robot_, q).translation().isApprox(Eigen::Vector3d(-9.392, 0, -756.357), 1e-5));
   EXPECT_EQ(checker_.label(q), kLabelToolLink);
+  const Eigen::Vector3d end = flangePose(robot_, q).translation() +
+                              230 * Eigen::Vector3d(-std::sin(20 * kDeg), 0, std::cos(20 * kDeg));
+  const double gap = (end - Eigen::Vector3d(0, 0, -420)).norm();
+  EXPECT_NEAR(gap, 149.02, 0.01);
+  EXPECT_NEAR(pair(q, "base", "tool").distance, gap - 180 - 30, 1e-6);
+  EXPECT_FALSE(pair(q, "base", "j6").colliding);
+}
+
+TEST_F(Ta1400, WristBentBackHitsTheForearmWithFlangeAndTorch) {
+  // q5 = 150 deg at q = 0 otherwise: the flange axis points back at 30 deg to the forearm.
+  // The flange housing (radius 45, 85..110 mm out) passes 100 sin 30 = 50 mm from the end of
+  // link j4 (radius 70, 100 mm back from the wrist): penetration 45 + 70 - 50 = 65 mm, a
+  // link-link collision. The torch body (radius 30) starts 120 mm out, 120 sin 30 = 60 mm off the
+  // forearm axis, beside j4: penetration 30 + 70 - 60 = 40 mm; the lowest code is link-link.
+  const Eigen::VectorXd q = degrees({0, 0, 0, 0, 150 - 1e-7, 0});
+  EXPECT_EQ(checker_.label(q), kLabelLinkLink);
+  EXPECT_NEAR(pair(q, "j4", "j6").distance, -65.0, 1e-4);
   EXPECT_NEAR(pair(q, "j4", "tool").distance, -40.0, 1e-4);
   EXPECT_FALSE(pair(q, "j3", "tool").colliding);
 }
@@ -267,9 +288,9 @@ TEST_F(Ta1400, TorchDrivenIntoLinkThreeCollides) {
   // forearm (back distance from the wrist, offset from the axis) the flange z axis is
   // (cos 30, sin 30) and its x axis (sin 30, -cos 30); the neck's end (82.5, 0, 317) lies at
   // (315.8, 87.05): beside link j3's rear forearm (back distance 280..600, radius 85), so the
-  // distance is 87.05 - 85 - 14 = -11.95 mm.
+  // distance is 87.05 - 85 - 14 = -11.95 mm. The flange hits j4 as above: label link-link.
   const Eigen::VectorXd q = degrees({0, 0, 0, 0, 150 - 1e-7, 180});
-  EXPECT_EQ(checker_.label(q), kLabelToolLink);
+  EXPECT_EQ(checker_.label(q), kLabelLinkLink);
   const PairReport j3 = pair(q, "j3", "tool");
   EXPECT_TRUE(j3.colliding);
   const double offset = 317 * std::sin(30 * kDeg) - 82.5 * std::cos(30 * kDeg);

@@ -86,10 +86,10 @@ TEST(MeshCollision, AgreesWithBruteForceOverEveryTrianglePairIn2000Configuration
   // brute force stays fast; sizes as in the mesh file names' capsules of ta1400.yaml).
   test::TempDir dir;
   const std::map<std::string, std::pair<double, double>> capsules{
-      {"base", {180, 90}},         {"j1_turret", {150, 150}},    {"j1_shoulder", {100, 200}},
-      {"j2_upper_arm", {90, 560}}, {"j3_elbow", {100, 180}},     {"j3_offset", {90, 130}},
-      {"j3_forearm", {85, 320}},   {"j4_forearm", {70, 230}},    {"j5_wrist", {65, 120}},
-      {"torch_body", {30, 110}},   {"torch_neck", {14, 119.897}}};
+      {"base", {180, 90}},         {"j1_turret", {150, 150}}, {"j1_shoulder", {100, 200}},
+      {"j2_upper_arm", {90, 560}}, {"j3_elbow", {100, 180}},  {"j3_offset", {90, 130}},
+      {"j3_forearm", {85, 320}},   {"j4_forearm", {70, 170}}, {"j5_wrist", {65, 120}},
+      {"j6_flange", {45, 25}},     {"torch_body", {30, 110}}, {"torch_neck", {14, 119.897}}};
   for (const auto& [name, size] : capsules)
     writeCapsuleStl(dir.file(name + ".stl"), size.first, size.second, 13, 3);
   std::string text = test::readFile(test::robotPath("ta1400_mesh"));

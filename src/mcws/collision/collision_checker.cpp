@@ -82,8 +82,9 @@ std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh&
 
 }  // namespace
 
-CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& model)
-    : robot_(robot) {
+CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& model,
+                                   const CollisionCheckerOptions& options)
+    : robot_(robot), options_(options) {
   if (model.links.size() != robot.joints.size() + 1) {
     throw Error("collision model has " + std::to_string(model.links.size()) + " links; robot '" +
                 robot.name + "' has " + std::to_string(robot.joints.size() + 1) +
@@ -108,7 +109,7 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
       switch (in.type) {
         case ShapeType::kCapsule:
         case ShapeType::kSphere: {
-          shape.swept = true;
+          shape.swept = options.exact_capsules;
           shape.p_from = in.p_from;
           shape.p_to = in.p_to;
           const Eigen::Vector3d axis = in.p_to - in.p_from;
@@ -224,7 +225,10 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
   const Eigen::Isometry3d& T_a = data.T_world_body[body_a];
   const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
   const double reach = a.bound + b.bound;
-  if ((T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) return false;
+  if (options_.bounding_spheres &&
+      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+    return false;
+  }
   if (a.swept && b.swept) {
     for (const auto* shape : {&a, &b}) {
       const Eigen::Isometry3d& T = shape == &a ? T_a : T_b;
@@ -249,7 +253,10 @@ bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& d
   const Eigen::Isometry3d& T_a = data.T_world_body[pair.body_a];
   const Eigen::Isometry3d& T_b = data.T_world_body[pair.body_b];
   const double reach = a.bound + b.bound;
-  if ((T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) return false;
+  if (options_.bounding_spheres &&
+      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+    return false;
+  }
   for (const Shape& shape_a : a.shapes) {
     for (const Shape& shape_b : b.shapes) {
       if (shapesCollide(shape_a, shape_b, data, pair.body_a, pair.body_b)) return true;

@@ -37,6 +37,14 @@ struct PairReport {
   bool depth_known{true};
 };
 
+/// \brief Switches for measuring what each part of CollisionChecker saves (bench/).
+struct CollisionCheckerOptions {
+  /// Capsule and sphere pairs by exact segment distance; false sends them to fcl::collide too.
+  bool exact_capsules{true};
+  /// Reject body and shape pairs whose bounding spheres are apart before any exact test.
+  bool bounding_spheres{true};
+};
+
 /// \brief Tests joint vectors of a robot against its collision model.
 ///
 /// Pairs checked, in this order (each collision gives the pair's label, and label() returns the
@@ -57,7 +65,8 @@ struct PairReport {
 class CollisionChecker {
  public:
   /// \throws mcws::Error when the model does not fit the robot (link count).
-  CollisionChecker(const Robot& robot, const CollisionModel& model);
+  CollisionChecker(const Robot& robot, const CollisionModel& model,
+                   const CollisionCheckerOptions& options = {});
   ~CollisionChecker();
 
   /// \brief Per-thread working memory for label().
@@ -98,6 +107,7 @@ class CollisionChecker {
                      int body_b) const;
 
   const Robot robot_;
+  CollisionCheckerOptions options_;
   std::vector<Body> bodies_;
   std::vector<CollisionPair> pairs_;
   int tool_body_{0};
