@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include "mcws/collision/segment_distance.h"
 #include "mcws/core/error.h"
@@ -23,6 +24,9 @@ namespace mcws {
 struct CollisionChecker::Shape {
   ShapeType type{ShapeType::kSphere};
   bool swept{false};  ///< capsule or sphere: tested by segment distance
+  /// p_from, p_to and radius bound the shape (a line-swept sphere, seed 002's LSS): the shape
+  /// itself when swept, a bounding capsule of a mesh's vertices otherwise.
+  bool lss{false};
   Eigen::Vector3d p_from{Eigen::Vector3d::Zero()}, p_to{Eigen::Vector3d::Zero()};
   double radius{0.0};
   Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
@@ -68,6 +72,37 @@ std::pair<Eigen::Vector3d, double> boundPoints(const std::vector<Eigen::Vector3d
   return {center, radius};
 }
 
+/// Tight bounding capsule of points: the segment lies on their principal axis and every point
+/// is within `radius` of it. \return (from, to, radius).
+std::tuple<Eigen::Vector3d, Eigen::Vector3d, double> boundingCapsule(
+    const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= double(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  const Eigen::Vector3d axis =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
+  double radius = 0.0;
+  for (const auto& p : points) {
+    const Eigen::Vector3d v = p - mean;
+    radius = std::max(radius, (v - v.dot(axis) * axis).norm());
+  }
+  // A point at t along the axis, off it by h, lies in the capsule when the nearer end is within
+  // s = sqrt(r^2 - h^2) of t: the ends are the tightest that satisfy every point.
+  double t_low = std::numeric_limits<double>::infinity(), t_high = -t_low;
+  for (const auto& p : points) {
+    const Eigen::Vector3d v = p - mean;
+    const double t = v.dot(axis);
+    const double s = std::sqrt(std::max(0.0, radius * radius - (v - t * axis).squaredNorm()));
+    t_low = std::min(t_low, t + s);
+    t_high = std::max(t_high, t - s);
+  }
+  if (t_low > t_high) t_low = t_high = 0.5 * (t_low + t_high);
+  radius *= 1.0 + 1e-12;  // rounding must not push a vertex out
+  return {mean + t_low * axis, mean + t_high * axis, radius};
+}
+
 std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh& mesh) {
   auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
   std::vector<fcl::Triangle> triangles;
@@ -109,7 +144,7 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
       switch (in.type) {
         case ShapeType::kCapsule:
         case ShapeType::kSphere: {
-          shape.swept = options.exact_capsules;
+          shape.swept = shape.lss = options.exact_capsules;
           shape.p_from = in.p_from;
           shape.p_to = in.p_to;
           const Eigen::Vector3d axis = in.p_to - in.p_from;
@@ -144,6 +179,8 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
           vertices.reserve(in.mesh->vertices.size());
           for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
           std::tie(shape.center, shape.bound) = boundPoints(vertices);
+          std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
+          shape.lss = options.bounding_spheres;
           break;
         }
       }
@@ -229,7 +266,7 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
       (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
     return false;
   }
-  if (a.swept && b.swept) {
+  if (a.lss && b.lss) {
     for (const auto* shape : {&a, &b}) {
       const Eigen::Isometry3d& T = shape == &a ? T_a : T_b;
       if (data.stamp[shape->index] != data.sample) {
@@ -239,8 +276,11 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
       }
     }
     const double touch = a.radius + b.radius;
-    return segmentDistanceSquared(data.p_from[a.index], data.p_to[a.index], data.p_from[b.index],
-                                  data.p_to[b.index]) < touch * touch;
+    const bool overlap =
+        segmentDistanceSquared(data.p_from[a.index], data.p_to[a.index], data.p_from[b.index],
+                               data.p_to[b.index]) < touch * touch;
+    // Exact for two capsules; for a mesh, only a bounding capsule: apart means apart.
+    if (!overlap || (a.swept && b.swept)) return overlap;
   }
   data.result.clear();
   return fcl::collide(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),

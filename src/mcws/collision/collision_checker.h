@@ -41,7 +41,8 @@ struct PairReport {
 struct CollisionCheckerOptions {
   /// Capsule and sphere pairs by exact segment distance; false sends them to fcl::collide too.
   bool exact_capsules{true};
-  /// Reject body and shape pairs whose bounding spheres are apart before any exact test.
+  /// Reject body and shape pairs whose bounding spheres, and mesh pairs whose bounding capsules,
+  /// are apart before any exact test.
   bool bounding_spheres{true};
 };
 
@@ -57,7 +58,9 @@ struct CollisionCheckerOptions {
 /// Bodies without shapes take part in no pair. Capsule and sphere pairs are tested with an exact
 /// segment-segment distance (Ericson 2005); every other pair goes to fcl::collide, whose
 /// `fcl::BVHModel<fcl::OBBRSSd>` meshes are the OBB/RSS (swept-sphere) hierarchy of seed 002.
-/// A broad phase first rejects pairs whose bounding spheres are apart.
+/// A broad phase first rejects body and shape pairs whose bounding spheres are apart, and mesh
+/// pairs whose bounding capsules (line-swept spheres on the mesh's principal axis, the top level
+/// of the seed's hierarchy) are apart.
 ///
 /// The checker is immutable after construction and may be shared between threads; each thread
 /// passes its own Scratch (poses and FCL request/result objects), so no lock is taken. The FCL
