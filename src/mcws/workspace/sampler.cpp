@@ -199,11 +199,19 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
     auto& buffer = buffers[chunk % 2];
     buffer.resize(count);
     generateParallel(generator, begin, count, buffer.data(), threads);
+    std::size_t small_labels[4] = {0, 0, 0, 0};  // the collision codes, counted without the map
     for (const WorkspacePoint& p : buffer) {
       const Eigen::Vector3d v(p.x, p.y, p.z);
       summary.min = summary.min.cwiseMin(v);
       summary.max = summary.max.cwiseMax(v);
-      ++summary.label_counts[p.label];
+      if (p.label < 4) {
+        ++small_labels[p.label];
+      } else {
+        ++summary.label_counts[p.label];
+      }
+    }
+    for (std::uint32_t label = 0; label < 4; ++label) {
+      if (small_labels[label] > 0) summary.label_counts[label] += small_labels[label];
     }
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async,
