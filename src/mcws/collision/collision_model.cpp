@@ -1,9 +1,8 @@
 #include "mcws/collision/collision_model.h"
 
 #include <pcl/PolygonMesh.h>
-#include <pcl/conversions.h>
+#include <pcl/common/io.h>
 #include <pcl/io/vtk_lib_io.h>
-#include <pcl/point_types.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
@@ -312,12 +311,31 @@ TriangleMesh loadMesh(const std::string& path, double scale) {
   if (pcl::io::loadPolygonFile(path, polygons) == 0 && polygons.polygons.empty())
     throw Error("'" + path + "': holds no triangles (or cannot be read as " + extension.substr(1) +
                 ")");
-  pcl::PointCloud<pcl::PointXYZ> points;
-  pcl::fromPCLPointCloud2(polygons.cloud, points);
+  // The vertices are read from the blob directly: no pcl::PointCloud<pcl::PointXYZ> is
+  // instantiated here, because under AddressSanitizer Eigen's aligned allocator in this binary
+  // differs from the one compiled into libpcl_io, and the library would free with the wrong one.
+  const pcl::PCLPointCloud2& blob = polygons.cloud;
+  int offsets[3];
+  for (int k = 0; k < 3; ++k) {
+    const int field = pcl::getFieldIndex(blob, std::string(1, "xyz"[k]));
+    if (field < 0 || blob.fields[field].datatype != pcl::PCLPointField::FLOAT32)
+      throw Error("'" + path + "': the reader gave no float vertex coordinates");
+    offsets[k] = static_cast<int>(blob.fields[field].offset);
+  }
   TriangleMesh mesh;
-  mesh.vertices.reserve(points.size());
-  for (const pcl::PointXYZ& p : points)
-    mesh.vertices.emplace_back(scale * double(p.x), scale * double(p.y), scale * double(p.z));
+  const std::size_t count = std::size_t(blob.width) * blob.height;
+  if (blob.data.size() < count * blob.point_step || blob.point_step < 3 * sizeof(float))
+    throw Error("'" + path + "': the reader gave fewer vertex bytes than vertices");
+  mesh.vertices.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) {
+      float value = 0.f;
+      std::memcpy(&value, blob.data.data() + i * blob.point_step + offsets[k], sizeof value);
+      v[k] = scale * double(value);
+    }
+    mesh.vertices.push_back(v);
+  }
   for (const pcl::Vertices& polygon : polygons.polygons) {
     const auto& v = polygon.vertices;
     for (std::size_t k = 2; k < v.size(); ++k) {
