@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/app.h"
+#include "mcws/collision/collision_sampler.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/sampler.h"
 
@@ -24,7 +25,10 @@ int main(int argc, char** argv) {
         "file. Joint values on the command line are in rad (revolute) and in the robot file's\n"
         "length unit (prismatic). With --shape, samples a region of known size instead: disk\n"
         "(unit disk, z = 0), annulus (0.5 <= r <= 1, z = 0), ball (unit ball), box (unit cube\n"
-        "[-0.5, 0.5]^3), uniform in area or volume.");
+        "[-0.5, 0.5]^3), uniform in area or volume. With --collision, each sample's label is\n"
+        "its collision status under the robot file's collision: model: 0 free, 1 link-link,\n"
+        "2 tool-link (the tool against a link it is not mounted on), 3 environment; where\n"
+        "several hold, the lowest non-zero code (see mcws_collide, mcws_select).");
     cli.add()("robot", app::po::value<std::string>(), "robot description (.yaml)")(
         "shape", app::po::value<std::string>(), "disk | annulus | ball | box, instead of --robot")(
         "samples", app::po::value<std::string>(), "number of samples (default 6000)")(
@@ -35,6 +39,7 @@ int main(int argc, char** argv) {
         "point", app::po::value<std::string>(),
         "tool | flange: which point to record (default tool)")(
         "threads", app::po::value<std::string>(), "worker threads, 0 = all cores (default 0)")(
+        "collision", "label each sample by collision (needs --robot with collision:)")(
         "ascii", "write ASCII PCD instead of binary")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
 
@@ -50,11 +55,12 @@ int main(int argc, char** argv) {
     }
     if (cli.has("robot") == cli.has("shape"))
       throw app::UsageError("give one of --robot and --shape");
-    if (cli.has("shape") && (cli.has("fix") || cli.has("point"))) {
-      throw app::UsageError("--fix and --point need --robot");
+    if (cli.has("shape") && (cli.has("fix") || cli.has("point") || cli.has("collision"))) {
+      throw app::UsageError("--fix, --point and --collision need --robot");
     }
 
     std::unique_ptr<PointGenerator> generator;
+    std::unique_ptr<CollisionChecker> checker;
     nlohmann::json summary;
     if (cli.has("robot")) {
       const Robot robot = loadRobot(cli.required("robot"));
@@ -65,8 +71,18 @@ int main(int argc, char** argv) {
         for (const auto& pinned : app::parseAssignments(fix, "fix"))
           options.fixed.push_back(pinned);
       }
+      if (cli.has("collision")) {
+        const CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
+        if (!hasGeometry(model))
+          throw Error(cli.required("robot") + ": has no collision geometry (collision: key)");
+        checker = std::make_unique<CollisionChecker>(robot, model);
+      }
       try {
-        generator = std::make_unique<RobotSampler>(robot, options);
+        if (checker) {
+          generator = std::make_unique<LabelledRobotSampler>(robot, options, *checker);
+        } else {
+          generator = std::make_unique<RobotSampler>(robot, options);
+        }
       } catch (const Error& e) {
         throw app::UsageError(std::string("--fix: ") + e.what());
       }
@@ -97,6 +113,14 @@ int main(int argc, char** argv) {
     summary["points"] = result.points;
     summary["seed"] = seed;
     summary["seconds"] = progress.seconds();
+    if (checker) {
+      for (std::uint32_t label : {kLabelFree, kLabelLinkLink, kLabelToolLink, kLabelEnvironment}) {
+        const auto found = result.label_counts.find(label);
+        const std::size_t count = found == result.label_counts.end() ? 0 : found->second;
+        summary["labels"][labelName(label)] = {
+            {"label", label}, {"count", count}, {"fraction", double(count) / double(samples)}};
+      }
+    }
     summary["bbox"] = {{"min", {result.min.x(), result.min.y(), result.min.z()}},
                        {"max", {result.max.x(), result.max.y(), result.max.z()}}};
     if (cli.has("json")) {

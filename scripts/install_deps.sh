@@ -17,6 +17,7 @@ packages=(
   nlohmann-json3-dev            # --json output of the stage tools
   gnuplot-nox                   # PNG pictures of clouds
   libcgal-dev                   # alpha shapes / Delaunay for areas and volumes
+  libfcl-dev                    # collision checking (FCL: OBBRSS mesh trees, primitives)
   time                          # /usr/bin/time -v in the benchmark scripts
 )
 

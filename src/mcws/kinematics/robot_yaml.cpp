@@ -28,7 +28,8 @@ class RobotYamlReader {
   Robot read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of robot fields");
     checkKeys(root, "robot",
-              {"name", "description", "units", "convention", "base", "tool", "joints"});
+              {"name", "description", "units", "convention", "base", "tool", "joints",
+               "collision"});  // collision: read by mcws::parseCollisionYaml
 
     Robot robot;
     robot.source = source_;

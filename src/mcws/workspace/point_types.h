@@ -12,8 +12,14 @@ namespace mcws {
 /// \brief Most joints a WorkspacePoint records (a 7-axis arm on a rail fits).
 constexpr int kMaxJoints = 8;
 
-/// \brief Label values of WorkspacePoint::label (the collision issue fills codes above 0).
-enum WorkspaceLabel : std::uint32_t { kLabelFree = 0 };
+/// \brief Label values of WorkspacePoint::label: 0 free, else the lowest code of a collision
+/// found (mcws::CollisionChecker).
+enum WorkspaceLabel : std::uint32_t {
+  kLabelFree = 0,         ///< no collision (or not checked)
+  kLabelLinkLink = 1,     ///< two links of the arm collide
+  kLabelToolLink = 2,     ///< the tool collides with a link it is not mounted on
+  kLabelEnvironment = 3,  ///< a link or the tool collides with an environment object
+};
 
 /// \brief A Monte Carlo workspace sample.
 ///

@@ -77,6 +77,10 @@ void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoi
   }
 }
 
+void RobotSampler::jointValues(std::uint64_t index, double* q) const {
+  for (int j = 0; j < kinematics_.dof(); ++j) q[j] = lower_[j] + range_[j] * rng_.uniform(index, j);
+}
+
 Shape parseShape(const std::string& name) {
   if (name == "disk") return Shape::kDisk;
   if (name == "annulus") return Shape::kAnnulus;
@@ -195,10 +199,19 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
     auto& buffer = buffers[chunk % 2];
     buffer.resize(count);
     generateParallel(generator, begin, count, buffer.data(), threads);
+    std::size_t small_labels[4] = {0, 0, 0, 0};  // the collision codes, counted without the map
     for (const WorkspacePoint& p : buffer) {
       const Eigen::Vector3d v(p.x, p.y, p.z);
       summary.min = summary.min.cwiseMin(v);
       summary.max = summary.max.cwiseMax(v);
+      if (p.label < 4) {
+        ++small_labels[p.label];
+      } else {
+        ++summary.label_counts[p.label];
+      }
+    }
+    for (std::uint32_t label = 0; label < 4; ++label) {
+      if (small_labels[label] > 0) summary.label_counts[label] += small_labels[label];
     }
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async,

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -77,6 +78,9 @@ class RobotSampler : public PointGenerator {
   ///   `fixed`, or a fixed value outside its joint's limits.
   RobotSampler(const Robot& robot, const RobotSamplerOptions& options);
   void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override;
+  /// \brief The joint values of sample `index`, exactly as generate() draws them, into
+  /// q[0 .. dof) [rad | length unit].
+  void jointValues(std::uint64_t index, double* q) const;
 
  private:
   CounterRng rng_;
@@ -128,6 +132,7 @@ struct SampleSummary {
   std::size_t points{0};
   Eigen::Vector3d min{Eigen::Vector3d::Zero()};  ///< bounding box [length unit]
   Eigen::Vector3d max{Eigen::Vector3d::Zero()};
+  std::map<std::uint32_t, std::size_t> label_counts;  ///< points per label value
 };
 
 /// \brief Streams samples 0 .. n-1 into a PCD file chunk by chunk (memory: two chunks), so

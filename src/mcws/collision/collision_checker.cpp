@@ -1,0 +1,391 @@
+#include "mcws/collision/collision_checker.h"
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <tuple>
+
+#include "mcws/collision/segment_distance.h"
+#include "mcws/core/error.h"
+#include "mcws/kinematics/forward_kinematics.h"
+
+namespace mcws {
+
+struct CollisionChecker::Shape {
+  ShapeType type{ShapeType::kSphere};
+  bool swept{false};  ///< capsule or sphere: tested by segment distance
+  /// p_from, p_to and radius bound the shape (a line-swept sphere, seed 002's LSS): the shape
+  /// itself when swept, a bounding capsule of a mesh's vertices otherwise.
+  bool lss{false};
+  Eigen::Vector3d p_from{Eigen::Vector3d::Zero()}, p_to{Eigen::Vector3d::Zero()};
+  double radius{0.0};
+  Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
+  std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< bounding sphere in the body frame
+  double bound{0.0};
+  int index{0};  ///< among all shapes of the checker
+};
+
+struct CollisionChecker::Body {
+  std::string name;
+  std::vector<Shape> shapes;
+  Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< bounding sphere in the body frame
+  double bound{0.0};
+};
+
+struct CollisionChecker::Scratch::Data {
+  std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> T_world_body;
+  /// World endpoints of swept shapes, valid when stamp[shape] == sample.
+  std::vector<Eigen::Vector3d> p_from, p_to;
+  std::vector<std::uint64_t> stamp;
+  std::uint64_t sample{0};
+  fcl::CollisionRequest<double> request;
+  fcl::CollisionResult<double> result;
+};
+
+CollisionChecker::Scratch::Scratch() : data_(std::make_unique<Data>()) {}
+CollisionChecker::Scratch::~Scratch() = default;
+CollisionChecker::Scratch::Scratch(Scratch&&) noexcept = default;
+
+namespace {
+
+/// Bounding sphere (center, radius) of points, not minimal: centre of the bounding box.
+std::pair<Eigen::Vector3d, double> boundPoints(const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d lo = points.front(), hi = points.front();
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Eigen::Vector3d center = 0.5 * (lo + hi);
+  double radius = 0.0;
+  for (const auto& p : points) radius = std::max(radius, (p - center).norm());
+  return {center, radius};
+}
+
+/// Tight bounding capsule of points: the segment lies on their principal axis and every point
+/// is within `radius` of it. \return (from, to, radius).
+std::tuple<Eigen::Vector3d, Eigen::Vector3d, double> boundingCapsule(
+    const std::vector<Eigen::Vector3d>& points) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= double(points.size());
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
+  const Eigen::Vector3d axis =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
+  double radius = 0.0;
+  for (const auto& p : points) {
+    const Eigen::Vector3d v = p - mean;
+    radius = std::max(radius, (v - v.dot(axis) * axis).norm());
+  }
+  // A point at t along the axis, off it by h, lies in the capsule when the nearer end is within
+  // s = sqrt(r^2 - h^2) of t: the ends are the tightest that satisfy every point.
+  double t_low = std::numeric_limits<double>::infinity(), t_high = -t_low;
+  for (const auto& p : points) {
+    const Eigen::Vector3d v = p - mean;
+    const double t = v.dot(axis);
+    const double s = std::sqrt(std::max(0.0, radius * radius - (v - t * axis).squaredNorm()));
+    t_low = std::min(t_low, t + s);
+    t_high = std::max(t_high, t - s);
+  }
+  if (t_low > t_high) t_low = t_high = 0.5 * (t_low + t_high);
+  radius *= 1.0 + 1e-12;  // rounding must not push a vertex out
+  return {mean + t_low * axis, mean + t_high * axis, radius};
+}
+
+std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh& mesh) {
+  auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
+  std::vector<fcl::Triangle> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  model->beginModel(static_cast<int>(triangles.size()), static_cast<int>(mesh.vertices.size()));
+  model->addSubModel(mesh.vertices, triangles);
+  model->endModel();
+  model->computeLocalAABB();
+  return model;
+}
+
+}  // namespace
+
+CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& model,
+                                   const CollisionCheckerOptions& options)
+    : robot_(robot), options_(options) {
+  if (model.links.size() != robot.joints.size() + 1) {
+    throw Error("collision model has " + std::to_string(model.links.size()) + " links; robot '" +
+                robot.name + "' has " + std::to_string(robot.joints.size() + 1) +
+                " (base and one per joint)");
+  }
+  std::vector<const BodySpec*> specs;
+  for (const BodySpec& link : model.links) specs.push_back(&link);
+  specs.push_back(&model.tool);
+  for (const BodySpec& object : model.environment) specs.push_back(&object);
+  tool_body_ = robot.dof() + 1;
+
+  for (const BodySpec* spec : specs) {
+    Body body;
+    body.name = spec->name;
+    std::vector<Eigen::Vector3d> extreme;  // points whose bounding sphere bounds the body
+    for (const ShapeSpec& in : spec->shapes) {
+      Shape shape;
+      shape.type = in.type;
+      shape.T_body_shape = in.T_body_shape;
+      shape.radius = in.radius;
+      shape.index = shape_count_++;
+      switch (in.type) {
+        case ShapeType::kCapsule:
+        case ShapeType::kSphere: {
+          shape.swept = shape.lss = options.exact_capsules;
+          shape.p_from = in.p_from;
+          shape.p_to = in.p_to;
+          const Eigen::Vector3d axis = in.p_to - in.p_from;
+          const double length = axis.norm();
+          shape.T_body_shape = Eigen::Isometry3d::Identity();
+          shape.T_body_shape.translation() = 0.5 * (in.p_from + in.p_to);
+          if (length > 0.0) {
+            shape.T_body_shape.linear() =
+                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis / length)
+                    .toRotationMatrix();
+            shape.geometry = std::make_shared<fcl::Capsule<double>>(in.radius, length);
+          } else {
+            shape.geometry = std::make_shared<fcl::Sphere<double>>(in.radius);
+          }
+          shape.center = 0.5 * (in.p_from + in.p_to);
+          shape.bound = 0.5 * length + in.radius;
+          break;
+        }
+        case ShapeType::kBox:
+          shape.geometry = std::make_shared<fcl::Box<double>>(in.size);
+          shape.center = in.T_body_shape.translation();
+          shape.bound = 0.5 * in.size.norm();
+          break;
+        case ShapeType::kCylinder:
+          shape.geometry = std::make_shared<fcl::Cylinder<double>>(in.radius, in.length);
+          shape.center = in.T_body_shape.translation();
+          shape.bound = std::hypot(in.radius, 0.5 * in.length);
+          break;
+        case ShapeType::kMesh: {
+          shape.geometry = meshGeometry(*in.mesh);
+          std::vector<Eigen::Vector3d> vertices;
+          vertices.reserve(in.mesh->vertices.size());
+          for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
+          std::tie(shape.center, shape.bound) = boundPoints(vertices);
+          std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
+          shape.lss = options.bounding_spheres;
+          break;
+        }
+      }
+      // Six points of the shape's bounding sphere bound the body's sphere from below; take the
+      // sphere's axis extremes so that the body sphere contains every shape sphere.
+      for (int k = 0; k < 3; ++k) {
+        extreme.push_back(shape.center + shape.bound * Eigen::Vector3d::Unit(k));
+        extreme.push_back(shape.center - shape.bound * Eigen::Vector3d::Unit(k));
+      }
+      body.shapes.push_back(std::move(shape));
+    }
+    if (!body.shapes.empty()) {
+      body.center = boundPoints(extreme).first;
+      for (const Shape& shape : body.shapes)
+        body.bound = std::max(body.bound, (shape.center - body.center).norm() + shape.bound);
+    }
+    bodies_.push_back(std::move(body));
+  }
+
+  auto index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < bodies_.size(); ++i)
+      if (bodies_[i].name == name) return static_cast<int>(i);
+    throw Error("collision model: allowed pair names unknown body '" + name + "'");
+  };
+  std::set<std::pair<int, int>> allowed;
+  for (const auto& [a, b] : model.allowed) {
+    const int i = index(a), j = index(b);
+    allowed.insert({std::min(i, j), std::max(i, j)});
+  }
+  auto add = [&](int a, int b, std::uint32_t label) {
+    if (bodies_[a].shapes.empty() || bodies_[b].shapes.empty()) return;
+    if (allowed.count({std::min(a, b), std::max(a, b)})) return;
+    pairs_.push_back({a, b, label});
+  };
+  const int links = robot.dof() + 1;
+  for (int a = 0; a < links; ++a)
+    for (int b = a + 2; b < links; ++b) add(a, b, kLabelLinkLink);
+  for (int a = 0; a < links - 1; ++a) add(a, tool_body_, kLabelToolLink);
+  for (int e = tool_body_ + 1; e < bodyCount(); ++e) {
+    for (int a = 1; a <= tool_body_; ++a) add(a, e, kLabelEnvironment);
+  }
+}
+
+CollisionChecker::~CollisionChecker() = default;
+
+const std::string& CollisionChecker::bodyName(int i) const { return bodies_.at(i).name; }
+
+int CollisionChecker::bodyCount() const { return static_cast<int>(bodies_.size()); }
+
+void CollisionChecker::computePoses(const double* q, Scratch::Data& data) const {
+  if (data.T_world_body.size() != bodies_.size()) {
+    data.T_world_body.assign(bodies_.size(), Eigen::Isometry3d::Identity());
+    data.p_from.resize(shape_count_);
+    data.p_to.resize(shape_count_);
+    data.stamp.assign(shape_count_, 0);
+    data.request.num_max_contacts = 1;
+  }
+  ++data.sample;
+  Eigen::Isometry3d T = robot_.T_world_base;
+  data.T_world_body[0] = T;
+  for (int i = 0; i < robot_.dof(); ++i) {
+    const Joint& joint = robot_.joints[i];
+    T = T * joint.T_parent_joint;
+    if (joint.type == JointType::kRevolute && joint.axis == Eigen::Vector3d::UnitZ()) {
+      const double c = std::cos(q[i]), s = std::sin(q[i]);
+      const Eigen::Vector3d x = T.linear().col(0), y = T.linear().col(1);
+      T.linear().col(0) = c * x + s * y;
+      T.linear().col(1) = c * y - s * x;
+    } else {
+      T = T * jointMotion(joint, q[i]);
+    }
+    data.T_world_body[i + 1] = T;
+  }
+  data.T_world_body[tool_body_] = T * robot_.T_last_flange;
+}
+
+bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Data& data,
+                                     int body_a, int body_b) const {
+  const Eigen::Isometry3d& T_a = data.T_world_body[body_a];
+  const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
+  const double reach = a.bound + b.bound;
+  if (options_.bounding_spheres &&
+      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+    return false;
+  }
+  if (a.lss && b.lss) {
+    for (const auto* shape : {&a, &b}) {
+      const Eigen::Isometry3d& T = shape == &a ? T_a : T_b;
+      if (data.stamp[shape->index] != data.sample) {
+        data.stamp[shape->index] = data.sample;
+        data.p_from[shape->index] = T * shape->p_from;
+        data.p_to[shape->index] = T * shape->p_to;
+      }
+    }
+    const double touch = a.radius + b.radius;
+    const bool overlap =
+        segmentDistanceSquared(data.p_from[a.index], data.p_to[a.index], data.p_from[b.index],
+                               data.p_to[b.index]) < touch * touch;
+    // Exact for two capsules; for a mesh, only a bounding capsule: apart means apart.
+    if (!overlap || (a.swept && b.swept)) return overlap;
+  }
+  data.result.clear();
+  return fcl::collide(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
+                      T_b * b.T_body_shape, data.request, data.result) > 0;
+}
+
+bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const {
+  const Body& a = bodies_[pair.body_a];
+  const Body& b = bodies_[pair.body_b];
+  const Eigen::Isometry3d& T_a = data.T_world_body[pair.body_a];
+  const Eigen::Isometry3d& T_b = data.T_world_body[pair.body_b];
+  const double reach = a.bound + b.bound;
+  if (options_.bounding_spheres &&
+      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+    return false;
+  }
+  for (const Shape& shape_a : a.shapes) {
+    for (const Shape& shape_b : b.shapes) {
+      if (shapesCollide(shape_a, shape_b, data, pair.body_a, pair.body_b)) return true;
+    }
+  }
+  return false;
+}
+
+std::uint32_t CollisionChecker::label(const double* q, Scratch& scratch) const {
+  Scratch::Data& data = *scratch.data_;
+  computePoses(q, data);
+  for (const CollisionPair& pair : pairs_) {
+    if (bodiesCollide(pair, data)) return pair.label;  // pairs_ is ordered by label
+  }
+  return kLabelFree;
+}
+
+std::uint32_t CollisionChecker::label(const Eigen::VectorXd& q) const {
+  robot_.checkSize(q);
+  Scratch scratch;
+  return label(q.data(), scratch);
+}
+
+std::vector<PairReport> CollisionChecker::report(const Eigen::VectorXd& q) const {
+  robot_.checkSize(q);
+  Scratch scratch;
+  Scratch::Data& data = *scratch.data_;
+  computePoses(q.data(), data);
+  std::vector<PairReport> reports;
+  for (const CollisionPair& pair : pairs_) {
+    PairReport report;
+    report.body_a = bodies_[pair.body_a].name;
+    report.body_b = bodies_[pair.body_b].name;
+    report.label = pair.label;
+    report.distance = std::numeric_limits<double>::infinity();
+    const Eigen::Isometry3d& T_a = data.T_world_body[pair.body_a];
+    const Eigen::Isometry3d& T_b = data.T_world_body[pair.body_b];
+    for (const Shape& a : bodies_[pair.body_a].shapes) {
+      for (const Shape& b : bodies_[pair.body_b].shapes) {
+        // The same decision as label(); the distance is for the reader.
+        const bool colliding = shapesCollide(a, b, data, pair.body_a, pair.body_b);
+        report.colliding = report.colliding || colliding;
+        double distance = 0.0;
+        bool depth_known = true;
+        if (a.swept && b.swept) {
+          distance = std::sqrt(segmentDistanceSquared(T_a * a.p_from, T_a * a.p_to, T_b * b.p_from,
+                                                      T_b * b.p_to)) -
+                     a.radius - b.radius;
+        } else if (colliding) {
+          fcl::CollisionRequest<double> request(100, true);
+          fcl::CollisionResult<double> result;
+          fcl::collide(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
+                       T_b * b.T_body_shape, request, result);
+          double depth = 0.0;
+          for (std::size_t k = 0; k < result.numContacts(); ++k)
+            depth = std::max(depth, result.getContact(k).penetration_depth);
+          depth_known = a.type != ShapeType::kMesh && b.type != ShapeType::kMesh;
+          distance = depth_known ? -depth : 0.0;
+        } else {
+          fcl::DistanceRequest<double> request;
+          fcl::DistanceResult<double> result;
+          distance =
+              std::max(0.0, fcl::distance(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
+                                          T_b * b.T_body_shape, request, result));
+        }
+        if (distance < report.distance) {
+          report.distance = distance;
+          report.depth_known = depth_known;
+        }
+      }
+    }
+    reports.push_back(report);
+  }
+  return reports;
+}
+
+const char* labelName(std::uint32_t label) {
+  switch (label) {
+    case kLabelFree:
+      return "free";
+    case kLabelLinkLink:
+      return "link-link";
+    case kLabelToolLink:
+      return "tool-link";
+    case kLabelEnvironment:
+      return "environment";
+    default:
+      return "unknown";
+  }
+}
+
+}  // namespace mcws

@@ -1,0 +1,123 @@
+#pragma once
+/// \file
+/// \brief Self-collision, tool-vs-arm and environment checks of one joint vector (seed 002
+/// section 2), with FCL (the Flexible Collision Library) underneath.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mcws/collision/collision_model.h"
+#include "mcws/kinematics/robot.h"
+#include "mcws/workspace/point_types.h"
+
+namespace fcl {
+template <typename S>
+class CollisionGeometry;
+}
+
+namespace mcws {
+
+/// \brief A pair of bodies the checker tests, with the label a collision of the pair gives.
+struct CollisionPair {
+  int body_a{0}, body_b{0};  ///< CollisionChecker::bodyName() indices
+  std::uint32_t label{kLabelLinkLink};
+};
+
+/// \brief Clearance of one pair of bodies at one joint vector.
+struct PairReport {
+  std::string body_a, body_b;
+  std::uint32_t label{kLabelLinkLink};  ///< the label a collision of this pair gives
+  bool colliding{false};
+  /// Smallest distance between the two bodies' shapes [length unit] when apart; when colliding,
+  /// minus the penetration depth if `depth_known`, else 0 (FCL gives no depth for meshes).
+  double distance{0.0};
+  bool depth_known{true};
+};
+
+/// \brief Switches for measuring what each part of CollisionChecker saves (bench/).
+struct CollisionCheckerOptions {
+  /// Capsule and sphere pairs by exact segment distance; false sends them to fcl::collide too.
+  bool exact_capsules{true};
+  /// Reject body and shape pairs whose bounding spheres, and mesh pairs whose bounding capsules,
+  /// are apart before any exact test.
+  bool bounding_spheres{true};
+};
+
+/// \brief Tests joint vectors of a robot against its collision model.
+///
+/// Pairs checked, in this order (each collision gives the pair's label, and label() returns the
+/// lowest label of any colliding pair):
+/// 1. kLabelLinkLink: every two links (base included) that are not adjacent in the chain
+///    (link i and i+1, the base and link 1 are adjacent) and not in the allowed list;
+/// 2. kLabelToolLink: the tool against every link except the last one, which carries it;
+/// 3. kLabelEnvironment: each moving link and the tool against each environment object (the
+///    base does not move, so it is not checked against the environment).
+/// Bodies without shapes take part in no pair. Capsule and sphere pairs are tested with an exact
+/// segment-segment distance (Ericson 2005); every other pair goes to fcl::collide, whose
+/// `fcl::BVHModel<fcl::OBBRSSd>` meshes are the OBB/RSS (swept-sphere) hierarchy of seed 002.
+/// A broad phase first rejects body and shape pairs whose bounding spheres are apart, and mesh
+/// pairs whose bounding capsules (line-swept spheres on the mesh's principal axis, the top level
+/// of the seed's hierarchy) are apart.
+///
+/// The checker is immutable after construction and may be shared between threads; each thread
+/// passes its own Scratch (poses and FCL request/result objects), so no lock is taken. The FCL
+/// geometry (including the BVH trees) is shared and only read.
+class CollisionChecker {
+ public:
+  /// \throws mcws::Error when the model does not fit the robot (link count).
+  CollisionChecker(const Robot& robot, const CollisionModel& model,
+                   const CollisionCheckerOptions& options = {});
+  ~CollisionChecker();
+
+  /// \brief Per-thread working memory for label().
+  class Scratch {
+   public:
+    Scratch();
+    ~Scratch();
+    Scratch(Scratch&&) noexcept;
+
+   private:
+    friend class CollisionChecker;
+    struct Data;
+    std::unique_ptr<Data> data_;
+  };
+
+  /// \brief Label of the joint vector q[0 .. dof) [rad | length unit]: kLabelFree or the lowest
+  /// label of a colliding pair. Limits are not checked.
+  std::uint32_t label(const double* q, Scratch& scratch) const;
+  /// \brief label() with a scratch of its own (slower: for single checks).
+  std::uint32_t label(const Eigen::VectorXd& q) const;
+
+  /// \brief Every pair at q, with its clearance or penetration (slow: FCL distance queries).
+  std::vector<PairReport> report(const Eigen::VectorXd& q) const;
+
+  /// \brief The pairs label() tests, in order.
+  const std::vector<CollisionPair>& pairs() const { return pairs_; }
+  /// \brief Name of body i: "base", a joint name (its link), "tool", or an environment object.
+  const std::string& bodyName(int i) const;
+  /// \brief Number of bodies (links, tool, environment objects).
+  int bodyCount() const;
+
+ private:
+  struct Shape;
+  struct Body;
+  void computePoses(const double* q, Scratch::Data& data) const;
+  bool bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const;
+  bool shapesCollide(const Shape& a, const Shape& b, Scratch::Data& data, int body_a,
+                     int body_b) const;
+
+  const Robot robot_;
+  CollisionCheckerOptions options_;
+  std::vector<Body> bodies_;
+  std::vector<CollisionPair> pairs_;
+  int tool_body_{0};
+  int shape_count_{0};
+};
+
+/// \brief Name of a label: "free", "link-link", "tool-link", "environment".
+const char* labelName(std::uint32_t label);
+
+}  // namespace mcws

@@ -1,0 +1,109 @@
+#pragma once
+/// \file
+/// \brief Collision geometry of a robot, its tool and its surroundings, read from the `collision:`
+/// section of a robot YAML file.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+
+namespace mcws {
+
+/// \brief A triangle mesh [robot length unit].
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< vertex indices
+};
+
+/// \brief Kind of a collision shape.
+enum class ShapeType { kCapsule, kSphere, kBox, kCylinder, kMesh };
+
+/// \brief Name of a shape type ("capsule", "sphere", "box", "cylinder", "mesh").
+const char* shapeTypeName(ShapeType type);
+
+/// \brief One collision shape, placed in the frame of the body that carries it. Lengths are in
+/// the robot's length unit.
+///
+/// - capsule: the points within `radius` of the segment [p_from, p_to] (seed 002's line-swept
+///   sphere, LSS);
+/// - sphere: the points within `radius` of p_from;
+/// - box: edges `size`, centred at the origin of T_body_shape;
+/// - cylinder: `radius`, `length` along z of T_body_shape, centred at its origin;
+/// - mesh: the triangles of `mesh` (vertices already scaled) placed by T_body_shape.
+struct ShapeSpec {
+  ShapeType type{ShapeType::kSphere};
+  Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
+  Eigen::Vector3d p_from{Eigen::Vector3d::Zero()};
+  Eigen::Vector3d p_to{Eigen::Vector3d::Zero()};
+  double radius{0.0};
+  Eigen::Vector3d size{Eigen::Vector3d::Zero()};
+  double length{0.0};
+  std::shared_ptr<const TriangleMesh> mesh;
+  std::string source;  ///< "file:line" of the shape, for messages
+};
+
+/// \brief A rigid body made of shapes.
+struct BodySpec {
+  std::string name;
+  std::vector<ShapeSpec> shapes;
+};
+
+/// \brief Collision geometry of a robot.
+///
+/// Frames: `links[0]` is the base, placed in the robot's base frame (T_world_base);
+/// `links[i]` (i = 1 .. dof) moves with joint i and is placed in that joint's frame after its
+/// motion (ChainPoses::T_world_link[i-1]); for a standard D-H row the link's segment runs from
+/// that frame's origin to (a cos(theta), a sin(theta), d). The tool is placed in the flange frame
+/// and is mounted on the last link. Environment objects are placed in the world frame.
+struct CollisionModel {
+  std::vector<BodySpec> links;  ///< dof + 1 bodies: "base", then the joint names
+  BodySpec tool;                ///< name "tool"
+  std::vector<BodySpec> environment;
+  /// Body pairs never checked, by name (adjacent links are never checked anyway).
+  std::vector<std::pair<std::string, std::string>> allowed;
+};
+
+/// \brief Parses the `collision:` section of a robot YAML document.
+///
+/// \code{.yaml}
+/// collision:
+///   links:                    # base, or a joint name: the link that joint moves
+///     base: [{type: capsule, from: [0, 0, -420], to: [0, 0, -330], radius: 180}]
+///     j2:   [{type: capsule, from: [0, 0, 0], to: [560, 0, 0], radius: 90}]
+///   tool:                     # in the flange frame
+///     - {type: mesh, file: meshes/torch.stl, scale: 1, xyz: [0, 0, 0], rpy: [0, 0, 0]}
+///   environment:              # in the world frame, each a named object of one shape
+///     - {name: conductor, type: cylinder, radius: 1.5, length: 3000, xyz: [0, 0, 40],
+///        rpy: [0, 90, 0]}
+///   allowed: [[j1, j3]]       # pairs never checked
+/// \endcode
+/// Shapes: capsule (from, to, radius), sphere (center, radius), box (size, xyz, rpy), cylinder
+/// (radius, length, xyz, rpy), mesh (file relative to the YAML file, STL or OBJ, scale, xyz,
+/// rpy). Angles in the file's angle unit, lengths in its length unit.
+/// \param robot the robot the same file describes (link names, length unit).
+/// \param text the whole YAML document; \param source its file name, for messages and for mesh
+///   paths.
+/// \return an empty model (no shapes) when the document has no `collision:` key.
+/// \throws mcws::Error "file:line: ..." naming the item for an unknown link or key, a
+///   non-positive radius or size, a missing or empty mesh, an unknown body in `allowed`.
+CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
+                                  const std::string& source);
+
+/// \brief parseCollisionYaml() of a file. \throws mcws::Error when the file cannot be read.
+CollisionModel loadCollisionModel(const Robot& robot, const std::string& path);
+
+/// \brief True when the model has at least one shape.
+bool hasGeometry(const CollisionModel& model);
+
+/// \brief Reads a triangle mesh (STL or OBJ, by extension) with PCL's VTK-based
+/// pcl::io::loadPolygonFile; polygons with more than three corners are fanned into triangles.
+/// \param scale factor applied to the vertices (e.g. 1000 for a file in metres and a robot in mm).
+/// \throws mcws::Error naming the file when it is missing, unreadable or holds no triangles.
+TriangleMesh loadMesh(const std::string& path, double scale);
+
+}  // namespace mcws
