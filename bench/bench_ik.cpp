@@ -1,4 +1,4 @@
-// IK benchmark (issue 4): mcws::solveIk against orocos-kdl's ChainIkSolverPos_NR_JL and
+// IK benchmark (issue 4): mcws::IkSolver / solveIk against orocos-kdl's ChainIkSolverPos_NR_JL and
 // ChainIkSolverPos_LMA on the same random reachable poses, the same first guesses and the same
 // tolerances. Prints one table row per robot and solver: success rate, mean and 99th-percentile
 // time per solve, mean iterations where the solver reports them.
@@ -157,17 +157,19 @@ void benchRobot(const std::string& robot_name, int poses, int repeats) {
   options.position_tolerance = kTolerance;
   options.orientation_tolerance = kTolerance;
   options.seed = kSeed;
+  // Prepared once, as KDL's solvers below.
+  const mcws::IkSolver solver(robot);
   std::vector<Row> rows;
-  rows.push_back(measure("mcws solveIk (20 restarts)", robot, cases, repeats, 0,
+  rows.push_back(measure("mcws IkSolver (20 restarts)", robot, cases, repeats, 0,
                          [&](const Case& c, const Eigen::VectorXd& q0) {
-                           const mcws::IkResult r = mcws::solveIk(robot, c.T_target, q0, options);
+                           const mcws::IkResult r = solver.solve(c.T_target, q0, options);
                            return r.converged() ? r.q : Eigen::VectorXd();
                          }));
   mcws::IkOptions single = options;
   single.restarts = 0;
-  rows.push_back(measure("mcws solveIk, no restarts", robot, cases, repeats, 0,
+  rows.push_back(measure("mcws IkSolver, no restarts", robot, cases, repeats, 0,
                          [&](const Case& c, const Eigen::VectorXd& q0) {
-                           const mcws::IkResult r = mcws::solveIk(robot, c.T_target, q0, single);
+                           const mcws::IkResult r = solver.solve(c.T_target, q0, single);
                            return r.converged() ? r.q : Eigen::VectorXd();
                          }));
 
@@ -187,6 +189,11 @@ void benchRobot(const std::string& robot_name, int poses, int repeats) {
                                                                      : Eigen::VectorXd();
     };
   };
+  rows.push_back(measure("mcws solveIk (20 restarts, prepares per call)", robot, cases, repeats, 0,
+                         [&](const Case& c, const Eigen::VectorXd& q0) {
+                           const mcws::IkResult r = mcws::solveIk(robot, c.T_target, q0, options);
+                           return r.converged() ? r.q : Eigen::VectorXd();
+                         }));
   rows.push_back(measure("KDL NR_JL", robot, cases, 1, 0, kdl(nr_jl)));
   rows.push_back(measure("KDL LMA", robot, cases, 1, 0, kdl(lma)));
   rows.push_back(measure("KDL NR_JL + 20 restarts", robot, cases, 1, kRestarts, kdl(nr_jl)));

@@ -265,6 +265,19 @@ TEST(InverseKinematics, SameSeedSameResultOtherSeedOtherRestarts) {
   EXPECT_GT(restarted, 10);  // the case above was exercised
 }
 
+TEST(InverseKinematics, PreparedSolverGivesSolveIksResults) {
+  const Robot robot = loadRobot(test::robotPath("insulator_cleaner"));
+  const IkSolver solver(robot);
+  std::mt19937_64 rng(41);
+  for (int n = 0; n < 50; ++n) {
+    const Eigen::Isometry3d T = toolPose(robot, randomJoints(robot, rng));
+    const Eigen::VectorXd q_seed = randomJoints(robot, rng);
+    const IkResult a = solver.solve(T, q_seed), b = solveIk(robot, T, q_seed);
+    ASSERT_EQ(a.q, b.q);
+    ASSERT_EQ(a.iterations, b.iterations);
+  }
+}
+
 // ---- misuse throws ------------------------------------------------------------------------------
 
 std::string errorOf(const std::function<void()>& f) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -13,6 +14,22 @@
 #include "mcws/kinematics/jacobian.h"
 
 namespace mcws {
+
+/// Joint limits as the solver uses them.
+struct JointRange {
+  double lower, upper;  ///< projection bounds
+  bool wraps;           ///< revolute with a full turn or more: wrap by 2 pi instead of clamping
+  double sample_lower, sample_upper;  ///< where restarts draw from
+};
+
+/// What IkSolver prepares once per robot.
+struct IkSolver::Prepared {
+  KinematicChain chain;
+  std::vector<JointRange> ranges;
+  double inverse_reach;            ///< 1 / the chain's length scale [1 / length unit]
+  std::vector<double> step_scale;  ///< 1 for revolute joints, pi / stroke for prismatic ones
+};
+
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
@@ -85,13 +102,6 @@ double reachOf(const Robot& robot) {
   return reach > 0.0 && std::isfinite(reach) ? reach : 1.0;
 }
 
-/// Joint limits as the solver uses them.
-struct JointRange {
-  double lower, upper;  ///< projection bounds
-  bool wraps;           ///< revolute with a full turn or more: wrap by 2 pi instead of clamping
-  double sample_lower, sample_upper;  ///< where restarts draw from
-};
-
 std::vector<JointRange> jointRanges(const Robot& robot, double reach) {
   std::vector<JointRange> ranges;
   for (const Joint& joint : robot.joints) {
@@ -123,13 +133,10 @@ double project(double x, const JointRange& r) {
 
 /// Everything one solve needs, fixed before the first attempt.
 struct Problem {
-  const KinematicChain* chain;
-  std::vector<JointRange> ranges;
-  double inverse_reach;
+  const IkSolver::Prepared& chain;
   Eigen::Matrix3d R_target;
   Eigen::Vector3d p_target;
   IkOptions options;
-  std::vector<double> step_scale;  ///< 1 for revolute joints, pi / stroke for prismatic ones
 };
 
 /// Levenberg-Marquardt schedule of lambda^2: times kDampingDown after a step that lowered the
@@ -162,7 +169,7 @@ class DlsSolver {
   using VectorQ = Eigen::Matrix<double, Dof, 1>;
   using VectorE = Eigen::Matrix<double, Rows, 1>;
 
-  explicit DlsSolver(const Problem& problem) : problem_(problem), n_(problem.chain->dof()) {
+  explicit DlsSolver(const Problem& problem) : problem_(problem), n_(problem.chain.chain.dof()) {
     for (State* s : {&current_, &trial_, &best_}) {
       s->q.resize(n_);
       s->J.resize(6, n_);
@@ -180,7 +187,7 @@ class DlsSolver {
     bool budget_ran_out = false;
     for (int attempt = 0; attempt <= options.restarts; ++attempt) {
       for (int i = 0; i < n_; ++i) {
-        const JointRange& r = problem_.ranges[i];
+        const JointRange& r = problem_.chain.ranges[i];
         current_.q[i] = attempt == 0 ? project(q_seed[i], r)
                                      : r.sample_lower + (r.sample_upper - r.sample_lower) *
                                                             uniform(rng, attempt, i);
@@ -224,10 +231,10 @@ class DlsSolver {
   void evaluate(State& s) const {
     Eigen::Matrix3d R;
     Eigen::Vector3d p;
-    problem_.chain->toolPoseAndJacobian(s.q.data(), R, p, s.J.data());
+    problem_.chain.chain.toolPoseAndJacobian(s.q.data(), R, p, s.J.data());
     const Eigen::Vector3d e_p = problem_.p_target - p;
     s.position_error = e_p.norm();
-    s.e.template head<3>() = e_p * problem_.inverse_reach;
+    s.e.template head<3>() = e_p * problem_.chain.inverse_reach;
     if constexpr (Rows == 6) {
       const Eigen::Vector3d e_o = rotationVector(problem_.R_target * R.transpose());
       s.orientation_error = e_o.norm();
@@ -249,11 +256,11 @@ class DlsSolver {
   /// joints make up for it (an active set of one pass). Returns false when a factorisation fails.
   bool step(const State& s, double lambda2) {
     Jw_ = s.J.template topRows<Rows>();
-    Jw_.template topRows<3>() *= problem_.inverse_reach;
+    Jw_.template topRows<3>() *= problem_.chain.inverse_reach;
     if (!solveStep(s.e, lambda2)) return false;
     bool locked = false;
     for (int i = 0; i < n_; ++i) {
-      const JointRange& r = problem_.ranges[i];
+      const JointRange& r = problem_.chain.ranges[i];
       if (r.wraps) continue;
       if ((s.q[i] >= r.upper && dq_[i] > 0.0) || (s.q[i] <= r.lower && dq_[i] < 0.0)) {
         Jw_.col(i).setZero();
@@ -295,11 +302,11 @@ class DlsSolver {
       }
       double biggest = 0.0;
       for (int i = 0; i < n_; ++i) {
-        biggest = std::max(biggest, std::abs(dq_[i]) * problem_.step_scale[i]);
+        biggest = std::max(biggest, std::abs(dq_[i]) * problem_.chain.step_scale[i]);
       }
       if (biggest > kMaxStep) dq_ *= kMaxStep / biggest;
       for (int i = 0; i < n_; ++i)
-        trial_.q[i] = project(current_.q[i] + dq_[i], problem_.ranges[i]);
+        trial_.q[i] = project(current_.q[i] + dq_[i], problem_.chain.ranges[i]);
       evaluate(trial_);
       if (trial_.cost < current_.cost) {
         slow = trial_.cost > kSlowProgress * current_.cost ? slow + 1 : 0;
@@ -360,30 +367,35 @@ const char* ikStatusName(IkStatus status) {
   return "?";
 }
 
-IkResult solveIk(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
-                 const Eigen::VectorXd& q_seed, const IkOptions& options) {
-  checkTarget(T_world_tool_target, "solveIk");
-  checkSeed(robot, q_seed);
-  checkOptions(options);
-  const KinematicChain chain(robot);
+IkSolver::IkSolver(const Robot& robot) : robot_(robot) {
+  auto prepared = std::make_shared<Prepared>(Prepared{KinematicChain(robot), {}, 1.0, {}});
   const double reach = reachOf(robot);
-  Problem problem{&chain,
-                  jointRanges(robot, reach),
-                  1.0 / reach,
-                  T_world_tool_target.linear(),
-                  T_world_tool_target.translation(),
-                  options,
-                  {}};
+  prepared->ranges = jointRanges(robot, reach);
+  prepared->inverse_reach = 1.0 / reach;
   for (const Joint& joint : robot.joints) {
     const double stroke = joint.upper - joint.lower;
-    problem.step_scale.push_back(joint.type == JointType::kRevolute || !(stroke > 0.0) ||
-                                         !std::isfinite(stroke)
-                                     ? 1.0
-                                     : M_PI / stroke);
+    const bool scaled =
+        joint.type == JointType::kPrismatic && stroke > 0.0 && std::isfinite(stroke);
+    prepared->step_scale.push_back(scaled ? M_PI / stroke : 1.0);
   }
+  prepared_ = std::move(prepared);
+}
+
+IkResult IkSolver::solve(const Eigen::Isometry3d& T_world_tool_target,
+                         const Eigen::VectorXd& q_seed, const IkOptions& options) const {
+  checkTarget(T_world_tool_target, "solveIk");
+  checkSeed(robot_, q_seed);
+  checkOptions(options);
+  const Problem problem{*prepared_, T_world_tool_target.linear(), T_world_tool_target.translation(),
+                        options};
   if (options.position_only) return DlsSolver<3, Eigen::Dynamic>(problem).solve(q_seed);
-  if (robot.dof() == 6) return DlsSolver<6, 6>(problem).solve(q_seed);
+  if (robot_.dof() == 6) return DlsSolver<6, 6>(problem).solve(q_seed);
   return DlsSolver<6, Eigen::Dynamic>(problem).solve(q_seed);
+}
+
+IkResult solveIk(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
+                 const Eigen::VectorXd& q_seed, const IkOptions& options) {
+  return IkSolver(robot).solve(T_world_tool_target, q_seed, options);
 }
 
 IkResult solveIkNewtonSeed003(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,

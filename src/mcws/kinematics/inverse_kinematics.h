@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <memory>
 
 #include "mcws/kinematics/robot.h"
 
@@ -67,6 +68,23 @@ struct IkResult {
 ///   non-finite values, or non-positive tolerances or budgets.
 IkResult solveIk(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
                  const Eigen::VectorXd& q_seed, const IkOptions& options = {});
+
+/// \brief solveIk() for many poses of one robot: the chain is prepared once (the joint axes
+/// turned onto z, limits and scales read), which saves about 2 us per solve.
+class IkSolver {
+ public:
+  /// \param robot the chain (copied).
+  explicit IkSolver(const Robot& robot);
+  /// \brief As solveIk(robot, T_world_tool_target, q_seed, options).
+  IkResult solve(const Eigen::Isometry3d& T_world_tool_target, const Eigen::VectorXd& q_seed,
+                 const IkOptions& options = {}) const;
+
+  struct Prepared;
+
+ private:
+  Robot robot_;
+  std::shared_ptr<const Prepared> prepared_;
+};
 
 /// \brief Seed 003's inverse kinematics (Liu, Han, Xu, Li 2021, section 1.2): Newton iteration
 /// q_{k+1} = q_k + J_H^-1 (H* - H(q_k)) on the six entries H = (r11, r22, r33, px, py, pz) of
