@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     if (!result.converged()) {
       std::ostringstream msg;
       msg.precision(4);
-      msg << "no solution (" << ikStatusName(result.status) << "): the closest pose found is "
+      msg << "no solution (" << ikStatusName(result.status) << "): the best pose found is "
           << result.position_error << " " << unit << " and " << result.orientation_error
           << " rad away, after " << result.iterations << " iterations from " << result.attempts
           << " starts";

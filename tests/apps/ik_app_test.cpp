@@ -120,7 +120,8 @@ TEST(IkApp, FailuresAndBadInput) {
   };
   const std::string deicing = " --robot " + test::robotPath("deicing");
   const Case cases[] = {
-      {kInspection + " --pose '3000 0 0 0 0 0'", 1, "no solution (no_solution): the closest pose"},
+      {kInspection + " --pose '3000 0 0 0 0 0'", 1,
+       "no solution (no_solution): the best pose found is "},
       {deicing + " --pose '60 25 20 0 0 0'", 1, "the robot has 4 joints, try --position-only"},
       {kInspection + " --pose '1 2 3 nan 0 0'", 2, "--pose: 'nan' is not a finite number"},
       {kInspection + " --pose '1 2 inf 0 0 0'", 2, "--pose: 'inf' is not a finite number"},
