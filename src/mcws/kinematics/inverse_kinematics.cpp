@@ -15,15 +15,14 @@
 
 namespace mcws {
 
-/// Joint limits as the solver uses them.
-struct JointRange {
-  double lower, upper;  ///< projection bounds
-  bool wraps;           ///< revolute with a full turn or more: wrap by 2 pi instead of clamping
-  double sample_lower, sample_upper;  ///< where restarts draw from
-};
-
 /// What IkSolver prepares once per robot.
 struct IkSolver::Prepared {
+  /// Joint limits as the solver uses them.
+  struct JointRange {
+    double lower, upper;  ///< projection bounds
+    bool wraps;           ///< revolute with a full turn or more: wrap by 2 pi instead of clamping
+    double sample_lower, sample_upper;  ///< where restarts draw from
+  };
   KinematicChain chain;
   std::vector<JointRange> ranges;
   double inverse_reach;            ///< 1 / the chain's length scale [1 / length unit]
@@ -31,6 +30,8 @@ struct IkSolver::Prepared {
 };
 
 namespace {
+
+using JointRange = IkSolver::Prepared::JointRange;
 
 constexpr double kTwoPi = 2.0 * M_PI;
 /// Largest |R^T R - I| entry of an accepted target rotation: far above the rounding of a
