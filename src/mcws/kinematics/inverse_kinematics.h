@@ -37,9 +37,10 @@ struct IkOptions {
 /// \brief Outcome of an IK solve.
 struct IkResult {
   IkStatus status{IkStatus::kNoSolution};
-  Eigen::VectorXd q;  ///< the solution, or the closest joint vector found [rad | length unit]
-  int iterations{0};  ///< iterations over all attempts
-  int attempts{0};    ///< attempts made: 1 + restarts used
+  Eigen::VectorXd
+      q;  ///< the solution, or the best found (least weighted error) [rad | length unit]
+  int iterations{0};              ///< iterations over all attempts
+  int attempts{0};                ///< attempts made: 1 + restarts used
   double position_error{0.0};     ///< |p_target - p(q)| [length unit]
   double orientation_error{0.0};  ///< angle of R_target R(q)^T [rad]
   bool converged() const { return status == IkStatus::kConverged; }
@@ -54,9 +55,10 @@ struct IkResult {
 /// 1963; Wampler 1986 and Nakamura & Hanafusa 1986 for damping near singularities): a step that
 /// lowers |e| is kept and lambda shrinks, otherwise it is retried with a larger lambda. Joint
 /// values are projected into their limits after every step (joints whose range spans a full turn
-/// are wrapped instead). An attempt that stalls ends early; the next one starts from a random
-/// joint vector drawn from `options.seed` and the attempt number, so equal inputs give equal
-/// results. In position-only mode e and J keep their first three rows.
+/// are wrapped instead); a joint held by its limit drops out of the step, which the others then
+/// make up for; no joint moves more than 1 rad per step. An attempt that stalls ends early; the
+/// next one starts from a random joint vector drawn from `options.seed` and the attempt number, so
+/// equal inputs give equal results. In position-only mode e and J keep their first three rows.
 ///
 /// \param robot the chain.
 /// \param T_world_tool_target the wanted tool pose [length unit]; its rotation must be
