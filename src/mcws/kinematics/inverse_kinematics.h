@@ -37,8 +37,8 @@ struct IkOptions {
 /// \brief Outcome of an IK solve.
 struct IkResult {
   IkStatus status{IkStatus::kNoSolution};
-  Eigen::VectorXd
-      q;  ///< the solution, or the best found (least weighted error) [rad | length unit]
+  /// The solution, or the best found (least weighted error) [rad | length unit].
+  Eigen::VectorXd q;
   int iterations{0};              ///< iterations over all attempts
   int attempts{0};                ///< attempts made: 1 + restarts used
   double position_error{0.0};     ///< |p_target - p(q)| [length unit]
