@@ -1,13 +1,11 @@
 #include "mcws/kinematics/forward_kinematics.h"
 
 #include <gtest/gtest.h>
-#include <yaml-cpp/yaml.h>
 
-#include <kdl/chain.hpp>
 #include <kdl/chainfksolverpos_recursive.hpp>
-#include <kdl/frames.hpp>
 #include <random>
 
+#include "kinematics/kdl_chain.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -75,58 +73,6 @@ TEST(ForwardKinematics, InspectionArmReproducesSeedPoseMatrix) {
 
 // ---- orocos-kdl as an independent oracle -------------------------------------------------------
 
-/// Builds a KDL chain straight from the D-H rows of a robot file, with KDL's own D-H frames, so
-/// that it shares no code with mcws's loader: segment 0 is the base; segment i (1..n) is joint i.
-KDL::Chain kdlChainFromFile(const std::string& path) {
-  const YAML::Node root = YAML::LoadFile(path);
-  const double angle = root["units"]["angle"].as<std::string>() == "deg" ? M_PI / 180.0 : 1.0;
-  auto pose = [&](const YAML::Node& node) {
-    if (!node) return KDL::Frame::Identity();
-    auto v = [&](const char* key, double scale) {
-      return node[key]
-                 ? KDL::Vector(node[key][0].as<double>() * scale, node[key][1].as<double>() * scale,
-                               node[key][2].as<double>() * scale)
-                 : KDL::Vector::Zero();
-    };
-    const KDL::Vector rpy = v("rpy", angle);
-    return KDL::Frame(KDL::Rotation::RPY(rpy.x(), rpy.y(), rpy.z()), v("xyz", 1.0));
-  };
-  const bool modified = root["convention"].as<std::string>() == "modified";
-  const YAML::Node rows = root["joints"];
-  auto row = [&](std::size_t i) {
-    const YAML::Node r = rows[i];
-    const double theta = r["theta"] ? r["theta"].as<double>() * angle : 0.0;
-    const double a = r["a"].as<double>(), alpha = r["alpha"].as<double>() * angle;
-    const double d = r["d"].as<double>();
-    return modified ? KDL::Frame::DH_Craig1989(a, alpha, d, theta)
-                    : KDL::Frame::DH(a, alpha, d, theta);
-  };
-  KDL::Chain chain;
-  // Standard D-H: joint motion, then the row's frame. Modified: the row's frame, then the motion,
-  // so each row's frame ends the previous segment.
-  chain.addSegment(KDL::Segment("base", KDL::Joint(KDL::Joint::None),
-                                modified ? pose(root["base"]) * row(0) : pose(root["base"])));
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const bool revolute = rows[i]["type"].as<std::string>() == "revolute";
-    const KDL::Joint joint(rows[i]["name"].as<std::string>(),
-                           revolute ? KDL::Joint::RotZ : KDL::Joint::TransZ);
-    const KDL::Frame tip =
-        modified ? (i + 1 < rows.size() ? row(i + 1) : KDL::Frame::Identity()) : row(i);
-    chain.addSegment(KDL::Segment(rows[i]["name"].as<std::string>(), joint, tip));
-  }
-  chain.addSegment(KDL::Segment("tool", KDL::Joint(KDL::Joint::None), pose(root["tool"])));
-  return chain;
-}
-
-Eigen::Matrix4d toEigen(const KDL::Frame& F) {
-  Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) M(r, c) = F.M(r, c);
-    M(r, 3) = F.p[r];
-  }
-  return M;
-}
-
 /// Largest entry-wise difference, translations divided by `length` so the figure is relative.
 double poseDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B, double length) {
   const Eigen::Matrix4d D = A - B;
@@ -136,7 +82,7 @@ double poseDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B, double
 
 void expectMatchesKdl(const std::string& path) {
   const Robot robot = loadRobot(path);
-  const KDL::Chain chain = kdlChainFromFile(path);
+  const KDL::Chain chain = test::kdlChainFromFile(path);
   ASSERT_EQ(static_cast<int>(chain.getNrOfJoints()), robot.dof());
   KDL::ChainFkSolverPos_recursive solver(chain);
   const double length = reach(robot);
@@ -148,14 +94,15 @@ void expectMatchesKdl(const std::string& path) {
     const ChainPoses poses = chainPoses(robot, q);
     KDL::Frame F;
     ASSERT_GE(solver.JntToCart(q_kdl, F), 0);
-    ASSERT_LT(poseDifference(poses.T_world_tool.matrix(), toEigen(F), length), kRelativeTolerance)
+    ASSERT_LT(poseDifference(poses.T_world_tool.matrix(), test::toEigen(F), length),
+              kRelativeTolerance)
         << path << " tool, q = " << q.transpose();
     ASSERT_NEAR((toolPose(robot, q).matrix() - poses.T_world_tool.matrix()).norm(), 0.0, 1e-9);
     for (int i = 0; i <= robot.dof(); ++i) {  // frame of joint i+1 = end of KDL segment i
       ASSERT_GE(solver.JntToCart(q_kdl, F, i + 1), 0);
       const Eigen::Isometry3d mine =
           i < robot.dof() ? poses.T_world_joint[i] : poses.T_world_flange;
-      ASSERT_LT(poseDifference(mine.matrix(), toEigen(F), length), kRelativeTolerance)
+      ASSERT_LT(poseDifference(mine.matrix(), test::toEigen(F), length), kRelativeTolerance)
           << path << " frame " << i << ", q = " << q.transpose();
     }
   }

@@ -1,0 +1,102 @@
+#include "mcws/kinematics/jacobian.h"
+
+#include <cmath>
+
+namespace mcws {
+namespace {
+
+/// A rotation A with A * z = axis (axis: unit vector).
+Eigen::Matrix3d rotationTakingZTo(const Eigen::Vector3d& axis) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
+}
+
+}  // namespace
+
+KinematicChain::KinematicChain(const Robot& robot) {
+  // Joint i's motion about / along its axis is A_i Z(q_i) A_i^T with A_i z = axis_i, so
+  // G_0 = T_world_base P_0 A_0, G_i = A_{i-1}^T P_i A_i, G_n = A_{n-1}^T T_last_flange
+  // T_flange_tool (P_i = joints[i].T_parent_joint).
+  fixed_.reserve(robot.joints.size() + 1);
+  revolute_.reserve(robot.joints.size());
+  Eigen::Isometry3d before = robot.T_world_base;  // what stands left of P_i
+  for (const Joint& joint : robot.joints) {
+    const Eigen::Matrix3d A = joint.axis == Eigen::Vector3d::UnitZ()
+                                  ? Eigen::Matrix3d::Identity()
+                                  : rotationTakingZTo(joint.axis.normalized());
+    const Eigen::Isometry3d G = before * joint.T_parent_joint;
+    fixed_.push_back({G.linear() * A, G.translation()});
+    revolute_.push_back(joint.type == JointType::kRevolute);
+    before = Eigen::Isometry3d(A.transpose());
+  }
+  const Eigen::Isometry3d G = before * robot.T_last_flange * robot.T_flange_tool;
+  fixed_.push_back({G.linear(), G.translation()});
+}
+
+Eigen::Isometry3d KinematicChain::toolPose(const double* q) const {
+  Eigen::Matrix3d R = fixed_[0].R;
+  Eigen::Vector3d p = fixed_[0].p;
+  for (int i = 0; i < dof(); ++i) {
+    if (revolute_[i]) {
+      const double c = std::cos(q[i]), s = std::sin(q[i]);
+      const Eigen::Vector3d x = R.col(0);
+      R.col(0) = c * x + s * R.col(1);
+      R.col(1) = c * R.col(1) - s * x;
+    } else {
+      p += q[i] * R.col(2);
+    }
+    const Fixed& G = fixed_[i + 1];
+    p += R * G.p;
+    R = R * G.R;
+  }
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R;
+  T.translation() = p;
+  return T;
+}
+
+void KinematicChain::toolPoseAndJacobian(const double* q, Eigen::Matrix3d& R_world_tool,
+                                         Eigen::Vector3d& p_world_tool, double* J) const {
+  Eigen::Matrix3d R = fixed_[0].R;
+  Eigen::Vector3d p = fixed_[0].p;
+  for (int i = 0; i < dof(); ++i) {
+    // Joint i's axis is z of the current frame, its origin p (before a prismatic motion; any
+    // point on the axis serves). Park them in column i, finished once the tool point is known.
+    Eigen::Map<Eigen::Matrix<double, 6, 1>> column(J + 6 * i);
+    column.head<3>() = p;
+    column.tail<3>() = R.col(2);
+    if (revolute_[i]) {
+      const double c = std::cos(q[i]), s = std::sin(q[i]);
+      const Eigen::Vector3d x = R.col(0);
+      R.col(0) = c * x + s * R.col(1);
+      R.col(1) = c * R.col(1) - s * x;
+    } else {
+      p += q[i] * R.col(2);
+    }
+    const Fixed& G = fixed_[i + 1];
+    p += R * G.p;
+    R = R * G.R;
+  }
+  for (int i = 0; i < dof(); ++i) {
+    double* column = J + 6 * i;
+    Eigen::Map<Eigen::Vector3d> linear(column), angular(column + 3);
+    if (revolute_[i]) {
+      linear = angular.cross(p - linear);
+    } else {
+      linear = angular;
+      angular.setZero();
+    }
+  }
+  R_world_tool = R;
+  p_world_tool = p;
+}
+
+Jacobian toolJacobian(const Robot& robot, const Eigen::VectorXd& q) {
+  robot.checkSize(q);
+  Jacobian J(6, robot.dof());
+  Eigen::Matrix3d R;
+  Eigen::Vector3d p;
+  KinematicChain(robot).toolPoseAndJacobian(q.data(), R, p, J.data());
+  return J;
+}
+
+}  // namespace mcws
