@@ -50,19 +50,39 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
     for (int k = 0; k < dimensions; ++k) measure *= std::max(extent[k], floor);
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);
   }
-  std::vector<std::uint64_t> keys(n);
+  std::vector<std::uint64_t> keys;
+  std::vector<char> seen;
   for (int round = 0; round < 2; ++round) {
     const double cell = 2.0 * h;  // 2^d cells of spacing h: 4 points (2-D) or 8 (3-D) each
-    for (std::size_t i = 0; i < n; ++i) {
-      std::uint64_t key = 0;
-      for (int k = 0; k < dimensions; ++k) {
-        const auto c = static_cast<std::uint64_t>((projected[i].data[k] - min.data[k]) / cell);
-        key = key * 2097152u + std::min<std::uint64_t>(c, 2097151u);  // 21 bits per axis
+    auto coordinate = [&](std::size_t i, int k) {
+      const auto c = static_cast<std::uint64_t>((projected[i].data[k] - min.data[k]) / cell);
+      return std::min<std::uint64_t>(c, 2097151u);  // 21 bits per axis
+    };
+    // Occupied cells counted in a table when the box holds few enough cells, else by sorting.
+    double cells = 1.0;
+    for (int k = 0; k < dimensions; ++k) cells *= extent[k] / cell + 2.0;
+    double occupied = 0.0;
+    if (cells <= 16.0 * static_cast<double>(n)) {
+      std::uint64_t size[3] = {1, 1, 1};
+      for (int k = 0; k < dimensions; ++k)
+        size[k] = static_cast<std::uint64_t>(extent[k] / cell) + 2;
+      seen.assign(size[0] * size[1] * size[2], 0);
+      for (std::size_t i = 0; i < n; ++i) {
+        std::uint64_t key = 0;
+        for (int k = dimensions - 1; k >= 0; --k) key = key * size[k] + coordinate(i, k);
+        occupied += !seen[key];
+        seen[key] = 1;
       }
-      keys[i] = key;
+    } else {
+      keys.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        std::uint64_t key = 0;
+        for (int k = 0; k < dimensions; ++k) key = key * 2097152u + coordinate(i, k);
+        keys[i] = key;
+      }
+      __gnu_parallel::sort(keys.begin(), keys.end());
+      occupied = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
     }
-    __gnu_parallel::sort(keys.begin(), keys.end());
-    const auto occupied = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
     const double measure = occupied * std::pow(cell, dimensions);
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);
   }

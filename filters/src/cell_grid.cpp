@@ -177,11 +177,14 @@ bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
   const auto limit = std::min(static_cast<float>(static_cast<double>(r_min) * r_min),
                               static_cast<float>(reach * reach * (1.0 - 1e-5)));
   int near = 0;
-  subset.clear();
-  for (const auto& c : candidates_) {
+  subset.resize(candidates_.size());
+  std::size_t m = 0;
+  for (const auto& c : candidates_) {  // branch-free: write every candidate, keep those within
     near += c.d2 < inner;
-    if (c.d2 < limit) subset.push_back(c);
+    subset[m] = c;
+    m += c.d2 < limit;
   }
+  subset.resize(m);
   return near < count;
 }
 

@@ -43,6 +43,11 @@ class CellGrid {
   double cellSize() const { return cell_; }
   /// \brief Point indices in cell order (rows of cells, x fastest): a spatially sorted order.
   const std::vector<pcl::index_t>& order() const { return index_; }
+  /// \brief After the cloud was reordered into order() (point k of the new cloud is point
+  /// order()[k] of the old one), renumbers the grid to match without rebuilding it.
+  void renumberInCellOrder() {
+    for (std::size_t k = 0; k < index_.size(); ++k) index_[k] = static_cast<pcl::index_t>(k);
+  }
   /// \brief Number of points in the cell holding `p`.
   std::size_t population(const pcl::PointXYZ& p) const;
 

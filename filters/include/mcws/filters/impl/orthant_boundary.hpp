@@ -457,7 +457,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
       }
       for (auto& position : position_of) position = rank[position];
       projected = sorted;
-      grid = std::make_unique<CellGrid>(*projected, dimensions, grid->cellSize());
+      grid->renumberInCellOrder();
       test.cloud = projected.get();
     }
     const double expected = used_spacing_ > 0.0
