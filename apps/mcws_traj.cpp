@@ -6,9 +6,12 @@
 #include <optional>
 
 #include "common/app.h"
+#include "common/pose_args.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/kinematics/robot_urdf.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "mcws/trajectory/cartesian_line.h"
 #include "mcws/trajectory/joint_trajectory.h"
 #include "mcws/trajectory/trajectory_io.h"
 
@@ -58,12 +61,17 @@ int main(int argc, char** argv) {
         "through the via points, reached at equal intervals, at rest at both ends. Writes CSV:\n"
         "t, joint positions, velocities (_vel), accelerations (_acc), tool x y z. Joint values\n"
         "in rad and the robot's length unit, time in s. The whole move is checked against the\n"
-        "joint limits (and --max-velocity).");
+        "joint limits (and --max-velocity). With --to-pose instead of --to, the tool moves on a\n"
+        "straight line (orientation by slerp, timed by the profile) from its pose at --from to\n"
+        "that pose, each sample solved by IK seeded with the previous one; a sample without a\n"
+        "solution, or a joint jump (another IK branch), stops it with an error naming the time.");
     cli.add()("robot", app::po::value<std::string>(), "robot description (.yaml or .urdf)")(
         "root", app::po::value<std::string>(), "URDF: first link of the chain (default: root)")(
         "tip", app::po::value<std::string>(), "URDF: last link of the chain (default: the leaf)")(
         "from", app::po::value<std::string>(), "start joint values")(
         "to", app::po::value<std::string>(), "goal joint values")(
+        "to-pose", app::po::value<std::string>(),
+        "goal tool pose \"x y z roll pitch yaw\" [length unit, rad]: a straight-line move")(
         "via", app::po::value<std::vector<std::string>>(), "via joint values (repeatable)")(
         "duration", app::po::value<std::string>(), "duration of the move [s]")(
         "rate", app::po::value<std::string>(), "samples per second [Hz]")(
@@ -95,14 +103,21 @@ int main(int argc, char** argv) {
     }
     const std::string output = cli.required("output"), plot = cli.text("plot", "");
     if (plot == output) throw app::UsageError("--plot: must differ from --output");
-    const std::string from_text = cli.required("from"), to_text = cli.required("to");
+    const bool line = cli.has("to-pose");
+    if (line == cli.has("to")) throw app::UsageError("give one of --to and --to-pose");
+    if (line && !vias.empty()) throw app::UsageError("--via does not apply to --to-pose");
+    if (line && cli.has("max-velocity"))
+      throw app::UsageError("--max-velocity does not apply to --to-pose");
+    const std::string from_text = cli.required("from"),
+                      to_text = cli.required(line ? "to-pose" : "to");
 
     const Robot robot = loadTrajectoryRobot(cli);
     std::vector<Eigen::VectorXd> points{jointVector(robot, from_text, "from")};
     for (std::size_t k = 0; k < vias.size(); ++k) {
       points.push_back(jointVector(robot, vias[k], "via " + std::to_string(k + 1)));
     }
-    points.push_back(jointVector(robot, to_text, "to"));
+    const Eigen::Isometry3d goal = line ? app::parsePose(to_text, "to-pose") : Eigen::Isometry3d();
+    if (!line) points.push_back(jointVector(robot, to_text, "to"));
     Eigen::VectorXd max_velocity;
     if (cli.has("max-velocity")) {
       max_velocity = app::parseNumberList(cli.required("max-velocity"), "max-velocity");
@@ -117,18 +132,36 @@ int main(int argc, char** argv) {
     if (!plot.empty()) io::checkOutputPath(plot);
 
     const TimeProfile profile = profileFromName(profile_name);
-    const JointTrajectory trajectory =
-        vias.empty() ? pointToPoint(points.front(), points.back(), duration, profile)
-                     : cubicSpline(points, evenTimes(points.size(), duration));
-    checkTrajectoryLimits(robot, trajectory, max_velocity);
-    const SampledTrajectory samples = sampleTrajectory(trajectory, rate);
+    SampledTrajectory samples;
+    if (line) {
+      IkOptions ik_options;
+      ik_options.restarts = 2;  // seeded with the previous sample: a restart means a new branch
+      const IkFunction ik = [&](const Eigen::Isometry3d& T, const Eigen::VectorXd& seed) {
+        const IkResult r = solveIk(robot, T, seed, ik_options);
+        return r.converged() ? std::optional<Eigen::VectorXd>(r.q) : std::nullopt;
+      };
+      CartesianLineOptions options;
+      options.duration = duration;
+      options.rate = rate;
+      options.profile = profile;
+      CartesianLineResult result = cartesianLine(robot, points.front(), goal, ik, options);
+      if (result.status != CartesianLineStatus::kSuccess) throw Error(result.message);
+      samples = std::move(result.trajectory);
+    } else {
+      const JointTrajectory trajectory =
+          vias.empty() ? pointToPoint(points.front(), points.back(), duration, profile)
+                       : cubicSpline(points, evenTimes(points.size(), duration));
+      checkTrajectoryLimits(robot, trajectory, max_velocity);
+      samples = sampleTrajectory(trajectory, rate);
+    }
 
     const std::string csv = trajectoryCsv(robot, samples);
     io::AtomicFile csv_file(output);
     csv_file.write(csv.data(), csv.size());
     std::optional<io::AtomicFile> png_file;
     if (!plot.empty()) {
-      const std::string shape = vias.empty()
+      const std::string shape = line ? "straight tool line, " + profile_name + " timing"
+                                : vias.empty()
                                     ? profile_name + " move"
                                     : "cubic spline through " + std::to_string(vias.size()) +
                                           (vias.size() == 1 ? " via point" : " via points");
@@ -148,7 +181,9 @@ int main(int argc, char** argv) {
       nlohmann::json out;
       out["robot"] = robot.name;
       out["unit"] = unitName(robot.length_unit);
-      out["profile"] = vias.empty() ? profile_name : "cubic spline";
+      out["profile"] = line           ? "line, " + profile_name
+                       : vias.empty() ? profile_name
+                                      : "cubic spline";
       out["duration"] = duration;
       out["rate"] = rate;
       out["samples"] = samples.size();

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -209,6 +210,33 @@ TEST(FkApp, MalformedUrdfIsOneLineNamingTheFile) {
   test::expectToolFailure(kFk, "--robot " + bad + " --q 0", 1, bad + ": malformed URDF: ", out);
 }
 
+TEST(TrajApp, StraightLineToAPoseThroughIk) {
+  // The goal is the tool pose at q1 (roll-pitch-yaw worked out from mcws_fk's matrix): the move
+  // must end at q1 (the IK is seeded along the way), and the tool path must be the straight
+  // segment, whose length is the distance between the two positions (closed form).
+  const double q1[6] = {0.35, 0.45, 0.55, 0.25, 0.35, 0.15};
+  const Eigen::Vector3d p0(529.9365176804231, 820.9413151411586, -382.00792828505695);
+  const Eigen::Vector3d p1(457.999699196655, 826.8639683380666, -409.74976869681166);
+  test::TempDir dir;
+  const std::string out = dir.file("line.csv");
+  const test::RunResult r =
+      test::run(kTraj + kInspection +
+                " --from '0.3 0.4 0.5 0.2 0.3 0.1' --to-pose '457.999699196655 826.8639683380666 "
+                "-409.74976869681166 -0.5018809252268998 1.190518143712866 1.501644052136167' "
+                "--duration 2 --rate 50 --json --output " +
+                out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["samples"], 101);
+  EXPECT_NEAR(summary["tool_path_length"].get<double>(), (p1 - p0).norm(), 1e-6);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(summary["tool_start"][k].get<double>(), p0[k], 1e-6);
+    EXPECT_NEAR(summary["tool_end"][k].get<double>(), p1[k], 1e-4);
+  }
+  const Csv csv = readCsv(out);
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(csv.rows.back()[1 + j], q1[j], 1e-6) << j;
+}
+
 TEST(TrajApp, BadInput) {
   struct Case {
     std::string args;
@@ -220,6 +248,12 @@ TEST(TrajApp, BadInput) {
   const Case cases[] = {
       {kInspection + move + " --duration 0 --rate 100", 2,
        "--duration: 0 s is not a positive number"},
+      {kInspection + move + " --to-pose '0 0 0 0 0 0'" + timing, 2,
+       "give one of --to and --to-pose"},
+      {kInspection + " --from '0 0 0 0 0 0' --to-pose '1 2 3 0 0 0' --via '0 0 0 0 0 0'" + timing,
+       2, "--via does not apply to --to-pose"},
+      {kInspection + " --from '0 0 0 0 0 0' --to-pose '1 2 nan 0 0 0'" + timing, 2, "--to-pose"},
+      {kInspection + " --from '0 0 0 0 0 0' --to-pose '100000 0 0 0 0 0'" + timing, 1, "t = "},
       {kInspection + move + " --duration -2 --rate 100", 2,
        "--duration: -2 s is not a positive number"},
       {kInspection + move + " --duration nan --rate 100", 2,
