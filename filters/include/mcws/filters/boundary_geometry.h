@@ -52,6 +52,32 @@ void projectToPlane(const pcl::PointCloud<PointT>& cloud, const pcl::Indices& in
   }
 }
 
+/// \brief A boundary filter's output, in input order. `source` lists the input indices that were
+/// projected (the finite points, in the order of `input`); projected point k is on the boundary
+/// when `is_boundary(k)`. Kept: boundary != negative; input points not in `source` (non-finite)
+/// are always removed; `removed` is filled only when `extract_removed`.
+template <typename IsBoundary>
+void splitByBoundary(const pcl::Indices& input, const pcl::Indices& source, IsBoundary is_boundary,
+                     bool negative, bool extract_removed, pcl::Indices& kept,
+                     pcl::Indices& removed) {
+  kept.clear();
+  kept.reserve(input.size());
+  removed.clear();
+  std::size_t next = 0;  // walks `source`
+  for (const auto index : input) {
+    bool keep = false;
+    if (next < source.size() && source[next] == index) {
+      keep = is_boundary(next) != negative;
+      ++next;
+    }
+    if (keep) {
+      kept.push_back(index);
+    } else if (extract_removed) {
+      removed.push_back(index);
+    }
+  }
+}
+
 /// \brief Mean point spacing h [length unit] of a projected cloud: (measure / n)^(1/d), with the
 /// region's area (d = 2) or volume (d = 3) estimated by occupied cells of a grid whose cells hold
 /// about 8 points each. For n points uniform in a region of area A this is sqrt(A / n).

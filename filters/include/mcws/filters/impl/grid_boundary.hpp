@@ -139,23 +139,9 @@ void GridBoundary<PointT>::applyFilter(pcl::Indices& indices) {
     boundary[nearest] = 1;
   }
 
-  // Output in input order: kept = boundary != negative; non-finite points are always removed.
-  indices.clear();
-  indices.reserve(indices_->size());
-  removed_indices_->clear();
-  std::size_t next = 0;  // walks `source`, which is in the order of *indices_
-  for (const auto index : *indices_) {
-    bool keep = false;
-    if (next < source.size() && source[next] == index) {
-      keep = (boundary[next] != 0) != negative_;
-      ++next;
-    }
-    if (keep) {
-      indices.push_back(index);
-    } else if (extract_removed_indices_) {
-      removed_indices_->push_back(index);
-    }
-  }
+  splitByBoundary(
+      *indices_, source, [&](std::size_t k) { return boundary[k] != 0; }, negative_,
+      extract_removed_indices_, indices, *removed_indices_);
 }
 
 }  // namespace mcws
