@@ -154,70 +154,86 @@ inline bool hasEmptySector(const std::vector<Neighbour>& neighbours, const Secto
   return apart(directions.back(), directions.front());
 }
 
+/// Sign code of a direction: bits x > 0, x < 0, y > 0, y < 0, z > 0, z < 0 (0 for the origin).
+inline unsigned signCode(float x, float y, float z) {
+  return unsigned{x > 0} | unsigned{x < 0} << 1 | unsigned{y > 0} << 2 | unsigned{y < 0} << 3 |
+         unsigned{z > 0} << 4 | unsigned{z < 0} << 5;
+}
+
+/// For every sign code, the bit of the orthant holding such directions, 1 << quadrant(x, y) (2-D,
+/// z ignored) or 1 << octant(x, y, z) (3-D), and 0 for the origin: p itself or a duplicate falls
+/// in no orthant. A table look-up instead of the branches of quadrant() and octant(), whose
+/// outcome is random from one neighbour to the next.
+struct OrthantBits {
+  std::uint8_t bit[2][64];  // [dimensions - 2][sign code]
+  OrthantBits() : bit{} {
+    for (unsigned code = 0; code < 64; ++code) {
+      auto sign = [code](unsigned shift) {
+        return static_cast<float>(static_cast<int>((code >> shift) & 1u) -
+                                  static_cast<int>((code >> (shift + 1)) & 1u));
+      };
+      const float x = sign(0), y = sign(2), z = sign(4);
+      if (x != 0 || y != 0) bit[0][code] = static_cast<std::uint8_t>(1u << quadrant(x, y));
+      if (x != 0 || y != 0 || z != 0) bit[1][code] = static_cast<std::uint8_t>(1u << octant(x, y, z));
+    }
+  }
+};
+inline const std::uint8_t* orthantBits(int dimensions) {
+  static const OrthantBits table;
+  return table.bit[dimensions - 2];
+}
+
 /// The orthant test of one point against its neighbours (see OrthantBoundary).
 /// \param frames bit 1: axis frame, bit 2: outward frame.
 inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimensions,
                             unsigned frames) {
   const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
-  bool use_axis = frames & 1u;
-  bool use_outward = frames & 2u;
-  Eigen::Matrix3f E = Eigen::Matrix3f::Identity();  // rows: the outward frame's axes
-  if (use_outward) {
-    // The centroid's offset from p, summed as offsets so that far from the origin no precision
-    // is lost; "symmetric" is judged against the neighbourhood's own size.
-    // Summed in double, so that the order of the neighbours (tree or grid) does not matter.
-    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    float size = 0.0f;
-    for (const auto& q : neighbours) {
-      const Eigen::Vector3f v(q.x, q.y, q.z);
-      offset += v.cast<double>();
-      size = std::max(size, v.norm());
-    }
-    Eigen::Vector3f n =
-        (-offset / static_cast<double>(std::max<std::size_t>(1, neighbours.size()))).cast<float>();
-    if (dimensions == 2) n.z() = 0;
-    const float length = n.norm();
-    if (!(length > 1e-6f * size)) {
-      use_outward = false;  // no outward direction: a symmetric neighbourhood is interior
-    } else {
-      n /= length;
-      if (dimensions == 2) {
-        const Eigen::Vector3f a(-n.y(), n.x(), 0.0f);
-        E.row(0) = (n + a) / std::sqrt(2.0f);
-        E.row(1) = (n - a) / std::sqrt(2.0f);
-      } else {
-        // e_k = n / sqrt(3) + sqrt(2/3) (cos t_k a + sin t_k b), t_k = 0, 120, 240 degrees:
-        // orthonormal, and n is the diagonal of the first octant.
-        const Eigen::Vector3f a = n.unitOrthogonal();
-        const Eigen::Vector3f b = n.cross(a);
-        const float s = std::sqrt(2.0f / 3.0f), c = 1.0f / std::sqrt(3.0f);
-        E.row(0) = c * n + s * a;
-        E.row(1) = c * n + s * (-0.5f * a + 0.8660254f * b);
-        E.row(2) = c * n + s * (-0.5f * a - 0.8660254f * b);
-      }
-    }
-  }
-  const bool alone = std::all_of(neighbours.begin(), neighbours.end(), [](const Neighbour& q) {
-    return q.x == 0.0f && q.y == 0.0f && q.z == 0.0f;  // the search returns p itself
-  });
-  if (alone) return true;  // every orthant is empty
-  if (!use_axis && !use_outward) return false;
-  unsigned axis_mask = use_axis ? 0u : full;
-  unsigned outward_mask = use_outward ? 0u : full;
+  const std::uint8_t* bits = orthantBits(dimensions);
+  // One pass for the axis frame's orthants and what the outward frame needs: the centroid's offset
+  // from p, summed as offsets so that far from the origin no precision is lost, and in double so
+  // that the order of the neighbours (tree or grid) does not matter; and the neighbourhood's size,
+  // against which "symmetric" is judged.
+  unsigned axis_mask = 0;
+  double sx = 0.0, sy = 0.0, sz = 0.0;
+  float size2 = 0.0f;
   for (const auto& q : neighbours) {
-    const Eigen::Vector3f v(q.x, q.y, q.z);
-    if (v.isZero(0.0f)) continue;  // p itself, or a duplicate
-    if (dimensions == 2) {
-      if (use_axis) axis_mask |= 1u << quadrant(v.x(), v.y());
-      if (use_outward) outward_mask |= 1u << quadrant(E.row(0).dot(v), E.row(1).dot(v));
-    } else {
-      if (use_axis) axis_mask |= 1u << octant(v.x(), v.y(), v.z());
-      if (use_outward) {
-        const Eigen::Vector3f w = E * v;
-        outward_mask |= 1u << octant(w.x(), w.y(), w.z());
-      }
-    }
-    if (axis_mask == full && outward_mask == full) return false;
+    axis_mask |= bits[signCode(q.x, q.y, q.z)];
+    sx += q.x;
+    sy += q.y;
+    sz += q.z;
+    size2 = std::max(size2, q.d2);
+  }
+  if (axis_mask == 0) return true;  // no neighbour apart from p: every orthant is empty
+  if ((frames & 1u) && axis_mask != full) return true;
+  if (!(frames & 2u)) return false;
+  const double count = static_cast<double>(neighbours.size());
+  Eigen::Vector3f n(static_cast<float>(-sx / count), static_cast<float>(-sy / count),
+                    static_cast<float>(-sz / count));
+  if (dimensions == 2) n.z() = 0;
+  const float length = n.norm();
+  // No outward direction: a symmetric neighbourhood is interior (the axis frame, if on, is full).
+  if (!(length > 1e-6f * std::sqrt(size2))) return false;
+  n /= length;
+  Eigen::Matrix3f E = Eigen::Matrix3f::Identity();  // rows: the outward frame's axes
+  if (dimensions == 2) {
+    const Eigen::Vector3f a(-n.y(), n.x(), 0.0f);
+    E.row(0) = (n + a) / std::sqrt(2.0f);
+    E.row(1) = (n - a) / std::sqrt(2.0f);
+  } else {
+    // e_k = n / sqrt(3) + sqrt(2/3) (cos t_k a + sin t_k b), t_k = 0, 120, 240 degrees:
+    // orthonormal, and n is the diagonal of the first octant.
+    const Eigen::Vector3f a = n.unitOrthogonal();
+    const Eigen::Vector3f b = n.cross(a);
+    const float s = std::sqrt(2.0f / 3.0f), c = 1.0f / std::sqrt(3.0f);
+    E.row(0) = c * n + s * a;
+    E.row(1) = c * n + s * (-0.5f * a + 0.8660254f * b);
+    E.row(2) = c * n + s * (-0.5f * a - 0.8660254f * b);
+  }
+  unsigned outward_mask = 0;
+  for (const auto& q : neighbours) {
+    const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+    outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+    if (outward_mask == full) return false;
   }
   return true;
 }
