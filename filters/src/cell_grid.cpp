@@ -69,8 +69,8 @@ std::size_t CellGrid::population(const pcl::PointXYZ& p) const {
   return start_[c + 1] - start_[c];
 }
 
-void CellGrid::collect(const pcl::PointXYZ& p, double reach, std::vector<Neighbour>& out) const {
-  out.clear();
+void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) const {
+  out.size = 0;
   // The ball, widened for rounding, against the cells' extents [origin + c cell, + cell).
   const double r = reach * (1.0 + 1e-6) + cell_ * 1e-9;
   const Eigen::Vector3d q(p.x, p.y, dimensions_ == 3 ? p.z : 0.0f);
@@ -101,16 +101,22 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, std::vector<Neighbo
       const std::int64_t x0 = cellAt(q.x() - w, 0), x1 = cellAt(q.x() + w, 0);
       const std::int64_t row = (cz * counts_[1] + cy) * counts_[0];
       const std::uint32_t begin = start_[row + x0], end = start_[row + x1 + 1];
-      const std::size_t base = out.size();
-      out.resize(base + (end - begin));
-      Neighbour* dst = out.data() + base;
-      for (std::uint32_t s = begin; s < end; ++s, ++dst) {
+      const std::size_t base = out.size;
+      out.size += end - begin;
+      if (out.d2.size() < out.size) {
+        out.d2.resize(2 * out.size);
+        out.slot.resize(2 * out.size);
+      }
+      float* d2 = out.d2.data() + base;
+      std::uint32_t* slot = out.slot.data() + base;
+      for (std::uint32_t s = begin; s < end; ++s) {  // parallel arrays: a vectorised loop
         // q - p is exactly -(p - q), so the squares are FLANN's.
         const float dx = x_[s] - px, dy = y_[s] - py, dz = z_[s] - pz;
-        float d2 = dx * dx;
-        d2 += dy * dy;
-        d2 += dz * dz;
-        *dst = {dx, dy, dz, d2, index_[s]};
+        float d = dx * dx;
+        d += dy * dy;
+        d += dz * dz;
+        d2[s - begin] = d;
+        slot[s - begin] = s;
       }
     }
   }
@@ -136,13 +142,15 @@ bool CellGridSearch::kthDistance2(pcl::index_t i, int count, float& d2,
     // query's answer, a little enlarged, usually leaves a short list to select from (a hint
     // only: the answer does not depend on it).
     const auto limit = static_cast<float>(reach * reach * (1.0 - 1e-5));
+    const std::size_t n = candidates_.size;
+    const float* d2s = candidates_.d2.data();
+    if (smallest_.size() < n) smallest_.resize(n);
     std::size_t m = 0;
     for (const float bound : {std::min(limit, 2.0f * hint_), limit}) {
-      smallest_.resize(candidates_.size());
       m = 0;
-      for (const auto& c : candidates_) {
-        smallest_[m] = c.d2;
-        m += c.d2 < bound;
+      for (std::size_t k = 0; k < n; ++k) {
+        smallest_[m] = d2s[k];
+        m += d2s[k] < bound;
       }
       if (m >= static_cast<std::size_t>(count) || bound == limit) break;
     }
@@ -155,12 +163,9 @@ bool CellGridSearch::kthDistance2(pcl::index_t i, int count, float& d2,
     hint_ = d2;
     if (!nearest) return true;
     // The points themselves: those strictly closer, then ties at d2 up to `count`.
-    nearest->clear();
-    for (const auto& c : candidates_) {
-      if (c.d2 < d2) nearest->push_back(c);
-    }
-    for (const auto& c : candidates_) {
-      if (c.d2 == d2 && nearest->size() < static_cast<std::size_t>(count)) nearest->push_back(c);
+    within(i, d2, *nearest);
+    for (std::size_t k = 0; k < n && nearest->size() < static_cast<std::size_t>(count); ++k) {
+      if (d2s[k] == d2) nearest->push_back(grid_.neighbour(candidates_.slot[k], cloud_[i], d2));
     }
     return true;
   }
@@ -176,30 +181,33 @@ bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
   const float r_min = scale * std::sqrt(inner);
   const auto limit = std::min(static_cast<float>(static_cast<double>(r_min) * r_min),
                               static_cast<float>(reach * reach * (1.0 - 1e-5)));
-  int near = 0;
-  subset.resize(candidates_.size());
-  std::size_t m = 0;
-  for (const auto& c : candidates_) {  // branch-free: write every candidate, keep those within
-    near += c.d2 < inner;
-    subset[m] = c;
-    m += c.d2 < limit;
-  }
-  subset.resize(m);
-  return near < count;
+  return within(i, limit, subset, inner) < static_cast<std::size_t>(count);
 }
 
 bool CellGridSearch::radius(pcl::index_t i, double radius,
                             std::vector<CellGrid::Neighbour>& found) {
   if (!gather(i, radius)) return false;
-  const auto limit = static_cast<float>(radius * radius);  // as pcl::KdTreeFLANN::radiusSearch
-  found.resize(candidates_.size());
-  std::size_t m = 0;
-  for (const auto& c : candidates_) {
-    found[m] = c;
-    m += c.d2 < limit;
-  }
-  found.resize(m);
+  within(i, static_cast<float>(radius * radius), found);  // d^2 < float(r^2), as KdTreeFLANN
   return true;
+}
+
+std::size_t CellGridSearch::within(pcl::index_t i, float limit,
+                                   std::vector<CellGrid::Neighbour>& out, float count_below) {
+  // Branch-free: the slots of those within first, then their offsets.
+  const std::size_t n = candidates_.size;
+  if (kept_.size() < n) kept_.resize(n);
+  const float* d2s = candidates_.d2.data();
+  const std::uint32_t* slots = candidates_.slot.data();
+  std::size_t m = 0, below = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    kept_[m] = static_cast<std::uint32_t>(k);
+    m += d2s[k] < limit;
+    below += d2s[k] < count_below;
+  }
+  out.resize(m);
+  const pcl::PointXYZ& p = cloud_[i];
+  for (std::size_t k = 0; k < m; ++k) out[k] = grid_.neighbour(slots[kept_[k]], p, d2s[kept_[k]]);
+  return below;
 }
 
 }  // namespace mcws

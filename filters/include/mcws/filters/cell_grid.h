@@ -51,9 +51,24 @@ class CellGrid {
   /// \brief Number of points in the cell holding `p`.
   std::size_t population(const pcl::PointXYZ& p) const;
 
+  /// \brief Candidates of a search: slots (positions in cell order) and squared distances, in
+  /// parallel arrays of which the first `size` entries are in use (the arrays only grow).
+  struct Candidates {
+    std::vector<std::uint32_t> slot;
+    std::vector<float> d2;
+    std::size_t size{0};
+  };
+
   /// \brief Every point of the cells that meet the ball of radius `reach` [length unit] around p
-  /// (so at least every point within `reach`), with its offset and squared distance.
-  void collect(const pcl::PointXYZ& p, double reach, std::vector<Neighbour>& out) const;
+  /// (so at least every point within `reach`), with its squared distance.
+  void collect(const pcl::PointXYZ& p, double reach, Candidates& out) const;
+
+  /// \brief The point in `slot` as a neighbour of p (its squared distance from p is `d2`).
+  Neighbour neighbour(std::uint32_t slot, const pcl::PointXYZ& p, float d2) const {
+    // q - p is exactly -(p - q): these are the offsets whose squares collect() summed.
+    const float pz = dimensions_ == 3 ? p.z : 0.0f;
+    return {x_[slot] - p.x, y_[slot] - p.y, z_[slot] - pz, d2, index_[slot]};
+  }
 
  private:
   std::int64_t cellOf(const pcl::PointXYZ& p, int axis) const;
@@ -97,14 +112,19 @@ class CellGridSearch {
  private:
   /// Candidates of point i up to `reach` (false beyond max_reach_), kept for the next search.
   bool gather(pcl::index_t i, double reach);
+  /// The candidates with d^2 < `limit`, as neighbours of point i, into `out`; returns how many
+  /// candidates have d^2 < `count_below`.
+  std::size_t within(pcl::index_t i, float limit, std::vector<CellGrid::Neighbour>& out,
+                     float count_below = 0.0f);
 
   const CellGrid& grid_;
   const pcl::PointCloud<pcl::PointXYZ>& cloud_;
   double first_reach_, max_reach_;
   pcl::index_t point_{-1};
   double reach_{0.0};
-  std::vector<CellGrid::Neighbour> candidates_;
+  CellGrid::Candidates candidates_;
   std::vector<float> smallest_;
+  std::vector<std::uint32_t> kept_;
   float hint_{std::numeric_limits<float>::infinity()};
 };
 
