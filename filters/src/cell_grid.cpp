@@ -69,6 +69,27 @@ std::size_t CellGrid::population(const pcl::PointXYZ& p) const {
   return start_[c + 1] - start_[c];
 }
 
+namespace {
+
+/// Squared distances from (px, py, pz) of `length` points in parallel arrays, and their slots
+/// `first`, `first` + 1, ...: as FLANN's L2_Simple computes them (float, query minus point, summed
+/// x, y, z in that order; q - p is exactly -(p - q)). Arrays that do not overlap: a vectorised loop.
+void squaredDistances(const float* __restrict xs, const float* __restrict ys,
+                      const float* __restrict zs, std::uint32_t length, float px, float py,
+                      float pz, std::uint32_t first, float* __restrict d2,
+                      std::uint32_t* __restrict slot) {
+  for (std::uint32_t k = 0; k < length; ++k) {
+    const float dx = xs[k] - px, dy = ys[k] - py, dz = zs[k] - pz;
+    float d = dx * dx;
+    d += dy * dy;
+    d += dz * dz;
+    d2[k] = d;
+    slot[k] = first + k;
+  }
+}
+
+}  // namespace
+
 void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) const {
   out.size = 0;
   // The ball, widened for rounding, against the cells' extents [origin + c cell, + cell).
@@ -88,8 +109,7 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) co
     lo[k] = cellAt(q[k] - r, k);
     hi[k] = cellAt(q[k] + r, k);
   }
-  // Squared distances as FLANN's L2_Simple computes them: float, query minus point, summed
-  // x, y, z in that order (z is 0 - 0 in 2-D and adds nothing).
+  // In 2-D, z is 0 - 0 and adds nothing to the squared distances.
   const float px = p.x, py = p.y, pz = dimensions_ == 3 ? p.z : 0.0f;
   for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz) {
     const double gz = dimensions_ == 3 ? gapTo(cz, 2) : 0.0;
@@ -107,17 +127,8 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) co
         out.d2.resize(2 * out.size);
         out.slot.resize(2 * out.size);
       }
-      float* d2 = out.d2.data() + base;
-      std::uint32_t* slot = out.slot.data() + base;
-      for (std::uint32_t s = begin; s < end; ++s) {  // parallel arrays: a vectorised loop
-        // q - p is exactly -(p - q), so the squares are FLANN's.
-        const float dx = x_[s] - px, dy = y_[s] - py, dz = z_[s] - pz;
-        float d = dx * dx;
-        d += dy * dy;
-        d += dz * dz;
-        d2[s - begin] = d;
-        slot[s - begin] = s;
-      }
+      squaredDistances(x_.data() + begin, y_.data() + begin, z_.data() + begin, end - begin, px,
+                       py, pz, begin, out.d2.data() + base, out.slot.data() + base);
     }
   }
 }
