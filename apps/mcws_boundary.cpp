@@ -3,6 +3,7 @@
 // (4.1) and extremum (4.2) methods.
 #include <pcl/common/common.h>
 
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -46,6 +47,9 @@ void addFlags(app::CommandLine& cli) {
       "factor > 1 of each point's radius")(
       "min-gap", app::po::value<std::string>(),
       "orthant, 2-D: empty sector that makes a boundary point, 90..179 deg (default 92)")(
+      "hull-depth", app::po::value<std::string>(),
+      "orthant, 2-D: keep points less than t local spacings inside the convex hull of their "
+      "neighbourhood; 0 = off (default 1)")(
       "cell", app::po::value<std::string>(),
       "grid: cell side, extremum: column width dL [length unit] (default: from N and spacing)")(
       "gap", app::po::value<std::string>(),
@@ -94,6 +98,17 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   if (!(gap >= 90.0 && gap < 180.0))
     throw app::UsageError("--min-gap: must be in [90, 180), not " + cli.text("min-gap", ""));
   boundary->setMinimumGap(gap * M_PI / 180.0);
+  if (plane == BoundaryPlane::k3D && cli.has("hull-depth")) {
+    throw app::UsageError("--hull-depth works in a plane: give --plane xy, xz or yz");
+  }
+  if (plane != BoundaryPlane::k3D) {
+    const double depth = app::parseNumber(cli.text("hull-depth", "1"), "hull-depth");
+    if (!(depth >= 0.0 && std::isfinite(depth))) {
+      throw app::UsageError("--hull-depth: must be 0 (off) or positive, not " +
+                            cli.text("hull-depth", ""));
+    }
+    boundary->setHullDepth(depth);
+  }
   boundary->setNumberOfThreads(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
   boundary->setGridSearch(!cli.has("tree-search"));
   return {plane, boundary, [boundary] {
@@ -104,8 +119,8 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 
 Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   rejectFlags(cli, "grid",
-              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads", "gap",
-               "tree-search"});
+              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "hull-depth",
+               "threads", "gap", "tree-search"});
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(positive(cli, "cell"));
@@ -118,9 +133,9 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 }
 
 Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
-  rejectFlags(
-      cli, "extremum",
-      {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "threads", "tree-search"});
+  rejectFlags(cli, "extremum",
+              {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "hull-depth",
+               "threads", "tree-search"});
   if (plane == BoundaryPlane::k3D) {
     throw app::UsageError("--method extremum works in a plane: give --plane xy, xz or yz");
   }
@@ -177,10 +192,13 @@ int main(int argc, char** argv) {
         "Keeps the points on the boundary of the sampled region. --method orthant (default, seed\n"
         "000's test): a point is a boundary point when some quadrant (--plane) or octant (3-D)\n"
         "around it holds no neighbour within the radius; 2-D: in every rotation of the local\n"
-        "frame (a 90-degree gap between neighbours); 3-D: in the axis frame or in a frame centred\n"
-        "on the outward direction. By default each point's radius is twice the distance to its\n"
-        "k-th neighbour (k = 24 in 2-D, 16 in 3-D), which follows the density of joint-space\n"
-        "samples; --radius fixes it, --auto-radius takes c x the cloud's mean spacing.\n"
+        "frame (a 90-degree gap between neighbours), and then (--hull-depth) only those, and "
+        "their\n"
+        "neighbours, that lie less than a local spacing inside the convex hull of their\n"
+        "neighbourhood; 3-D: in the axis frame or in a frame centred on the outward direction.\n"
+        "By default each point's radius is twice the distance to its k-th neighbour (k = 24 in\n"
+        "2-D, 16 in 3-D), which follows the density of joint-space samples; --radius fixes it,\n"
+        "--auto-radius takes c x the cloud's mean spacing.\n"
         "--method grid (seed 000, 4.1): cells of side --cell; an occupied cell with an empty\n"
         "neighbour (8 in 2-D, 26 in 3-D) is a boundary cell, represented by its point nearest to\n"
         "the cell's mean. --method extremum (4.2, needs --plane): in columns of width --cell "

@@ -1,7 +1,8 @@
 // Boundary quality on the validation shapes: precision (share of reported points within two mean
 // spacings of the true boundary) and recall (share of the points within half a spacing of the
 // true boundary that are reported), mean over seeds, with the filter's time.
-// Usage: boundary_quality SHAPE N SEEDS [axis|outward|both] [auto-factor]
+// Usage: boundary_quality SHAPE N SEEDS [axis|outward|both|any] [auto-factor, or -k: adaptive]
+// Environment: GAP (degrees, the any-rotation test's sector), HULL (the hull depth t, 2-D).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
                      : frames == "any"     ? 4u
                                            : 0u);
     if (std::getenv("GAP")) filter.setMinimumGap(std::atof(std::getenv("GAP")) * M_PI / 180.0);
+    if (std::getenv("HULL")) filter.setHullDepth(std::atof(std::getenv("HULL")));
     pcl::Indices kept;
     const auto start = std::chrono::steady_clock::now();
     filter.filter(kept);

@@ -73,7 +73,8 @@ namespace {
 
 /// Squared distances from (px, py, pz) of `length` points in parallel arrays, and their slots
 /// `first`, `first` + 1, ...: as FLANN's L2_Simple computes them (float, query minus point, summed
-/// x, y, z in that order; q - p is exactly -(p - q)). Arrays that do not overlap: a vectorised loop.
+/// x, y, z in that order; q - p is exactly -(p - q)). Arrays that do not overlap: a vectorised
+/// loop.
 void squaredDistances(const float* __restrict xs, const float* __restrict ys,
                       const float* __restrict zs, std::uint32_t length, float px, float py,
                       float pz, std::uint32_t first, float* __restrict d2,
@@ -127,8 +128,8 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) co
         out.d2.resize(2 * out.size);
         out.slot.resize(2 * out.size);
       }
-      squaredDistances(x_.data() + begin, y_.data() + begin, z_.data() + begin, end - begin, px,
-                       py, pz, begin, out.d2.data() + base, out.slot.data() + base);
+      squaredDistances(x_.data() + begin, y_.data() + begin, z_.data() + begin, end - begin, px, py,
+                       pz, begin, out.d2.data() + base, out.slot.data() + base);
     }
   }
 }

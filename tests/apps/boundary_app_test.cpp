@@ -54,7 +54,7 @@ TEST_F(BoundaryApp, HelpExitsZero) {
   EXPECT_EQ(r.exit_code, 0);
   for (const char* flag :
        {"--input", "--output", "--interior", "--plane", "--radius", "--auto-radius", "--adaptive",
-        "--outer-radius", "--min-gap", "--json", "--method", "--cell", "--gap"}) {
+        "--outer-radius", "--min-gap", "--hull-depth", "--json", "--method", "--cell", "--gap"}) {
     EXPECT_THAT(r.out, HasSubstr(flag));
   }
 }
@@ -67,6 +67,14 @@ TEST_F(BoundaryApp, BadFlags) {
   expectFailure(io + " --plane xy --radius 0.1x", 2, "--radius: '0.1x' is not a finite number");
   expectFailure(io + " --plane xy --radius 0.1 --adaptive 8", 2, "give at most one of");
   expectFailure(io + " --plane xy --min-gap 45", 2, "--min-gap: must be in [90, 180)");
+  expectFailure(io + " --plane xy --hull-depth=-1", 2,
+                "--hull-depth: must be 0 (off) or positive, not -1");
+  expectFailure(io + " --plane xy --hull-depth nan", 2,
+                "--hull-depth: 'nan' is not a finite number");
+  expectFailure("--input " + ball_ + " --output " + out() + " --hull-depth 1", 2,
+                "--hull-depth works in a plane: give --plane xy, xz or yz");
+  expectFailure(io + " --plane xy --method grid --hull-depth 1", 2,
+                "--hull-depth does not apply to --method grid");
   expectFailure(io + " --plane xy --radius 0.1 --outer-radius 0.05", 1,
                 "outer radius 0.05 is smaller than radius 0.1");
   expectFailure("--input " + disk_, 2, "missing --output");

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
 #include "mcws/filters/impl/orthant_boundary.hpp"
 #include "mcws/workspace/sampler.h"
@@ -60,6 +61,32 @@ TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheRimOfASquareGridInEveryFrame) {
     pcl::Indices kept;
     filter.filter(kept);
     EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << "frames " << frames;
+    for (const auto i : kept) {
+      const auto& p = (*cloud)[i];
+      EXPECT_TRUE(onGridRim(pcl::PointXYZ(p.x, p.y, p.z), n, 2)) << p.x << "," << p.y;
+    }
+  }
+}
+
+TYPED_TEST(OrthantBoundaryTyped, HullDepthKeepsExactlyTheRimOfASquareGrid) {
+  // One row in, a point lies one spacing inside the hull of its neighbours, whose local spacing
+  // sqrt(area / count) is below one (4 / 9 with radius 1.5; less than 1 with the adaptive
+  // radius too, because a hull has fewer points on its edge than inside).
+  constexpr int n = 21;
+  const auto cloud = gridCloud<TypeParam>(n, 2);
+  for (const double radius : {1.5, 0.0}) {
+    OrthantBoundary<TypeParam> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    if (radius > 0) {
+      filter.setRadiusSearch(radius);
+    } else {
+      filter.setAdaptiveRadius(24, 2.0);
+    }
+    filter.setHullDepth(1.0);
+    pcl::Indices kept;
+    filter.filter(kept);
+    EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << "radius " << radius;
     for (const auto i : kept) {
       const auto& p = (*cloud)[i];
       EXPECT_TRUE(onGridRim(pcl::PointXYZ(p.x, p.y, p.z), n, 2)) << p.x << "," << p.y;
@@ -192,6 +219,89 @@ TEST(OrthantBoundary, MeetsPrecisionAndRecallOnDiskAnnulusAndBall) {
   }
 }
 
+TEST(OrthantBoundary, HullDepthFindsEveryPointNearTheBoundaryAndNoneDeeper) {
+  // The peers on a 1e6 disk reach precision 0.998 (plain quadrant test) and recall 0.984
+  // (pcl::BoundaryEstimation); with the hull depth both are 1 on these clouds (BENCHMARKS.md).
+  for (const Shape shape : {Shape::kDisk, Shape::kAnnulus}) {
+    constexpr std::size_t n = 100000;
+    const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+        sampleCloud(ShapeSampler(shape, 3), n, 0));
+    OrthantBoundary<WorkspacePoint> filter;
+    filter.setInputCloud(cloud);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setAdaptiveRadius(24, 2.0);
+    filter.setMinimumGap(92.0 * M_PI / 180.0);
+    filter.setHullDepth(1.0);
+    pcl::Indices kept;
+    filter.filter(kept);
+    const Quality q = quality(shape, n, kept, *cloud);
+    EXPECT_GE(q.precision, 0.999) << static_cast<int>(shape);
+    EXPECT_GE(q.recall, 0.999) << static_cast<int>(shape);
+  }
+}
+
+TEST(OrthantBoundary, HullDepthOfARegularPolygonIsItsApothem) {
+  // p at (a, 0) inside a regular 12-gon of circumradius 2 with an edge at x = 2 cos(pi / 12):
+  // depth 2 cos(pi / 12) - a, area 6 * 2^2 sin(pi / 6) = 12, 13 positions with p.
+  constexpr int corners = 12;
+  const double apothem = 2.0 * std::cos(M_PI / corners);
+  for (const double a : {0.0, 0.5, 1.5, apothem}) {
+    std::vector<detail::Neighbour> nn;
+    nn.emplace_back(0.0f, 0.0f, 0.0f, 0.0f, 0);
+    for (int k = 0; k < corners; ++k) {
+      const double angle = (2 * k + 1) * M_PI / corners;
+      const auto x = static_cast<float>(2.0 * std::cos(angle) - a);
+      const auto y = static_cast<float>(2.0 * std::sin(angle));
+      nn.emplace_back(x, y, 0.0f, x * x + y * y, k + 1);
+    }
+    detail::HullScratch scratch;
+    const double spacing = std::sqrt(12.0 / 13.0);
+    EXPECT_NEAR(detail::hullDepthInSpacings(nn, scratch), (apothem - a) / spacing, 1e-6)
+        << "a = " << a;
+  }
+}
+
+TEST(OrthantBoundary, HullDepthAgreesWithBruteForceOverEveryPairOfPoints) {
+  // Brute force: (i, j) is a counter-clockwise hull edge when every other point lies strictly
+  // to its left; the hull's area is the sum of the triangles (p, i, j) and p's depth the
+  // smallest distance to such an edge. Random positions are never collinear.
+  const CounterRng rng(11);
+  std::uint64_t draws = 0;
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(draws++, 0); };
+  for (int trial = 0; trial < 200; ++trial) {
+    const int m = 3 + trial % 40;
+    std::vector<detail::Neighbour> nn;
+    nn.emplace_back(0.0f, 0.0f, 0.0f, 0.0f, 0);
+    const double shift = trial % 3 == 0 ? 1.5 : 0.0;  // p outside the others' hull: depth 0
+    for (int k = 0; k < m; ++k) {
+      const auto x = static_cast<float>(uniform(-1.0, 1.0) + shift);
+      const auto y = static_cast<float>(uniform(-1.0, 1.0));
+      nn.emplace_back(x, y, 0.0f, x * x + y * y, k + 1);
+    }
+    auto turn = [&](int i, int j, double x, double y) {
+      const double xi = nn[i].x, yi = nn[i].y, xj = nn[j].x, yj = nn[j].y;
+      return (xj - xi) * (y - yi) - (yj - yi) * (x - xi);
+    };
+    double area = 0.0, depth = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= m; ++i) {
+      for (int j = 0; j <= m; ++j) {
+        bool edge = i != j;
+        for (int k = 0; k <= m && edge; ++k) {
+          if (k != i && k != j) edge = turn(i, j, nn[k].x, nn[k].y) > 0.0;
+        }
+        if (!edge) continue;
+        area += 0.5 * turn(i, j, 0.0, 0.0);
+        const double length = std::hypot(double{nn[j].x} - nn[i].x, double{nn[j].y} - nn[i].y);
+        depth = std::min(depth, std::max(0.0, turn(i, j, 0.0, 0.0) / length));
+      }
+    }
+    detail::HullScratch scratch;
+    const double expected = depth / std::sqrt(area / (m + 1));
+    EXPECT_NEAR(detail::hullDepthInSpacings(nn, scratch), expected, 1e-9 * (1.0 + expected))
+        << "trial " << trial;
+  }
+}
+
 TEST(OrthantBoundary, FindsTheInnerCircleOfTheAnnulus) {
   constexpr std::size_t n = 50000;
   const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
@@ -223,6 +333,20 @@ TEST(OrthantBoundary, SameResultForAnyThreadCount) {
     filter.filter(kept[threads - 1]);
   }
   EXPECT_EQ(kept[0], kept[1]);
+  const auto disk = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+      sampleCloud(ShapeSampler(Shape::kAnnulus, 5), 30000, 0));
+  pcl::Indices rim[2];
+  for (int threads : {1, 2}) {
+    OrthantBoundary<WorkspacePoint> filter;
+    filter.setInputCloud(disk);
+    filter.setPlane(BoundaryPlane::kXY);
+    filter.setAdaptiveRadius(24, 2.0);
+    filter.setHullDepth(1.0);
+    filter.setNumberOfThreads(threads);
+    filter.filter(rim[threads - 1]);
+  }
+  EXPECT_EQ(rim[0], rim[1]);
+  EXPECT_GT(rim[0].size(), 0u);
 }
 
 TEST(OrthantBoundary, TwoStageTestEqualsOneTestAtTheOuterRadius) {
@@ -289,6 +413,12 @@ TEST(OrthantBoundary, GridSearchGivesTheTreesResult) {
        [](auto& f) { f.setAdaptiveRadius(16, 2), f.setFrames(1u); }},
       {"uneven disk", unevenCloud(30000, 2), BoundaryPlane::kXY,
        [](auto& f) { f.setAdaptiveRadius(24, 2); }},
+      {"annulus hull depth", disk, BoundaryPlane::kXY,
+       [](auto& f) { f.setAdaptiveRadius(24, 2), f.setHullDepth(1.0); }},
+      {"uneven disk hull depth", unevenCloud(30000, 2), BoundaryPlane::kXY,
+       [](auto& f) { f.setAdaptiveRadius(24, 2), f.setHullDepth(1.0); }},
+      {"annulus fixed hull depth", disk, BoundaryPlane::kXY,
+       [](auto& f) { f.setRadiusSearch(0.04), f.setHullDepth(0.75); }},
       {"uneven ball", unevenCloud(30000, 3), BoundaryPlane::k3D,
        [](auto& f) { f.setAdaptiveRadius(16, 2); }},
       {"lattice adaptive", lattice, BoundaryPlane::kXY,
@@ -432,6 +562,23 @@ TEST(OrthantBoundary, RejectsBadParameters) {
         f.setOuterRadius(0.5);
       }),
       HasSubstr("outer radius is a factor of each point's radius and must exceed 1, not 0.5"));
+  EXPECT_THAT(message([](auto& f) {
+                f.setPlane(BoundaryPlane::kXY);
+                f.setAutoRadius(0.0);
+                f.setHullDepth(-1.0);
+              }),
+              HasSubstr("hull depth must be 0 (off) or a positive number of spacings"));
+  EXPECT_THAT(message([](auto& f) {
+                f.setPlane(BoundaryPlane::kXY);
+                f.setAutoRadius(0.0);
+                f.setHullDepth(std::numeric_limits<double>::quiet_NaN());
+              }),
+              HasSubstr("hull depth must be 0 (off) or a positive number of spacings"));
+  EXPECT_THAT(message([](auto& f) {
+                f.setAutoRadius(0.0);
+                f.setHullDepth(1.0);
+              }),
+              HasSubstr("the hull depth test works in a plane"));
   EXPECT_THROW(parseBoundaryPlane("xw"), Error);
 }
 

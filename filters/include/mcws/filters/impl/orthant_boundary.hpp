@@ -174,7 +174,8 @@ struct OrthantBits {
       };
       const float x = sign(0), y = sign(2), z = sign(4);
       if (x != 0 || y != 0) bit[0][code] = static_cast<std::uint8_t>(1u << quadrant(x, y));
-      if (x != 0 || y != 0 || z != 0) bit[1][code] = static_cast<std::uint8_t>(1u << octant(x, y, z));
+      if (x != 0 || y != 0 || z != 0)
+        bit[1][code] = static_cast<std::uint8_t>(1u << octant(x, y, z));
     }
   }
 };
@@ -236,6 +237,52 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
     if (outward_mask == full) return false;
   }
   return true;
+}
+
+/// Scratch space of hullDepthInSpacings().
+struct HullScratch {
+  std::vector<Eigen::Vector2d> points, hull;
+};
+
+/// The depth of p below the edge of the convex hull of its neighbourhood (offsets from p, p
+/// itself among them as (0, 0)), in local spacings sqrt(area / number of neighbours); 0 when p
+/// is on the hull or the hull has no area (fewer than 3 positions, or all on a line).
+inline double hullDepthInSpacings(const std::vector<Neighbour>& neighbours, HullScratch& s) {
+  s.points.clear();
+  s.points.emplace_back(0.0, 0.0);
+  for (const auto& q : neighbours) s.points.emplace_back(q.x, q.y);
+  std::sort(s.points.begin(), s.points.end(),
+            [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+              return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+            });
+  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  // Andrew's monotone chain: the hull counter-clockwise, without collinear points.
+  const std::size_t m = s.points.size();
+  s.hull.resize(2 * m);
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    while (k >= 2 && turn(s.hull[k - 2], s.hull[k - 1], s.points[i]) <= 0.0) --k;
+    s.hull[k++] = s.points[i];
+  }
+  for (std::size_t i = m - 1, lower = k + 1; i > 0; --i) {
+    while (k >= lower && turn(s.hull[k - 2], s.hull[k - 1], s.points[i - 1]) <= 0.0) --k;
+    s.hull[k++] = s.points[i - 1];
+  }
+  const std::size_t corners = k - 1;
+  if (m < 3 || corners < 3) return 0.0;
+  double twice_area = 0.0, depth = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < corners; ++i) {
+    const Eigen::Vector2d& a = s.hull[i];
+    const Eigen::Vector2d& b = s.hull[(i + 1) % corners];
+    twice_area += a.x() * b.y() - a.y() * b.x();
+    // p lies to the left of every counter-clockwise edge: its distance from the edge's line.
+    depth = std::min(depth, turn(a, b, Eigen::Vector2d::Zero()) / (b - a).norm());
+  }
+  if (!(twice_area > 0.0)) return 0.0;
+  const double spacing = std::sqrt(0.5 * twice_area / static_cast<double>(neighbours.size()));
+  return std::max(depth, 0.0) / spacing;
 }
 
 /// The whole test of one point (frames already resolved by orthantFrames()).
@@ -318,6 +365,7 @@ struct PointTest {
   struct Scratch {
     std::vector<Neighbour> nn;
     std::vector<Direction> directions;
+    HullScratch hull;
   };
 
   bool isBoundary(Scratch& s) const {
@@ -403,6 +451,12 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   if (!(minimum_gap_ >= M_PI / 2 - 1e-9 && minimum_gap_ < M_PI)) {
     throw Error(filter_name_ + ": minimum gap must be in [pi/2, pi) rad");
   }
+  if (!(hull_depth_ >= 0.0 && std::isfinite(hull_depth_))) {
+    throw Error(filter_name_ + ": hull depth must be 0 (off) or a positive number of spacings");
+  }
+  if (hull_depth_ > 0.0 && dimensions != 2) {
+    throw Error(filter_name_ + ": the hull depth test works in a plane; set a plane (xy, xz, yz)");
+  }
   if (frames_ & ~(kAxisFrame | kOutwardFrame | kAnyRotation)) {
     throw Error(filter_name_ + ": unknown frame bits " + std::to_string(frames_));
   }
@@ -481,37 +535,86 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
                                 : static_cast<double>(n);
     const auto crowded = static_cast<std::size_t>(detail::kCrowdedCell * std::max(1.0, expected));
     const int threads = threads_ > 0 ? threads_ : omp_get_num_procs();
-    std::vector<char> deferred(n, 0);
-#pragma omp parallel num_threads(threads)
-    {
-      CellGridSearch search(*grid, *projected, detail::kFirstReach * typical_outer,
-                            detail::maxReach(dimensions) * grid->cellSize());
-      detail::PointTest::Scratch scratch;
-#pragma omp for schedule(dynamic, 1024)
-      for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
-        const pcl::index_t i = grid->order()[k];
-        deferred[i] =
-            !grid_search_ || grid->population((*projected)[i]) > crowded ||
-            !test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
-      }
-    }
-    std::vector<pcl::index_t> rest;
-    for (const auto i : grid->order()) {
-      if (deferred[i]) rest.push_back(i);
-    }
-    if (!rest.empty()) {
-      pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);  // unsorted results: the test needs no order
-      tree.setInputCloud(projected);
-#pragma omp parallel num_threads(threads)
+    // Runs work(search, i, scratch) for every i in `points` with the grid search, on `workers`
+    // threads, each with its own scratch space;
+    // the points it cannot answer (crowded cells, searches beyond the grid's reach, or every
+    // point with setGridSearch(false)) then with the kd-tree, built on first need.
+    std::unique_ptr<pcl::KdTreeFLANN<pcl::PointXYZ>> tree;
+    auto forEachPoint = [&](const std::vector<pcl::index_t>& points, int workers, auto work) {
+      std::vector<char> deferred(points.size(), 0);
+#pragma omp parallel num_threads(workers)
       {
-        detail::TreeSearch search{tree, *projected, {}, {}};
+        CellGridSearch search(*grid, *projected, detail::kFirstReach * typical_outer,
+                              detail::maxReach(dimensions) * grid->cellSize());
+        detail::PointTest::Scratch scratch;
+#pragma omp for schedule(dynamic, 1024)
+        for (std::int64_t k = 0; k < static_cast<std::int64_t>(points.size()); ++k) {
+          const pcl::index_t i = points[k];
+          deferred[k] = !grid_search_ || grid->population((*projected)[i]) > crowded ||
+                        !work(search, i, scratch);
+        }
+      }
+      std::vector<pcl::index_t> rest;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        if (deferred[k]) rest.push_back(points[k]);
+      }
+      if (rest.empty()) return;
+      if (!tree) {
+        tree = std::make_unique<pcl::KdTreeFLANN<pcl::PointXYZ>>(false);  // unsorted results
+        tree->setInputCloud(projected);
+      }
+#pragma omp parallel num_threads(workers)
+      {
+        detail::TreeSearch search{*tree, *projected, {}, {}};
         detail::PointTest::Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
         for (std::int64_t k = 0; k < static_cast<std::int64_t>(rest.size()); ++k) {
-          const pcl::index_t i = rest[k];
-          test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
+          work(search, rest[k], scratch);
         }
       }
+    };
+    std::vector<pcl::index_t> everyone(grid->order());
+    forEachPoint(everyone, threads, [&](auto& search, pcl::index_t i, auto& scratch) {
+      return test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
+    });
+    if (hull_depth_ > 0.0) {
+      // The neighbourhood radius of point i (r_i when adaptive; R if set), or false.
+      auto hullRadius = [&](auto& search, pcl::index_t i, double& r) {
+        if (adaptive && std::isnan(point_radius[i])) {  // decided interior from a subset
+          float d2k = 0.0f;
+          if (!search.kthDistance2(i, adaptive_k_ + 1, d2k, nullptr)) return false;
+          point_radius[i] = static_cast<float>(adaptive_scale_) * std::sqrt(d2k);
+        }
+        r = adaptive ? point_radius[i] : radius;
+        if (outer_radius_ > 0.0) r = adaptive ? outer_radius_ * r : outer_radius_;
+        return true;
+      };
+      // Candidates: the points the test found and those within a quarter of their radius (the
+      // points the test misses lie about a spacing from one it finds; one thread:
+      // a few thousand searches).
+      std::vector<pcl::index_t> found;
+      for (const auto i : grid->order()) {
+        if (boundary[i]) found.push_back(i);
+      }
+      std::vector<char> candidate(n, 0);
+      forEachPoint(found, 1, [&](auto& search, pcl::index_t i, auto& scratch) {
+        double r = 0.0;
+        if (!hullRadius(search, i, r) || !search.radius(i, 0.25 * r, scratch.nn)) return false;
+        for (const auto& q : scratch.nn) candidate[q.index] = 1;
+        return true;
+      });
+      std::vector<pcl::index_t> candidates;
+      for (const auto i : grid->order()) {
+        if (candidate[i]) candidates.push_back(i);
+      }
+      std::vector<char> shallow(n, 0);
+      forEachPoint(candidates, threads, [&](auto& search, pcl::index_t i, auto& scratch) {
+        double r = 0.0;
+        if (!hullRadius(search, i, r) || !search.radius(i, r, scratch.nn)) return false;
+        shallow[i] = detail::hullDepthInSpacings(scratch.nn, scratch.hull) < hull_depth_;
+        return true;
+      });
+      boundary.swap(shallow);
     }
     if (adaptive) {
       // The median r_i over about 1000 points spread through the cloud (interior points decided
