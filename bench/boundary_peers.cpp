@@ -210,14 +210,15 @@ Outcome cgalFixedAlphaShape3(const Context& c, double alpha) {
   return out;
 }
 
-// mcws_boundary's defaults (adaptive radius, k = 24 in 2-D and 16 in 3-D, 92-degree sector);
-// area by seed 000's column method over its points (2-D).
-Outcome orthant(const Context& c) {
+// mcws_boundary's defaults (adaptive radius, k = 24 in 2-D and 16 in 3-D, 92-degree sector; in
+// 2-D the hull depth, 1 by default) and the area by seed 000's column method over its points.
+Outcome orthant(const Context& c, double hull_depth) {
   mcws::OrthantBoundary<pcl::PointXYZ> filter;
   filter.setInputCloud(c.cloud);
   filter.setPlane(c.dimensions == 2 ? mcws::BoundaryPlane::kXY : mcws::BoundaryPlane::k3D);
   filter.setAdaptiveRadius(c.dimensions == 2 ? 24 : 16, 2.0);
   filter.setMinimumGap(92.0 * M_PI / 180.0);
+  filter.setHullDepth(hull_depth);
   filter.setNumberOfThreads(c.threads);
   Outcome out;
   filter.filter(out.boundary);
@@ -327,8 +328,10 @@ int main(int argc, char** argv) {
              [&] { return cgalAlphaShape2(c, 3 * h); });
       report(c, "KdTreeFLANN quadrant test (axis frame, r = 8h)",
              [&] { return axisOrthants(c, 8 * h); });
-      report(c, "mcws OrthantBoundary (mcws_boundary defaults); area: column method",
-             [&] { return orthant(c); });
+      report(c, "mcws OrthantBoundary (mcws_boundary defaults, hull depth 1); area: column method",
+             [&] { return orthant(c, 1.0); });
+      report(c, "mcws OrthantBoundary, sector test alone (--hull-depth 0); area: column method",
+             [&] { return orthant(c, 0.0); });
       report(c, "mcws GridBoundary (automatic cell); area: column method on cell means",
              [&] { return grid(c); });
       report(c, "mcws ExtremumBoundary (automatic); area: eq. (2) on its columns",
@@ -340,7 +343,7 @@ int main(int argc, char** argv) {
              [&] { return cgalFixedAlphaShape3(c, 3 * h); });
       report(c, "KdTreeFLANN octant test (axis frame, r = 4h)",
              [&] { return axisOrthants(c, 4 * h); });
-      report(c, "mcws OrthantBoundary (mcws_boundary defaults)", [&] { return orthant(c); });
+      report(c, "mcws OrthantBoundary (mcws_boundary defaults)", [&] { return orthant(c, 0.0); });
       report(c, "mcws GridBoundary 3-D (automatic cell)", [&] { return grid(c); });
       report(c, "mcws_measure default (delaunayMeasure), volume only", [&] { return delaunay(c); });
     }
