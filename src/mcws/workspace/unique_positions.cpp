@@ -1,46 +1,59 @@
 #include "mcws/workspace/unique_positions.h"
 
-#include <parallel/algorithm>
-
-#include <algorithm>
-#include <tuple>
+#include <cstdint>
+#include <cstring>
 
 namespace mcws {
+namespace {
+
+/// The bits of v with -0 turned into +0, so that positions equal as floats hash alike.
+std::uint32_t bitsOf(float v) {
+  const float normalised = v + 0.0f;  // -0 + 0 = +0; every other value unchanged
+  std::uint32_t bits;
+  std::memcpy(&bits, &normalised, sizeof bits);
+  return bits;
+}
+
+std::uint64_t hashOf(const pcl::PointXYZ& p) {
+  std::uint64_t h = (static_cast<std::uint64_t>(bitsOf(p.x)) << 32) ^ bitsOf(p.y);
+  h ^= static_cast<std::uint64_t>(bitsOf(p.z)) * 0x9E3779B97F4A7C15ULL;
+  // SplitMix64's finaliser: every input bit reaches the low bits that index the table.
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+  return h ^ (h >> 31);
+}
+
+}  // namespace
 
 pcl::PointCloud<pcl::PointXYZ> uniquePositions(const pcl::PointCloud<pcl::PointXYZ>& cloud,
                                                std::vector<pcl::index_t>& position_of) {
   const std::size_t n = cloud.size();
-  // Sorted by value (position, then index), which keeps the data next to the keys: copies of a
-  // position end up adjacent, the first appearance first.
-  struct Entry {
-    float x, y, z;
-    pcl::index_t index;
-  };
-  std::vector<Entry> entries(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    entries[i] = {cloud[i].x, cloud[i].y, cloud[i].z, static_cast<pcl::index_t>(i)};
-  }
-  // A total order, so the parallel sort gives one result whatever the threads.
-  __gnu_parallel::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return std::tie(a.x, a.y, a.z, a.index) < std::tie(b.x, b.y, b.z, b.index);
-  });
-  // first[i]: the first appearance of point i's position.
-  std::vector<pcl::index_t> first(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const bool copy = k > 0 && entries[k].x == entries[k - 1].x &&
-                      entries[k].y == entries[k - 1].y && entries[k].z == entries[k - 1].z;
-    first[entries[k].index] = copy ? first[entries[k - 1].index] : entries[k].index;
-  }
+  // An open-addressing hash table of the positions seen so far (their index in the result),
+  // at most half full; one pass in input order, so the result is in order of first appearance.
+  std::size_t size = 16;
+  while (size < 2 * n) size *= 2;
+  const std::size_t mask = size - 1;
+  std::vector<pcl::index_t> table(size, -1);
   pcl::PointCloud<pcl::PointXYZ> unique;
   unique.reserve(n);
-  std::vector<pcl::index_t> slot(n, -1);
   position_of.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    if (slot[first[i]] < 0) {
-      slot[first[i]] = static_cast<pcl::index_t>(unique.size());
-      unique.push_back(cloud[i]);
+    const pcl::PointXYZ& p = cloud[i];
+    std::size_t slot = hashOf(p) & mask;
+    for (;; slot = (slot + 1) & mask) {
+      const pcl::index_t seen = table[slot];
+      if (seen < 0) {
+        table[slot] = static_cast<pcl::index_t>(unique.size());
+        position_of[i] = table[slot];
+        unique.push_back(p);
+        break;
+      }
+      const pcl::PointXYZ& q = unique[seen];
+      if (q.x == p.x && q.y == p.y && q.z == p.z) {
+        position_of[i] = seen;
+        break;
+      }
     }
-    position_of[i] = slot[first[i]];
   }
   return unique;
 }

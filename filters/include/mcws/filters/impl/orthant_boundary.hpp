@@ -111,15 +111,20 @@ inline bool hasEmptySector(const std::vector<Neighbour>& neighbours, const Secto
                            std::vector<Direction>& directions) {
   // Most interior points are decided by angular bins; the rest by the exact test below. (p
   // itself, or a duplicate, has no direction.)
+  // Neighbours come cell by cell, so nearby entries point the same way: taking every 4th first
+  // spreads the directions and fills the bins sooner.
   std::uint64_t occupied = 0;
   const std::size_t m = neighbours.size();
-  for (std::size_t k = 0; k < m; ++k) {
-    const Neighbour& q = neighbours[k];
-    const bool direction = q.x != 0.0f || q.y != 0.0f;  // angleBin(0, 0) is defined, unused
-    occupied |= std::uint64_t{direction} << angleBin(q.x, q.y);
-    if (k % 8 == 7 && occupied != 0 && gap.empty_run_limit >= 0 &&
-        !hasLongEmptyRun(occupied, gap.empty_run_limit)) {
-      return false;  // the bins so far leave no room for the gap: more neighbours cannot either
+  std::size_t done = 0;
+  for (std::size_t first = 0; first < 4; ++first) {
+    for (std::size_t k = first; k < m; k += 4) {
+      const Neighbour& q = neighbours[k];
+      const bool direction = q.x != 0.0f || q.y != 0.0f;  // angleBin(0, 0) is defined, unused
+      occupied |= std::uint64_t{direction} << angleBin(q.x, q.y);
+      if (++done % 8 == 0 && occupied != 0 && gap.empty_run_limit >= 0 &&
+          !hasLongEmptyRun(occupied, gap.empty_run_limit)) {
+        return false;  // the bins so far leave no room for the gap: more neighbours cannot either
+      }
     }
   }
   if (occupied == 0) return true;
