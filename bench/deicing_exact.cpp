@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
     boundary.setPlane(xz ? mcws::BoundaryPlane::kXZ : mcws::BoundaryPlane::k3D);
     boundary.setAdaptiveRadius(xz ? 24 : 16, 2.0);
     if (xz) boundary.setMinimumGap(92.0 * M_PI / 180.0);
+    if (xz) boundary.setHullDepth(std::getenv("HULL") ? std::atof(std::getenv("HULL")) : 1.0);
     pcl::PointCloud<mcws::WorkspacePoint> rim;
     boundary.filter(rim);
     mcws::RefineOptions refine;
