@@ -578,8 +578,7 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
         }
       }
     };
-    std::vector<pcl::index_t> everyone(grid->order());
-    forEachPoint(everyone, threads, [&](auto& search, pcl::index_t i, auto& scratch) {
+    forEachPoint(grid->order(), threads, [&](auto& search, pcl::index_t i, auto& scratch) {
       return test.decide(search, i, scratch, boundary[i], adaptive ? &point_radius[i] : nullptr);
     });
     if (hull_depth_ > 0.0) {
