@@ -34,12 +34,15 @@ int main(int argc, char** argv) {
         mcws::sampleCloud(mcws::ShapeSampler(shape, seed), n, 0));
     const auto start = std::chrono::steady_clock::now();
     double measured = 0;
-    if (method == "column") {  // the stage pipeline's defaults: adaptive k = 24, 92 degrees
+    // The stage pipeline's defaults: adaptive k = 24, 92 degrees, hull depth 1 ("column"), or
+    // the sector test alone ("column-sector").
+    if (method == "column" || method == "column-sector") {
       mcws::OrthantBoundary<mcws::WorkspacePoint> boundary;
       boundary.setInputCloud(sampled);
       boundary.setPlane(mcws::BoundaryPlane::kXY);
       boundary.setAdaptiveRadius(24, 2.0);
       boundary.setMinimumGap(92.0 * M_PI / 180.0);
+      boundary.setHullDepth(method == "column" ? 1.0 : 0.0);
       pcl::Indices kept;
       boundary.filter(kept);
       pcl::PointCloud<pcl::PointXYZ> rim;
