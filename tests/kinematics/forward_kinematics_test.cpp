@@ -6,6 +6,7 @@
 #include <random>
 
 #include "kinematics/kdl_chain.h"
+#include "kinematics/random_joints.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -22,14 +23,7 @@ constexpr int kRandomVectors = 1000;
 const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maintenance4",
                                       "insulator_cleaner"};
 
-Eigen::VectorXd randomJoints(const Robot& robot, std::mt19937_64& rng) {
-  Eigen::VectorXd q(robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    q[i] =
-        std::uniform_real_distribution<double>(robot.joints[i].lower, robot.joints[i].upper)(rng);
-  }
-  return q;
-}
+using test::randomJoints;
 
 double reach(const Robot& robot) {  // a length scale for tolerances
   double sum = 1.0;

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "kinematics/kdl_chain.h"
+#include "kinematics/random_joints.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -23,14 +24,7 @@ constexpr int kRoundTrips = 500;
 /// (~1e-13 of a 2 m chain in mm) is far below.
 constexpr double kTolerance = 1e-6;
 
-Eigen::VectorXd randomJoints(const Robot& robot, std::mt19937_64& rng) {
-  Eigen::VectorXd q(robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    q[i] =
-        std::uniform_real_distribution<double>(robot.joints[i].lower, robot.joints[i].upper)(rng);
-  }
-  return q;
-}
+using test::randomJoints;
 
 Eigen::VectorXd seed003Angles() {
   Eigen::VectorXd q(6);

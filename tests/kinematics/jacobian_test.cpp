@@ -9,6 +9,7 @@
 #include <set>
 
 #include "kinematics/kdl_chain.h"
+#include "kinematics/random_joints.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -34,14 +35,7 @@ std::vector<std::string> shippedRobotFiles() {
   return {files.begin(), files.end()};
 }
 
-Eigen::VectorXd randomJoints(const Robot& robot, std::mt19937_64& rng) {
-  Eigen::VectorXd q(robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    q[i] =
-        std::uniform_real_distribution<double>(robot.joints[i].lower, robot.joints[i].upper)(rng);
-  }
-  return q;
-}
+using test::randomJoints;
 
 /// A length scale: the sum of the chain's fixed offsets and prismatic strokes, at least 1.
 double reach(const Robot& robot) {

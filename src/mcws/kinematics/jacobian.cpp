@@ -32,21 +32,25 @@ KinematicChain::KinematicChain(const Robot& robot) {
   fixed_.push_back({G.linear(), G.translation()});
 }
 
+void KinematicChain::advance(int i, double q, Eigen::Matrix3d& R, Eigen::Vector3d& p) const {
+  if (revolute_[i]) {
+    const double c = std::cos(q), s = std::sin(q);
+    const Eigen::Vector3d x = R.col(0);
+    R.col(0) = c * x + s * R.col(1);
+    R.col(1) = c * R.col(1) - s * x;
+  } else {
+    p += q * R.col(2);
+  }
+  const Fixed& G = fixed_[i + 1];
+  p += R * G.p;
+  R = R * G.R;
+}
+
 Eigen::Isometry3d KinematicChain::toolPose(const double* q) const {
   Eigen::Matrix3d R = fixed_[0].R;
   Eigen::Vector3d p = fixed_[0].p;
   for (int i = 0; i < dof(); ++i) {
-    if (revolute_[i]) {
-      const double c = std::cos(q[i]), s = std::sin(q[i]);
-      const Eigen::Vector3d x = R.col(0);
-      R.col(0) = c * x + s * R.col(1);
-      R.col(1) = c * R.col(1) - s * x;
-    } else {
-      p += q[i] * R.col(2);
-    }
-    const Fixed& G = fixed_[i + 1];
-    p += R * G.p;
-    R = R * G.R;
+    advance(i, q[i], R, p);
   }
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = R;
@@ -64,17 +68,7 @@ void KinematicChain::toolPoseAndJacobian(const double* q, Eigen::Matrix3d& R_wor
     Eigen::Map<Eigen::Matrix<double, 6, 1>> column(J + 6 * i);
     column.head<3>() = p;
     column.tail<3>() = R.col(2);
-    if (revolute_[i]) {
-      const double c = std::cos(q[i]), s = std::sin(q[i]);
-      const Eigen::Vector3d x = R.col(0);
-      R.col(0) = c * x + s * R.col(1);
-      R.col(1) = c * R.col(1) - s * x;
-    } else {
-      p += q[i] * R.col(2);
-    }
-    const Fixed& G = fixed_[i + 1];
-    p += R * G.p;
-    R = R * G.R;
+    advance(i, q[i], R, p);
   }
   for (int i = 0; i < dof(); ++i) {
     double* column = J + 6 * i;

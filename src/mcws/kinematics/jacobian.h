@@ -49,6 +49,9 @@ class KinematicChain {
     Eigen::Matrix3d R;
     Eigen::Vector3d p;
   };
+  /// Moves the frame (R, p) of joint i by its value q (a turn about z or a shift along it), then
+  /// by the fixed transform to joint i + 1's frame.
+  void advance(int i, double q, Eigen::Matrix3d& R, Eigen::Vector3d& p) const;
   std::vector<Fixed> fixed_;  ///< G_0 .. G_n
   std::vector<char> revolute_;
 };
