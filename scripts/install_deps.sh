@@ -18,6 +18,7 @@ packages=(
   gnuplot-nox                   # PNG pictures of clouds
   libcgal-dev                   # alpha shapes / Delaunay for areas and volumes
   libfcl-dev                    # collision checking (FCL: OBBRSS mesh trees, primitives)
+  libompl-dev                   # motion planning roadmaps (OMPL's PRM) for mcws_plan
   time                          # /usr/bin/time -v in the benchmark scripts
 )
 

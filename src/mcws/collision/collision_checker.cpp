@@ -230,7 +230,8 @@ const std::string& CollisionChecker::bodyName(int i) const { return bodies_.at(i
 
 int CollisionChecker::bodyCount() const { return static_cast<int>(bodies_.size()); }
 
-void CollisionChecker::computePoses(const double* q, Scratch::Data& data) const {
+void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_world_base,
+                                    Scratch::Data& data) const {
   if (data.T_world_body.size() != bodies_.size()) {
     data.T_world_body.assign(bodies_.size(), Eigen::Isometry3d::Identity());
     data.p_from.resize(shape_count_);
@@ -239,7 +240,7 @@ void CollisionChecker::computePoses(const double* q, Scratch::Data& data) const 
     data.request.num_max_contacts = 1;
   }
   ++data.sample;
-  Eigen::Isometry3d T = robot_.T_world_base;
+  Eigen::Isometry3d T = T_world_base;
   data.T_world_body[0] = T;
   for (int i = 0; i < robot_.dof(); ++i) {
     const Joint& joint = robot_.joints[i];
@@ -306,8 +307,13 @@ bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& d
 }
 
 std::uint32_t CollisionChecker::label(const double* q, Scratch& scratch) const {
+  return label(q, robot_.T_world_base, scratch);
+}
+
+std::uint32_t CollisionChecker::label(const double* q, const Eigen::Isometry3d& T_world_base,
+                                      Scratch& scratch) const {
   Scratch::Data& data = *scratch.data_;
-  computePoses(q, data);
+  computePoses(q, T_world_base, data);
   for (const CollisionPair& pair : pairs_) {
     if (bodiesCollide(pair, data)) return pair.label;  // pairs_ is ordered by label
   }
@@ -324,7 +330,7 @@ std::vector<PairReport> CollisionChecker::report(const Eigen::VectorXd& q) const
   robot_.checkSize(q);
   Scratch scratch;
   Scratch::Data& data = *scratch.data_;
-  computePoses(q.data(), data);
+  computePoses(q.data(), robot_.T_world_base, data);
   std::vector<PairReport> reports;
   for (const CollisionPair& pair : pairs_) {
     PairReport report;
@@ -371,6 +377,60 @@ std::vector<PairReport> CollisionChecker::report(const Eigen::VectorXd& q) const
     reports.push_back(report);
   }
   return reports;
+}
+
+void CollisionChecker::place(const double* q, const Eigen::Isometry3d& T_world_base,
+                             Scratch& scratch) const {
+  computePoses(q, T_world_base, *scratch.data_);
+}
+
+const Eigen::Isometry3d& CollisionChecker::bodyPose(int body, const Scratch& scratch) const {
+  return scratch.data_->T_world_body.at(body);
+}
+
+CollisionChecker::BodySphere CollisionChecker::bodySphere(int body) const {
+  const Body& b = bodies_.at(body);
+  return {b.center, b.bound};
+}
+
+double CollisionChecker::shapeClearance(const Shape& a, const Shape& b, double cap,
+                                        Scratch::Data& data, int body_a, int body_b) const {
+  constexpr double kFclTolerance = 1e-6;  // FCL's GJK distance tolerance (DistanceRequest)
+  const Eigen::Isometry3d& T_a = data.T_world_body[body_a];
+  const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
+  const double apart = (T_a * a.center - T_b * b.center).norm() - a.bound - b.bound;
+  if (apart >= cap) return cap;
+  if (a.swept && b.swept) {
+    const double d = std::sqrt(segmentDistanceSquared(T_a * a.p_from, T_a * a.p_to,
+                                                      T_b * b.p_from, T_b * b.p_to)) -
+                     a.radius - b.radius;
+    return std::clamp(d, 0.0, cap);
+  }
+  if (shapesCollide(a, b, data, body_a, body_b)) return 0.0;
+  fcl::DistanceRequest<double> request;
+  fcl::DistanceResult<double> result;
+  const double d = fcl::distance(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
+                                 T_b * b.T_body_shape, request, result);
+  return std::clamp(d - kFclTolerance, 0.0, cap);
+}
+
+double CollisionChecker::clearance(std::size_t pair, double cap, Scratch& scratch) const {
+  Scratch::Data& data = *scratch.data_;
+  const CollisionPair& p = pairs_.at(pair);
+  const Body& a = bodies_[p.body_a];
+  const Body& b = bodies_[p.body_b];
+  const Eigen::Isometry3d& T_a = data.T_world_body[p.body_a];
+  const Eigen::Isometry3d& T_b = data.T_world_body[p.body_b];
+  if ((T_a * a.center - T_b * b.center).norm() - a.bound - b.bound >= cap) return cap;
+  double distance = cap;
+  for (const Shape& shape_a : a.shapes) {
+    for (const Shape& shape_b : b.shapes) {
+      distance = std::min(distance, shapeClearance(shape_a, shape_b, distance, data, p.body_a,
+                                                   p.body_b));
+      if (distance <= 0.0) return 0.0;
+    }
+  }
+  return distance;
 }
 
 const char* labelName(std::uint32_t label) {

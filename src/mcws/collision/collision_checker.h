@@ -90,6 +90,31 @@ class CollisionChecker {
   std::uint32_t label(const double* q, Scratch& scratch) const;
   /// \brief label() with a scratch of its own (slower: for single checks).
   std::uint32_t label(const Eigen::VectorXd& q) const;
+  /// \brief label() with the robot's base at T_world_base instead of the model's base pose:
+  /// every robot body moves with the base, the environment stays (seed 001's swaying base).
+  std::uint32_t label(const double* q, const Eigen::Isometry3d& T_world_base,
+                      Scratch& scratch) const;
+
+  /// \brief Places every body for the joint vector q [rad | length unit] with the base at
+  /// T_world_base, for clearance() and bodyPose().
+  void place(const double* q, const Eigen::Isometry3d& T_world_base, Scratch& scratch) const;
+  /// \brief Distance between the two bodies of pairs()[pair] as last placed [length unit],
+  /// capped: a value of `cap` or more comes back as `cap` (pairs whose bounding spheres are that
+  /// far apart get no exact query); 0 when they collide. Capsule and sphere pairs by the exact
+  /// segment distance, others by fcl::distance less a tolerance of 1e-6 length units (FCL's
+  /// GJK distance is accurate to about that), so the value is a lower bound of the true one.
+  double clearance(std::size_t pair, double cap, Scratch& scratch) const;
+  /// \brief World pose of body i as last placed.
+  const Eigen::Isometry3d& bodyPose(int body, const Scratch& scratch) const;
+  /// \brief A sphere holding every shape of body i, in the body's frame (radius 0 for a body
+  /// without shapes).
+  struct BodySphere {
+    Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< body frame [length unit]
+    double radius{0.0};                               ///< [length unit]
+  };
+  BodySphere bodySphere(int body) const;
+  /// \brief Index of the tool body (dof + 1); environment objects follow it.
+  int toolBody() const { return tool_body_; }
 
   /// \brief Every pair at q, with its clearance or penetration (slow: FCL distance queries).
   std::vector<PairReport> report(const Eigen::VectorXd& q) const;
@@ -104,7 +129,10 @@ class CollisionChecker {
  private:
   struct Shape;
   struct Body;
-  void computePoses(const double* q, Scratch::Data& data) const;
+  void computePoses(const double* q, const Eigen::Isometry3d& T_world_base,
+                    Scratch::Data& data) const;
+  double shapeClearance(const Shape& a, const Shape& b, double cap, Scratch::Data& data,
+                        int body_a, int body_b) const;
   bool bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const;
   bool shapesCollide(const Shape& a, const Shape& b, Scratch::Data& data, int body_a,
                      int body_b) const;

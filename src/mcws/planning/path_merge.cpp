@@ -1,0 +1,220 @@
+#include "mcws/planning/path_merge.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+/// A number as the messages print it ("0.5", "-1", "nan", "inf").
+std::string str(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::string edgeName(std::size_t u, std::size_t v) {
+  return "edge (" + std::to_string(u) + ", " + std::to_string(v) + ")";
+}
+
+/// The values of edge (u, v), checked: segments >= 1, a finite length >= 0, and a probability
+/// sum in [0, segments] (each segment's probability is in [0, 1]).
+EdgeValues checkedEdge(const EdgeValuesFn& edges, std::size_t u, std::size_t v) {
+  const EdgeValues e = edges(u, v);
+  if (e.segments < 1) {
+    throw Error(edgeName(u, v) + ": segments " + std::to_string(e.segments) + " is not >= 1");
+  }
+  if (!std::isfinite(e.length) || e.length < 0.0) {
+    throw Error(edgeName(u, v) + ": length " + str(e.length) + " is not a finite number >= 0");
+  }
+  if (!std::isfinite(e.probability_sum) || e.probability_sum < 0.0 ||
+      e.probability_sum > static_cast<double>(e.segments)) {
+    throw Error(edgeName(u, v) + ": probability_sum " + str(e.probability_sum) +
+                " is not in [0, segments = " + std::to_string(e.segments) + "]");
+  }
+  return e;
+}
+
+/// Node values at path[0] .. path[count - 1] (count <= path.size()).
+std::vector<NodeValues> prefixValues(const VertexPath& path, std::size_t count,
+                                     const EdgeValuesFn& edges) {
+  std::vector<NodeValues> values;
+  values.reserve(count);
+  double distance = 0.0;
+  double probability_sum = 0.0;
+  std::int64_t segments = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (k > 0) {
+      const EdgeValues e = checkedEdge(edges, path[k - 1], path[k]);
+      distance += e.length;
+      probability_sum += e.probability_sum;
+      segments += e.segments;
+    }
+    NodeValues node;
+    node.distance = distance;
+    node.probability = segments == 0 ? 1.0 : probability_sum / static_cast<double>(segments);
+    values.push_back(node);
+  }
+  return values;
+}
+
+void checkOptions(const ScoreOptions& options) {
+  if (options.rule != ScoreRule::kWeighted) return;
+  if (!std::isfinite(options.weight) || options.weight < 0.0) {
+    throw Error("score options: weight " + str(options.weight) + " is not a finite number >= 0");
+  }
+  if (!std::isfinite(options.reference_distance) || options.reference_distance <= 0.0) {
+    throw Error("score options: reference_distance " + str(options.reference_distance) +
+                " is not a finite number > 0");
+  }
+}
+
+double uncheckedScore(const NodeValues& values, const ScoreOptions& options) {
+  if (options.rule == ScoreRule::kLiteral) return values.probability - values.distance;
+  return values.probability - options.weight * values.distance / options.reference_distance;
+}
+
+/// Cuts the loops out of a path: for the earliest vertex along the path that occurs again, keeps
+/// its first occurrence and drops everything after it up to and including its last occurrence;
+/// then the same for the next vertex along the path, until every vertex occurs once.
+/// \return whether anything was cut.
+bool cutLoops(VertexPath* path) {
+  bool cut = false;
+  for (std::size_t i = 0; i < path->size(); ++i) {
+    const auto first = path->begin() + static_cast<std::ptrdiff_t>(i);
+    const auto last = std::find(path->rbegin(), path->rend(), *first).base() - 1;
+    if (last != first) {
+      path->erase(first + 1, last + 1);
+      cut = true;
+    }
+  }
+  return cut;
+}
+
+/// Whether the first n vertices of a and of b are the same sequence (n <= both sizes).
+bool samePrefix(const VertexPath& a, std::size_t n_a, const VertexPath& b, std::size_t n_b) {
+  return n_a == n_b &&
+         std::equal(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(n_a), b.begin());
+}
+
+}  // namespace
+
+std::vector<NodeValues> nodeValues(const VertexPath& path, const EdgeValuesFn& edges) {
+  return prefixValues(path, path.size(), edges);
+}
+
+double score(const NodeValues& values, const ScoreOptions& options) {
+  checkOptions(options);
+  return uncheckedScore(values, options);
+}
+
+MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const EdgeValuesFn& edges,
+                               const std::function<double(std::size_t)>& order_key,
+                               const ScoreOptions& options) {
+  const std::string where = "mergeAtSharedNodes: ";
+  checkOptions(options);
+  if (candidates.empty()) throw Error(where + "no candidate paths");
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const VertexPath& path = candidates[i];
+    const std::string name = "candidate " + std::to_string(i);
+    if (path.empty()) throw Error(where + name + " is empty");
+    if (path.front() != candidates[0].front()) {
+      throw Error(where + name + " starts at vertex " + std::to_string(path.front()) +
+                  ", not at vertex " + std::to_string(candidates[0].front()) + " as candidate 0");
+    }
+    if (path.back() != candidates[0].back()) {
+      throw Error(where + name + " ends at vertex " + std::to_string(path.back()) +
+                  ", not at vertex " + std::to_string(candidates[0].back()) + " as candidate 0");
+    }
+    std::set<std::size_t> seen;
+    for (std::size_t v : path) {
+      if (!seen.insert(v).second) {
+        throw Error(where + name + " visits vertex " + std::to_string(v) + " twice");
+      }
+    }
+    nodeValues(path, edges);  // checks every edge; splices only reuse these edges
+  }
+  const std::size_t start = candidates[0].front();
+  const std::size_t goal = candidates[0].back();
+
+  // Visit order: the other vertices by (order_key, index), then the goal.
+  std::set<std::size_t> vertices;
+  for (const VertexPath& path : candidates) vertices.insert(path.begin(), path.end());
+  vertices.erase(start);
+  vertices.erase(goal);
+  std::vector<std::pair<double, std::size_t>> keyed;
+  keyed.reserve(vertices.size());
+  for (std::size_t v : vertices) {
+    const double key = order_key(v);
+    if (!std::isfinite(key)) {
+      throw Error(where + "order_key of vertex " + std::to_string(v) + " is " + str(key) +
+                  ", not a finite number");
+    }
+    keyed.emplace_back(key, v);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::size_t> order;
+  order.reserve(keyed.size() + 1);
+  for (const auto& [key, v] : keyed) order.push_back(v);
+  if (goal != start) order.push_back(goal);
+
+  MergeResult result;
+  result.paths = candidates;
+  for (std::size_t v : order) {
+    // Candidates through v (ascending index) and the prefix length up to v in each.
+    std::vector<std::size_t> through;
+    std::vector<std::size_t> prefix_size;
+    for (std::size_t i = 0; i < result.paths.size(); ++i) {
+      const VertexPath& path = result.paths[i];
+      const auto it = std::find(path.begin(), path.end(), v);
+      if (it == path.end()) continue;
+      through.push_back(i);
+      prefix_size.push_back(static_cast<std::size_t>(it - path.begin()) + 1);
+    }
+    bool shared = false;
+    for (std::size_t j = 1; j < through.size() && !shared; ++j) {
+      shared = !samePrefix(result.paths[through[0]], prefix_size[0], result.paths[through[j]],
+                           prefix_size[j]);
+    }
+    if (!shared) continue;
+
+    SharedNodeDecision decision;
+    decision.vertex = v;
+    decision.paths = through;
+    std::size_t best_j = 0;
+    for (std::size_t j = 0; j < through.size(); ++j) {
+      const NodeValues values =
+          prefixValues(result.paths[through[j]], prefix_size[j], edges).back();
+      decision.values.push_back(values);
+      decision.scores.push_back(uncheckedScore(values, options));
+      if (decision.scores[j] > decision.scores[best_j]) best_j = j;
+    }
+    decision.winner = through[best_j];
+
+    const VertexPath& winner = result.paths[decision.winner];
+    const VertexPath prefix(winner.begin(),
+                            winner.begin() + static_cast<std::ptrdiff_t>(prefix_size[best_j]));
+    for (std::size_t j = 0; j < through.size(); ++j) {
+      VertexPath& path = result.paths[through[j]];
+      if (samePrefix(path, prefix_size[j], prefix, prefix.size())) continue;
+      VertexPath spliced = prefix;
+      spliced.insert(spliced.end(), path.begin() + static_cast<std::ptrdiff_t>(prefix_size[j]),
+                     path.end());
+      if (cutLoops(&spliced)) decision.looped.push_back(through[j]);
+      path = std::move(spliced);
+    }
+    result.decisions.push_back(std::move(decision));
+  }
+  const bool decided_at_goal = !result.decisions.empty() && result.decisions.back().vertex == goal;
+  result.best = decided_at_goal ? result.decisions.back().winner : 0;
+  return result;
+}
+
+}  // namespace mcws

@@ -1,0 +1,358 @@
+#include "mcws/planning/plan_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "mcws/core/error.h"
+#include "mcws/io/gnuplot.h"
+
+namespace mcws {
+
+namespace {
+
+using io::gnuplotQuoted;
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+std::string jointUnit(const Scenario& scenario, int j) {
+  return scenario.problem.robot.joints[j].type == JointType::kRevolute
+             ? "rad"
+             : unitName(scenario.problem.robot.length_unit);
+}
+
+std::string configuration(const Scenario& scenario, const Eigen::VectorXd& q) {
+  std::string out = "[";
+  for (int j = 0; j < q.size(); ++j) {
+    out += (j ? ", " : "") + format("%.4g", q[j]) + " " + jointUnit(scenario, j);
+  }
+  return out + "]";
+}
+
+nlohmann::json vectorJson(const Eigen::VectorXd& q) {
+  return std::vector<double>(q.data(), q.data() + q.size());
+}
+
+nlohmann::json pathJson(const PathSafety& path) {
+  nlohmann::json out{{"vertices", path.vertices},
+                     {"length", path.length},
+                     {"probability", path.probability},
+                     {"segments", path.segments},
+                     {"whole_path_free_poses", path.free_poses},
+                     {"whole_path_free_fraction", path.free_fraction},
+                     {"whole_path_free_interval_95", {path.free_interval.low, path.free_interval.high}},
+                     {"worst_segment",
+                      {{"index", path.worst_segment},
+                       {"probability", path.worst_probability},
+                       {"from", vectorJson(path.worst_from)},
+                       {"to", vectorJson(path.worst_to)}}}};
+  out["waypoints"] = nlohmann::json::array();
+  for (const Eigen::VectorXd& q : path.waypoints) out["waypoints"].push_back(vectorJson(q));
+  return out;
+}
+
+/// The configuration of a roadmap vertex, from the candidates that pass through it.
+Eigen::VectorXd vertexConfiguration(const PlanningRound& round, std::size_t vertex) {
+  for (const PathSafety& path : round.candidates) {
+    for (std::size_t k = 0; k < path.vertices.size(); ++k)
+      if (path.vertices[k] == vertex) return path.waypoints[k];
+  }
+  return {};
+}
+
+const char* overallStatus(const SwayPlanningResult& result) {
+  if (result.accepted) return "ok";
+  for (const PlanningRound& round : result.rounds)
+    if (round.best) return "below_threshold";
+  return roadmapStatusName(result.rounds.front().status);
+}
+
+}  // namespace
+
+std::string pathCsv(const Scenario& scenario, const PathSafety& path) {
+  const Robot& robot = scenario.problem.robot;
+  std::string out = "D";
+  for (int j = 0; j < robot.dof(); ++j) out += "," + robot.joints[j].name + "_" + jointUnit(scenario, j);
+  out += "\n";
+  double distance = 0.0;
+  for (std::size_t k = 0; k < path.waypoints.size(); ++k) {
+    if (k > 0) {
+      distance += scaledDistance(path.waypoints[k - 1], path.waypoints[k],
+                                 scenario.problem.roadmap.joint_scale);
+    }
+    out += format("%.12g", distance);
+    for (int j = 0; j < robot.dof(); ++j) out += "," + format("%.12g", path.waypoints[k][j]);
+    out += "\n";
+  }
+  return out;
+}
+
+nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& result) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  nlohmann::json units{{"length", unitName(problem.robot.length_unit)},
+                       {"angle", "rad"},
+                       {"distance", scenario.distance_unit},
+                       {"probability", "fraction in [0, 1]"},
+                       {"time", "s"}};
+  nlohmann::json joint_units = nlohmann::json::array();
+  for (int j = 0; j < problem.robot.dof(); ++j) joint_units.push_back(jointUnit(scenario, j));
+  units["configuration"] = joint_units;
+  nlohmann::json out{
+      {"scenario", scenario.name},
+      {"robot", scenario.robot_path},
+      {"units", units},
+      {"status", overallStatus(result)},
+      {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
+      {"weight", problem.score.weight},
+      {"threshold", problem.threshold},
+      {"base_poses", problem.base_poses},
+      {"candidates_requested", problem.candidates},
+      {"confidence", problem.sway.confidence},
+      {"rounds", nlohmann::json::array()}};
+  for (const PlanningRound& round : result.rounds) {
+    nlohmann::json r{{"base_offset", round.base_offset},
+                     {"roadmap_status", roadmapStatusName(round.status)},
+                     {"roadmap_vertices", round.roadmap_vertices},
+                     {"roadmap_edges", round.roadmap_edges},
+                     {"reference_distance", round.reference_distance},
+                     {"seconds", round.seconds},
+                     {"roadmap_seconds", round.roadmap_seconds},
+                     {"evaluation_seconds", round.evaluation_seconds},
+                     {"candidates", nlohmann::json::array()},
+                     {"shared_nodes", nlohmann::json::array()}};
+    for (const PathSafety& path : round.candidates) r["candidates"].push_back(pathJson(path));
+    for (const SharedNodeDecision& decision : round.decisions) {
+      nlohmann::json node{{"vertex", decision.vertex},
+                          {"configuration", vectorJson(vertexConfiguration(round, decision.vertex))},
+                          {"winner", decision.winner},
+                          {"loops_cut", decision.looped},
+                          {"paths", nlohmann::json::array()}};
+      for (std::size_t k = 0; k < decision.paths.size(); ++k) {
+        node["paths"].push_back({{"candidate", decision.paths[k]},
+                                 {"distance", decision.values[k].distance},
+                                 {"probability", decision.values[k].probability},
+                                 {"score", decision.scores[k]}});
+      }
+      r["shared_nodes"].push_back(node);
+    }
+    if (round.best) r["best"] = pathJson(*round.best);
+    out["rounds"].push_back(r);
+  }
+  if (result.accepted) {
+    out["accepted_round"] = *result.accepted;
+    out["chosen"] = pathJson(*result.rounds[*result.accepted].best);
+  }
+  if (!result.validation.empty()) {
+    nlohmann::json v{{"poses", problem.validation_poses},
+                     {"seconds", result.validation_seconds},
+                     {"rows", nlohmann::json::array()}};
+    for (const ValidationRow& row : result.validation) {
+      nlohmann::json item{{"name", row.name},
+                          {"planned", row.planned},
+                          {"roadmap_status", row.status},
+                          {"length", row.length},
+                          {"colliding_poses", row.colliding},
+                          {"collision_probability", row.collision_probability},
+                          {"interval_95", {row.interval.low, row.interval.high}}};
+      if (row.name == "padded") item["padding"] = row.padding;
+      v["rows"].push_back(item);
+      if (row.planned) {
+        v[row.name + "_collision_probability"] = row.collision_probability;
+        v[row.name + "_interval_95"] = {row.interval.low, row.interval.high};
+        v[row.name + "_length"] = row.length;
+      }
+      if (row.name == "padded") v["padding"] = row.padding;
+    }
+    out["validation"] = v;
+  }
+  return out;
+}
+
+std::string planReport(const Scenario& scenario, const SwayPlanningResult& result) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  const std::string length_unit = unitName(problem.robot.length_unit);
+  std::ostringstream out;
+  out << "scenario " << scenario.name << " (" << scenario.robot_path << "): n = "
+      << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
+      << " % region, m = " << problem.candidates << " candidates, rule "
+      << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
+      << ", w = " << problem.score.weight << ", threshold P >= " << problem.threshold << "\n"
+      << "units: lengths " << length_unit << ", angles rad; D = " << scenario.distance_unit
+      << "; P is the patent's mean of segment free rates, not the probability that the whole "
+         "path is free\n";
+  for (std::size_t r = 0; r < result.rounds.size(); ++r) {
+    const PlanningRound& round = result.rounds[r];
+    out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
+        << " along the line: roadmap " << round.roadmap_vertices << " vertices, "
+        << round.roadmap_edges << " edges (" << roadmapStatusName(round.status) << "), D0 = "
+        << format("%.4g", round.reference_distance) << ", " << format("%.2f", round.seconds)
+        << " s (roadmap " << format("%.2f", round.roadmap_seconds) << " s, segments "
+        << format("%.2f", round.evaluation_seconds) << " s)\n";
+    if (!round.best) continue;
+    out << "  cand  length D  P (patent)  whole path free [95 % CI]   worst segment: index, P\n";
+    for (std::size_t c = 0; c < round.candidates.size(); ++c) {
+      const PathSafety& path = round.candidates[c];
+      char line[200];
+      std::snprintf(line, sizeof line, "  %4zu  %8.3f  %10.4f  %.3f [%.3f, %.3f]       %4zu, %.3f\n",
+                    c, path.length, path.probability, path.free_fraction, path.free_interval.low,
+                    path.free_interval.high, path.worst_segment, path.worst_probability);
+      out << line;
+    }
+    for (const SharedNodeDecision& decision : round.decisions) {
+      out << "  shared node " << decision.vertex << " "
+          << configuration(scenario, vertexConfiguration(round, decision.vertex)) << ":";
+      for (std::size_t k = 0; k < decision.paths.size(); ++k) {
+        out << " cand " << decision.paths[k] << " (D " << format("%.3f", decision.values[k].distance)
+            << ", P " << format("%.4f", decision.values[k].probability) << ", score "
+            << format("%.4f", decision.scores[k]) << ")";
+      }
+      out << " -> cand " << decision.winner << " dominates";
+      if (!decision.looped.empty()) {
+        out << "; loop cut from cand";
+        for (std::size_t c : decision.looped) out << " " << c;
+      }
+      out << "\n";
+    }
+    const PathSafety& best = *round.best;
+    out << "  best path: length " << format("%.3f", best.length) << ", P "
+        << format("%.4f", best.probability) << ", whole path free for " << best.free_poses << " of "
+        << problem.base_poses << " poses (" << format("%.3f", best.free_fraction) << " ["
+        << format("%.3f", best.free_interval.low) << ", " << format("%.3f", best.free_interval.high)
+        << "]), worst segment " << best.worst_segment << " of " << best.segments << " (P "
+        << format("%.3f", best.worst_probability) << ", from "
+        << configuration(scenario, best.worst_from) << " to "
+        << configuration(scenario, best.worst_to) << ")\n";
+    out << "  " << (best.probability >= problem.threshold ? "meets" : "below") << " the threshold "
+        << problem.threshold << "\n";
+  }
+  if (!result.validation.empty()) {
+    out << "\nvalidation on " << problem.validation_poses
+        << " fresh base poses (another seed), whole-path collision probability:\n";
+    for (const ValidationRow& row : result.validation) {
+      char line[200];
+      if (!row.planned) {
+        std::snprintf(line, sizeof line, "  %-9s no path (%s)", row.name.c_str(), row.status.c_str());
+      } else {
+        std::snprintf(line, sizeof line, "  %-9s length %8.3f  collides %.4f [%.4f, %.4f] (%zu of %zu)",
+                      row.name.c_str(), row.length, row.collision_probability, row.interval.low,
+                      row.interval.high, row.colliding, row.poses);
+      }
+      out << line;
+      if (row.name == "padded") out << ", obstacles padded by " << format("%.3g", row.padding) << " " << length_unit;
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner) {
+  const SwayPlanningProblem& p = planner.problem();
+  std::vector<PlanningRound> rounds;
+  if (p.base_step <= 0.0) {
+    rounds.push_back(planner.planRound(0.0));
+    return rounds;
+  }
+  const int steps = static_cast<int>(std::floor(p.base_range / p.base_step * (1.0 + 1e-12)));
+  for (int k = -steps; k <= steps; ++k) rounds.push_back(planner.planRound(k * p.base_step));
+  return rounds;
+}
+
+std::string renderOffsetsPng(const Scenario& scenario, const std::vector<PlanningRound>& rounds) {
+  io::ScratchDir dir;
+  const std::string data = dir.file("offsets.dat"), png = dir.file("offsets.png");
+  {
+    std::ofstream file(data);
+    for (const PlanningRound& round : rounds) {
+      if (round.best) {
+        file << round.base_offset << " " << round.best->probability << " "
+             << round.best->free_fraction << "\n";
+      }
+    }
+  }
+  const std::string unit = unitName(scenario.problem.robot.length_unit);
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 900,600 font 'Sans,11'\n"
+     << "set output " << gnuplotQuoted(png) << "\n"
+     << "set title " << gnuplotQuoted(scenario.name + ": best path against the base offset") << "\n"
+     << "set xlabel " << gnuplotQuoted("base offset along the line [" + unit + "]") << "\n"
+     << "set ylabel 'probability'\nset yrange [0:1.05]\nset grid\nset key bottom right\n"
+     << "plot " << gnuplotQuoted(data) << " using 1:2 with linespoints lw 2 pt 7 title "
+     << "'P (patent: mean of segment free rates)', " << gnuplotQuoted(data)
+     << " using 1:3 with linespoints lw 2 pt 5 title 'whole path free fraction', "
+     << scenario.problem.threshold << " with lines dt 2 lc rgb 'black' title 'threshold'\n";
+  return io::runGnuplot(dir, gp.str(), png);
+}
+
+std::string renderConfigurationSpacePng(const Scenario& scenario, const SwayPlanner& planner,
+                                        const PlanningRound& round, int cells) {
+  const Robot& robot = scenario.problem.robot;
+  if (robot.dof() != 2) {
+    throw Error("the configuration-space picture needs a two-joint robot; '" + robot.name +
+                "' has " + std::to_string(robot.dof()));
+  }
+  io::ScratchDir dir;
+  const std::string grid = dir.file("grid.dat"), png = dir.file("cspace.png");
+  const Joint& a = robot.joints[0];
+  const Joint& b = robot.joints[1];
+  {
+    std::ofstream file(grid);
+    Eigen::VectorXd q(2);
+    for (int i = 0; i < cells; ++i) {
+      for (int k = 0; k < cells; ++k) {
+        q[0] = a.lower + (a.upper - a.lower) * (i + 0.5) / cells;
+        q[1] = b.lower + (b.upper - b.lower) * (k + 0.5) / cells;
+        file << q[0] << " " << q[1] << " " << planner.collisionFraction(q) << "\n";
+      }
+      file << "\n";
+    }
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1000,900 font 'Sans,11'\n"
+     << "set output " << gnuplotQuoted(png) << "\n"
+     << "set title " << gnuplotQuoted(scenario.name +
+                                      ": share of base poses in collision, candidates and the "
+                                      "chosen path")
+     << "\n"
+     << "set xlabel " << gnuplotQuoted(a.name + " [" + jointUnit(scenario, 0) + "]") << "\n"
+     << "set ylabel " << gnuplotQuoted(b.name + " [" + jointUnit(scenario, 1) + "]") << "\n"
+     << "set xrange [" << a.lower << ":" << a.upper << "]\nset yrange [" << b.lower << ":"
+     << b.upper << "]\n"
+     << "set cbrange [0:1]\nset cblabel 'fraction of base poses colliding'\n"
+     << "set palette defined (0 'white', 0.01 '#fde0c5', 0.5 '#f08a4b', 1 '#7f2704')\n"
+     << "set key outside below\n";
+  std::string plot = "plot " + gnuplotQuoted(grid) + " using 1:2:3 with image notitle";
+  for (std::size_t c = 0; c < round.candidates.size(); ++c) {
+    const std::string file = dir.file("cand" + std::to_string(c) + ".dat");
+    std::ofstream out(file);
+    for (const Eigen::VectorXd& q : round.candidates[c].waypoints) out << q[0] << " " << q[1] << "\n";
+    plot += ", " + gnuplotQuoted(file) + " using 1:2 with lines lw 1.5 dt " +
+            std::to_string(2 + c % 4) + " title " + gnuplotQuoted("candidate " + std::to_string(c));
+  }
+  if (round.best) {
+    const std::string file = dir.file("best.dat");
+    std::ofstream out(file);
+    for (const Eigen::VectorXd& q : round.best->waypoints) out << q[0] << " " << q[1] << "\n";
+    plot += ", " + gnuplotQuoted(file) + " using 1:2 with lines lw 4 lc rgb '#08519c' title 'chosen'";
+  }
+  int label = 1;
+  for (std::size_t d = 0; d < round.decisions.size(); ++d) {
+    const SharedNodeDecision& decision = round.decisions[d];
+    const Eigen::VectorXd q = vertexConfiguration(round, decision.vertex);
+    if (q.size() != 2) continue;
+    gp << "set label " << label++ << " " << gnuplotQuoted("X" + std::to_string(d + 1) + ": cand " +
+                                                         std::to_string(decision.winner))
+       << " at " << q[0] << "," << q[1] << " offset 0.6,0.6 front\n";
+    gp << "set object " << label++ << " circle at " << q[0] << "," << q[1]
+       << " size char 0.5 fc rgb 'black' fs solid front\n";
+  }
+  gp << plot << "\n";
+  return io::runGnuplot(dir, gp.str(), png);
+}
+
+}  // namespace mcws

@@ -1,0 +1,380 @@
+#include "mcws/planning/scenario.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mcws/collision/collision_model.h"
+#include "mcws/core/error.h"
+#include "mcws/kinematics/robot_yaml.h"
+
+namespace mcws {
+
+namespace {
+
+/// A number, "pi", "2pi", "2*pi", "pi/6", "-3*pi/4"; false when the text is none of these.
+bool parseExpression(std::string text, double& value) {
+  double sign = 1.0;
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) {
+    if (text[0] == '-') sign = -1.0;
+    text.erase(0, 1);
+  }
+  double divisor = 1.0;
+  if (const auto slash = text.find('/'); slash != std::string::npos) {
+    std::size_t used = 0;
+    const std::string tail = text.substr(slash + 1);
+    try {
+      divisor = std::stod(tail, &used);
+    } catch (const std::exception&) {
+      return false;
+    }
+    if (used != tail.size() || divisor == 0.0 || !std::isfinite(divisor)) return false;
+    text = text.substr(0, slash);
+  }
+  double factor = 1.0;
+  if (text.size() >= 2 && text.compare(text.size() - 2, 2, "pi") == 0) {
+    factor = M_PI;
+    text.erase(text.size() - 2);
+    if (!text.empty() && text.back() == '*') text.pop_back();
+    if (text.empty()) text = "1";
+  }
+  if (text.empty()) return false;
+  std::size_t used = 0;
+  double number = 0.0;
+  try {
+    number = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (used != text.size()) return false;
+  value = sign * number * factor / divisor;
+  return std::isfinite(value);
+}
+
+class ScenarioReader {
+ public:
+  explicit ScenarioReader(std::string source) : source_(std::move(source)) {}
+
+  Scenario read(const YAML::Node& root) {
+    if (!root.IsMap()) fail(root, "the document must be a map of scenario fields");
+    checkKeys(root, "scenario",
+              {"name", "robot", "start", "goal", "joint_scale", "base", "sway", "planner",
+               "validation"});
+    Scenario scenario;
+    scenario.source = source_;
+    scenario.name = text(require(root, "name", "scenario"), "name");
+    SwayPlanningProblem& problem = scenario.problem;
+
+    const YAML::Node robot_node = require(root, "robot", "scenario");
+    const std::string robot_file = text(robot_node, "robot");
+    std::filesystem::path path(robot_file);
+    if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
+    if (!std::filesystem::exists(path)) {
+      fail(robot_node, "robot: '" + robot_file + "' does not exist (looked for " +
+                           path.string() + ")");
+    }
+    scenario.robot_path = path.string();
+    problem.robot = loadRobot(scenario.robot_path);
+    problem.collision = loadCollisionModel(problem.robot, scenario.robot_path);
+    if (!hasGeometry(problem.collision)) {
+      fail(robot_node, "robot: '" + robot_file + "' has no collision geometry (collision: key)");
+    }
+    unit_ = problem.robot.length_unit;
+    if (const YAML::Node base = root["base"]) problem.robot.T_world_base = pose(base, "base");
+
+    problem.start = joints(require(root, "start", "scenario"), "start", problem.robot);
+    problem.goal = joints(require(root, "goal", "scenario"), "goal", problem.robot);
+    const int dof = problem.robot.dof();
+    problem.roadmap.joint_scale = Eigen::VectorXd::Ones(dof);
+    if (const YAML::Node scale = root["joint_scale"]) {
+      if (!scale.IsSequence() || static_cast<int>(scale.size()) != dof) {
+        fail(scale, "joint_scale: must list " + std::to_string(dof) + " numbers, one per joint");
+      }
+      for (int j = 0; j < dof; ++j) {
+        problem.roadmap.joint_scale[j] = number(scale[j], "joint_scale[" + std::to_string(j + 1) + "]");
+        if (!(problem.roadmap.joint_scale[j] > 0.0)) {
+          fail(scale[j], "joint_scale[" + std::to_string(j + 1) + "]: " +
+                             scale[j].Scalar() + " must be > 0");
+        }
+      }
+    }
+    std::ostringstream unit;
+    for (int j = 0; j < dof; ++j) {
+      unit << (j ? ", " : "") << problem.roadmap.joint_scale[j] << "/"
+           << (problem.robot.joints[j].type == JointType::kRevolute ? "rad"
+                                                                      : unitName(unit_));
+    }
+    scenario.distance_unit = "sqrt(sum (s_i dq_i)^2) with s = " + unit.str();
+
+    readSway(require(root, "sway", "scenario"), problem);
+    if (const YAML::Node planner = root["planner"]) readPlanner(planner, problem);
+    if (const YAML::Node validation = root["validation"]) {
+      checkKeys(validation, "validation", {"poses"});
+      if (validation["poses"])
+        problem.validation_poses = count(validation["poses"], "validation: poses");
+    }
+    return scenario;
+  }
+
+ private:
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
+    const int line = node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+    throw Error(source_ + (line ? ":" + std::to_string(line) : "") + ": " + message);
+  }
+
+  void checkKeys(const YAML::Node& map, const std::string& where,
+                 const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, where + ": must be a map");
+    for (const auto& item : map) {
+      const std::string key = item.first.as<std::string>();
+      if (!allowed.count(key)) fail(item.first, where + ": unknown field '" + key + "'");
+    }
+  }
+
+  YAML::Node require(const YAML::Node& map, const std::string& key,
+                     const std::string& where) const {
+    const YAML::Node node = map[key];
+    if (!node) fail(map, where + ": missing field '" + key + "'");
+    return node;
+  }
+
+  std::string text(const YAML::Node& node, const std::string& field) const {
+    if (!node.IsScalar()) fail(node, field + ": must be a single value");
+    return node.Scalar();
+  }
+
+  double number(const YAML::Node& node, const std::string& field) const {
+    const std::string value = text(node, field);
+    double out = 0.0;
+    if (!parseExpression(value, out)) fail(node, field + ": '" + value + "' is not a number");
+    return out;
+  }
+
+  std::size_t count(const YAML::Node& node, const std::string& field) const {
+    const double value = number(node, field);
+    if (value < 1.0 || value != std::floor(value) || value > 1e9) {
+      fail(node, field + ": " + node.Scalar() + " must be a whole number of at least 1");
+    }
+    return static_cast<std::size_t>(value);
+  }
+
+  double quantity(const YAML::Node& node, char want, const std::string& field) const {
+    try {
+      return parseQuantity(text(node, field), want, unit_);
+    } catch (const Error& e) {
+      fail(node, field + ": " + e.what());
+    }
+  }
+
+  Eigen::VectorXd joints(const YAML::Node& node, const std::string& field, const Robot& robot) {
+    if (!node.IsSequence()) fail(node, field + ": must be a list of joint values with units");
+    if (static_cast<int>(node.size()) != robot.dof()) {
+      fail(node, field + ": has " + std::to_string(node.size()) + " values; robot '" +
+                     robot.name + "' has " + std::to_string(robot.dof()) + " joints");
+    }
+    Eigen::VectorXd q(robot.dof());
+    for (int j = 0; j < robot.dof(); ++j) {
+      const Joint& joint = robot.joints[j];
+      const bool revolute = joint.type == JointType::kRevolute;
+      q[j] = quantity(node[j], revolute ? 'a' : 'l',
+                      field + "[" + std::to_string(j + 1) + "] (joint '" + joint.name + "', " +
+                          jointTypeName(joint.type) + ")");
+      if (q[j] < joint.lower - 1e-9 || q[j] > joint.upper + 1e-9) {
+        fail(node[j], field + ": joint '" + joint.name + "' value " + node[j].Scalar() +
+                          " is outside its limits " + describeLimits(joint, unit_));
+      }
+      q[j] = std::clamp(q[j], joint.lower, joint.upper);
+    }
+    return q;
+  }
+
+  Eigen::Vector3d vector3(const YAML::Node& node, char want, const std::string& field) const {
+    if (!node.IsSequence() || node.size() != 3) fail(node, field + ": must list 3 values");
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) {
+      v[k] = want == 'n' ? number(node[k], field) : quantity(node[k], want, field);
+    }
+    return v;
+  }
+
+  Eigen::Isometry3d pose(const YAML::Node& node, const std::string& field) const {
+    checkKeys(node, field, {"xyz", "rpy"});
+    const Eigen::Vector3d xyz = node["xyz"] ? vector3(node["xyz"], 'l', field + ": xyz")
+                                            : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d rpy = node["rpy"] ? vector3(node["rpy"], 'a', field + ": rpy")
+                                            : Eigen::Vector3d::Zero();
+    return poseFromXyzRpy(xyz, rpy);
+  }
+
+  double sigma(const YAML::Node& node, char want, const std::string& field) const {
+    const double value = quantity(node, want, field);
+    if (value < 0.0) fail(node, field + ": sigma " + node.Scalar() + " must be >= 0");
+    return value;
+  }
+
+  void readSway(const YAML::Node& node, SwayPlanningProblem& problem) {
+    checkKeys(node, "sway",
+              {"pivot", "line", "swing", "slide", "covariance", "confidence", "poses", "seed"});
+    SwayModel& sway = problem.sway;
+    sway.pivot = vector3(require(node, "pivot", "sway"), 'l', "sway: pivot");
+    sway.line_direction = vector3(require(node, "line", "sway"), 'n', "sway: line");
+    if (sway.line_direction.norm() == 0.0) fail(node["line"], "sway: line: must not be zero");
+    sway.covariance.setZero();
+    if (const YAML::Node swing = node["swing"]) {
+      sway.covariance(3, 3) += std::pow(sigma(swing, 'a', "sway: swing"), 2);
+    }
+    if (const YAML::Node slide = node["slide"]) {
+      sway.covariance(0, 0) += std::pow(sigma(slide, 'l', "sway: slide"), 2);
+    }
+    if (const YAML::Node covariance = node["covariance"]) readCovariance(covariance, sway);
+    if (const YAML::Node confidence = node["confidence"]) {
+      sway.confidence = number(confidence, "sway: confidence");
+      if (!(sway.confidence > 0.0 && sway.confidence < 1.0)) {
+        fail(confidence, "sway: confidence " + confidence.Scalar() + " is outside (0, 1)");
+      }
+    }
+    if (const YAML::Node poses = node["poses"]) problem.base_poses = count(poses, "sway: poses");
+    if (const YAML::Node seed = node["seed"]) problem.seed = count(seed, "sway: seed");
+    try {
+      SwaySampler check(sway);  // positive semi-definite, symmetric
+    } catch (const Error& e) {
+      fail(node["covariance"] ? node["covariance"] : node, e.what());
+    }
+  }
+
+  void readCovariance(const YAML::Node& node, SwayModel& sway) {
+    checkKeys(node, "sway: covariance", {"length", "angle", "matrix"});
+    const std::string length = text(require(node, "length", "sway: covariance"), "length");
+    const std::string angle = text(require(node, "angle", "sway: covariance"), "angle");
+    double length_scale = 0.0, angle_scale = 0.0;
+    try {
+      length_scale = parseQuantity("1 " + length, 'l', unit_);
+      angle_scale = parseQuantity("1 " + angle, 'a', unit_);
+    } catch (const Error& e) {
+      fail(node, std::string("sway: covariance: ") + e.what());
+    }
+    const YAML::Node matrix = require(node, "matrix", "sway: covariance");
+    if (!matrix.IsSequence() || matrix.size() != 6) {
+      fail(matrix, "sway: covariance: matrix must have 6 rows (x, y, z, roll, pitch, yaw)");
+    }
+    for (int r = 0; r < 6; ++r) {
+      if (!matrix[r].IsSequence() || matrix[r].size() != 6) {
+        fail(matrix[r], "sway: covariance: row " + std::to_string(r + 1) + " must have 6 numbers");
+      }
+      for (int c = 0; c < 6; ++c) {
+        const double scale =
+            (r < 3 ? length_scale : angle_scale) * (c < 3 ? length_scale : angle_scale);
+        sway.covariance(r, c) += number(matrix[r][c], "sway: covariance") * scale;
+      }
+    }
+    for (int k = 0; k < 6; ++k) {
+      if (sway.covariance(k, k) < 0.0) {
+        fail(matrix[k], "sway: covariance: variance " + std::to_string(sway.covariance(k, k)) +
+                            " of row " + std::to_string(k + 1) + " is negative");
+      }
+    }
+  }
+
+  void readPlanner(const YAML::Node& node, SwayPlanningProblem& problem) {
+    checkKeys(node, "planner",
+              {"candidates", "diversity", "roadmap_nodes", "max_roadmap_nodes", "neighbours",
+               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "base_step",
+               "base_range", "padding"});
+    if (node["candidates"]) problem.candidates = count(node["candidates"], "planner: candidates");
+    if (node["diversity"]) problem.diversity = nonNegative(node["diversity"], "planner: diversity");
+    if (node["roadmap_nodes"])
+      problem.roadmap.nodes = count(node["roadmap_nodes"], "planner: roadmap_nodes");
+    if (node["max_roadmap_nodes"])
+      problem.roadmap.max_nodes = count(node["max_roadmap_nodes"], "planner: max_roadmap_nodes");
+    problem.roadmap.max_nodes = std::max(problem.roadmap.max_nodes, problem.roadmap.nodes);
+    if (node["neighbours"])
+      problem.roadmap.neighbours =
+          static_cast<unsigned>(count(node["neighbours"], "planner: neighbours"));
+    if (node["roadmap_seed"])
+      problem.roadmap.seed = count(node["roadmap_seed"], "planner: roadmap_seed");
+    if (node["segment_length"]) {
+      problem.segment_length = number(node["segment_length"], "planner: segment_length");
+      if (!(problem.segment_length > 0.0))
+        fail(node["segment_length"], "planner: segment_length " +
+                                         node["segment_length"].Scalar() + " must be > 0");
+    }
+    if (const YAML::Node rule = node["rule"]) {
+      const std::string name = text(rule, "planner: rule");
+      if (name == "literal") {
+        problem.score.rule = ScoreRule::kLiteral;
+      } else if (name == "weighted") {
+        problem.score.rule = ScoreRule::kWeighted;
+      } else {
+        fail(rule, "planner: rule '" + name + "' is not literal or weighted");
+      }
+    }
+    if (node["weight"]) problem.score.weight = nonNegative(node["weight"], "planner: weight");
+    if (node["threshold"]) problem.threshold = number(node["threshold"], "planner: threshold");
+    if (node["base_step"]) problem.base_step = sigma(node["base_step"], 'l', "planner: base_step");
+    if (node["base_range"])
+      problem.base_range = sigma(node["base_range"], 'l', "planner: base_range");
+    if (const YAML::Node padding = node["padding"]) {
+      problem.padding = padding.IsScalar() && padding.Scalar() == "auto"
+                            ? -1.0
+                            : sigma(padding, 'l', "planner: padding");
+    }
+  }
+
+  double nonNegative(const YAML::Node& node, const std::string& field) const {
+    const double value = number(node, field);
+    if (value < 0.0) fail(node, field + ": " + node.Scalar() + " must be >= 0");
+    return value;
+  }
+
+  std::string source_;
+  LengthUnit unit_{LengthUnit::kMetre};
+};
+
+}  // namespace
+
+double parseQuantity(const std::string& text, char want, LengthUnit length_unit) {
+  std::istringstream words(text);
+  std::string value, unit, extra;
+  words >> value >> unit;
+  if (value.empty() || unit.empty() || (words >> extra)) {
+    throw Error("'" + text + "' is not a value and a unit (e.g. 'pi rad', '30 deg', '10 cm')");
+  }
+  double number = 0.0;
+  if (!parseExpression(value, number)) throw Error("'" + value + "' is not a number (or pi)");
+  if (unit == "rad" || unit == "deg") {
+    if (want != 'a') throw Error("'" + text + "' is an angle; a length is needed (m, cm, mm)");
+    return unit == "rad" ? number : number * M_PI / 180.0;
+  }
+  const LengthUnit units[] = {LengthUnit::kMetre, LengthUnit::kCentimetre, LengthUnit::kMillimetre};
+  for (LengthUnit u : units) {
+    if (unit == unitName(u)) {
+      if (want != 'l') throw Error("'" + text + "' is a length; an angle is needed (rad, deg)");
+      return number * unitInMetres(u) / unitInMetres(length_unit);
+    }
+  }
+  throw Error("unknown unit '" + unit + "' in '" + text + "' (rad, deg, m, cm, mm)");
+}
+
+Scenario parseScenario(const std::string& text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  return ScenarioReader(source).read(root);
+}
+
+Scenario loadScenario(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot read the scenario file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScenario(text.str(), path);
+}
+
+}  // namespace mcws

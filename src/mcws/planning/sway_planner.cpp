@@ -1,0 +1,455 @@
+#include "mcws/planning/sway_planner.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include "mcws/core/error.h"
+#include "mcws/kinematics/forward_kinematics.h"
+
+namespace mcws {
+
+namespace {
+
+/// Base poses of a run and what bounds their effect on a clearance.
+struct PoseSet {
+  std::vector<Eigen::Isometry3d> T_world_base;  ///< the displaced base poses
+  std::vector<MotionCertifier::DisplacementBound> bounds;
+  Eigen::Vector3d pivot{Eigen::Vector3d::Zero()};  ///< world
+  double max_sin{0.0}, max_shift{0.0};
+};
+
+/// Displacements about the sway frame moved by the base offset, applied to the measured base.
+PoseSet makePoses(const std::vector<Eigen::Isometry3d>& displacements,
+                  const Eigen::Isometry3d& T_world_base, const Eigen::Vector3d& pivot) {
+  PoseSet poses;
+  poses.pivot = pivot;
+  for (const Eigen::Isometry3d& displacement : displacements) {
+    poses.T_world_base.push_back(displacement * T_world_base);
+    poses.bounds.push_back(MotionCertifier::displacementBound(displacement, pivot));
+    poses.max_sin = std::max(poses.max_sin, poses.bounds.back().sin_term);
+    poses.max_shift = std::max(poses.max_shift, poses.bounds.back().shift);
+  }
+  return poses;
+}
+
+/// A polyline in joint space with its checkpoints' clearances for the nominal base: a segment is
+/// free for a displaced base when the nominal clearances, less how far the displacement can move
+/// each body, still certify it (MotionCertifier's test); otherwise it is checked exactly.
+class PolylineCheck {
+ public:
+  PolylineCheck(const MotionCertifier& certifier, const Eigen::Isometry3d& T_nominal,
+                const PoseSet& poses, std::vector<Eigen::VectorXd> points,
+                CollisionChecker::Scratch& scratch)
+      : certifier_(certifier), poses_(poses), points_(std::move(points)) {
+    const std::size_t pairs = certifier.pairs(PairSet::kEnvironment).size();
+    bounds_.resize(segments());
+    for (std::size_t k = 0; k < segments(); ++k)
+      certifier.motionBounds(points_[k], points_[k + 1], PairSet::kEnvironment, bounds_[k]);
+    clearance_.resize(points_.size());
+    pivot_reach_.resize(points_.size());
+    const CollisionChecker& checker = certifier.checker();
+    for (std::size_t k = 0; k < points_.size(); ++k) {
+      double motion = 0.0;
+      for (std::size_t s : {k - 1, k}) {
+        if (s < segments())
+          for (double b : bounds_[s]) motion = std::max(motion, b);
+      }
+      // Bodies' bounding spheres about the pivot, then clearances capped where no pose needs
+      // more.
+      checker.place(points_[k].data(), T_nominal, scratch);
+      pivot_reach_[k].resize(pairs);
+      double farthest = 0.0;
+      for (std::size_t e = 0; e < pairs; ++e) {
+        const int body = certifier.environmentBody(e);
+        const CollisionChecker::BodySphere sphere = checker.bodySphere(body);
+        pivot_reach_[k][e] =
+            (checker.bodyPose(body, scratch) * sphere.center - poses.pivot).norm() + sphere.radius;
+        farthest = std::max(farthest, pivot_reach_[k][e]);
+      }
+      const double cap = motion + poses.max_sin * farthest + poses.max_shift + 1e-6;
+      certifier.clearances(points_[k], T_nominal, PairSet::kEnvironment, cap, scratch,
+                           clearance_[k]);
+    }
+  }
+
+  std::size_t segments() const { return points_.size() - 1; }
+  const std::vector<Eigen::VectorXd>& points() const { return points_; }
+
+  /// Is segment k free with the base at pose j?
+  bool segmentFree(std::size_t k, std::size_t j, CollisionChecker::Scratch& scratch) const {
+    const MotionCertifier::DisplacementBound& d = poses_.bounds[j];
+    const std::vector<double>& bounds = bounds_[k];
+    bool certain = true;
+    for (std::size_t e = 0; e < bounds.size() && certain; ++e) {
+      const double a = clearance_[k][e] - d.sin_term * pivot_reach_[k][e] - d.shift;
+      const double b = clearance_[k + 1][e] - d.sin_term * pivot_reach_[k + 1][e] - d.shift;
+      certain = a > 0.0 && b > 0.0 && a + b > bounds[e];
+    }
+    return certain || certifier_.motionFree(points_[k], points_[k + 1], poses_.T_world_base[j],
+                                            PairSet::kEnvironment, scratch);
+  }
+
+  /// Is the whole polyline free with the base at pose j?
+  bool pathFree(std::size_t j, CollisionChecker::Scratch& scratch) const {
+    for (std::size_t k = 0; k < segments(); ++k)
+      if (!segmentFree(k, j, scratch)) return false;
+    return true;
+  }
+
+ private:
+  const MotionCertifier& certifier_;
+  const PoseSet& poses_;
+  std::vector<Eigen::VectorXd> points_;
+  std::vector<std::vector<double>> bounds_;       ///< per segment, per environment pair
+  std::vector<std::vector<double>> clearance_;    ///< per checkpoint, per environment pair
+  std::vector<std::vector<double>> pivot_reach_;  ///< per checkpoint, per environment pair
+};
+
+/// The points that cut the line from a to b into equal segments no longer than `length`.
+std::vector<Eigen::VectorXd> subdivide(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                                       const Eigen::VectorXd& scale, double length) {
+  const double distance = scaledDistance(a, b, scale);
+  const std::size_t count =
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(distance / length - 1e-9)));
+  std::vector<Eigen::VectorXd> points;
+  for (std::size_t k = 0; k <= count; ++k)
+    points.push_back(a + (b - a) * (static_cast<double>(k) / static_cast<double>(count)));
+  return points;
+}
+
+/// Undirected edge key.
+std::pair<std::size_t, std::size_t> edgeKey(std::size_t u, std::size_t v) {
+  return {std::min(u, v), std::max(u, v)};
+}
+
+/// Free states of one roadmap edge's segments (from the lower-numbered vertex) for each pose.
+struct EdgeStates {
+  double length{0.0};
+  std::vector<std::vector<std::uint8_t>> free;  ///< [segment][pose]
+  std::vector<double> probability;              ///< [segment]
+  std::vector<Eigen::VectorXd> points;
+};
+
+}  // namespace
+
+struct SwayPlanner::Evaluation {
+  std::map<std::pair<std::size_t, std::size_t>, EdgeStates> edges;
+};
+
+SwayPlanner::SwayPlanner(SwayPlanningProblem problem) : problem_(std::move(problem)) {
+  const SwayPlanningProblem& p = problem_;
+  if (p.base_poses == 0) throw Error("base_poses (n) must be at least 1");
+  if (p.candidates == 0) throw Error("candidates (m) must be at least 1");
+  if (!(p.segment_length > 0.0) || !std::isfinite(p.segment_length))
+    throw Error("segment_length " + std::to_string(p.segment_length) + " must be > 0");
+  if (!(p.diversity >= 0.0) || !std::isfinite(p.diversity))
+    throw Error("diversity " + std::to_string(p.diversity) + " must be >= 0");
+  if (!(p.base_step >= 0.0) || !(p.base_range >= 0.0) || !std::isfinite(p.base_step) ||
+      !std::isfinite(p.base_range))
+    throw Error("base adjustment step and range must be >= 0");
+  if (!std::isfinite(p.threshold)) throw Error("threshold must be a finite number");
+  if (p.validation_poses == 0) throw Error("validation poses must be at least 1");
+  p.robot.checkSize(p.start);
+  p.robot.checkSize(p.goal);
+  checker_ = std::make_unique<CollisionChecker>(p.robot, p.collision);
+  certifier_ = std::make_unique<MotionCertifier>(p.robot, *checker_);
+  sampler_ = std::make_unique<SwaySampler>(p.sway);
+  displacements_ = sampler_->displacements(p.seed, p.base_poses);
+}
+
+SwayPlanner::~SwayPlanner() = default;
+
+Eigen::Isometry3d SwayPlanner::measuredBase(double offset) const {
+  Eigen::Isometry3d shift = Eigen::Isometry3d::Identity();
+  shift.translation() = offset * sampler_->frame().linear().col(0);
+  return shift * problem_.robot.T_world_base;
+}
+
+std::vector<Eigen::Isometry3d> SwayPlanner::movedDisplacements(
+    const std::vector<Eigen::Isometry3d>& base, double offset) const {
+  Eigen::Isometry3d shift = Eigen::Isometry3d::Identity();
+  shift.translation() = offset * sampler_->frame().linear().col(0);
+  std::vector<Eigen::Isometry3d> moved;
+  moved.reserve(base.size());
+  for (const Eigen::Isometry3d& d : base) moved.push_back(shift * d * shift.inverse());
+  return moved;
+}
+
+std::vector<std::uint8_t> SwayPlanner::motionFreeStates(const Eigen::VectorXd& qa,
+                                                        const Eigen::VectorXd& qb,
+                                                        double offset) const {
+  problem_.robot.checkSize(qa);
+  problem_.robot.checkSize(qb);
+  const Eigen::Isometry3d T_nominal = measuredBase(offset);
+  const PoseSet poses = makePoses(movedDisplacements(displacements_, offset), T_nominal,
+                                  T_nominal * problem_.robot.T_world_base.inverse() *
+                                      problem_.sway.pivot);
+  CollisionChecker::Scratch scratch;
+  const PolylineCheck check(*certifier_, T_nominal, poses, {qa, qb}, scratch);
+  std::vector<std::uint8_t> free(poses.T_world_base.size());
+  for (std::size_t j = 0; j < free.size(); ++j) free[j] = check.segmentFree(0, j, scratch);
+  return free;
+}
+
+double SwayPlanner::padding() const {
+  if (problem_.padding >= 0.0) return problem_.padding;
+  double largest = 0.0;
+  for (const Eigen::VectorXd* q : {&problem_.start, &problem_.goal}) {
+    const Eigen::Vector3d p = toolPose(problem_.robot, *q).translation();
+    double sum = 0.0;
+    for (const Eigen::Isometry3d& d : displacements_) sum += (d * p - p).squaredNorm();
+    largest = std::max(largest, std::sqrt(sum / static_cast<double>(displacements_.size())));
+  }
+  return 2.0 * largest;
+}
+
+double SwayPlanner::collisionFraction(const Eigen::VectorXd& q) const {
+  CollisionChecker::Scratch scratch;
+  std::size_t colliding = 0;
+  for (const Eigen::Isometry3d& d : displacements_) {
+    colliding += checker_->label(q.data(), d * problem_.robot.T_world_base, scratch) != kLabelFree;
+  }
+  return static_cast<double>(colliding) / static_cast<double>(displacements_.size());
+}
+
+namespace {
+
+/// Safety numbers of a vertex path from the edges' free states.
+PathSafety pathSafety(const VertexPath& path, const Roadmap& roadmap,
+                      const std::map<std::pair<std::size_t, std::size_t>, EdgeStates>& edges,
+                      std::size_t poses) {
+  PathSafety safety;
+  safety.vertices = path;
+  for (std::size_t v : path) safety.waypoints.push_back(roadmap.configurations[v]);
+  std::vector<std::uint8_t> whole(poses, 1);
+  double sum = 0.0;
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    const EdgeStates& edge = edges.at(edgeKey(path[k], path[k + 1]));
+    const bool forward = path[k] < path[k + 1];
+    safety.length += edge.length;
+    const std::size_t count = edge.probability.size();
+    for (std::size_t s = 0; s < count; ++s) {
+      const std::size_t i = forward ? s : count - 1 - s;
+      const double p = edge.probability[i];
+      sum += p;
+      if (p < safety.worst_probability || safety.worst_from.size() == 0) {
+        safety.worst_probability = p;
+        safety.worst_segment = safety.segments;
+        safety.worst_from = edge.points[forward ? i : i + 1];
+        safety.worst_to = edge.points[forward ? i + 1 : i];
+      }
+      for (std::size_t j = 0; j < poses; ++j) whole[j] &= edge.free[i][j];
+      ++safety.segments;
+    }
+  }
+  safety.probability = safety.segments ? sum / static_cast<double>(safety.segments) : 1.0;
+  for (std::uint8_t f : whole) safety.free_poses += f;
+  safety.free_fraction = static_cast<double>(safety.free_poses) / static_cast<double>(poses);
+  safety.free_interval = wilsonInterval(safety.free_poses, poses);
+  return safety;
+}
+
+}  // namespace
+
+PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& progress) const {
+  const auto started = std::chrono::steady_clock::now();
+  const SwayPlanningProblem& p = problem_;
+  PlanningRound round;
+  round.base_offset = offset;
+  const Eigen::Isometry3d T_nominal = measuredBase(offset);
+  const Eigen::VectorXd& scale = p.roadmap.joint_scale;
+  round.reference_distance = scaledDistance(p.start, p.goal, scale);
+
+  // s30: m collision-free paths for the measured pose, through one roadmap.
+  if (progress) progress("roadmap", 0, 1);
+  const Roadmap roadmap = buildRoadmap(*certifier_, T_nominal, p.start, p.goal, p.roadmap);
+  round.status = roadmap.status;
+  round.roadmap_vertices = boost::num_vertices(roadmap.graph);
+  round.roadmap_edges = boost::num_edges(roadmap.graph);
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  };
+  round.roadmap_seconds = elapsed();
+  if (progress) progress("roadmap", 1, 1);
+  if (roadmap.status != RoadmapStatus::kConnected) {
+    round.seconds = elapsed();
+    return round;
+  }
+  const std::vector<VertexPath> candidates =
+      diversePaths(roadmap.graph, roadmap.start, roadmap.goal, p.candidates, p.diversity);
+
+  // s20: the n second static poses, about the sway frame moved with the base.
+  const PoseSet poses = makePoses(movedDisplacements(displacements_, offset), T_nominal,
+                                  measuredBase(offset) * problem_.robot.T_world_base.inverse() *
+                                      p.sway.pivot);
+
+  // s41, s42: each edge of a candidate cut into segments; free states for every pose.
+  Evaluation evaluation;
+  for (const VertexPath& path : candidates)
+    for (std::size_t k = 0; k + 1 < path.size(); ++k)
+      evaluation.edges[edgeKey(path[k], path[k + 1])];
+  std::vector<std::pair<const std::pair<std::size_t, std::size_t>, EdgeStates>*> work;
+  for (auto& item : evaluation.edges) work.push_back(&item);
+  std::size_t done = 0;
+#pragma omp parallel
+  {
+    CollisionChecker::Scratch scratch;
+#pragma omp for schedule(dynamic)
+    for (std::size_t w = 0; w < work.size(); ++w) {
+      const auto [u, v] = work[w]->first;
+      EdgeStates& edge = work[w]->second;
+      edge.length = scaledDistance(roadmap.configurations[u], roadmap.configurations[v], scale);
+      const PolylineCheck check(*certifier_, T_nominal, poses,
+                                subdivide(roadmap.configurations[u], roadmap.configurations[v],
+                                          scale, p.segment_length),
+                                scratch);
+      edge.points = check.points();
+      edge.free.assign(check.segments(), std::vector<std::uint8_t>(poses.T_world_base.size()));
+      edge.probability.assign(check.segments(), 0.0);
+      for (std::size_t s = 0; s < check.segments(); ++s) {
+        std::size_t free = 0;
+        for (std::size_t j = 0; j < poses.T_world_base.size(); ++j) {
+          edge.free[s][j] = check.segmentFree(s, j, scratch);
+          free += edge.free[s][j];
+        }
+        edge.probability[s] = static_cast<double>(free) / static_cast<double>(p.base_poses);
+      }
+#pragma omp critical(mcws_plan_progress)
+      if (progress) progress("segments", ++done, work.size());
+    }
+  }
+
+  round.evaluation_seconds = elapsed() - round.roadmap_seconds;
+
+  // s43 - s47: dominance at shared nodes, in increasing roadmap distance from the start.
+  ScoreOptions score = p.score;
+  score.reference_distance = round.reference_distance;
+  const EdgeValuesFn values = [&](std::size_t u, std::size_t v) {
+    const EdgeStates& edge = evaluation.edges.at(edgeKey(u, v));
+    EdgeValues out;
+    out.length = edge.length;
+    out.segments = static_cast<int>(edge.probability.size());
+    for (double q : edge.probability) out.probability_sum += q;
+    return out;
+  };
+  const MergeResult merged = mergeAtSharedNodes(
+      candidates, values, [&](std::size_t v) { return roadmap.distance_from_start[v]; }, score);
+  for (const VertexPath& path : candidates)
+    round.candidates.push_back(pathSafety(path, roadmap, evaluation.edges, p.base_poses));
+  round.decisions = merged.decisions;
+  round.best = pathSafety(merged.paths[merged.best], roadmap, evaluation.edges, p.base_poses);
+  round.seconds = elapsed();
+  return round;
+}
+
+ValidationRow SwayPlanner::validate(const std::string& name,
+                                    const std::vector<Eigen::VectorXd>& waypoints,
+                                    double offset) const {
+  const SwayPlanningProblem& p = problem_;
+  ValidationRow row;
+  row.name = name;
+  row.planned = true;
+  row.status = roadmapStatusName(RoadmapStatus::kConnected);
+  row.poses = p.validation_poses;
+  const Eigen::VectorXd& scale = p.roadmap.joint_scale;
+  std::vector<Eigen::VectorXd> points{waypoints.front()};
+  for (std::size_t k = 0; k + 1 < waypoints.size(); ++k) {
+    row.length += scaledDistance(waypoints[k], waypoints[k + 1], scale);
+    const std::vector<Eigen::VectorXd> part =
+        subdivide(waypoints[k], waypoints[k + 1], scale, p.segment_length);
+    points.insert(points.end(), part.begin() + 1, part.end());
+  }
+  // Fresh poses: a seed of their own, far from the planning seed's stream.
+  const std::uint64_t seed = p.seed ^ 0x5DEECE66DULL;
+  const Eigen::Isometry3d T_nominal = measuredBase(offset);
+  const PoseSet poses =
+      makePoses(movedDisplacements(sampler_->displacements(seed, p.validation_poses), offset),
+                T_nominal, T_nominal * p.robot.T_world_base.inverse() * p.sway.pivot);
+  CollisionChecker::Scratch scratch;
+  const PolylineCheck check(*certifier_, T_nominal, poses, std::move(points), scratch);
+  std::size_t colliding = 0;
+#pragma omp parallel reduction(+ : colliding)
+  {
+    CollisionChecker::Scratch local;
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t j = 0; j < p.validation_poses; ++j) colliding += !check.pathFree(j, local);
+  }
+  row.colliding = colliding;
+  row.collision_probability =
+      static_cast<double>(colliding) / static_cast<double>(p.validation_poses);
+  row.interval = wilsonInterval(colliding, p.validation_poses);
+  return row;
+}
+
+SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
+  const SwayPlanningProblem& p = problem_;
+  SwayPlanningResult result;
+  std::vector<double> offsets{0.0};
+  if (p.base_step > 0.0) {
+    for (int k = 1; k * p.base_step <= p.base_range * (1.0 + 1e-12); ++k) {
+      offsets.push_back(k * p.base_step);
+      offsets.push_back(-k * p.base_step);
+    }
+  }
+  for (double offset : offsets) {
+    result.rounds.push_back(planRound(offset, progress));
+    const PlanningRound& round = result.rounds.back();
+    if (round.best && round.best->probability >= p.threshold) {
+      result.accepted = result.rounds.size() - 1;
+      break;
+    }
+    // A start or goal in collision does not move with the base only when nothing sways; keep
+    // trying the other offsets, as the patent's step s70 says.
+  }
+  if (!validate_paths) return result;
+
+  // Validate the accepted round, or else the round whose best path has the highest P.
+  std::optional<std::size_t> chosen = result.accepted;
+  for (std::size_t r = 0; r < result.rounds.size() && !chosen; ++r) {
+    if (result.rounds[r].best) chosen = r;
+  }
+  for (std::size_t r = 0; r < result.rounds.size() && !result.accepted; ++r) {
+    if (result.rounds[r].best &&
+        result.rounds[r].best->probability > result.rounds[*chosen].best->probability)
+      chosen = r;
+  }
+  if (!chosen) return result;
+  const auto started = std::chrono::steady_clock::now();
+  const PlanningRound& round = result.rounds[*chosen];
+  if (progress) progress("validation", 0, 3);
+  result.validation.push_back(validate("chosen", round.best->waypoints, round.base_offset));
+  if (progress) progress("validation", 1, 3);
+  result.validation.push_back(
+      validate("shortest", round.candidates.front().waypoints, round.base_offset));
+  if (progress) progress("validation", 2, 3);
+
+  // The usual answer: the shortest path for obstacles padded by the 2-sigma displacement.
+  MotionCertifierOptions padded_options;
+  padded_options.environment_margin = padding();
+  const MotionCertifier padded(p.robot, *checker_, padded_options);
+  const Roadmap roadmap =
+      buildRoadmap(padded, measuredBase(round.base_offset), p.start, p.goal, p.roadmap);
+  ValidationRow row;
+  if (roadmap.status == RoadmapStatus::kConnected) {
+    const VertexPath path = kShortestPaths(roadmap.graph, roadmap.start, roadmap.goal, 1).front();
+    std::vector<Eigen::VectorXd> waypoints;
+    for (std::size_t v : path) waypoints.push_back(roadmap.configurations[v]);
+    row = validate("padded", waypoints, round.base_offset);
+  } else {
+    row.name = "padded";
+    row.status = roadmapStatusName(roadmap.status);
+    row.poses = p.validation_poses;
+  }
+  row.padding = padded_options.environment_margin;
+  result.validation.push_back(row);
+  if (progress) progress("validation", 3, 3);
+  result.validation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return result;
+}
+
+}  // namespace mcws

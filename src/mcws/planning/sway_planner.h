@@ -1,0 +1,152 @@
+#pragma once
+/// \file
+/// \brief Seed 001 (a patent on power-line maintenance robots): motion planning of an arm whose
+/// base sways, steps s10 to s70, and the validation of the chosen path on fresh base poses.
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mcws/collision/collision_checker.h"
+#include "mcws/planning/motion_certifier.h"
+#include "mcws/planning/path_merge.h"
+#include "mcws/planning/roadmap.h"
+#include "mcws/planning/sway.h"
+
+namespace mcws {
+
+/// \brief Everything seed 001's method takes (step s10 and the readings mcws makes of it).
+struct SwayPlanningProblem {
+  Robot robot;                   ///< its T_world_base is the measured ("first static") pose
+  CollisionModel collision;      ///< arm, tool and the obstacles around it
+  Eigen::VectorXd start, goal;   ///< [rad | length unit]
+  SwayModel sway;                ///< step s20: how the base moves about the measured pose
+  std::size_t base_poses{100};   ///< n
+  std::size_t candidates{10};    ///< m
+  double diversity{0.5};         ///< diversePaths() penalty
+  double segment_length{0.5};    ///< step s41's resolution [scaled joint distance]
+  ScoreOptions score;            ///< step s45 (reference_distance: set to D0 by the planner)
+  double threshold{0.9};         ///< step s50: least acceptable P of the best path
+  double base_step{0.0};         ///< step s70: shift along the line per round [length unit]
+  double base_range{0.0};        ///< step s70: largest shift either way [length unit]
+  RoadmapOptions roadmap;        ///< includes the joint scales and the seed
+  std::uint64_t seed{1};         ///< base poses (the roadmap has its own in `roadmap`)
+  std::size_t validation_poses{10000};
+  /// Obstacle padding of the comparison planner [length unit]; negative: 2 sigma of the
+  /// displacement of the arm's farthest point (see padding()).
+  double padding{-1.0};
+};
+
+/// \brief Safety numbers of one path for a set of base poses.
+struct PathSafety {
+  VertexPath vertices;                     ///< roadmap vertices
+  std::vector<Eigen::VectorXd> waypoints;  ///< the configurations of those vertices
+  double length{0.0};        ///< D at the goal [scaled joint distance]
+  double probability{0.0};   ///< the patent's P at the goal: a mean of segment rates
+  std::size_t segments{0};
+  std::size_t free_poses{0};  ///< base poses for which the whole path is free
+  double free_fraction{0.0};
+  ProportionInterval free_interval;  ///< 95 % Wilson interval of free_fraction
+  std::size_t worst_segment{0};      ///< index along the path, from 0
+  double worst_probability{1.0};
+  Eigen::VectorXd worst_from, worst_to;  ///< the worst segment's end configurations
+};
+
+/// \brief One round of steps s20 to s47 at one base offset along the line.
+struct PlanningRound {
+  double base_offset{0.0};  ///< [length unit] along the line
+  RoadmapStatus status{RoadmapStatus::kNotConnected};
+  std::size_t roadmap_vertices{0}, roadmap_edges{0};
+  double reference_distance{0.0};  ///< D0: straight start-to-goal distance
+  std::vector<PathSafety> candidates;  ///< as found (step s30), before any splice
+  std::vector<SharedNodeDecision> decisions;
+  std::optional<PathSafety> best;  ///< the global best path (step s47), when connected
+  double seconds{0.0};             ///< wall time of the round
+  double roadmap_seconds{0.0};     ///< of which growing the roadmap (step s30)
+  double evaluation_seconds{0.0};  ///< of which the segments' free states (s41, s42)
+};
+
+/// \brief The validation of one path on fresh base poses.
+struct ValidationRow {
+  std::string name;  ///< "chosen", "shortest", "padded"
+  bool planned{false};
+  std::string status;  ///< roadmap status of its planner
+  double length{0.0};  ///< [scaled joint distance]
+  std::size_t colliding{0}, poses{0};
+  double collision_probability{0.0};
+  ProportionInterval interval;  ///< 95 % Wilson interval
+  double padding{0.0};          ///< the padded row's margin [length unit]
+};
+
+/// \brief The whole result of mcws_plan.
+struct SwayPlanningResult {
+  std::vector<PlanningRound> rounds;  ///< offset 0 first, then the base adjustments (s70)
+  std::optional<std::size_t> accepted;  ///< the round whose best path meets the threshold
+  std::vector<ValidationRow> validation;
+  double validation_seconds{0.0};
+};
+
+/// \brief Stages a long run reports (stage name, done, total).
+using PlanningProgress = std::function<void(const std::string&, std::size_t, std::size_t)>;
+
+/// \brief Seed 001's planner.
+class SwayPlanner {
+ public:
+  /// \throws mcws::Error for a bad problem: the messages name the field and value.
+  explicit SwayPlanner(SwayPlanningProblem problem);
+  ~SwayPlanner();
+
+  /// \brief Steps s20 to s47 with the base shifted by `offset` along the line [length unit].
+  PlanningRound planRound(double offset, const PlanningProgress& progress = {}) const;
+
+  /// \brief Steps s20 to s70: offset 0, then +step, -step, +2 step, ... within the range until
+  /// the best path's P reaches the threshold; then validates the accepted (or, when none
+  /// passes, the last round's) best path against the shortest and the padded shortest path
+  /// (when `validate`).
+  SwayPlanningResult plan(bool validate, const PlanningProgress& progress = {}) const;
+
+  /// \brief Collision probability of a path over `poses` fresh base poses (a seed distinct
+  /// from the planning one) at a base offset.
+  ValidationRow validate(const std::string& name, const std::vector<Eigen::VectorXd>& waypoints,
+                         double offset) const;
+
+  /// \brief The padding of the comparison planner [length unit]: problem.padding, or when
+  /// negative, twice the root-mean-square displacement over the n base poses of the point of
+  /// the arm farthest from the pivot (its tool point at start and at goal, the larger).
+  double padding() const;
+
+  /// \brief Free state (1 free, 0 colliding) of the straight joint-space motion from qa to qb
+  /// for each of the n base poses, with the base shifted by `offset` along the line (the
+  /// environment pairs only: self-collisions do not depend on the base).
+  std::vector<std::uint8_t> motionFreeStates(const Eigen::VectorXd& qa, const Eigen::VectorXd& qb,
+                                             double offset) const;
+
+  /// \brief Fraction of the n base poses for which configuration q collides (seed 001's
+  /// Figure 2b generalised), at base offset 0.
+  double collisionFraction(const Eigen::VectorXd& q) const;
+
+  const SwayPlanningProblem& problem() const { return problem_; }
+  const CollisionChecker& checker() const { return *checker_; }
+  /// \brief World motions of the n planning base poses.
+  const std::vector<Eigen::Isometry3d>& displacements() const { return displacements_; }
+
+ private:
+  struct Evaluation;
+  Eigen::Isometry3d measuredBase(double offset) const;
+  /// The n planning displacements about the sway frame moved by `offset`.
+  std::vector<Eigen::Isometry3d> movedDisplacements(const std::vector<Eigen::Isometry3d>& base,
+                                                    double offset) const;
+
+  SwayPlanningProblem problem_;
+  std::unique_ptr<CollisionChecker> checker_;
+  std::unique_ptr<MotionCertifier> certifier_;
+  std::unique_ptr<SwaySampler> sampler_;
+  std::vector<Eigen::Isometry3d> displacements_;
+};
+
+}  // namespace mcws
