@@ -82,9 +82,11 @@ int main(int argc, char** argv) {
     if (!result.accepted) {
       const PlanningRound& last = result.rounds.back();
       std::cerr << "mcws_plan: no path: "
-                << (last.best ? "the best path's P stays below the threshold " +
+                << (last.best ? std::string("below_threshold: the best path stays below ") +
+                                    (problem.threshold_on_whole_path ? "the whole-path threshold "
+                                                                     : "the P threshold ") +
                                     std::to_string(problem.threshold) + " within the base range"
-                              : std::string("roadmap ") + roadmapStatusName(last.status))
+                              : std::string(roadmapStatusName(last.status)))
                 << "; nothing written\n";
       return app::kExitFailure;
     }

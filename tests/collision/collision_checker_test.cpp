@@ -369,12 +369,12 @@ TEST(CollisionChecker, LineRobotsAreFreeAtTheirStartAndHitTheirLine) {
   const CollisionChecker checker(arm, loadCollisionModel(arm, test::robotPath("maintenance4")));
   EXPECT_EQ(checker.label(Eigen::Vector4d(0, 0, 0, 0)), kLabelFree);
   // Turned towards the twin bundle (j1 = 90 deg puts the link along -y under the flipped base,
-  // so -90 deg points it at +y), lowered 10 cm and stretched: forearm at z = -20 - 25 = -45 cm
-  // (j2 = 10: column 15 + 10 below the mount at -20), the height of conductor C at y = 35.
-  const Eigen::Vector4d towards_c(-90 * kDeg, 10, 0, 30);
+  // where the bundle is), lowered 10 cm and stretched: forearm at z = -20 - 25 = -45 cm
+  // (j2 = 10: column 15 + 10 below the mount at -20), the height of conductor C at y = -35.
+  const Eigen::Vector4d towards_c(90 * kDeg, 10, 0, 30);
   const Eigen::Vector3d p = toolPose(arm, towards_c).translation();
   EXPECT_NEAR(p.z(), -45.0, kExact);
-  EXPECT_GT(p.y(), 35.0);  // the arm reaches past the conductor
+  EXPECT_LT(p.y(), -35.0);  // the arm reaches past the conductor
   EXPECT_EQ(checker.label(towards_c), kLabelEnvironment);
 }
 

@@ -163,16 +163,33 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
           shape.bound = 0.5 * length + in.radius;
           break;
         }
-        case ShapeType::kBox:
+        case ShapeType::kBox: {
           shape.geometry = std::make_shared<fcl::Box<double>>(in.size);
           shape.center = in.T_body_shape.translation();
           shape.bound = 0.5 * in.size.norm();
+          // Bounding capsule: the longest axis, radius the half-diagonal of the other two.
+          int longest = 0;
+          in.size.maxCoeff(&longest);
+          const Eigen::Vector3d half = 0.5 * in.size;
+          const Eigen::Vector3d axis = half[longest] * Eigen::Vector3d::Unit(longest);
+          shape.p_from = in.T_body_shape * (-axis);
+          shape.p_to = in.T_body_shape * axis;
+          shape.radius = std::sqrt(half.squaredNorm() - half[longest] * half[longest]) * (1.0 + 1e-12);
+          shape.lss = options.bounding_spheres;
           break;
-        case ShapeType::kCylinder:
+        }
+        case ShapeType::kCylinder: {
           shape.geometry = std::make_shared<fcl::Cylinder<double>>(in.radius, in.length);
           shape.center = in.T_body_shape.translation();
           shape.bound = std::hypot(in.radius, 0.5 * in.length);
+          // Bounding capsule: the axis, same radius (it adds only the two end caps).
+          const Eigen::Vector3d axis(0, 0, 0.5 * in.length);
+          shape.p_from = in.T_body_shape * (-axis);
+          shape.p_to = in.T_body_shape * axis;
+          shape.radius = in.radius * (1.0 + 1e-12);
+          shape.lss = options.bounding_spheres;
           break;
+        }
         case ShapeType::kMesh: {
           shape.geometry = meshGeometry(*in.mesh);
           std::vector<Eigen::Vector3d> vertices;
@@ -400,11 +417,20 @@ double CollisionChecker::shapeClearance(const Shape& a, const Shape& b, double c
   const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
   const double apart = (T_a * a.center - T_b * b.center).norm() - a.bound - b.bound;
   if (apart >= cap) return cap;
-  if (a.swept && b.swept) {
+  if (a.lss && b.lss) {  // exact for two capsules, a lower bound through bounding capsules
+    double s = 0.0, t = 0.0;
     const double d = std::sqrt(segmentDistanceSquared(T_a * a.p_from, T_a * a.p_to,
-                                                      T_b * b.p_from, T_b * b.p_to)) -
+                                                      T_b * b.p_from, T_b * b.p_to, s, t)) -
                      a.radius - b.radius;
-    return std::clamp(d, 0.0, cap);
+    if (a.swept && b.swept) return std::clamp(d, 0.0, cap);
+    if (d >= cap) return cap;
+    // A capsule nearest to the side of a cylinder (not an end) is as far from the cylinder as
+    // from its bounding capsule: the nearest axis point's offset is radial.
+    constexpr double kInside = 1e-9;
+    if (d > 0.0 && ((a.swept && b.type == ShapeType::kCylinder && t > kInside && t < 1 - kInside) ||
+                    (b.swept && a.type == ShapeType::kCylinder && s > kInside && s < 1 - kInside))) {
+      return std::min(d, cap);
+    }
   }
   if (shapesCollide(a, b, data, body_a, body_b)) return 0.0;
   fcl::DistanceRequest<double> request;

@@ -6,11 +6,19 @@ namespace mcws {
 
 double segmentDistanceSquared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                               const Eigen::Vector3d& p2, const Eigen::Vector3d& q2) {
+  double s = 0.0, t = 0.0;
+  return segmentDistanceSquared(p1, q1, p2, q2, s, t);
+}
+
+double segmentDistanceSquared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
+                              const Eigen::Vector3d& p2, const Eigen::Vector3d& q2, double& s,
+                              double& t) {
   // Ericson (2005), ClosestPtSegmentSegment: s and t parametrise the two segments.
   constexpr double kEpsilon = 1e-18;  // squared length below which a segment is a point
   const Eigen::Vector3d d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0.0, t = 0.0;
+  s = 0.0;
+  t = 0.0;
   if (a <= kEpsilon && e <= kEpsilon) return r.squaredNorm();
   if (a <= kEpsilon) {
     t = std::clamp(f / e, 0.0, 1.0);

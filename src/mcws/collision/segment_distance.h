@@ -14,4 +14,10 @@ namespace mcws {
 double segmentDistanceSquared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                               const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
 
+/// \brief segmentDistanceSquared() with the closest points' parameters: p1 + s (q1 - p1) and
+/// p2 + t (q2 - p2), s and t in [0, 1].
+double segmentDistanceSquared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
+                              const Eigen::Vector3d& p2, const Eigen::Vector3d& q2, double& s,
+                              double& t);
+
 }  // namespace mcws

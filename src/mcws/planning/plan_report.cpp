@@ -111,6 +111,7 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
       {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
       {"weight", problem.score.weight},
       {"threshold", problem.threshold},
+      {"threshold_on", problem.threshold_on_whole_path ? "whole_path" : "P"},
       {"base_poses", problem.base_poses},
       {"candidates_requested", problem.candidates},
       {"confidence", problem.sway.confidence},
@@ -182,7 +183,8 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
       << " % region, m = " << problem.candidates << " candidates, rule "
       << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
-      << ", w = " << problem.score.weight << ", threshold P >= " << problem.threshold << "\n"
+      << ", w = " << problem.score.weight << ", threshold " << problem.threshold << " on "
+      << (problem.threshold_on_whole_path ? "the whole-path free fraction" : "P") << "\n"
       << "units: lengths " << length_unit << ", angles rad; D = " << scenario.distance_unit
       << "; P is the patent's mean of segment free rates, not the probability that the whole "
          "path is free\n";
@@ -228,8 +230,9 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
         << format("%.3f", best.worst_probability) << ", from "
         << configuration(scenario, best.worst_from) << " to "
         << configuration(scenario, best.worst_to) << ")\n";
-    out << "  " << (best.probability >= problem.threshold ? "meets" : "below") << " the threshold "
-        << problem.threshold << "\n";
+    out << "  " << (result.accepted && *result.accepted == r ? "meets" : "below")
+        << " the threshold " << problem.threshold << " on "
+        << (problem.threshold_on_whole_path ? "the whole-path free fraction" : "P") << "\n";
   }
   if (!result.validation.empty()) {
     out << "\nvalidation on " << problem.validation_poses

@@ -220,6 +220,9 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
         roadmap.graph, roadmap.start,
         boost::distance_map(boost::make_iterator_property_map(
             roadmap.distance_from_start.begin(), boost::get(boost::vertex_index, roadmap.graph))));
+    for (double& d : roadmap.distance_from_start) {  // Boost marks the unreached with max()
+      if (d == std::numeric_limits<double>::max()) d = std::numeric_limits<double>::infinity();
+    }
     return std::isfinite(roadmap.distance_from_start[roadmap.goal]);
   };
   bool connected = copy();

@@ -282,7 +282,7 @@ class ScenarioReader {
   void readPlanner(const YAML::Node& node, SwayPlanningProblem& problem) {
     checkKeys(node, "planner",
               {"candidates", "diversity", "roadmap_nodes", "max_roadmap_nodes", "neighbours",
-               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "base_step",
+               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "threshold_on", "base_step",
                "base_range", "padding"});
     if (node["candidates"]) problem.candidates = count(node["candidates"], "planner: candidates");
     if (node["diversity"]) problem.diversity = nonNegative(node["diversity"], "planner: diversity");
@@ -314,6 +314,13 @@ class ScenarioReader {
     }
     if (node["weight"]) problem.score.weight = nonNegative(node["weight"], "planner: weight");
     if (node["threshold"]) problem.threshold = number(node["threshold"], "planner: threshold");
+    if (const YAML::Node on = node["threshold_on"]) {
+      const std::string name = text(on, "planner: threshold_on");
+      if (name != "P" && name != "whole_path") {
+        fail(on, "planner: threshold_on '" + name + "' is not P or whole_path");
+      }
+      problem.threshold_on_whole_path = name == "whole_path";
+    }
     if (node["base_step"]) problem.base_step = sigma(node["base_step"], 'l', "planner: base_step");
     if (node["base_range"])
       problem.base_range = sigma(node["base_range"], 'l', "planner: base_range");

@@ -48,6 +48,7 @@ struct Scenario {
 ///   rule: weighted                       # or literal
 ///   weight: 1
 ///   threshold: 0.9
+///   threshold_on: P                      # or whole_path (the whole-path free fraction)
 ///   base_step: 5 cm
 ///   base_range: 30 cm
 ///   padding: auto                        # or a length, e.g. 3 cm

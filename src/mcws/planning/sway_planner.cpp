@@ -49,6 +49,8 @@ class PolylineCheck {
     bounds_.resize(segments());
     for (std::size_t k = 0; k < segments(); ++k)
       certifier.motionBounds(points_[k], points_[k + 1], PairSet::kEnvironment, bounds_[k]);
+    for (const std::vector<double>& b : bounds_)
+      for (double v : b) cap_ = std::max(cap_, v + certifier.options().resolution);
     clearance_.resize(points_.size());
     pivot_reach_.resize(points_.size());
     const CollisionChecker& checker = certifier.checker();
@@ -77,26 +79,50 @@ class PolylineCheck {
   }
 
   std::size_t segments() const { return points_.size() - 1; }
+
+  /// Do the nominal clearances, less how far pose j can move each body, certify segment k?
+  bool certifiedByBounds(std::size_t k, std::size_t j) const {
+    const MotionCertifier::DisplacementBound& d = poses_.bounds[j];
+    const std::vector<double>& bounds = bounds_[k];
+    for (std::size_t e = 0; e < bounds.size(); ++e) {
+      const double a = clearance_[k][e] - d.sin_term * pivot_reach_[k][e] - d.shift;
+      const double b = clearance_[k + 1][e] - d.sin_term * pivot_reach_[k + 1][e] - d.shift;
+      if (!(a > 0.0 && b > 0.0 && a + b > bounds[e])) return false;
+    }
+    return true;
+  }
   const std::vector<Eigen::VectorXd>& points() const { return points_; }
 
   /// Is segment k free with the base at pose j?
   bool segmentFree(std::size_t k, std::size_t j, CollisionChecker::Scratch& scratch) const {
-    const MotionCertifier::DisplacementBound& d = poses_.bounds[j];
-    const std::vector<double>& bounds = bounds_[k];
-    bool certain = true;
-    for (std::size_t e = 0; e < bounds.size() && certain; ++e) {
-      const double a = clearance_[k][e] - d.sin_term * pivot_reach_[k][e] - d.shift;
-      const double b = clearance_[k + 1][e] - d.sin_term * pivot_reach_[k + 1][e] - d.shift;
-      certain = a > 0.0 && b > 0.0 && a + b > bounds[e];
-    }
-    return certain || certifier_.motionFree(points_[k], points_[k + 1], poses_.T_world_base[j],
-                                            PairSet::kEnvironment, scratch);
+    return certifiedByBounds(k, j) ||
+           certifier_.motionFree(points_[k], points_[k + 1], poses_.T_world_base[j],
+                                 PairSet::kEnvironment, scratch);
   }
 
-  /// Is the whole polyline free with the base at pose j?
+  /// Is the whole polyline free with the base at pose j? Segments the nominal clearances do not
+  /// certify are checked exactly, each checkpoint's clearances computed once.
   bool pathFree(std::size_t j, CollisionChecker::Scratch& scratch) const {
-    for (std::size_t k = 0; k < segments(); ++k)
-      if (!segmentFree(k, j, scratch)) return false;
+    std::vector<double> at_start, at_end;
+    bool have_start = false;
+    const Eigen::Isometry3d& T = poses_.T_world_base[j];
+    auto exact = [&](std::size_t k, std::vector<double>& out) {
+      certifier_.clearances(points_[k], T, PairSet::kEnvironment, cap_, scratch, out);
+      return std::all_of(out.begin(), out.end(), [](double v) { return v > 0.0; });
+    };
+    for (std::size_t k = 0; k < segments(); ++k) {
+      if (certifiedByBounds(k, j)) {
+        have_start = false;
+        continue;
+      }
+      if (!have_start && !exact(k, at_start)) return false;
+      if (!exact(k + 1, at_end)) return false;
+      if (!certifier_.motionFree(points_[k], at_start, points_[k + 1], at_end, T,
+                                 PairSet::kEnvironment, scratch))
+        return false;
+      std::swap(at_start, at_end);
+      have_start = true;
+    }
     return true;
   }
 
@@ -105,6 +131,7 @@ class PolylineCheck {
   const PoseSet& poses_;
   std::vector<Eigen::VectorXd> points_;
   std::vector<std::vector<double>> bounds_;       ///< per segment, per environment pair
+  double cap_{0.0};  ///< the largest motion bound: exact clearances are needed up to it
   std::vector<std::vector<double>> clearance_;    ///< per checkpoint, per environment pair
   std::vector<std::vector<double>> pivot_reach_;  ///< per checkpoint, per environment pair
 };
@@ -385,6 +412,13 @@ ValidationRow SwayPlanner::validate(const std::string& name,
   return row;
 }
 
+bool SwayPlanner::meetsThreshold(const PlanningRound& round) const {
+  if (!round.best) return false;
+  const double value = problem_.threshold_on_whole_path ? round.best->free_fraction
+                                                        : round.best->probability;
+  return value >= problem_.threshold;
+}
+
 SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
   const SwayPlanningProblem& p = problem_;
   SwayPlanningResult result;
@@ -398,7 +432,7 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   for (double offset : offsets) {
     result.rounds.push_back(planRound(offset, progress));
     const PlanningRound& round = result.rounds.back();
-    if (round.best && round.best->probability >= p.threshold) {
+    if (meetsThreshold(round)) {
       result.accepted = result.rounds.size() - 1;
       break;
     }

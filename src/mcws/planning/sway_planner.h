@@ -32,6 +32,9 @@ struct SwayPlanningProblem {
   double segment_length{0.5};    ///< step s41's resolution [scaled joint distance]
   ScoreOptions score;            ///< step s45 (reference_distance: set to D0 by the planner)
   double threshold{0.9};         ///< step s50: least acceptable P of the best path
+  /// Apply the threshold to the whole-path free fraction over the n poses instead of the
+  /// patent's P (a mean of segment rates, which stays near 1 when one segment is risky).
+  bool threshold_on_whole_path{false};
   double base_step{0.0};         ///< step s70: shift along the line per round [length unit]
   double base_range{0.0};        ///< step s70: largest shift either way [length unit]
   RoadmapOptions roadmap;        ///< includes the joint scales and the seed
@@ -103,6 +106,9 @@ class SwayPlanner {
 
   /// \brief Steps s20 to s47 with the base shifted by `offset` along the line [length unit].
   PlanningRound planRound(double offset, const PlanningProgress& progress = {}) const;
+
+  /// \brief Whether a round's best path meets the threshold (step s50).
+  bool meetsThreshold(const PlanningRound& round) const;
 
   /// \brief Steps s20 to s70: offset 0, then +step, -step, +2 step, ... within the range until
   /// the best path's P reaches the threshold; then validates the accepted (or, when none

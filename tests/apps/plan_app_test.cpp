@@ -1,0 +1,399 @@
+// mcws_plan through its command line: usage errors, bad scenarios, the three ways of finding no
+// path, a real run on a tiny planar arm (CSV, JSON), determinism across threads, --plot, and
+// input files left alone.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+const std::string kPlan = MCWS_PLAN_EXE;
+const std::string kScenarios = MCWS_SCENARIOS_DIR;
+
+// CSV numbers have 12 significant digits; joint values here are at most 2 pi.
+constexpr double kCsvTol = 1e-9;
+
+// A two-joint planar arm in cm (robots/planar2.yaml with one post): upper arm 40 cm, forearm
+// 30 cm, both capsules of radius 2.5 cm in the world x-y plane; a 10 x 10 cm post centred at
+// (30, 38), so the straight arm collides with it at q1 = 51.7 deg (atan2(38, 30)).
+const char* const kArm = R"(name: arm2
+units: {length: cm, angle: deg}
+convention: standard
+joints:
+  - {name: q1, type: revolute, a: 40, alpha: 0, d: 0, theta: 0, limits: [-180, 180]}
+  - {name: q2, type: revolute, a: 30, alpha: 0, d: 0, theta: 0, limits: [-160, 160]}
+collision:
+  links:
+    q1:
+      - {type: capsule, from: [0, 0, 0], to: [40, 0, 0], radius: 2.5}
+    q2:
+      - {type: capsule, from: [0, 0, 0], to: [30, 0, 0], radius: 2.5}
+  environment:
+    - {name: post, type: box, size: [10, 10, 40], xyz: [30, 38, 0]}
+)";
+
+// A small, fast scenario for the arm: the straight turn from 0 to 120 deg passes through the
+// post, so the path must fold the elbow. @START@ and @GOAL@ are replaced.
+const char* const kArmScenario = R"(name: tiny
+robot: arm2.yaml
+start: [@START@]
+goal: [@GOAL@]
+sway:
+  pivot: [0 cm, 0 cm, 25 cm]
+  line: [1, 0, 0]
+  swing: 1 deg
+  slide: 0.5 cm
+  poses: 30
+  seed: 1
+planner:
+  candidates: 3
+  roadmap_nodes: 150
+  max_roadmap_nodes: 600
+  threshold: 0.5
+validation: {poses: 200}
+)";
+
+// One prismatic joint moving a sphere (radius 2 cm) along world y from -20 to 20 cm (the base
+// turned so that its z axis is world y); a wall 2 cm thick at y = 0, larger in x and z than
+// anything the sphere can reach, parts y < 0 from y > 0.
+const char* const kSlider = R"(name: slider
+units: {length: cm, angle: deg}
+convention: standard
+base: {xyz: [0, 0, 0], rpy: [-90, 0, 0]}
+joints:
+  - {name: y, type: prismatic, a: 0, alpha: 0, d: 0, theta: 0, limits: [-20, 20]}
+collision:
+  links:
+    y:
+      - {type: sphere, center: [0, 0, 0], radius: 2}
+  environment:
+    - {name: wall, type: box, size: [200, 2, 200], xyz: [0, 0, 0]}
+)";
+
+const char* const kSliderScenario = R"(name: walled
+robot: slider.yaml
+start: [-10 cm]
+goal: [10 cm]
+sway:
+  pivot: [0 cm, 0 cm, 25 cm]
+  line: [1, 0, 0]
+  slide: 0.5 cm
+  poses: 20
+planner:
+  candidates: 3
+  roadmap_nodes: 50
+  max_roadmap_nodes: 100
+validation: {poses: 100}
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+/// Lines of stderr that are not progress lines ("mcws_plan: 40% (2/5 segments)", printed when a
+/// stage takes more than a second, as it may in a sanitizer build).
+std::vector<std::string> messageLines(const std::string& err) {
+  std::vector<std::string> lines;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t percent = line.find("% (");
+    const bool progress = line.rfind("mcws_plan: ", 0) == 0 && percent != std::string::npos &&
+                          line.find_first_not_of("0123456789", 11) == percent;
+    if (!progress) lines.push_back(line);
+  }
+  return lines;
+}
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+};
+
+Csv parseCsv(const std::string& text) {
+  Csv csv;
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);
+  std::istringstream head(line);
+  for (std::string cell; std::getline(head, cell, ',');) csv.header.push_back(cell);
+  while (std::getline(lines, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    EXPECT_EQ(row.size(), csv.header.size()) << line;
+    csv.rows.push_back(row);
+  }
+  return csv;
+}
+
+/// `json` without any key (at any depth) that ends in "seconds": wall times differ between runs.
+nlohmann::json withoutTimes(const nlohmann::json& json) {
+  if (json.is_object()) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : json.items()) {
+      const std::string suffix = "seconds";
+      if (key.size() >= suffix.size() &&
+          key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+        continue;
+      out[key] = withoutTimes(value);
+    }
+    return out;
+  }
+  if (json.is_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& value : json) out.push_back(withoutTimes(value));
+    return out;
+  }
+  return json;
+}
+
+class McwsPlan : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    test::writeFile(inputs_.file("arm2.yaml"), kArm);
+    test::writeFile(inputs_.file("slider.yaml"), kSlider);
+    test::writeFile(inputs_.file("walled.yaml"), kSliderScenario);
+    writeArmScenario("ok.yaml", "0 deg, 0 deg", "120 deg, 0 deg");
+  }
+
+  /// An arm scenario in the inputs directory; returns its path.
+  std::string writeArmScenario(const std::string& name, const std::string& start,
+                               const std::string& goal) const {
+    const std::string path = inputs_.file(name);
+    test::writeFile(path, replaced(replaced(kArmScenario, "@START@", start), "@GOAL@", goal));
+    return path;
+  }
+
+  std::string okScenario() const { return inputs_.file("ok.yaml"); }
+
+  /// A run that must find no path: exit 1, one message line naming the status, the report on
+  /// stdout and nothing written.
+  void expectNoPath(const std::string& scenario, const std::string& status) const {
+    const std::string out = outputs_.file("path.csv");
+    const test::RunResult r = test::run(kPlan + " --scenario " + scenario + " --output " + out);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const std::vector<std::string> lines = messageLines(r.err);
+    ASSERT_EQ(lines.size(), 1u) << r.err;
+    EXPECT_THAT(lines[0], StartsWith("mcws_plan: no path"));
+    EXPECT_THAT(lines[0], HasSubstr(status));
+    EXPECT_THAT(lines[0], HasSubstr("nothing written"));
+    EXPECT_THAT(r.out, HasSubstr(status));  // the report
+    EXPECT_EQ(outputs_.fileCount(), 0u);
+
+    // --json says the same.
+    const test::RunResult json =
+        test::run(kPlan + " --scenario " + scenario + " --json --output " + out);
+    EXPECT_EQ(json.exit_code, 1) << json.err;
+    EXPECT_EQ(nlohmann::json::parse(json.out)["status"], status);
+    EXPECT_EQ(outputs_.fileCount(), 0u);
+  }
+
+  test::TempDir inputs_, outputs_;
+};
+
+TEST_F(McwsPlan, HelpExitsZero) {
+  const test::RunResult r = test::run(kPlan + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag : {"--scenario", "--output", "--json", "--plot", "--plot-offsets",
+                           "--cells", "--seed", "--validation-poses", "--threads"}) {
+    EXPECT_THAT(r.out, HasSubstr(flag));
+  }
+  EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_F(McwsPlan, BadCommandLinesExitTwo) {
+  const std::string scenario = " --scenario " + okScenario();
+  const std::string output = " --output " + outputs_.file("path.csv");
+  test::expectToolFailure(kPlan, "--bogus 1" + scenario + output, 2, "bogus", outputs_);
+  test::expectToolFailure(kPlan, output, 2, "missing --scenario", outputs_);
+  test::expectToolFailure(kPlan, scenario, 2, "missing --output", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --threads 0", 2,
+                          "--threads: 0 is less than 1", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --seed x", 2,
+                          "--seed: 'x' is not a whole number", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --cells 3", 2,
+                          "--cells: 3 is less than 4", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --validation-poses -1", 2,
+                          "--validation-poses", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --plot " + outputs_.file("path.csv"), 2,
+                          "--plot: must differ from the other outputs", outputs_);
+}
+
+TEST_F(McwsPlan, BadScenarioExitsOneNamingTheField) {
+  const std::string bad = inputs_.file("bad.yaml");
+  test::writeFile(bad, replaced(test::readFile(okScenario()), "swing: 1 deg", "swing: -1 deg"));
+  test::expectToolFailure(kPlan, "--scenario " + bad + " --output " + outputs_.file("path.csv"), 1,
+                          bad + ":8: sway: swing: sigma -1 deg must be >= 0", outputs_);
+  test::expectToolFailure(
+      kPlan, "--scenario " + inputs_.file("none.yaml") + " --output " + outputs_.file("p.csv"), 1,
+      "none.yaml: cannot read the scenario file", outputs_);
+}
+
+TEST_F(McwsPlan, PlotOfAFourJointRobotIsAUsageError) {
+  // Fails after loading the scenario and before planning: fast even for maintenance4.
+  test::expectToolFailure(kPlan,
+                          "--scenario " + kScenarios + "/maintenance4.yaml --output " +
+                              outputs_.file("path.csv") + " --plot " + outputs_.file("c.png"),
+                          2, "--plot: draws a two-joint configuration space", outputs_);
+}
+
+TEST_F(McwsPlan, GoalInCollision) {
+  // The straight arm at 50 deg passes through the post.
+  expectNoPath(writeArmScenario("goal.yaml", "0 deg, 0 deg", "50 deg, 0 deg"),
+               "goal_in_collision");
+}
+
+TEST_F(McwsPlan, StartInCollision) {
+  expectNoPath(writeArmScenario("start.yaml", "50 deg, 0 deg", "120 deg, 0 deg"),
+               "start_in_collision");
+}
+
+TEST_F(McwsPlan, WallBetweenStartAndGoalIsNotConnected) {
+  expectNoPath(inputs_.file("walled.yaml"), "not_connected");
+}
+
+TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
+  const std::string out = outputs_.file("path.csv");
+  const test::RunResult r = test::run(kPlan + " --scenario " + okScenario() + " --output " + out +
+                                      " --validation-poses 200 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(messageLines(r.err).empty()) << r.err;
+  EXPECT_EQ(outputs_.fileCount(), 1u);
+
+  const Csv csv = parseCsv(test::readFile(out));
+  ASSERT_EQ(csv.header, (std::vector<std::string>{"D", "q1_rad", "q2_rad"}));
+  ASSERT_GE(csv.rows.size(), 2u);
+  EXPECT_EQ(csv.rows.front()[0], 0.0);
+  EXPECT_NEAR(csv.rows.front()[1], 0.0, kCsvTol);
+  EXPECT_NEAR(csv.rows.front()[2], 0.0, kCsvTol);
+  EXPECT_NEAR(csv.rows.back()[1], 120 * M_PI / 180, kCsvTol);
+  EXPECT_NEAR(csv.rows.back()[2], 0.0, kCsvTol);
+  for (std::size_t k = 1; k < csv.rows.size(); ++k) {
+    EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]) << "row " << k;
+    // D is the joint-space distance (scales 1/rad), row by row.
+    const double step = std::hypot(csv.rows[k][1] - csv.rows[k - 1][1],
+                                   csv.rows[k][2] - csv.rows[k - 1][2]);
+    EXPECT_NEAR(csv.rows[k][0] - csv.rows[k - 1][0], step, 1e-9) << "row " << k;
+  }
+  // The post stands in the way: the path is longer than the straight turn of 2 pi / 3.
+  EXPECT_GT(csv.rows.back()[0], 2 * M_PI / 3);
+
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "ok");
+  EXPECT_EQ(json["units"]["length"], "cm");
+  EXPECT_EQ(json["units"]["angle"], "rad");
+  ASSERT_FALSE(json["rounds"].empty());
+  const auto& candidates = json["rounds"][0]["candidates"];
+  ASSERT_TRUE(candidates.is_array());
+  EXPECT_GE(candidates.size(), 1u);
+  EXPECT_LE(candidates.size(), 3u);
+  EXPECT_EQ(json["rounds"][0]["roadmap_status"], "connected");
+  // The CSV is the chosen path.
+  const auto& chosen = json["chosen"];
+  ASSERT_EQ(chosen["waypoints"].size(), csv.rows.size());
+  for (std::size_t k = 0; k < csv.rows.size(); ++k) {
+    for (int j = 0; j < 2; ++j)
+      EXPECT_NEAR(chosen["waypoints"][k][j].get<double>(), csv.rows[k][1 + j], kCsvTol);
+  }
+  EXPECT_NEAR(chosen["length"].get<double>(), csv.rows.back()[0], 1e-9);
+  EXPECT_GE(chosen["probability"].get<double>(), 0.5);  // the threshold
+
+  const auto& validation = json["validation"];
+  EXPECT_EQ(validation["poses"], 200);
+  for (const char* key : {"chosen_collision_probability", "shortest_collision_probability"}) {
+    ASSERT_TRUE(validation.contains(key)) << key;
+    const double p = validation[key];
+    EXPECT_GE(p, 0.0) << key;
+    EXPECT_LE(p, 1.0) << key;
+  }
+  bool padded_planned = false;
+  for (const auto& row : validation["rows"]) {
+    if (row["name"] == "padded") padded_planned = row["planned"].get<bool>();
+    EXPECT_GE(row["collision_probability"].get<double>(), 0.0);
+    EXPECT_LE(row["collision_probability"].get<double>(), 1.0);
+    EXPECT_EQ(row["colliding_poses"].get<std::size_t>() / 200.0,
+              row["collision_probability"].get<double>());
+  }
+  EXPECT_EQ(validation.contains("padded_collision_probability"), padded_planned);
+  if (padded_planned) {
+    const double p = validation["padded_collision_probability"];
+    EXPECT_GE(p, 0.0);
+    EXPECT_LE(p, 1.0);
+  }
+}
+
+TEST_F(McwsPlan, TextReportWithoutJson) {
+  const test::RunResult r = test::run(kPlan + " --scenario " + okScenario() + " --output " +
+                                      outputs_.file("path.csv") + " --validation-poses 100");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("scenario tiny"));
+  EXPECT_THAT(r.out, HasSubstr("round 1"));
+  EXPECT_THROW(static_cast<void>(nlohmann::json::parse(r.out)), nlohmann::json::exception);
+}
+
+TEST_F(McwsPlan, SameResultForOneAndTwoThreads) {
+  const std::string one = outputs_.file("one.csv"), two = outputs_.file("two.csv");
+  const std::string common = kPlan + " --scenario " + okScenario() + " --validation-poses 200 --json";
+  const test::RunResult a = test::run(common + " --threads 1 --output " + one);
+  const test::RunResult b = test::run(common + " --threads 2 --output " + two);
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_TRUE(test::readFile(one) == test::readFile(two));
+  EXPECT_EQ(withoutTimes(nlohmann::json::parse(a.out)), withoutTimes(nlohmann::json::parse(b.out)));
+}
+
+TEST_F(McwsPlan, SeedChangesTheRoadmapNotTheEnds) {
+  const std::string out = outputs_.file("path.csv");
+  const test::RunResult r = test::run(kPlan + " --scenario " + okScenario() + " --output " + out +
+                                      " --seed 5 --validation-poses 0 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(json.contains("validation"));  // --validation-poses 0 skips it
+  const Csv csv = parseCsv(test::readFile(out));
+  ASSERT_GE(csv.rows.size(), 2u);
+  EXPECT_NEAR(csv.rows.back()[1], 120 * M_PI / 180, kCsvTol);
+}
+
+TEST_F(McwsPlan, PlotOfTheTwoJointArmIsAPng) {
+  if (test::run("command -v gnuplot").exit_code != 0) GTEST_SKIP() << "gnuplot is not installed";
+  const std::string png = outputs_.file("cspace.png");
+  const test::RunResult r =
+      test::run(kPlan + " --scenario " + okScenario() + " --output " + outputs_.file("path.csv") +
+                " --validation-poses 100 --cells 16 --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(test::readFile(png), StartsWith("\x89PNG"));
+  EXPECT_EQ(outputs_.fileCount(), 2u);
+}
+
+TEST_F(McwsPlan, InputFilesAreNeverModified) {
+  const std::string scenario = test::readFile(okScenario());
+  const std::string robot = test::readFile(inputs_.file("arm2.yaml"));
+  ASSERT_EQ(test::run(kPlan + " --scenario " + okScenario() + " --output " +
+                      outputs_.file("path.csv") + " --validation-poses 100")
+                .exit_code,
+            0);
+  // Asked to write over its own input: refused or done, the scenario must survive a failed run
+  // (a goal in collision) that names it as the output.
+  const std::string goal = writeArmScenario("goal.yaml", "0 deg, 0 deg", "50 deg, 0 deg");
+  const std::string goal_text = test::readFile(goal);
+  EXPECT_EQ(test::run(kPlan + " --scenario " + goal + " --output " + goal).exit_code, 1);
+  EXPECT_EQ(test::readFile(goal), goal_text);
+  EXPECT_EQ(test::readFile(okScenario()), scenario);
+  EXPECT_EQ(test::readFile(inputs_.file("arm2.yaml")), robot);
+}
+
+}  // namespace
+}  // namespace mcws
