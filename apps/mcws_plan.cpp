@@ -2,6 +2,7 @@
 // with the chosen path validated on fresh base poses against the shortest and padded paths.
 #include <omp.h>
 
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -58,7 +59,15 @@ int main(int argc, char** argv) {
         throw app::UsageError(std::string("--") + flag + ": must differ from the other outputs");
     }
 
-    Scenario scenario = loadScenario(cli.required("scenario"));
+    const std::string scenario_path = cli.required("scenario");
+    Scenario scenario = loadScenario(scenario_path);
+    for (const auto& [path, flag] : outputs) {  // never write over an input
+      for (const std::string& input : {scenario_path, scenario.robot_path}) {
+        std::error_code ec;
+        if (path == input || std::filesystem::equivalent(path, input, ec))
+          throw app::UsageError("--" + flag + ": '" + path + "' is an input (" + input + ")");
+      }
+    }
     SwayPlanningProblem& problem = scenario.problem;
     if (seed) problem.seed = problem.roadmap.seed = static_cast<std::uint64_t>(*seed);
     if (validation_poses && *validation_poses > 0) problem.validation_poses = *validation_poses;

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev                 # linear algebra, poses
   libflann-dev                  # nearest-neighbour search behind pcl::KdTreeFLANN
   libboost-program-options-dev  # command-line parsing of the stage tools
+  libboost-dev                  # Boost.Graph (Yen's k shortest paths), Boost.Math (chi-square)
   libyaml-cpp-dev               # robot description files
   liburdfdom-dev                # URDF robot files (urdfdom parser)
   libgtest-dev libgmock-dev     # unit tests (GoogleTest, GoogleMock)

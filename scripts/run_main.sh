@@ -2,7 +2,8 @@
 # The main job, from a fresh Debian 12 machine: install the dependencies, build, sample the
 # de-icing arm of seed 000 (its X-Z plane workspace, Fig. 5, and its 3-D workspace, Fig. 6; 6000
 # samples each), extract the X-Z boundary from 100000 samples (Fig. 13), measure the workspace's
-# area and volume, and write the clouds and their pictures.
+# area and volume, and write the clouds and their pictures; then plan seed 001's maintenance arm
+# under base sway (chosen path, report, validation) and draw the two-joint configuration space.
 # Usage: scripts/run_main.sh [OUTPUT_DIR]   (default: out/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -51,8 +52,20 @@ volume=$(refined_measure deicing_3d_50k "" "")
   --output "$out/deicing_3d_boundary.png" --view 3d --unit cm \
   --title "De-icing arm: boundary of the 3-D workspace (50000 samples)"
 
+# Seed 001: the maintenance arm's path robust to base sway, validated on 10000 fresh base poses,
+# and the two-joint picture of the patent's Figures 2 and 3 with P against the base offset.
+"$bin/mcws_plan" --scenario "$root/scenarios/maintenance4.yaml" --output "$out/maintenance4_path.csv" \
+  >"$out/.maintenance4_plan.txt.tmp"
+mv "$out/.maintenance4_plan.txt.tmp" "$out/maintenance4_plan.txt"
+"$bin/mcws_plan" --scenario "$root/scenarios/planar2.yaml" --output "$out/planar2_path.csv" \
+  --plot "$out/planar2_cspace.png" --plot-offsets "$out/planar2_offsets.png" >/dev/null
+
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
   deicing_xz_boundary.png deicing_3d_50k_boundary.pcd deicing_3d_boundary.png; do echo "  $out/$f"; done
 echo "  X-Z plane ${area} cm^2; 3-D ${volume} cm^3 (50000 samples + 50000 refined each;"
 echo "  closed form: area 16352.5 cm^2, volume 2098290 cm^3, see BENCHMARKS.md)"
+echo "mcws: seed 001 planning under base sway written to $out:"
+for f in maintenance4_path.csv maintenance4_plan.txt planar2_path.csv planar2_cspace.png \
+  planar2_offsets.png; do echo "  $out/$f"; done
+sed -n '/^validation/,$p' "$out/maintenance4_plan.txt"

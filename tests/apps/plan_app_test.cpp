@@ -26,7 +26,9 @@ constexpr double kCsvTol = 1e-9;
 
 // A two-joint planar arm in cm (robots/planar2.yaml with one post): upper arm 40 cm, forearm
 // 30 cm, both capsules of radius 2.5 cm in the world x-y plane; a 10 x 10 cm post centred at
-// (30, 38), so the straight arm collides with it at q1 = 51.7 deg (atan2(38, 30)).
+// (35, 45), at 57 cm from the base, so the straight arm collides with it at q1 = 52 deg
+// (atan2(45, 35)). Its nearest corner, (30, 40), is 50 cm away: the upper arm (40 + 2.5 cm)
+// never touches it, and folding the elbow gets past.
 const char* const kArm = R"(name: arm2
 units: {length: cm, angle: deg}
 convention: standard
@@ -40,7 +42,7 @@ collision:
     q2:
       - {type: capsule, from: [0, 0, 0], to: [30, 0, 0], radius: 2.5}
   environment:
-    - {name: post, type: box, size: [10, 10, 40], xyz: [30, 38, 0]}
+    - {name: post, type: box, size: [10, 10, 40], xyz: [35, 45, 0]}
 )";
 
 // A small, fast scenario for the arm: the straight turn from 0 to 120 deg passes through the
@@ -224,8 +226,8 @@ TEST_F(McwsPlan, BadCommandLinesExitTwo) {
                           "--threads: 0 is less than 1", outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --seed x", 2,
                           "--seed: 'x' is not a whole number", outputs_);
-  test::expectToolFailure(kPlan, scenario + output + " --cells 3", 2,
-                          "--cells: 3 is less than 4", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --cells 3", 2, "--cells: 3 is less than 4",
+                          outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --validation-poses -1", 2,
                           "--validation-poses", outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --plot " + outputs_.file("path.csv"), 2,
@@ -251,13 +253,12 @@ TEST_F(McwsPlan, PlotOfAFourJointRobotIsAUsageError) {
 }
 
 TEST_F(McwsPlan, GoalInCollision) {
-  // The straight arm at 50 deg passes through the post.
-  expectNoPath(writeArmScenario("goal.yaml", "0 deg, 0 deg", "50 deg, 0 deg"),
-               "goal_in_collision");
+  // The straight arm at 52 deg passes through the post.
+  expectNoPath(writeArmScenario("goal.yaml", "0 deg, 0 deg", "52 deg, 0 deg"), "goal_in_collision");
 }
 
 TEST_F(McwsPlan, StartInCollision) {
-  expectNoPath(writeArmScenario("start.yaml", "50 deg, 0 deg", "120 deg, 0 deg"),
+  expectNoPath(writeArmScenario("start.yaml", "52 deg, 0 deg", "120 deg, 0 deg"),
                "start_in_collision");
 }
 
@@ -284,8 +285,8 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
   for (std::size_t k = 1; k < csv.rows.size(); ++k) {
     EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]) << "row " << k;
     // D is the joint-space distance (scales 1/rad), row by row.
-    const double step = std::hypot(csv.rows[k][1] - csv.rows[k - 1][1],
-                                   csv.rows[k][2] - csv.rows[k - 1][2]);
+    const double step =
+        std::hypot(csv.rows[k][1] - csv.rows[k - 1][1], csv.rows[k][2] - csv.rows[k - 1][2]);
     EXPECT_NEAR(csv.rows[k][0] - csv.rows[k - 1][0], step, 1e-9) << "row " << k;
   }
   // The post stands in the way: the path is longer than the straight turn of 2 pi / 3.
@@ -341,12 +342,13 @@ TEST_F(McwsPlan, TextReportWithoutJson) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("scenario tiny"));
   EXPECT_THAT(r.out, HasSubstr("round 1"));
-  EXPECT_THROW(static_cast<void>(nlohmann::json::parse(r.out)), nlohmann::json::exception);
+  EXPECT_FALSE(nlohmann::json::accept(r.out));
 }
 
 TEST_F(McwsPlan, SameResultForOneAndTwoThreads) {
   const std::string one = outputs_.file("one.csv"), two = outputs_.file("two.csv");
-  const std::string common = kPlan + " --scenario " + okScenario() + " --validation-poses 200 --json";
+  const std::string common =
+      kPlan + " --scenario " + okScenario() + " --validation-poses 200 --json";
   const test::RunResult a = test::run(common + " --threads 1 --output " + one);
   const test::RunResult b = test::run(common + " --threads 2 --output " + two);
   ASSERT_EQ(a.exit_code, 0) << a.err;
@@ -385,14 +387,34 @@ TEST_F(McwsPlan, InputFilesAreNeverModified) {
                       outputs_.file("path.csv") + " --validation-poses 100")
                 .exit_code,
             0);
-  // Asked to write over its own input: refused or done, the scenario must survive a failed run
-  // (a goal in collision) that names it as the output.
-  const std::string goal = writeArmScenario("goal.yaml", "0 deg, 0 deg", "50 deg, 0 deg");
+  // Asked to write over its own input: refused as a usage error before any planning.
+  const std::string goal = writeArmScenario("goal.yaml", "0 deg, 0 deg", "52 deg, 0 deg");
   const std::string goal_text = test::readFile(goal);
-  EXPECT_EQ(test::run(kPlan + " --scenario " + goal + " --output " + goal).exit_code, 1);
+  EXPECT_EQ(test::run(kPlan + " --scenario " + goal + " --output " + goal).exit_code, 2);
   EXPECT_EQ(test::readFile(goal), goal_text);
   EXPECT_EQ(test::readFile(okScenario()), scenario);
   EXPECT_EQ(test::readFile(inputs_.file("arm2.yaml")), robot);
+}
+
+TEST_F(McwsPlan, OutputOverAnInputIsRefused) {
+  // A successful run told to write its path over its own scenario or robot file.
+  std::string overwritten;
+  for (const char* input : {"copy.yaml", "arm2.yaml"}) {
+    const std::string scenario = inputs_.file("copy.yaml");
+    test::writeFile(scenario, test::readFile(okScenario()));
+    const std::string target = inputs_.file(input);
+    const std::string before = test::readFile(target);
+    const test::RunResult r = test::run(kPlan + " --scenario " + scenario + " --output " + target +
+                                        " --validation-poses 100");
+    if (test::readFile(target) != before) {
+      overwritten += std::string(overwritten.empty() ? "" : ", ") + input + " (exit " +
+                     std::to_string(r.exit_code) + ")";
+      test::writeFile(target, before);
+      continue;
+    }
+    EXPECT_EQ(r.exit_code, 2) << input << ": " << r.err;
+  }
+  EXPECT_TRUE(overwritten.empty()) << "--output replaced an input with the CSV: " << overwritten;
 }
 
 }  // namespace

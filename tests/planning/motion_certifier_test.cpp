@@ -8,6 +8,7 @@
 
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "kinematics/random_joints.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -32,6 +33,14 @@ collision:
     robot = parseRobotYaml(text, "stick.yaml");
     model = parseCollisionYaml(robot, text, "stick.yaml");
   }
+};
+
+/// Seed 001's maintenance arm in its scene.
+struct MaintenanceArm {
+  Robot robot = loadRobot(test::robotPath("maintenance4"));
+  CollisionChecker checker{robot, loadCollisionModel(robot, test::robotPath("maintenance4"))};
+  MotionCertifier certifier{robot, checker};
+  CollisionChecker::Scratch scratch;
 };
 
 Eigen::VectorXd one(double degrees) { return Eigen::VectorXd::Constant(1, degrees * M_PI / 180); }
@@ -63,17 +72,14 @@ TEST(MotionCertifier, FindsAPostBetweenTwoFreeEnds) {
 }
 
 TEST(MotionCertifier, ReachBoundsHoldOverRandomConfigurations) {
-  const Robot robot = loadRobot(test::robotPath("maintenance4"));
-  const CollisionChecker checker(robot, loadCollisionModel(robot, test::robotPath("maintenance4")));
-  const MotionCertifier certifier(robot, checker);
-  CollisionChecker::Scratch scratch;
+  MaintenanceArm arm;
+  const Robot& robot = arm.robot;
+  const CollisionChecker& checker = arm.checker;
+  const MotionCertifier& certifier = arm.certifier;
+  CollisionChecker::Scratch& scratch = arm.scratch;
   std::mt19937_64 random(11);
   for (int trial = 0; trial < 500; ++trial) {
-    Eigen::VectorXd q(robot.dof());
-    for (int j = 0; j < robot.dof(); ++j) {
-      q[j] = std::uniform_real_distribution<double>(robot.joints[j].lower,
-                                                    robot.joints[j].upper)(random);
-    }
+    const Eigen::VectorXd q = test::randomJoints(robot, random);
     const ChainPoses chain = chainPoses(robot, q);
     checker.place(q.data(), robot.T_world_base, scratch);
     for (int i = 0; i < robot.dof(); ++i) {
@@ -101,10 +107,11 @@ bool denseFree(const CollisionChecker& checker, const Eigen::VectorXd& a, const 
 }
 
 TEST(MotionCertifier, NeverCallsFreeWhatDenseSamplingFindsColliding) {
-  const Robot robot = loadRobot(test::robotPath("maintenance4"));
-  const CollisionChecker checker(robot, loadCollisionModel(robot, test::robotPath("maintenance4")));
-  const MotionCertifier certifier(robot, checker);
-  CollisionChecker::Scratch scratch;
+  MaintenanceArm arm;
+  const Robot& robot = arm.robot;
+  const CollisionChecker& checker = arm.checker;
+  const MotionCertifier& certifier = arm.certifier;
+  CollisionChecker::Scratch& scratch = arm.scratch;
   std::mt19937_64 random(5);
   int free = 0, colliding = 0, only_certifier = 0;
   for (int trial = 0; trial < 300; ++trial) {
@@ -140,20 +147,17 @@ TEST(MotionCertifier, NeverCallsFreeWhatDenseSamplingFindsColliding) {
 }
 
 TEST(MotionCertifier, DisplacementBoundsTheClearanceChange) {
-  const Robot robot = loadRobot(test::robotPath("maintenance4"));
-  const CollisionChecker checker(robot, loadCollisionModel(robot, test::robotPath("maintenance4")));
-  const MotionCertifier certifier(robot, checker);
-  CollisionChecker::Scratch scratch;
+  MaintenanceArm arm;
+  const Robot& robot = arm.robot;
+  const CollisionChecker& checker = arm.checker;
+  const MotionCertifier& certifier = arm.certifier;
+  CollisionChecker::Scratch& scratch = arm.scratch;
   std::mt19937_64 random(3);
   const Eigen::Vector3d pivot(0, 0, 25);
   constexpr double kCap = 1e9;  // uncapped
   int compared = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    Eigen::VectorXd q(robot.dof());
-    for (int j = 0; j < robot.dof(); ++j) {
-      q[j] = std::uniform_real_distribution<double>(robot.joints[j].lower,
-                                                    robot.joints[j].upper)(random);
-    }
+    const Eigen::VectorXd q = test::randomJoints(robot, random);
     Eigen::Isometry3d d = Eigen::Isometry3d::Identity();
     d.translation() = pivot + Eigen::Vector3d(std::uniform_real_distribution<double>(-3, 3)(random), 0, 0);
     d.rotate(Eigen::AngleAxisd(std::uniform_real_distribution<double>(-0.2, 0.2)(random),

@@ -106,6 +106,9 @@ bool samePrefix(const VertexPath& a, std::size_t n_a, const VertexPath& b, std::
 
 }  // namespace
 
+// s41 (D) and s42 (P): "将在同一条非碰撞路径上的节点构型与初始构型之间所有路径段的第二自由状态概率相加
+// 除以路径段数目，获得节点构型与初始构型之间的第一自由状态概率" (sum the segment probabilities between
+// the start and the node along the path and divide by the number of segments).
 std::vector<NodeValues> nodeValues(const VertexPath& path, const EdgeValuesFn& edges) {
   return prefixValues(path, path.size(), edges);
 }
@@ -165,6 +168,8 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
   for (const auto& [key, v] : keyed) order.push_back(v);
   if (goal != start) order.push_back(goal);
 
+  // s43/s44: "判断节点构型是否有2条或2条以上非碰撞路径经过；如果否，则判断下一个节点构型" (does the
+  // node have two or more paths through it? if not, go to the next node).
   MergeResult result;
   result.paths = candidates;
   for (std::size_t v : order) {
@@ -185,6 +190,8 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
     }
     if (!shared) continue;
 
+    // s45: "选择出第一自由状态概率与欧氏距离数学差值最大的非碰撞路径作为优势路径" (the path whose
+    // free-state probability minus distance is largest is the dominant path).
     SharedNodeDecision decision;
     decision.vertex = v;
     decision.paths = through;
@@ -198,6 +205,10 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
     }
     decision.winner = through[best_j];
 
+    // s46: "用优势路径上同一节点构型与初始构型之间的所有节点对非优势路经上...的节点进行替换，替换后非
+    // 优势路经上剩余的所有节点处的欧氏距离值和自由状态概率值重新计算" (the dominant path's nodes from
+    // the start to this node replace the other paths' ones; their later values are recomputed,
+    // here from the edges whenever they are needed).
     const VertexPath& winner = result.paths[decision.winner];
     const VertexPath prefix(winner.begin(),
                             winner.begin() + static_cast<std::ptrdiff_t>(prefix_size[best_j]));
@@ -212,6 +223,8 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
     }
     result.decisions.push_back(std::move(decision));
   }
+  // s47: "将在目标节点处选出的优势路径作为全局最优路径" (the dominant path at the goal is the global
+  // best path).
   const bool decided_at_goal = !result.decisions.empty() && result.decisions.back().vertex == goal;
   result.best = decided_at_goal ? result.decisions.back().winner : 0;
   return result;

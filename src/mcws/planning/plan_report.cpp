@@ -160,8 +160,12 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
                           {"length", row.length},
                           {"colliding_poses", row.colliding},
                           {"collision_probability", row.collision_probability},
-                          {"interval_95", {row.interval.low, row.interval.high}}};
-      if (row.name == "padded") item["padding"] = row.padding;
+                          {"interval_95", {row.interval.low, row.interval.high}},
+                          {"seconds", row.seconds}};
+      if (row.name == "padded") {
+        item["padding"] = row.padding;
+        item["planning_seconds"] = row.planning_seconds;
+      }
       v["rows"].push_back(item);
       if (row.planned) {
         v[row.name + "_collision_probability"] = row.collision_probability;
@@ -248,7 +252,7 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       }
       out << line;
       if (row.name == "padded") out << ", obstacles padded by " << format("%.3g", row.padding) << " " << length_unit;
-      out << "\n";
+      out << ", " << format("%.2f", row.seconds) << " s\n";
     }
   }
   return out.str();

@@ -3,6 +3,7 @@
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/ValidStateSampler.h>
@@ -70,8 +71,14 @@ class CertifiedMotionValidator : public ob::MotionValidator {
       : ob::MotionValidator(si), certifier_(certifier), T_world_base_(T_world_base),
         scale_(scale) {}
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
-    const bool free = certifier_.motionFree(jointsOf(s1, scale_), jointsOf(s2, scale_),
-                                            T_world_base_, PairSet::kAll, scratch_);
+    const Eigen::VectorXd q1 = jointsOf(s1, scale_), q2 = jointsOf(s2, scale_);
+    certifier_.motionBounds(q1, q2, PairSet::kAll, bounds_);
+    double cap = certifier_.options().resolution;
+    for (double b : bounds_) cap = std::max(cap, b + certifier_.options().resolution);
+    const std::vector<double>* c1 = clearances(s1, q1, cap);
+    const std::vector<double>* c2 = c1 ? clearances(s2, q2, cap) : nullptr;
+    const bool free = c1 && c2 &&
+                      certifier_.motionFree(q1, *c1, q2, *c2, T_world_base_, PairSet::kAll, scratch_);
     (free ? valid_ : invalid_)++;
     return free;
   }
@@ -86,10 +93,31 @@ class CertifiedMotionValidator : public ob::MotionValidator {
   }
 
  private:
+  /// A milestone's clearances, computed once: PRM checks each milestone against k neighbours.
+  /// Recomputed when a motion needs them beyond the cap they were computed to. nullptr when the
+  /// state collides.
+  const std::vector<double>* clearances(const ob::State* state, const Eigen::VectorXd& q,
+                                        double cap) const {
+    Cached& cached = cache_[state];
+    if (cached.cap < cap) {
+      certifier_.clearances(q, T_world_base_, PairSet::kAll, cap, scratch_, cached.values);
+      cached.cap = cap;
+    }
+    for (double v : cached.values)
+      if (v <= 0.0) return nullptr;
+    return &cached.values;
+  }
+
+  struct Cached {
+    double cap{-1.0};
+    std::vector<double> values;
+  };
   const MotionCertifier& certifier_;
   Eigen::Isometry3d T_world_base_;
   Eigen::VectorXd scale_;
   mutable CollisionChecker::Scratch scratch_;
+  mutable std::vector<double> bounds_;
+  mutable std::unordered_map<const ob::State*, Cached> cache_;
 };
 
 /// OMPL's PRM with its milestone insertion opened up, so that start and goal are added after

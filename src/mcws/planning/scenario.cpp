@@ -2,7 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -16,6 +18,28 @@ namespace mcws {
 
 namespace {
 
+/// A plain decimal number: digits with at most one point, then an optional exponent (no sign,
+/// no hexadecimal, no "inf" or "nan").
+bool plainNumber(const std::string& text, double& value) {
+  std::size_t i = 0, digits = 0;
+  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
+    ++i;
+    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+    const std::size_t exponent = i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
+    if (i == exponent) return false;
+  }
+  if (i != text.size()) return false;
+  value = std::strtod(text.c_str(), nullptr);
+  return std::isfinite(value);
+}
+
 /// A number, "pi", "2pi", "2*pi", "pi/6", "-3*pi/4"; false when the text is none of these.
 bool parseExpression(std::string text, double& value) {
   double sign = 1.0;
@@ -25,32 +49,21 @@ bool parseExpression(std::string text, double& value) {
   }
   double divisor = 1.0;
   if (const auto slash = text.find('/'); slash != std::string::npos) {
-    std::size_t used = 0;
-    const std::string tail = text.substr(slash + 1);
-    try {
-      divisor = std::stod(tail, &used);
-    } catch (const std::exception&) {
-      return false;
-    }
-    if (used != tail.size() || divisor == 0.0 || !std::isfinite(divisor)) return false;
+    if (!plainNumber(text.substr(slash + 1), divisor) || divisor == 0.0) return false;
     text = text.substr(0, slash);
   }
   double factor = 1.0;
   if (text.size() >= 2 && text.compare(text.size() - 2, 2, "pi") == 0) {
     factor = M_PI;
     text.erase(text.size() - 2);
-    if (!text.empty() && text.back() == '*') text.pop_back();
+    if (!text.empty() && text.back() == '*') {
+      text.pop_back();
+      if (text.empty()) return false;  // "*pi"
+    }
     if (text.empty()) text = "1";
   }
-  if (text.empty()) return false;
-  std::size_t used = 0;
   double number = 0.0;
-  try {
-    number = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  if (used != text.size()) return false;
+  if (!plainNumber(text, number)) return false;
   value = sign * number * factor / divisor;
   return std::isfinite(value);
 }
@@ -129,9 +142,11 @@ class ScenarioReader {
   void checkKeys(const YAML::Node& map, const std::string& where,
                  const std::set<std::string>& allowed) const {
     if (!map.IsMap()) fail(map, where + ": must be a map");
+    std::set<std::string> seen;
     for (const auto& item : map) {
       const std::string key = item.first.as<std::string>();
       if (!allowed.count(key)) fail(item.first, where + ": unknown field '" + key + "'");
+      if (!seen.insert(key).second) fail(item.first, where + ": field '" + key + "' given twice");
     }
   }
 
@@ -160,6 +175,14 @@ class ScenarioReader {
       fail(node, field + ": " + node.Scalar() + " must be a whole number of at least 1");
     }
     return static_cast<std::size_t>(value);
+  }
+
+  std::uint64_t seedOf(const YAML::Node& node, const std::string& field) const {
+    const double value = number(node, field);
+    if (value < 0.0 || value != std::floor(value) || value > 9e15) {
+      fail(node, field + ": " + node.Scalar() + " must be a whole number >= 0");
+    }
+    return static_cast<std::uint64_t>(value);
   }
 
   double quantity(const YAML::Node& node, char want, const std::string& field) const {
@@ -210,10 +233,15 @@ class ScenarioReader {
     return poseFromXyzRpy(xyz, rpy);
   }
 
-  double sigma(const YAML::Node& node, char want, const std::string& field) const {
+  /// A quantity that must not be negative; `what` names it in the message ("sigma", ...).
+  double nonNegative(const YAML::Node& node, char want, const std::string& field,
+                     const std::string& what) const {
     const double value = quantity(node, want, field);
-    if (value < 0.0) fail(node, field + ": sigma " + node.Scalar() + " must be >= 0");
+    if (value < 0.0) fail(node, field + ": " + what + node.Scalar() + " must be >= 0");
     return value;
+  }
+  double sigma(const YAML::Node& node, char want, const std::string& field) const {
+    return nonNegative(node, want, field, "sigma ");
   }
 
   void readSway(const YAML::Node& node, SwayPlanningProblem& problem) {
@@ -238,7 +266,7 @@ class ScenarioReader {
       }
     }
     if (const YAML::Node poses = node["poses"]) problem.base_poses = count(poses, "sway: poses");
-    if (const YAML::Node seed = node["seed"]) problem.seed = count(seed, "sway: seed");
+    if (const YAML::Node seed = node["seed"]) problem.seed = seedOf(seed, "sway: seed");
     try {
       SwaySampler check(sway);  // positive semi-definite, symmetric
     } catch (const Error& e) {
@@ -295,7 +323,7 @@ class ScenarioReader {
       problem.roadmap.neighbours =
           static_cast<unsigned>(count(node["neighbours"], "planner: neighbours"));
     if (node["roadmap_seed"])
-      problem.roadmap.seed = count(node["roadmap_seed"], "planner: roadmap_seed");
+      problem.roadmap.seed = seedOf(node["roadmap_seed"], "planner: roadmap_seed");
     if (node["segment_length"]) {
       problem.segment_length = number(node["segment_length"], "planner: segment_length");
       if (!(problem.segment_length > 0.0))
@@ -313,7 +341,12 @@ class ScenarioReader {
       }
     }
     if (node["weight"]) problem.score.weight = nonNegative(node["weight"], "planner: weight");
-    if (node["threshold"]) problem.threshold = number(node["threshold"], "planner: threshold");
+    if (const YAML::Node threshold = node["threshold"]) {
+      problem.threshold = number(threshold, "planner: threshold");
+      if (problem.threshold < 0.0 || problem.threshold > 1.0) {
+        fail(threshold, "planner: threshold " + threshold.Scalar() + " is outside [0, 1]");
+      }
+    }
     if (const YAML::Node on = node["threshold_on"]) {
       const std::string name = text(on, "planner: threshold_on");
       if (name != "P" && name != "whole_path") {
@@ -321,13 +354,14 @@ class ScenarioReader {
       }
       problem.threshold_on_whole_path = name == "whole_path";
     }
-    if (node["base_step"]) problem.base_step = sigma(node["base_step"], 'l', "planner: base_step");
+    if (node["base_step"])
+      problem.base_step = nonNegative(node["base_step"], 'l', "planner: base_step", "");
     if (node["base_range"])
-      problem.base_range = sigma(node["base_range"], 'l', "planner: base_range");
+      problem.base_range = nonNegative(node["base_range"], 'l', "planner: base_range", "");
     if (const YAML::Node padding = node["padding"]) {
       problem.padding = padding.IsScalar() && padding.Scalar() == "auto"
                             ? -1.0
-                            : sigma(padding, 'l', "planner: padding");
+                            : nonNegative(padding, 'l', "planner: padding", "");
     }
   }
 

@@ -53,6 +53,10 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials,
 
 /// \brief Draws sway vectors from N(0, covariance) truncated to its confidence ellipsoid.
 ///
+/// Seed 001 step s20: "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿
+/// 数据 ... n在高斯概率分布函数的一定置信区间取值" (the first static pose is the mean of a Gaussian
+/// that gives n second static poses, taken within a confidence interval of it).
+///
 /// With covariance = V diag(lambda) V^T (rank r), a sample is xi = V_r diag(sqrt(lambda_r)) z
 /// where z is uniform in direction and |z|^2 follows chi^2_r truncated at its `confidence`
 /// quantile (drawn by inverting the CDF), which is exactly the Gaussian conditioned on the

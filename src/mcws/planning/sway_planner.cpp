@@ -291,7 +291,12 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   const Eigen::VectorXd& scale = p.roadmap.joint_scale;
   round.reference_distance = scaledDistance(p.start, p.goal, scale);
 
-  // s30: m collision-free paths for the measured pose, through one roadmap.
+  // s10: "分别测量机器人的基座相对于作业对象的第一静态位姿、机器人的操作臂的初始构型" (measure the
+  // base's first static pose relative to the work object and the arm's initial configuration):
+  // T_nominal, problem_.start.
+  // s30: "将第一静态位姿作为操作臂的基座位姿，对操作臂进行路径规划，给出操作臂从初始构型到达预设目标
+  // 构型的m条非碰撞路径" (with the first static pose as the arm's base pose, plan m collision-free
+  // paths from the initial to the target configuration): one PRM roadmap, m diverse paths.
   if (progress) progress("roadmap", 0, 1);
   const Roadmap roadmap = buildRoadmap(*certifier_, T_nominal, p.start, p.goal, p.roadmap);
   round.status = roadmap.status;
@@ -309,12 +314,19 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   const std::vector<VertexPath> candidates =
       diversePaths(roadmap.graph, roadmap.start, roadmap.goal, p.candidates, p.diversity);
 
-  // s20: the n second static poses, about the sway frame moved with the base.
+  // s20: "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿数据"
+  // (the first static pose as the mean of a Gaussian, draw n second static poses): the n
+  // displacements (SwaySampler), about the sway frame moved with the base.
   const PoseSet poses = makePoses(movedDisplacements(displacements_, offset), T_nominal,
                                   measuredBase(offset) * problem_.robot.T_world_base.inverse() *
                                       p.sway.pivot);
 
-  // s41, s42: each edge of a candidate cut into segments; free states for every pose.
+  // s41: "对m条非碰撞路径进行分段处理，并测量获得操作臂在每个分段的节点构型与初始构型的欧氏距离"
+  // (cut the paths into segments; the distance of each node from the initial configuration):
+  // each edge cut into segments of at most segment_length; D accumulates along the path.
+  // s42: "获得相邻节点构型之间路径段在n组基座位姿数据下的自由状态 ... 将n组自由状态累加除以n获得路径段
+  // 的第二自由状态概率" (each segment's free state for the n base poses, summed and divided by
+  // n): free states for every pose, checked exactly.
   Evaluation evaluation;
   for (const VertexPath& path : candidates)
     for (std::size_t k = 0; k + 1 < path.size(); ++k)
@@ -352,7 +364,11 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
 
   round.evaluation_seconds = elapsed() - round.roadmap_seconds;
 
-  // s43 - s47: dominance at shared nodes, in increasing roadmap distance from the start.
+  // s43 - s47: "判断节点构型是否有2条或2条以上非碰撞路径经过 ... 选择出第一自由状态概率与欧氏距离数学
+  // 差值最大的非碰撞路径作为优势路径 ... 将在目标节点处选出的优势路径作为全局最优路径" (at nodes that
+  // two or more paths pass, the path with the largest difference of free-state probability and
+  // distance dominates; the dominant path at the goal is the global best): mergeAtSharedNodes,
+  // shared nodes visited in increasing roadmap distance from the start.
   ScoreOptions score = p.score;
   score.reference_distance = round.reference_distance;
   const EdgeValuesFn values = [&](std::size_t u, std::size_t v) {
@@ -376,6 +392,7 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
 ValidationRow SwayPlanner::validate(const std::string& name,
                                     const std::vector<Eigen::VectorXd>& waypoints,
                                     double offset) const {
+  const auto started = std::chrono::steady_clock::now();
   const SwayPlanningProblem& p = problem_;
   ValidationRow row;
   row.name = name;
@@ -409,6 +426,7 @@ ValidationRow SwayPlanner::validate(const std::string& name,
   row.collision_probability =
       static_cast<double>(colliding) / static_cast<double>(p.validation_poses);
   row.interval = wilsonInterval(colliding, p.validation_poses);
+  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return row;
 }
 
@@ -429,6 +447,10 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
       offsets.push_back(-k * p.base_step);
     }
   }
+  // s50: "判断全局最优路径的自由状态概率是否大于等于预设自由状态概率阈值" (is the best path's
+  // free-state probability at least the threshold?); s60: if so it is executed; s70: "如果否，
+  // 则调整所述机器人的所述第一静态位姿，然后重新进行所述操作臂的运动路径规划" (if not, adjust the
+  // robot's first static pose and plan again): the base moves along the line, both ways.
   for (double offset : offsets) {
     result.rounds.push_back(planRound(offset, progress));
     const PlanningRound& round = result.rounds.back();
@@ -436,8 +458,8 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
       result.accepted = result.rounds.size() - 1;
       break;
     }
-    // A start or goal in collision does not move with the base only when nothing sways; keep
-    // trying the other offsets, as the patent's step s70 says.
+    // A start or goal in collision, or a roadmap that does not connect, at this offset: the
+    // next offset may do better, so step s70 goes on.
   }
   if (!validate_paths) return result;
 
@@ -462,12 +484,15 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   if (progress) progress("validation", 2, 3);
 
   // The usual answer: the shortest path for obstacles padded by the 2-sigma displacement.
+  const auto padded_started = std::chrono::steady_clock::now();
   MotionCertifierOptions padded_options;
   padded_options.environment_margin = padding();
   const MotionCertifier padded(p.robot, *checker_, padded_options);
   const Roadmap roadmap =
       buildRoadmap(padded, measuredBase(round.base_offset), p.start, p.goal, p.roadmap);
   ValidationRow row;
+  const double planning_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - padded_started).count();
   if (roadmap.status == RoadmapStatus::kConnected) {
     const VertexPath path = kShortestPaths(roadmap.graph, roadmap.start, roadmap.goal, 1).front();
     std::vector<Eigen::VectorXd> waypoints;
@@ -479,6 +504,9 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
     row.poses = p.validation_poses;
   }
   row.padding = padded_options.environment_margin;
+  row.planning_seconds = planning_seconds;
+  row.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - padded_started).count();
   result.validation.push_back(row);
   if (progress) progress("validation", 3, 3);
   result.validation_seconds =

@@ -84,6 +84,8 @@ struct ValidationRow {
   double collision_probability{0.0};
   ProportionInterval interval;  ///< 95 % Wilson interval
   double padding{0.0};          ///< the padded row's margin [length unit]
+  double seconds{0.0};          ///< wall time (the padded row: its roadmap included)
+  double planning_seconds{0.0};  ///< the padded row: growing its roadmap and its shortest path
 };
 
 /// \brief The whole result of mcws_plan.
