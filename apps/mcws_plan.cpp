@@ -2,7 +2,6 @@
 // with the chosen path validated on fresh base poses against the shortest and padded paths.
 #include <omp.h>
 
-#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -53,28 +52,16 @@ int main(int argc, char** argv) {
     if (cli.has("seed")) seed = app::parseInteger(cli.required("seed"), "seed", 0, INT64_MAX);
     if (cli.has("validation-poses"))
       validation_poses = app::parseInteger(cli.required("validation-poses"), "validation-poses", 0, 100000000);
-    std::map<std::string, std::string> outputs{{output, "output"}};
-    for (const auto& [path, flag] : {std::pair{plot, "plot"}, std::pair{plot_offsets, "plot-offsets"}}) {
-      if (!path.empty() && !outputs.emplace(path, flag).second)
-        throw app::UsageError(std::string("--") + flag + ": must differ from the other outputs");
-    }
-
     const std::string scenario_path = cli.required("scenario");
     Scenario scenario = loadScenario(scenario_path);
-    for (const auto& [path, flag] : outputs) {  // never write over an input
-      for (const std::string& input : {scenario_path, scenario.robot_path}) {
-        std::error_code ec;
-        if (path == input || std::filesystem::equivalent(path, input, ec))
-          throw app::UsageError("--" + flag + ": '" + path + "' is an input (" + input + ")");
-      }
-    }
     SwayPlanningProblem& problem = scenario.problem;
     if (seed) problem.seed = problem.roadmap.seed = static_cast<std::uint64_t>(*seed);
     if (validation_poses && *validation_poses > 0) problem.validation_poses = *validation_poses;
     if (!plot.empty() && problem.robot.dof() != 2)
       throw app::UsageError("--plot: draws a two-joint configuration space; robot '" +
                             problem.robot.name + "' has " + std::to_string(problem.robot.dof()));
-    for (const auto& [path, flag] : outputs) io::checkOutputPath(path);
+    app::checkOutputs({{"output", output}, {"plot", plot}, {"plot-offsets", plot_offsets}},
+                      {scenario_path, scenario.robot_path});
 
     const SwayPlanner planner(problem);
     std::map<std::string, app::Progress> bars;
@@ -82,21 +69,13 @@ int main(int argc, char** argv) {
       bars.try_emplace(stage, "mcws_plan", stage).first->second.update(done, total);
     };
     const SwayPlanningResult result = planner.plan(!validation_poses || *validation_poses > 0, progress);
-    const std::string report = planReport(scenario, result);
     if (cli.has("json")) {
       std::cout << planJson(scenario, result).dump() << "\n";
     } else {
-      std::cout << report;
+      std::cout << planReport(scenario, result);
     }
     if (!result.accepted) {
-      const PlanningRound& last = result.rounds.back();
-      std::cerr << "mcws_plan: no path: "
-                << (last.best ? std::string("below_threshold: the best path stays below ") +
-                                    (problem.threshold_on_whole_path ? "the whole-path threshold "
-                                                                     : "the P threshold ") +
-                                    std::to_string(problem.threshold) + " within the base range"
-                              : std::string(roadmapStatusName(last.status)))
-                << "; nothing written\n";
+      std::cerr << "mcws_plan: no path: " << noPathStatus(scenario, result) << "; nothing written\n";
       return app::kExitFailure;
     }
     const PlanningRound& round = result.rounds[*result.accepted];

@@ -3,8 +3,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
+
+#include "mcws/io/atomic_file.h"
 
 namespace mcws::app {
 
@@ -126,6 +129,26 @@ std::vector<std::pair<std::string, double>> parseAssignments(const std::string& 
   }
   if (pairs.empty()) throw UsageError("--" + flag + ": nothing in '" + text + "'");
   return pairs;
+}
+
+void checkOutputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                  const std::vector<std::string>& inputs) {
+  auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return a == b || std::filesystem::equivalent(a, b, ec);
+  };
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto& [flag, path] = outputs[i];
+    if (path.empty()) continue;
+    for (std::size_t j = 0; j < i; ++j) {
+      if (same(path, outputs[j].second))
+        throw UsageError("--" + flag + ": must differ from --" + outputs[j].first);
+    }
+    for (const std::string& input : inputs) {
+      if (same(path, input)) throw UsageError("--" + flag + ": '" + path + "' is an input file");
+    }
+    io::checkOutputPath(path);  // a missing or read-only directory: a failed run (exit 1)
+  }
 }
 
 Progress::Progress(std::string program, std::string what)

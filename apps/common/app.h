@@ -71,6 +71,14 @@ Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag
 std::vector<std::pair<std::string, double>> parseAssignments(const std::string& text,
                                                              const std::string& flag);
 
+/// \brief Checks a tool's output files before anything is computed: each (flag, path) with a
+/// non-empty path must differ from the other outputs and from every input file (by name or as
+/// the same file), and its directory must exist and be writable.
+/// \throws UsageError naming the flag and the path; mcws::Error (exit 1) for a directory that
+///   is missing or not writable.
+void checkOutputs(const std::vector<std::pair<std::string, std::string>>& outputs,
+                  const std::vector<std::string>& inputs);
+
 /// \brief Progress lines "program: 45% (4500000/10000000)" on stderr, only for runs longer than
 /// about a second and at most twice a second.
 class Progress {

@@ -231,7 +231,7 @@ TEST_F(McwsPlan, BadCommandLinesExitTwo) {
   test::expectToolFailure(kPlan, scenario + output + " --validation-poses -1", 2,
                           "--validation-poses", outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --plot " + outputs_.file("path.csv"), 2,
-                          "--plot: must differ from the other outputs", outputs_);
+                          "--plot: must differ from --output", outputs_);
 }
 
 TEST_F(McwsPlan, BadScenarioExitsOneNamingTheField) {

@@ -258,6 +258,15 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
   return out.str();
 }
 
+std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& result) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  const PlanningRound& last = result.rounds.back();
+  if (!last.best) return roadmapStatusName(last.status);
+  return std::string("below_threshold: the best path stays below the ") +
+         (problem.threshold_on_whole_path ? "whole-path" : "P") + " threshold " +
+         format("%g", problem.threshold) + " within the base range";
+}
+
 std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner) {
   const SwayPlanningProblem& p = planner.problem();
   std::vector<PlanningRound> rounds;

@@ -22,6 +22,10 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
 /// validation.
 std::string planReport(const Scenario& scenario, const SwayPlanningResult& result);
 
+/// \brief Why no path was accepted, one line: "goal_in_collision", "not_connected", or
+/// "below_threshold: ..." with the threshold and the measure it applies to.
+std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& result);
+
 /// \brief Rounds at every base offset -range, ..., 0, ..., +range (step apart), for a plot of
 /// P against the offset.
 std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner);
