@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "mcws/core/error.h"
+
 namespace mcws::test {
 
 inline std::string robotPath(const std::string& name) {
@@ -69,6 +71,18 @@ inline RunResult run(const std::string& command) {
   result.out = readFile(out);
   result.err = readFile(err);
   return result;
+}
+
+/// The message of the mcws::Error that `call` throws ("" and a failure when it throws none).
+template <typename Call>
+std::string errorOf(Call&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no mcws::Error thrown";
+  return "";
 }
 
 /// Number of lines in a text.

@@ -32,17 +32,7 @@ const std::string kLiteralPath = std::string(MCWS_ROBOTS_DIR) +
                                  "/../tests/behavior/data/insulator_cleaner_behaviors_literal.yaml";
 const std::string kRobotLine = "robot: insulator_cleaner.yaml";
 
-/// The message of the mcws::Error that `call` throws ("" and a failure when it throws none).
-template <typename Call>
-std::string errorOf(Call&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no mcws::Error thrown";
-  return "";
-}
+using test::errorOf;
 
 /// The shipped model's text with the robot file named by its absolute path, so that the text
 /// parses under any source name. Same lines as the file.

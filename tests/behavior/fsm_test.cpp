@@ -18,16 +18,7 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-template <typename Call>
-std::string errorOf(Call&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no mcws::Error thrown";
-  return "";
-}
+using test::errorOf;
 
 StateMachine cb1Machine() {
   const BehaviorModel model =

@@ -26,17 +26,7 @@ constexpr double kDeg = M_PI / 180.0;
 // ---------------------------------------------------------------------------------------------
 // parseQuantity
 
-/// The message of the mcws::Error that `call` throws ("" and a failure when it throws none).
-template <typename Call>
-std::string errorOf(Call&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no mcws::Error thrown";
-  return "";
-}
+using test::errorOf;
 
 TEST(ParseQuantity, AnglesInRadiansWithPi) {
   const LengthUnit cm = LengthUnit::kCentimetre;

@@ -18,12 +18,12 @@ struct Subtask {
 /// \brief The seed's sequence for a string of `discs` discs: from the tower end down to the
 /// conductor end, (CB1, CB2) per disc, then CB3 per disc back to the start.
 ///
-/// The worker mounts the robot at the tower end with both clamps on the string's tower-end
-/// fitting, above disc 1 (disc 0 in the numbering: no disc is under the cleaning platform). Each
-/// CB1 moves the robot one disc pitch down, so that the cleaning platform faces the next disc,
-/// and CB2 cleans it: after k pairs discs 1..k are clean. The mounting position is therefore
-/// not a disc and nothing there is cleaned; every one of the `discs` discs is. Then `discs` CB3
-/// bring the robot back to where it was mounted, for the worker to take it off.
+/// The worker mounts the robot at the tower end: the fixed (upper) clamp on the string's
+/// tower-end fitting (position 0 of RobotSimulator's string), the moving clamp two pitches
+/// below (robots/insulator_cleaner.yaml). Disc k is the one the cleaning platform faces after the
+/// k-th CB1, so after k (CB1, CB2) pairs discs 1..k are clean; the mounting position is the
+/// fitting, not a disc, so nothing there is cleaned, and every one of the `discs` discs is. Then
+/// `discs` CB3 bring the robot back to where it was mounted, for the worker to take it off.
 /// \throws mcws::Error for fewer than 1 or more than 200 discs.
 std::vector<Subtask> planCleaningTask(int discs);
 
