@@ -45,13 +45,16 @@ int main(int argc, char** argv) {
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string output = cli.required("output");
     const std::string plot = cli.text("plot", ""), plot_offsets = cli.text("plot-offsets", "");
-    const int cells = static_cast<int>(app::parseInteger(cli.text("cells", "120"), "cells", 4, 2000));
+    const int cells =
+        static_cast<int>(app::parseInteger(cli.text("cells", "120"), "cells", 4, 2000));
     if (cli.has("threads"))
-      omp_set_num_threads(static_cast<int>(app::parseInteger(cli.required("threads"), "threads", 1, 1024)));
+      omp_set_num_threads(
+          static_cast<int>(app::parseInteger(cli.required("threads"), "threads", 1, 1024)));
     std::optional<std::int64_t> seed, validation_poses;
     if (cli.has("seed")) seed = app::parseInteger(cli.required("seed"), "seed", 0, INT64_MAX);
     if (cli.has("validation-poses"))
-      validation_poses = app::parseInteger(cli.required("validation-poses"), "validation-poses", 0, 100000000);
+      validation_poses =
+          app::parseInteger(cli.required("validation-poses"), "validation-poses", 0, 100000000);
     const std::string scenario_path = cli.required("scenario");
     Scenario scenario = loadScenario(scenario_path);
     SwayPlanningProblem& problem = scenario.problem;
@@ -65,17 +68,20 @@ int main(int argc, char** argv) {
 
     const SwayPlanner planner(problem);
     std::map<std::string, app::Progress> bars;
-    const PlanningProgress progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
+    const PlanningProgress progress = [&](const std::string& stage, std::size_t done,
+                                          std::size_t total) {
       bars.try_emplace(stage, "mcws_plan", stage).first->second.update(done, total);
     };
-    const SwayPlanningResult result = planner.plan(!validation_poses || *validation_poses > 0, progress);
+    const SwayPlanningResult result =
+        planner.plan(!validation_poses || *validation_poses > 0, progress);
     if (cli.has("json")) {
       std::cout << planJson(scenario, result).dump() << "\n";
     } else {
       std::cout << planReport(scenario, result);
     }
     if (!result.accepted) {
-      std::cerr << "mcws_plan: no path: " << noPathStatus(scenario, result) << "; nothing written\n";
+      std::cerr << "mcws_plan: no path: " << noPathStatus(scenario, result)
+                << "; nothing written\n";
       return app::kExitFailure;
     }
     const PlanningRound& round = result.rounds[*result.accepted];

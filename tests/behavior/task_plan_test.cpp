@@ -12,9 +12,9 @@ TEST(TaskPlan, ThreeDiscsDownCleaningEachThenBackUp) {
   // Figure 8 for three discs, written out by hand: (CB1, CB2) per disc from the tower end down,
   // then one CB3 per disc back to the mounting position (disc 0).
   const std::vector<Subtask> plan = planCleaningTask(3);
-  const std::vector<std::pair<std::string, int>> expected = {
-      {"CB1", 1}, {"CB2", 1}, {"CB1", 2}, {"CB2", 2}, {"CB1", 3},
-      {"CB2", 3}, {"CB3", 2}, {"CB3", 1}, {"CB3", 0}};
+  const std::vector<std::pair<std::string, int>> expected = {{"CB1", 1}, {"CB2", 1}, {"CB1", 2},
+                                                             {"CB2", 2}, {"CB1", 3}, {"CB2", 3},
+                                                             {"CB3", 2}, {"CB3", 1}, {"CB3", 0}};
   ASSERT_EQ(plan.size(), expected.size());
   for (std::size_t k = 0; k < plan.size(); ++k) {
     EXPECT_EQ(plan[k].behavior, expected[k].first) << k;

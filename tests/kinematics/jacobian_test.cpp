@@ -32,7 +32,8 @@ std::vector<std::string> shippedRobotFiles() {
   std::set<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(MCWS_ROBOTS_DIR)) {
     const std::string name = entry.path().filename().string();
-    const bool behaviors = name.size() > 15 && name.compare(name.size() - 15, 15, "_behaviors.yaml") == 0;
+    const bool behaviors =
+        name.size() > 15 && name.compare(name.size() - 15, 15, "_behaviors.yaml") == 0;
     if (entry.path().extension() == ".yaml" && !behaviors) files.insert(entry.path().string());
   }
   return {files.begin(), files.end()};

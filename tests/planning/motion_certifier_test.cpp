@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
+#include "kinematics/random_joints.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
-#include "kinematics/random_joints.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -28,7 +28,8 @@ collision:
   links:
     q1: [{type: capsule, from: [0, 0, 0], to: [50, 0, 0], radius: 1}]
   environment:
-    - {name: post, type: sphere, center: )" + post + R"(, radius: 1}
+    - {name: post, type: sphere, center: )" +
+                             post + R"(, radius: 1}
 )";
     robot = parseRobotYaml(text, "stick.yaml");
     model = parseCollisionYaml(robot, text, "stick.yaml");
@@ -127,7 +128,8 @@ TEST(MotionCertifier, NeverCallsFreeWhatDenseSamplingFindsColliding) {
     Eigen::Isometry3d base = robot.T_world_base;
     if (trial % 2) {  // a displaced base: a roll about conductor A and a slide
       Eigen::Isometry3d sway = Eigen::Isometry3d::Identity();
-      sway.translation() = Eigen::Vector3d(std::uniform_real_distribution<double>(-2, 2)(random), 0, 25);
+      sway.translation() =
+          Eigen::Vector3d(std::uniform_real_distribution<double>(-2, 2)(random), 0, 25);
       sway.rotate(Eigen::AngleAxisd(std::uniform_real_distribution<double>(-0.1, 0.1)(random),
                                     Eigen::Vector3d::UnitX()));
       sway.translate(Eigen::Vector3d(0, 0, -25));
@@ -159,7 +161,8 @@ TEST(MotionCertifier, DisplacementBoundsTheClearanceChange) {
   for (int trial = 0; trial < 200; ++trial) {
     const Eigen::VectorXd q = test::randomJoints(robot, random);
     Eigen::Isometry3d d = Eigen::Isometry3d::Identity();
-    d.translation() = pivot + Eigen::Vector3d(std::uniform_real_distribution<double>(-3, 3)(random), 0, 0);
+    d.translation() =
+        pivot + Eigen::Vector3d(std::uniform_real_distribution<double>(-3, 3)(random), 0, 0);
     d.rotate(Eigen::AngleAxisd(std::uniform_real_distribution<double>(-0.2, 0.2)(random),
                                Eigen::Vector3d::UnitX()));
     d.translate(-pivot);

@@ -72,7 +72,8 @@ TEST(SwayPlanner, FreeStateProbabilityIsTheShareOfPosesThatPushTheSphereIntoTheW
   }
   // Closed form: P(X < 1 | |X| <= 1.96) for X ~ N(0, 1) = (Phi(1) - Phi(-1.96)) / 0.95 = 0.8669.
   const double z = std::sqrt(chiSquareQuantile(0.95, 1));
-  const double expected = (0.5 * std::erfc(-1.0 / std::sqrt(2.0)) - 0.5 * std::erfc(z / std::sqrt(2.0))) / 0.95;
+  const double expected =
+      (0.5 * std::erfc(-1.0 / std::sqrt(2.0)) - 0.5 * std::erfc(z / std::sqrt(2.0))) / 0.95;
   const double share = double(count) / double(free.size());
   EXPECT_NEAR(share, expected, 4 * std::sqrt(expected * (1 - expected) / free.size()));
 }
@@ -88,7 +89,8 @@ TEST(SwayPlanner, OnlyTheSegmentsBesideAPostLoseProbability) {
   ASSERT_TRUE(round.best);
   const SwaySampler sampler(problem.sway);
   std::size_t free = 0;
-  for (std::size_t j = 0; j < problem.base_poses; ++j) free += sampler.vector(problem.seed, j)[0] < 1.0;
+  for (std::size_t j = 0; j < problem.base_poses; ++j)
+    free += sampler.vector(problem.seed, j)[0] < 1.0;
   const double share = double(free) / double(problem.base_poses);
   const PathSafety& best = *round.best;
   EXPECT_DOUBLE_EQ(best.worst_probability, share);
@@ -125,18 +127,21 @@ TEST(SwayPlanner, ShiftsTheBaseOneStepAwayFromThePost) {
 TEST(SwayPlanner, ReportsStartGoalAndRoadmapFailures) {
   const std::string far_post = "{name: post, type: box, size: [2, 2, 2], xyz: [50, 0, 0]}";
   {
-    const SwayPlanner planner(slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 40, 0]}", 1));
+    const SwayPlanner planner(
+        slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 40, 0]}", 1));
     EXPECT_EQ(planner.planRound(0.0).status, RoadmapStatus::kGoalInvalid);
   }
   {
-    const SwayPlanner planner(slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 0, 0]}", 1));
+    const SwayPlanner planner(
+        slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 0, 0]}", 1));
     const SwayPlanningResult result = planner.plan(true);
     EXPECT_EQ(result.rounds.front().status, RoadmapStatus::kStartInvalid);
     EXPECT_FALSE(result.accepted);
     EXPECT_TRUE(result.validation.empty());
   }
   {  // a wall across the sphere's way at y = 20
-    const SwayPlanner planner(slider("{name: wall, type: box, size: [200, 2, 200], xyz: [0, 20, 0]}", 1));
+    const SwayPlanner planner(
+        slider("{name: wall, type: box, size: [200, 2, 200], xyz: [0, 20, 0]}", 1));
     const PlanningRound round = planner.planRound(0.0);
     EXPECT_EQ(round.status, RoadmapStatus::kNotConnected);
     EXPECT_FALSE(round.best);
@@ -152,7 +157,8 @@ TEST(SwayPlanner, ReportsStartGoalAndRoadmapFailures) {
 TEST(SwayPlanner, ExactShortcutAgreesWithTheFullCheckOnMaintenanceArmMotions) {
   // motionFreeStates() certifies most poses from the nominal clearances and checks the rest
   // exactly; every pose must get the answer of the full exact check with the base displaced.
-  Scenario scenario = loadScenario(std::string(MCWS_ROBOTS_DIR) + "/../scenarios/maintenance4.yaml");
+  Scenario scenario =
+      loadScenario(std::string(MCWS_ROBOTS_DIR) + "/../scenarios/maintenance4.yaml");
   scenario.problem.base_poses = 40;
   const SwayPlanner planner(scenario.problem);
   const MotionCertifier certifier(scenario.problem.robot, planner.checker());
@@ -214,7 +220,8 @@ TEST(SwayPlanner, ChosenPathCollidesAtMostHalfAsOftenAsTheShortestOnTheMaintenan
   // keep the test lean: the chosen path's 95 % Wilson interval must lie wholly below half the
   // shortest path's (so the claim holds at 95 % confidence for each), and it may be at most
   // 1.5 times as long.
-  Scenario scenario = loadScenario(std::string(MCWS_ROBOTS_DIR) + "/../scenarios/maintenance4.yaml");
+  Scenario scenario =
+      loadScenario(std::string(MCWS_ROBOTS_DIR) + "/../scenarios/maintenance4.yaml");
   scenario.problem.validation_poses = 3000;
   const SwayPlanner planner(scenario.problem);
   const SwayPlanningResult result = planner.plan(true);
@@ -226,7 +233,8 @@ TEST(SwayPlanner, ChosenPathCollidesAtMostHalfAsOftenAsTheShortestOnTheMaintenan
   ASSERT_EQ(shortest.name, "shortest");
   EXPECT_GT(shortest.colliding, 0u);  // the sway does push the shortest path into the bundle
   EXPECT_LT(chosen.interval.high, 0.5 * shortest.interval.low)
-      << "chosen " << chosen.collision_probability << ", shortest " << shortest.collision_probability;
+      << "chosen " << chosen.collision_probability << ", shortest "
+      << shortest.collision_probability;
   EXPECT_LE(chosen.length, 1.5 * shortest.length);
 }
 

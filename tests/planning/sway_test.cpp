@@ -27,7 +27,9 @@ TEST(WilsonInterval, MatchesNewcombesTable) {
   const struct {
     std::size_t k, n;
     double low, high;
-  } rows[] = {{81, 263, 0.2553, 0.3662}, {15, 148, 0.0624, 0.1605}, {0, 20, 0.0, 0.1611},
+  } rows[] = {{81, 263, 0.2553, 0.3662},
+              {15, 148, 0.0624, 0.1605},
+              {0, 20, 0.0, 0.1611},
               {1, 29, 0.0061, 0.1718}};
   for (const auto& row : rows) {
     const ProportionInterval interval = wilsonInterval(row.k, row.n);
@@ -45,8 +47,8 @@ TEST(SwayDisplacement, RollSwingsTheBodyAboutTheLine) {
   const Eigen::Isometry3d T_world_sway = swayFrame(model);
   const double angle = 0.1;
   SwayVector xi = SwayVector::Zero();
-  xi[3] = angle;  // roll: about the line through the pivot
-  xi[0] = 1.5;    // slide along the line
+  xi[3] = angle;                       // roll: about the line through the pivot
+  xi[0] = 1.5;                         // slide along the line
   const Eigen::Vector3d p(7, 0, -20);  // 45 below the line
   const Eigen::Vector3d moved = swayDisplacement(T_world_sway, xi) * p;
   // Closed form: the point turns on a circle of radius 45 about the line x = t, z = 25. The
@@ -83,8 +85,8 @@ TEST(SwaySampler, OneDirectionIsATruncatedNormal) {
 TEST(SwaySampler, MahalanobisRadiusFollowsTheTruncatedChiSquare) {
   SwayModel model;
   model.confidence = 0.9;
-  model.covariance(0, 0) = 1.0;  // slide, 1 cm
-  model.covariance(3, 3) = std::pow(3 * M_PI / 180, 2);  // swing, 3 deg
+  model.covariance(0, 0) = 1.0;                                            // slide, 1 cm
+  model.covariance(3, 3) = std::pow(3 * M_PI / 180, 2);                    // swing, 3 deg
   model.covariance(0, 3) = model.covariance(3, 0) = 0.5 * 3 * M_PI / 180;  // correlated
   const SwaySampler sampler(model);
   ASSERT_EQ(sampler.rank(), 2);

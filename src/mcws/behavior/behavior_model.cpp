@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -30,29 +31,6 @@ std::string joined(const Container& items) {
   std::string out;
   for (const auto& item : items) out += (out.empty() ? "" : ", ") + std::string(item);
   return out;
-}
-
-/// A plain decimal number with an optional sign: digits with at most one point, then an
-/// optional exponent (no hexadecimal, "inf" or "nan").
-bool plainNumber(const std::string& text, double& value) {
-  std::size_t i = 0, digits = 0;
-  if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
-  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  }
-  if (digits == 0) return false;
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    const std::size_t exponent = i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
-    if (i == exponent) return false;
-  }
-  if (i != text.size()) return false;
-  value = std::strtod(text.c_str(), nullptr);
-  return std::isfinite(value);
 }
 
 int lineOf(const YAML::Node& node) { return node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
@@ -154,7 +132,7 @@ class BehaviorModelReader {
     std::string number, unit, extra;
     words >> number >> unit;
     Quantity q;
-    if (unit.empty() || (words >> extra) || !plainNumber(number, q.value)) {
+    if (unit.empty() || (words >> extra) || !parseDecimal(number, q.value)) {
       fail(node, where + ": '" + value + "' is not a number and a unit (e.g. '155 mm')");
     }
     if (!units.count(unit)) {

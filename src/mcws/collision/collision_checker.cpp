@@ -174,7 +174,8 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
           const Eigen::Vector3d axis = half[longest] * Eigen::Vector3d::Unit(longest);
           shape.p_from = in.T_body_shape * (-axis);
           shape.p_to = in.T_body_shape * axis;
-          shape.radius = std::sqrt(half.squaredNorm() - half[longest] * half[longest]) * (1.0 + 1e-12);
+          shape.radius =
+              std::sqrt(half.squaredNorm() - half[longest] * half[longest]) * (1.0 + 1e-12);
           shape.lss = options.bounding_spheres;
           break;
         }
@@ -419,16 +420,17 @@ double CollisionChecker::shapeClearance(const Shape& a, const Shape& b, double c
   if (apart >= cap) return cap;
   if (a.lss && b.lss) {  // exact for two capsules, a lower bound through bounding capsules
     double s = 0.0, t = 0.0;
-    const double d = std::sqrt(segmentDistanceSquared(T_a * a.p_from, T_a * a.p_to,
-                                                      T_b * b.p_from, T_b * b.p_to, s, t)) -
+    const double d = std::sqrt(segmentDistanceSquared(T_a * a.p_from, T_a * a.p_to, T_b * b.p_from,
+                                                      T_b * b.p_to, s, t)) -
                      a.radius - b.radius;
     if (a.swept && b.swept) return std::clamp(d, 0.0, cap);
     if (d >= cap) return cap;
     // A capsule nearest to the side of a cylinder (not an end) is as far from the cylinder as
     // from its bounding capsule: the nearest axis point's offset is radial.
     constexpr double kInside = 1e-9;
-    if (d > 0.0 && ((a.swept && b.type == ShapeType::kCylinder && t > kInside && t < 1 - kInside) ||
-                    (b.swept && a.type == ShapeType::kCylinder && s > kInside && s < 1 - kInside))) {
+    if (d > 0.0 &&
+        ((a.swept && b.type == ShapeType::kCylinder && t > kInside && t < 1 - kInside) ||
+         (b.swept && a.type == ShapeType::kCylinder && s > kInside && s < 1 - kInside))) {
       return std::min(d, cap);
     }
   }
@@ -451,8 +453,8 @@ double CollisionChecker::clearance(std::size_t pair, double cap, Scratch& scratc
   double distance = cap;
   for (const Shape& shape_a : a.shapes) {
     for (const Shape& shape_b : b.shapes) {
-      distance = std::min(distance, shapeClearance(shape_a, shape_b, distance, data, p.body_a,
-                                                   p.body_b));
+      distance =
+          std::min(distance, shapeClearance(shape_a, shape_b, distance, data, p.body_a, p.body_b));
       if (distance <= 0.0) return 0.0;
     }
   }

@@ -131,8 +131,8 @@ class CollisionChecker {
   struct Body;
   void computePoses(const double* q, const Eigen::Isometry3d& T_world_base,
                     Scratch::Data& data) const;
-  double shapeClearance(const Shape& a, const Shape& b, double cap, Scratch::Data& data,
-                        int body_a, int body_b) const;
+  double shapeClearance(const Shape& a, const Shape& b, double cap, Scratch::Data& data, int body_a,
+                        int body_b) const;
   bool bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const;
   bool shapesCollide(const Shape& a, const Shape& b, Scratch::Data& data, int body_a,
                      int body_b) const;

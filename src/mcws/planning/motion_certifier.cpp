@@ -15,9 +15,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 /// How far a joint's link frame origin can be from the previous one's: the fixed offset plus
 /// the largest travel of a prismatic joint [length unit].
 double linkOffsetBound(const Joint& joint) {
-  const double travel =
-      joint.type == JointType::kPrismatic ? std::max(std::abs(joint.lower), std::abs(joint.upper))
-                                          : 0.0;
+  const double travel = joint.type == JointType::kPrismatic
+                            ? std::max(std::abs(joint.lower), std::abs(joint.upper))
+                            : 0.0;
   return joint.T_parent_joint.translation().norm() + travel;
 }
 
@@ -31,8 +31,7 @@ MotionCertifier::MotionCertifier(const Robot& robot, const CollisionChecker& che
                 " must be >= 0");
   }
   if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
-    throw Error("motion check: resolution " + std::to_string(options.resolution) +
-                " must be > 0");
+    throw Error("motion check: resolution " + std::to_string(options.resolution) + " must be > 0");
   }
   const int dof = robot.dof();
   const int tool = checker.toolBody();
@@ -85,7 +84,8 @@ void MotionCertifier::clearances(const Eigen::VectorXd& q, const Eigen::Isometry
 bool MotionCertifier::configurationFree(const Eigen::VectorXd& q,
                                         const Eigen::Isometry3d& T_world_base,
                                         CollisionChecker::Scratch& scratch) const {
-  if (options_.environment_margin == 0.0) return checker_.label(q.data(), T_world_base, scratch) == kLabelFree;
+  if (options_.environment_margin == 0.0)
+    return checker_.label(q.data(), T_world_base, scratch) == kLabelFree;
   std::vector<double> d;
   clearances(q, T_world_base, PairSet::kAll, options_.resolution, scratch, d);
   return std::all_of(d.begin(), d.end(), [](double v) { return v > 0.0; });

@@ -102,9 +102,8 @@ class MotionCertifier {
   double reach(int joint, int body) const { return reach_(joint, body); }
 
  private:
-  bool certify(const Eigen::VectorXd& qa, const std::vector<double>& da,
-               const Eigen::VectorXd& qb, const std::vector<double>& db,
-               const Eigen::Isometry3d& T_world_base, PairSet set,
+  bool certify(const Eigen::VectorXd& qa, const std::vector<double>& da, const Eigen::VectorXd& qb,
+               const std::vector<double>& db, const Eigen::Isometry3d& T_world_base, PairSet set,
                CollisionChecker::Scratch& scratch) const;
 
   Robot robot_;

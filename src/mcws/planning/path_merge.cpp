@@ -106,9 +106,10 @@ bool samePrefix(const VertexPath& a, std::size_t n_a, const VertexPath& b, std::
 
 }  // namespace
 
-// s41 (D) and s42 (P): "将在同一条非碰撞路径上的节点构型与初始构型之间所有路径段的第二自由状态概率相加
-// 除以路径段数目，获得节点构型与初始构型之间的第一自由状态概率" (sum the segment probabilities between
-// the start and the node along the path and divide by the number of segments).
+// s41 (D) and s42 (P):
+// "将在同一条非碰撞路径上的节点构型与初始构型之间所有路径段的第二自由状态概率相加
+// 除以路径段数目，获得节点构型与初始构型之间的第一自由状态概率" (sum the segment probabilities
+// between the start and the node along the path and divide by the number of segments).
 std::vector<NodeValues> nodeValues(const VertexPath& path, const EdgeValuesFn& edges) {
   return prefixValues(path, path.size(), edges);
 }
@@ -205,9 +206,10 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
     }
     decision.winner = through[best_j];
 
-    // s46: "用优势路径上同一节点构型与初始构型之间的所有节点对非优势路经上...的节点进行替换，替换后非
-    // 优势路经上剩余的所有节点处的欧氏距离值和自由状态概率值重新计算" (the dominant path's nodes from
-    // the start to this node replace the other paths' ones; their later values are recomputed,
+    // s46:
+    // "用优势路径上同一节点构型与初始构型之间的所有节点对非优势路经上...的节点进行替换，替换后非
+    // 优势路经上剩余的所有节点处的欧氏距离值和自由状态概率值重新计算" (the dominant path's nodes
+    // from the start to this node replace the other paths' ones; their later values are recomputed,
     // here from the edges whenever they are needed).
     const VertexPath& winner = result.paths[decision.winner];
     const VertexPath prefix(winner.begin(),
@@ -223,8 +225,8 @@ MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const 
     }
     result.decisions.push_back(std::move(decision));
   }
-  // s47: "将在目标节点处选出的优势路径作为全局最优路径" (the dominant path at the goal is the global
-  // best path).
+  // s47: "将在目标节点处选出的优势路径作为全局最优路径" (the dominant path at the goal is the
+  // global best path).
   const bool decided_at_goal = !result.decisions.empty() && result.decisions.back().vertex == goal;
   result.best = decided_at_goal ? result.decisions.back().winner : 0;
   return result;

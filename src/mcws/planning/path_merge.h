@@ -71,8 +71,8 @@ struct SharedNodeDecision {
 
 /// \brief Result of the evaluation: the candidates after every splice and the best path.
 struct MergeResult {
-  std::vector<VertexPath> paths;               ///< candidates after the splices, same indices
-  std::vector<SharedNodeDecision> decisions;   ///< in the order taken
+  std::vector<VertexPath> paths;              ///< candidates after the splices, same indices
+  std::vector<SharedNodeDecision> decisions;  ///< in the order taken
   std::size_t best{0};  ///< the dominant path at the goal (step s47): the global best path
 };
 
@@ -107,8 +107,7 @@ struct MergeResult {
 /// \throws mcws::Error when there are no candidates, a candidate is empty, does not share
 /// candidate 0's start and goal or visits a vertex twice (each names the candidate index), an
 /// order_key is not finite, an edge is bad (see nodeValues) or the options are (see score).
-MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates,
-                               const EdgeValuesFn& edges,
+MergeResult mergeAtSharedNodes(const std::vector<VertexPath>& candidates, const EdgeValuesFn& edges,
                                const std::function<double(std::size_t)>& order_key,
                                const ScoreOptions& options);
 

@@ -40,18 +40,19 @@ nlohmann::json vectorJson(const Eigen::VectorXd& q) {
 }
 
 nlohmann::json pathJson(const PathSafety& path) {
-  nlohmann::json out{{"vertices", path.vertices},
-                     {"length", path.length},
-                     {"probability", path.probability},
-                     {"segments", path.segments},
-                     {"whole_path_free_poses", path.free_poses},
-                     {"whole_path_free_fraction", path.free_fraction},
-                     {"whole_path_free_interval_95", {path.free_interval.low, path.free_interval.high}},
-                     {"worst_segment",
-                      {{"index", path.worst_segment},
-                       {"probability", path.worst_probability},
-                       {"from", vectorJson(path.worst_from)},
-                       {"to", vectorJson(path.worst_to)}}}};
+  nlohmann::json out{
+      {"vertices", path.vertices},
+      {"length", path.length},
+      {"probability", path.probability},
+      {"segments", path.segments},
+      {"whole_path_free_poses", path.free_poses},
+      {"whole_path_free_fraction", path.free_fraction},
+      {"whole_path_free_interval_95", {path.free_interval.low, path.free_interval.high}},
+      {"worst_segment",
+       {{"index", path.worst_segment},
+        {"probability", path.worst_probability},
+        {"from", vectorJson(path.worst_from)},
+        {"to", vectorJson(path.worst_to)}}}};
   out["waypoints"] = nlohmann::json::array();
   for (const Eigen::VectorXd& q : path.waypoints) out["waypoints"].push_back(vectorJson(q));
   return out;
@@ -78,7 +79,8 @@ const char* overallStatus(const SwayPlanningResult& result) {
 std::string pathCsv(const Scenario& scenario, const PathSafety& path) {
   const Robot& robot = scenario.problem.robot;
   std::string out = "D";
-  for (int j = 0; j < robot.dof(); ++j) out += "," + robot.joints[j].name + "_" + jointUnit(scenario, j);
+  for (int j = 0; j < robot.dof(); ++j)
+    out += "," + robot.joints[j].name + "_" + jointUnit(scenario, j);
   out += "\n";
   double distance = 0.0;
   for (std::size_t k = 0; k < path.waypoints.size(); ++k) {
@@ -103,19 +105,18 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
   nlohmann::json joint_units = nlohmann::json::array();
   for (int j = 0; j < problem.robot.dof(); ++j) joint_units.push_back(jointUnit(scenario, j));
   units["configuration"] = joint_units;
-  nlohmann::json out{
-      {"scenario", scenario.name},
-      {"robot", scenario.robot_path},
-      {"units", units},
-      {"status", overallStatus(result)},
-      {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
-      {"weight", problem.score.weight},
-      {"threshold", problem.threshold},
-      {"threshold_on", problem.threshold_on_whole_path ? "whole_path" : "P"},
-      {"base_poses", problem.base_poses},
-      {"candidates_requested", problem.candidates},
-      {"confidence", problem.sway.confidence},
-      {"rounds", nlohmann::json::array()}};
+  nlohmann::json out{{"scenario", scenario.name},
+                     {"robot", scenario.robot_path},
+                     {"units", units},
+                     {"status", overallStatus(result)},
+                     {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
+                     {"weight", problem.score.weight},
+                     {"threshold", problem.threshold},
+                     {"threshold_on", problem.threshold_on_whole_path ? "whole_path" : "P"},
+                     {"base_poses", problem.base_poses},
+                     {"candidates_requested", problem.candidates},
+                     {"confidence", problem.sway.confidence},
+                     {"rounds", nlohmann::json::array()}};
   for (const PlanningRound& round : result.rounds) {
     nlohmann::json r{{"base_offset", round.base_offset},
                      {"roadmap_status", roadmapStatusName(round.status)},
@@ -129,11 +130,12 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
                      {"shared_nodes", nlohmann::json::array()}};
     for (const PathSafety& path : round.candidates) r["candidates"].push_back(pathJson(path));
     for (const SharedNodeDecision& decision : round.decisions) {
-      nlohmann::json node{{"vertex", decision.vertex},
-                          {"configuration", vectorJson(vertexConfiguration(round, decision.vertex))},
-                          {"winner", decision.winner},
-                          {"loops_cut", decision.looped},
-                          {"paths", nlohmann::json::array()}};
+      nlohmann::json node{
+          {"vertex", decision.vertex},
+          {"configuration", vectorJson(vertexConfiguration(round, decision.vertex))},
+          {"winner", decision.winner},
+          {"loops_cut", decision.looped},
+          {"paths", nlohmann::json::array()}};
       for (std::size_t k = 0; k < decision.paths.size(); ++k) {
         node["paths"].push_back({{"candidate", decision.paths[k]},
                                  {"distance", decision.values[k].distance},
@@ -183,8 +185,8 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
   const SwayPlanningProblem& problem = scenario.problem;
   const std::string length_unit = unitName(problem.robot.length_unit);
   std::ostringstream out;
-  out << "scenario " << scenario.name << " (" << scenario.robot_path << "): n = "
-      << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
+  out << "scenario " << scenario.name << " (" << scenario.robot_path
+      << "): n = " << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
       << " % region, m = " << problem.candidates << " candidates, rule "
       << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
       << ", w = " << problem.score.weight << ", threshold " << problem.threshold << " on "
@@ -196,17 +198,18 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
     const PlanningRound& round = result.rounds[r];
     out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
         << " along the line: roadmap " << round.roadmap_vertices << " vertices, "
-        << round.roadmap_edges << " edges (" << roadmapStatusName(round.status) << "), D0 = "
-        << format("%.4g", round.reference_distance) << ", " << format("%.2f", round.seconds)
-        << " s (roadmap " << format("%.2f", round.roadmap_seconds) << " s, segments "
-        << format("%.2f", round.evaluation_seconds) << " s)\n";
+        << round.roadmap_edges << " edges (" << roadmapStatusName(round.status)
+        << "), D0 = " << format("%.4g", round.reference_distance) << ", "
+        << format("%.2f", round.seconds) << " s (roadmap " << format("%.2f", round.roadmap_seconds)
+        << " s, segments " << format("%.2f", round.evaluation_seconds) << " s)\n";
     if (!round.best) continue;
     out << "  cand  length D  P (patent)  whole path free [95 % CI]   worst segment: index, P\n";
     for (std::size_t c = 0; c < round.candidates.size(); ++c) {
       const PathSafety& path = round.candidates[c];
       char line[200];
-      std::snprintf(line, sizeof line, "  %4zu  %8.3f  %10.4f  %.3f [%.3f, %.3f]       %4zu, %.3f\n",
-                    c, path.length, path.probability, path.free_fraction, path.free_interval.low,
+      std::snprintf(line, sizeof line,
+                    "  %4zu  %8.3f  %10.4f  %.3f [%.3f, %.3f]       %4zu, %.3f\n", c, path.length,
+                    path.probability, path.free_fraction, path.free_interval.low,
                     path.free_interval.high, path.worst_segment, path.worst_probability);
       out << line;
     }
@@ -214,8 +217,9 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       out << "  shared node " << decision.vertex << " "
           << configuration(scenario, vertexConfiguration(round, decision.vertex)) << ":";
       for (std::size_t k = 0; k < decision.paths.size(); ++k) {
-        out << " cand " << decision.paths[k] << " (D " << format("%.3f", decision.values[k].distance)
-            << ", P " << format("%.4f", decision.values[k].probability) << ", score "
+        out << " cand " << decision.paths[k] << " (D "
+            << format("%.3f", decision.values[k].distance) << ", P "
+            << format("%.4f", decision.values[k].probability) << ", score "
             << format("%.4f", decision.scores[k]) << ")";
       }
       out << " -> cand " << decision.winner << " dominates";
@@ -244,14 +248,17 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
     for (const ValidationRow& row : result.validation) {
       char line[200];
       if (!row.planned) {
-        std::snprintf(line, sizeof line, "  %-9s no path (%s)", row.name.c_str(), row.status.c_str());
+        std::snprintf(line, sizeof line, "  %-9s no path (%s)", row.name.c_str(),
+                      row.status.c_str());
       } else {
-        std::snprintf(line, sizeof line, "  %-9s length %8.3f  collides %.4f [%.4f, %.4f] (%zu of %zu)",
+        std::snprintf(line, sizeof line,
+                      "  %-9s length %8.3f  collides %.4f [%.4f, %.4f] (%zu of %zu)",
                       row.name.c_str(), row.length, row.collision_probability, row.interval.low,
                       row.interval.high, row.colliding, row.poses);
       }
       out << line;
-      if (row.name == "padded") out << ", obstacles padded by " << format("%.3g", row.padding) << " " << length_unit;
+      if (row.name == "padded")
+        out << ", obstacles padded by " << format("%.3g", row.padding) << " " << length_unit;
       out << ", " << format("%.2f", row.seconds) << " s\n";
     }
   }
@@ -331,9 +338,10 @@ std::string renderConfigurationSpacePng(const Scenario& scenario, const SwayPlan
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size 1000,900 font 'Sans,11'\n"
      << "set output " << gnuplotQuoted(png) << "\n"
-     << "set title " << gnuplotQuoted(scenario.name +
-                                      ": share of base poses in collision, candidates and the "
-                                      "chosen path")
+     << "set title "
+     << gnuplotQuoted(scenario.name +
+                      ": share of base poses in collision, candidates and the "
+                      "chosen path")
      << "\n"
      << "set xlabel " << gnuplotQuoted(a.name + " [" + jointUnit(scenario, 0) + "]") << "\n"
      << "set ylabel " << gnuplotQuoted(b.name + " [" + jointUnit(scenario, 1) + "]") << "\n"
@@ -346,7 +354,8 @@ std::string renderConfigurationSpacePng(const Scenario& scenario, const SwayPlan
   for (std::size_t c = 0; c < round.candidates.size(); ++c) {
     const std::string file = dir.file("cand" + std::to_string(c) + ".dat");
     std::ofstream out(file);
-    for (const Eigen::VectorXd& q : round.candidates[c].waypoints) out << q[0] << " " << q[1] << "\n";
+    for (const Eigen::VectorXd& q : round.candidates[c].waypoints)
+      out << q[0] << " " << q[1] << "\n";
     plot += ", " + gnuplotQuoted(file) + " using 1:2 with lines lw 1.5 dt " +
             std::to_string(2 + c % 4) + " title " + gnuplotQuoted("candidate " + std::to_string(c));
   }
@@ -354,15 +363,16 @@ std::string renderConfigurationSpacePng(const Scenario& scenario, const SwayPlan
     const std::string file = dir.file("best.dat");
     std::ofstream out(file);
     for (const Eigen::VectorXd& q : round.best->waypoints) out << q[0] << " " << q[1] << "\n";
-    plot += ", " + gnuplotQuoted(file) + " using 1:2 with lines lw 4 lc rgb '#08519c' title 'chosen'";
+    plot +=
+        ", " + gnuplotQuoted(file) + " using 1:2 with lines lw 4 lc rgb '#08519c' title 'chosen'";
   }
   int label = 1;
   for (std::size_t d = 0; d < round.decisions.size(); ++d) {
     const SharedNodeDecision& decision = round.decisions[d];
     const Eigen::VectorXd q = vertexConfiguration(round, decision.vertex);
     if (q.size() != 2) continue;
-    gp << "set label " << label++ << " " << gnuplotQuoted("X" + std::to_string(d + 1) + ": cand " +
-                                                         std::to_string(decision.winner))
+    gp << "set label " << label++ << " "
+       << gnuplotQuoted("X" + std::to_string(d + 1) + ": cand " + std::to_string(decision.winner))
        << " at " << q[0] << "," << q[1] << " offset 0.6,0.6 front\n";
     gp << "set object " << label++ << " circle at " << q[0] << "," << q[1]
        << " size char 0.5 fc rgb 'black' fs solid front\n";

@@ -1,9 +1,5 @@
 #include "mcws/planning/roadmap.h"
 
-#include <boost/graph/dijkstra_shortest_paths.hpp>
-#include <cmath>
-#include <limits>
-#include <unordered_map>
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/SpaceInformation.h>
 #include <ompl/base/ValidStateSampler.h>
@@ -11,6 +7,10 @@
 #include <ompl/datastructures/NearestNeighborsLinear.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/util/Console.h>
+#include <boost/graph/dijkstra_shortest_paths.hpp>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
 
 #include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
@@ -68,7 +68,9 @@ class CertifiedMotionValidator : public ob::MotionValidator {
  public:
   CertifiedMotionValidator(const ob::SpaceInformationPtr& si, const MotionCertifier& certifier,
                            const Eigen::Isometry3d& T_world_base, const Eigen::VectorXd& scale)
-      : ob::MotionValidator(si), certifier_(certifier), T_world_base_(T_world_base),
+      : ob::MotionValidator(si),
+        certifier_(certifier),
+        T_world_base_(T_world_base),
         scale_(scale) {}
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
     const Eigen::VectorXd q1 = jointsOf(s1, scale_), q2 = jointsOf(s2, scale_);
@@ -77,8 +79,8 @@ class CertifiedMotionValidator : public ob::MotionValidator {
     for (double b : bounds_) cap = std::max(cap, b + certifier_.options().resolution);
     const std::vector<double>* c1 = clearances(s1, q1, cap);
     const std::vector<double>* c2 = c1 ? clearances(s2, q2, cap) : nullptr;
-    const bool free = c1 && c2 &&
-                      certifier_.motionFree(q1, *c1, q2, *c2, T_world_base_, PairSet::kAll, scratch_);
+    const bool free =
+        c1 && c2 && certifier_.motionFree(q1, *c1, q2, *c2, T_world_base_, PairSet::kAll, scratch_);
     (free ? valid_ : invalid_)++;
     return free;
   }
@@ -130,7 +132,8 @@ class RoadmapBuilder : public og::PRM {
   /// Exact, deterministic k nearest neighbours (OMPL's default GNAT picks pivots at random).
   void useExactNeighbours() {
     setNearestNeighbors<ompl::NearestNeighborsLinear>();
-    nn_->setDistanceFunction([this](const Vertex a, const Vertex b) { return distanceFunction(a, b); });
+    nn_->setDistanceFunction(
+        [this](const Vertex a, const Vertex b) { return distanceFunction(a, b); });
   }
 };
 
@@ -221,8 +224,8 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   prm.setup();
 
   auto grow_to = [&](std::size_t count) {
-    prm.growRoadmap(ob::PlannerTerminationCondition(
-        [&prm, count] { return prm.milestoneCount() >= count; }));
+    prm.growRoadmap(
+        ob::PlannerTerminationCondition([&prm, count] { return prm.milestoneCount() >= count; }));
   };
   grow_to(options.nodes);
   const og::PRM::Graph& g = prm.getRoadmap();

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "mcws/collision/collision_model.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -18,26 +19,9 @@ namespace mcws {
 
 namespace {
 
-/// A plain decimal number: digits with at most one point, then an optional exponent (no sign,
-/// no hexadecimal, no "inf" or "nan").
+/// An unsigned plain decimal number (the sign is read before it, once).
 bool plainNumber(const std::string& text, double& value) {
-  std::size_t i = 0, digits = 0;
-  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  }
-  if (digits == 0) return false;
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    const std::size_t exponent = i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i;
-    if (i == exponent) return false;
-  }
-  if (i != text.size()) return false;
-  value = std::strtod(text.c_str(), nullptr);
-  return std::isfinite(value);
+  return parseDecimal(text, value, false);
 }
 
 /// A number, "pi", "2pi", "2*pi", "pi/6", "-3*pi/4"; false when the text is none of these.
@@ -74,9 +58,9 @@ class ScenarioReader {
 
   Scenario read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of scenario fields");
-    checkKeys(root, "scenario",
-              {"name", "robot", "start", "goal", "joint_scale", "base", "sway", "planner",
-               "validation"});
+    checkKeys(
+        root, "scenario",
+        {"name", "robot", "start", "goal", "joint_scale", "base", "sway", "planner", "validation"});
     Scenario scenario;
     scenario.source = source_;
     scenario.name = text(require(root, "name", "scenario"), "name");
@@ -87,8 +71,8 @@ class ScenarioReader {
     std::filesystem::path path(robot_file);
     if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
     if (!std::filesystem::exists(path)) {
-      fail(robot_node, "robot: '" + robot_file + "' does not exist (looked for " +
-                           path.string() + ")");
+      fail(robot_node,
+           "robot: '" + robot_file + "' does not exist (looked for " + path.string() + ")");
     }
     scenario.robot_path = path.string();
     problem.robot = loadRobot(scenario.robot_path);
@@ -108,18 +92,18 @@ class ScenarioReader {
         fail(scale, "joint_scale: must list " + std::to_string(dof) + " numbers, one per joint");
       }
       for (int j = 0; j < dof; ++j) {
-        problem.roadmap.joint_scale[j] = number(scale[j], "joint_scale[" + std::to_string(j + 1) + "]");
+        problem.roadmap.joint_scale[j] =
+            number(scale[j], "joint_scale[" + std::to_string(j + 1) + "]");
         if (!(problem.roadmap.joint_scale[j] > 0.0)) {
-          fail(scale[j], "joint_scale[" + std::to_string(j + 1) + "]: " +
-                             scale[j].Scalar() + " must be > 0");
+          fail(scale[j],
+               "joint_scale[" + std::to_string(j + 1) + "]: " + scale[j].Scalar() + " must be > 0");
         }
       }
     }
     std::ostringstream unit;
     for (int j = 0; j < dof; ++j) {
       unit << (j ? ", " : "") << problem.roadmap.joint_scale[j] << "/"
-           << (problem.robot.joints[j].type == JointType::kRevolute ? "rad"
-                                                                      : unitName(unit_));
+           << (problem.robot.joints[j].type == JointType::kRevolute ? "rad" : unitName(unit_));
     }
     scenario.distance_unit = "sqrt(sum (s_i dq_i)^2) with s = " + unit.str();
 
@@ -196,8 +180,8 @@ class ScenarioReader {
   Eigen::VectorXd joints(const YAML::Node& node, const std::string& field, const Robot& robot) {
     if (!node.IsSequence()) fail(node, field + ": must be a list of joint values with units");
     if (static_cast<int>(node.size()) != robot.dof()) {
-      fail(node, field + ": has " + std::to_string(node.size()) + " values; robot '" +
-                     robot.name + "' has " + std::to_string(robot.dof()) + " joints");
+      fail(node, field + ": has " + std::to_string(node.size()) + " values; robot '" + robot.name +
+                     "' has " + std::to_string(robot.dof()) + " joints");
     }
     Eigen::VectorXd q(robot.dof());
     for (int j = 0; j < robot.dof(); ++j) {
@@ -226,10 +210,10 @@ class ScenarioReader {
 
   Eigen::Isometry3d pose(const YAML::Node& node, const std::string& field) const {
     checkKeys(node, field, {"xyz", "rpy"});
-    const Eigen::Vector3d xyz = node["xyz"] ? vector3(node["xyz"], 'l', field + ": xyz")
-                                            : Eigen::Vector3d::Zero();
-    const Eigen::Vector3d rpy = node["rpy"] ? vector3(node["rpy"], 'a', field + ": rpy")
-                                            : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d xyz =
+        node["xyz"] ? vector3(node["xyz"], 'l', field + ": xyz") : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d rpy =
+        node["rpy"] ? vector3(node["rpy"], 'a', field + ": rpy") : Eigen::Vector3d::Zero();
     return poseFromXyzRpy(xyz, rpy);
   }
 
@@ -310,8 +294,8 @@ class ScenarioReader {
   void readPlanner(const YAML::Node& node, SwayPlanningProblem& problem) {
     checkKeys(node, "planner",
               {"candidates", "diversity", "roadmap_nodes", "max_roadmap_nodes", "neighbours",
-               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "threshold_on", "base_step",
-               "base_range", "padding"});
+               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "threshold_on",
+               "base_step", "base_range", "padding"});
     if (node["candidates"]) problem.candidates = count(node["candidates"], "planner: candidates");
     if (node["diversity"]) problem.diversity = nonNegative(node["diversity"], "planner: diversity");
     if (node["roadmap_nodes"])
@@ -327,8 +311,8 @@ class ScenarioReader {
     if (node["segment_length"]) {
       problem.segment_length = number(node["segment_length"], "planner: segment_length");
       if (!(problem.segment_length > 0.0))
-        fail(node["segment_length"], "planner: segment_length " +
-                                         node["segment_length"].Scalar() + " must be > 0");
+        fail(node["segment_length"],
+             "planner: segment_length " + node["segment_length"].Scalar() + " must be > 0");
     }
     if (const YAML::Node rule = node["rule"]) {
       const std::string name = text(rule, "planner: rule");

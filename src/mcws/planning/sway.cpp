@@ -29,9 +29,10 @@ Eigen::Isometry3d swayFrame(const SwayModel& model) {
   }
   const Eigen::Vector3d x = model.line_direction / length;
   Eigen::Vector3d y = Eigen::Vector3d::UnitZ().cross(x);
-  if (y.norm() < 1e-9) y = x.cross(Eigen::Vector3d::UnitX()).norm() > 1e-9
-                               ? Eigen::Vector3d(x.cross(Eigen::Vector3d::UnitX()))
-                               : Eigen::Vector3d(x.cross(Eigen::Vector3d::UnitY()));
+  if (y.norm() < 1e-9)
+    y = x.cross(Eigen::Vector3d::UnitX()).norm() > 1e-9
+            ? Eigen::Vector3d(x.cross(Eigen::Vector3d::UnitX()))
+            : Eigen::Vector3d(x.cross(Eigen::Vector3d::UnitY()));
   y.normalize();
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear().col(0) = x;
@@ -52,8 +53,8 @@ Eigen::Isometry3d swayDisplacement(const Eigen::Isometry3d& T_world_sway, const 
 }
 
 double chiSquareQuantile(double p, int dof) {
-  if (!(p > 0.0 && p < 1.0)) throw Error("chi-square quantile: probability " + number(p) +
-                                         " is outside (0, 1)");
+  if (!(p > 0.0 && p < 1.0))
+    throw Error("chi-square quantile: probability " + number(p) + " is outside (0, 1)");
   if (dof < 1) throw Error("chi-square quantile: " + std::to_string(dof) + " degrees of freedom");
   return boost::math::quantile(boost::math::chi_squared(dof), p);
 }
@@ -129,11 +130,11 @@ SwayVector SwaySampler::vector(std::uint64_t seed, std::uint64_t i) const {
   return factor_ * (std::sqrt(r2) * z);
 }
 
-std::vector<Eigen::Isometry3d> SwaySampler::displacements(std::uint64_t seed,
-                                                          std::size_t n) const {
+std::vector<Eigen::Isometry3d> SwaySampler::displacements(std::uint64_t seed, std::size_t n) const {
   std::vector<Eigen::Isometry3d> out;
   out.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) out.push_back(swayDisplacement(T_world_sway_, vector(seed, i)));
+  for (std::size_t i = 0; i < n; ++i)
+    out.push_back(swayDisplacement(T_world_sway_, vector(seed, i)));
   return out;
 }
 

@@ -22,7 +22,7 @@ using SwayVector = Eigen::Matrix<double, 6, 1>;
 /// rigid motion Trans(x, y, z) * Rz(yaw) * Ry(pitch) * Rx(roll) in that frame, so roll swings the
 /// robot about the line and x slides it along the line.
 struct SwayModel {
-  Eigen::Vector3d pivot{Eigen::Vector3d::Zero()};          ///< world [length unit]
+  Eigen::Vector3d pivot{Eigen::Vector3d::Zero()};            ///< world [length unit]
   Eigen::Vector3d line_direction{Eigen::Vector3d::UnitX()};  ///< world, any length > 0
   /// Covariance of the sway vector [length unit^2, length unit * rad, rad^2].
   Eigen::Matrix<double, 6, 6> covariance{Eigen::Matrix<double, 6, 6>::Zero()};
@@ -53,9 +53,10 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials,
 
 /// \brief Draws sway vectors from N(0, covariance) truncated to its confidence ellipsoid.
 ///
-/// Seed 001 step s20: "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿
-/// 数据 ... n在高斯概率分布函数的一定置信区间取值" (the first static pose is the mean of a Gaussian
-/// that gives n second static poses, taken within a confidence interval of it).
+/// Seed 001 step s20:
+/// "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿 数据 ...
+/// n在高斯概率分布函数的一定置信区间取值" (the first static pose is the mean of a Gaussian that
+/// gives n second static poses, taken within a confidence interval of it).
 ///
 /// With covariance = V diag(lambda) V^T (rank r), a sample is xi = V_r diag(sqrt(lambda_r)) z
 /// where z is uniform in direction and |z|^2 follows chi^2_r truncated at its `confidence`

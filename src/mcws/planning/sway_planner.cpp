@@ -130,7 +130,7 @@ class PolylineCheck {
   const MotionCertifier& certifier_;
   const PoseSet& poses_;
   std::vector<Eigen::VectorXd> points_;
-  std::vector<std::vector<double>> bounds_;       ///< per segment, per environment pair
+  std::vector<std::vector<double>> bounds_;  ///< per segment, per environment pair
   double cap_{0.0};  ///< the largest motion bound: exact clearances are needed up to it
   std::vector<std::vector<double>> clearance_;    ///< per checkpoint, per environment pair
   std::vector<std::vector<double>> pivot_reach_;  ///< per checkpoint, per environment pair
@@ -212,9 +212,9 @@ std::vector<std::uint8_t> SwayPlanner::motionFreeStates(const Eigen::VectorXd& q
   problem_.robot.checkSize(qa);
   problem_.robot.checkSize(qb);
   const Eigen::Isometry3d T_nominal = measuredBase(offset);
-  const PoseSet poses = makePoses(movedDisplacements(displacements_, offset), T_nominal,
-                                  T_nominal * problem_.robot.T_world_base.inverse() *
-                                      problem_.sway.pivot);
+  const PoseSet poses =
+      makePoses(movedDisplacements(displacements_, offset), T_nominal,
+                T_nominal * problem_.robot.T_world_base.inverse() * problem_.sway.pivot);
   CollisionChecker::Scratch scratch;
   const PolylineCheck check(*certifier_, T_nominal, poses, {qa, qb}, scratch);
   std::vector<std::uint8_t> free(poses.T_world_base.size());
@@ -294,7 +294,8 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // s10: "分别测量机器人的基座相对于作业对象的第一静态位姿、机器人的操作臂的初始构型" (measure the
   // base's first static pose relative to the work object and the arm's initial configuration):
   // T_nominal, problem_.start.
-  // s30: "将第一静态位姿作为操作臂的基座位姿，对操作臂进行路径规划，给出操作臂从初始构型到达预设目标
+  // s30:
+  // "将第一静态位姿作为操作臂的基座位姿，对操作臂进行路径规划，给出操作臂从初始构型到达预设目标
   // 构型的m条非碰撞路径" (with the first static pose as the arm's base pose, plan m collision-free
   // paths from the initial to the target configuration): one PRM roadmap, m diverse paths.
   if (progress) progress("roadmap", 0, 1);
@@ -317,16 +318,16 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // s20: "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿数据"
   // (the first static pose as the mean of a Gaussian, draw n second static poses): the n
   // displacements (SwaySampler), about the sway frame moved with the base.
-  const PoseSet poses = makePoses(movedDisplacements(displacements_, offset), T_nominal,
-                                  measuredBase(offset) * problem_.robot.T_world_base.inverse() *
-                                      p.sway.pivot);
+  const PoseSet poses =
+      makePoses(movedDisplacements(displacements_, offset), T_nominal,
+                measuredBase(offset) * problem_.robot.T_world_base.inverse() * p.sway.pivot);
 
   // s41: "对m条非碰撞路径进行分段处理，并测量获得操作臂在每个分段的节点构型与初始构型的欧氏距离"
   // (cut the paths into segments; the distance of each node from the initial configuration):
   // each edge cut into segments of at most segment_length; D accumulates along the path.
-  // s42: "获得相邻节点构型之间路径段在n组基座位姿数据下的自由状态 ... 将n组自由状态累加除以n获得路径段
-  // 的第二自由状态概率" (each segment's free state for the n base poses, summed and divided by
-  // n): free states for every pose, checked exactly.
+  // s42: "获得相邻节点构型之间路径段在n组基座位姿数据下的自由状态 ...
+  // 将n组自由状态累加除以n获得路径段 的第二自由状态概率" (each segment's free state for the n base
+  // poses, summed and divided by n): free states for every pose, checked exactly.
   Evaluation evaluation;
   for (const VertexPath& path : candidates)
     for (std::size_t k = 0; k + 1 < path.size(); ++k)
@@ -342,10 +343,10 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
       const auto [u, v] = work[w]->first;
       EdgeStates& edge = work[w]->second;
       edge.length = scaledDistance(roadmap.configurations[u], roadmap.configurations[v], scale);
-      const PolylineCheck check(*certifier_, T_nominal, poses,
-                                subdivide(roadmap.configurations[u], roadmap.configurations[v],
-                                          scale, p.segment_length),
-                                scratch);
+      const PolylineCheck check(
+          *certifier_, T_nominal, poses,
+          subdivide(roadmap.configurations[u], roadmap.configurations[v], scale, p.segment_length),
+          scratch);
       edge.points = check.points();
       edge.free.assign(check.segments(), std::vector<std::uint8_t>(poses.T_world_base.size()));
       edge.probability.assign(check.segments(), 0.0);
@@ -364,11 +365,12 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
 
   round.evaluation_seconds = elapsed() - round.roadmap_seconds;
 
-  // s43 - s47: "判断节点构型是否有2条或2条以上非碰撞路径经过 ... 选择出第一自由状态概率与欧氏距离数学
-  // 差值最大的非碰撞路径作为优势路径 ... 将在目标节点处选出的优势路径作为全局最优路径" (at nodes that
-  // two or more paths pass, the path with the largest difference of free-state probability and
-  // distance dominates; the dominant path at the goal is the global best): mergeAtSharedNodes,
-  // shared nodes visited in increasing roadmap distance from the start.
+  // s43 - s47: "判断节点构型是否有2条或2条以上非碰撞路径经过 ...
+  // 选择出第一自由状态概率与欧氏距离数学 差值最大的非碰撞路径作为优势路径 ...
+  // 将在目标节点处选出的优势路径作为全局最优路径" (at nodes that two or more paths pass, the path
+  // with the largest difference of free-state probability and distance dominates; the dominant path
+  // at the goal is the global best): mergeAtSharedNodes, shared nodes visited in increasing roadmap
+  // distance from the start.
   ScoreOptions score = p.score;
   score.reference_distance = round.reference_distance;
   const EdgeValuesFn values = [&](std::size_t u, std::size_t v) {
@@ -432,8 +434,8 @@ ValidationRow SwayPlanner::validate(const std::string& name,
 
 bool SwayPlanner::meetsThreshold(const PlanningRound& round) const {
   if (!round.best) return false;
-  const double value = problem_.threshold_on_whole_path ? round.best->free_fraction
-                                                        : round.best->probability;
+  const double value =
+      problem_.threshold_on_whole_path ? round.best->free_fraction : round.best->probability;
   return value >= problem_.threshold;
 }
 

@@ -22,23 +22,23 @@ namespace mcws {
 
 /// \brief Everything seed 001's method takes (step s10 and the readings mcws makes of it).
 struct SwayPlanningProblem {
-  Robot robot;                   ///< its T_world_base is the measured ("first static") pose
-  CollisionModel collision;      ///< arm, tool and the obstacles around it
-  Eigen::VectorXd start, goal;   ///< [rad | length unit]
-  SwayModel sway;                ///< step s20: how the base moves about the measured pose
-  std::size_t base_poses{100};   ///< n
-  std::size_t candidates{10};    ///< m
-  double diversity{0.5};         ///< diversePaths() penalty
-  double segment_length{0.5};    ///< step s41's resolution [scaled joint distance]
-  ScoreOptions score;            ///< step s45 (reference_distance: set to D0 by the planner)
-  double threshold{0.9};         ///< step s50: least acceptable P of the best path
+  Robot robot;                  ///< its T_world_base is the measured ("first static") pose
+  CollisionModel collision;     ///< arm, tool and the obstacles around it
+  Eigen::VectorXd start, goal;  ///< [rad | length unit]
+  SwayModel sway;               ///< step s20: how the base moves about the measured pose
+  std::size_t base_poses{100};  ///< n
+  std::size_t candidates{10};   ///< m
+  double diversity{0.5};        ///< diversePaths() penalty
+  double segment_length{0.5};   ///< step s41's resolution [scaled joint distance]
+  ScoreOptions score;           ///< step s45 (reference_distance: set to D0 by the planner)
+  double threshold{0.9};        ///< step s50: least acceptable P of the best path
   /// Apply the threshold to the whole-path free fraction over the n poses instead of the
   /// patent's P (a mean of segment rates, which stays near 1 when one segment is risky).
   bool threshold_on_whole_path{false};
-  double base_step{0.0};         ///< step s70: shift along the line per round [length unit]
-  double base_range{0.0};        ///< step s70: largest shift either way [length unit]
-  RoadmapOptions roadmap;        ///< includes the joint scales and the seed
-  std::uint64_t seed{1};         ///< base poses (the roadmap has its own in `roadmap`)
+  double base_step{0.0};   ///< step s70: shift along the line per round [length unit]
+  double base_range{0.0};  ///< step s70: largest shift either way [length unit]
+  RoadmapOptions roadmap;  ///< includes the joint scales and the seed
+  std::uint64_t seed{1};   ///< base poses (the roadmap has its own in `roadmap`)
   std::size_t validation_poses{10000};
   /// Obstacle padding of the comparison planner [length unit]; negative: 2 sigma of the
   /// displacement of the arm's farthest point (see padding()).
@@ -49,8 +49,8 @@ struct SwayPlanningProblem {
 struct PathSafety {
   VertexPath vertices;                     ///< roadmap vertices
   std::vector<Eigen::VectorXd> waypoints;  ///< the configurations of those vertices
-  double length{0.0};        ///< D at the goal [scaled joint distance]
-  double probability{0.0};   ///< the patent's P at the goal: a mean of segment rates
+  double length{0.0};                      ///< D at the goal [scaled joint distance]
+  double probability{0.0};                 ///< the patent's P at the goal: a mean of segment rates
   std::size_t segments{0};
   std::size_t free_poses{0};  ///< base poses for which the whole path is free
   double free_fraction{0.0};
@@ -65,7 +65,7 @@ struct PlanningRound {
   double base_offset{0.0};  ///< [length unit] along the line
   RoadmapStatus status{RoadmapStatus::kNotConnected};
   std::size_t roadmap_vertices{0}, roadmap_edges{0};
-  double reference_distance{0.0};  ///< D0: straight start-to-goal distance
+  double reference_distance{0.0};      ///< D0: straight start-to-goal distance
   std::vector<PathSafety> candidates;  ///< as found (step s30), before any splice
   std::vector<SharedNodeDecision> decisions;
   std::optional<PathSafety> best;  ///< the global best path (step s47), when connected
@@ -82,15 +82,15 @@ struct ValidationRow {
   double length{0.0};  ///< [scaled joint distance]
   std::size_t colliding{0}, poses{0};
   double collision_probability{0.0};
-  ProportionInterval interval;  ///< 95 % Wilson interval
-  double padding{0.0};          ///< the padded row's margin [length unit]
-  double seconds{0.0};          ///< wall time (the padded row: its roadmap included)
+  ProportionInterval interval;   ///< 95 % Wilson interval
+  double padding{0.0};           ///< the padded row's margin [length unit]
+  double seconds{0.0};           ///< wall time (the padded row: its roadmap included)
   double planning_seconds{0.0};  ///< the padded row: growing its roadmap and its shortest path
 };
 
 /// \brief The whole result of mcws_plan.
 struct SwayPlanningResult {
-  std::vector<PlanningRound> rounds;  ///< offset 0 first, then the base adjustments (s70)
+  std::vector<PlanningRound> rounds;    ///< offset 0 first, then the base adjustments (s70)
   std::optional<std::size_t> accepted;  ///< the round whose best path meets the threshold
   std::vector<ValidationRow> validation;
   double validation_seconds{0.0};

@@ -107,13 +107,14 @@ std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& tr,
   const char* axes[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k) {
     gp << "set " << axes[k] << "range [" << middle[k] - half << ":" << middle[k] + half << "]\n"
-       << "set " << axes[k] << "label " << gnuplotQuoted(std::string(axes[k]) + " [" + unit + "]") << "\n";
+       << "set " << axes[k] << "label " << gnuplotQuoted(std::string(axes[k]) + " [" + unit + "]")
+       << "\n";
   }
   gp << "set zlabel rotate parallel\nset view 60,30,1.1\nset xyplane relative 0\n"
      << "set xtics offset -0.5,-0.3\nset ytics offset 0.5,-0.3\n"
      << "splot " << gnuplotQuoted(data) << " every ::1 using " << x << ":" << x + 1 << ":" << x + 2
-     << " with lines lw 2 lc rgb '#1f77b4' title 'tool', " << gnuplotQuoted(data) << " every ::1::1 using "
-     << x << ":" << x + 1 << ":" << x + 2
+     << " with lines lw 2 lc rgb '#1f77b4' title 'tool', " << gnuplotQuoted(data)
+     << " every ::1::1 using " << x << ":" << x + 1 << ":" << x + 2
      << " with points pt 7 ps 1.5 lc rgb '#2ca02c' title 'start', " << gnuplotQuoted(data)
      << " every ::" << tr.size() << "::" << tr.size() << " using " << x << ":" << x + 1 << ":"
      << x + 2 << " with points pt 7 ps 1.5 lc rgb '#d62728' title 'end'\n"
