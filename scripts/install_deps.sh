@@ -20,6 +20,7 @@ packages=(
   libcgal-dev                   # alpha shapes / Delaunay for areas and volumes
   libfcl-dev                    # collision checking (FCL: OBBRSS mesh trees, primitives)
   libompl-dev                   # motion planning roadmaps (OMPL's PRM) for mcws_plan
+  graphviz                      # renders the behaviour state machines (mcws_behave --dot) to PNG
   time                          # /usr/bin/time -v in the benchmark scripts
 )
 

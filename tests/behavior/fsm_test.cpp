@@ -176,5 +176,22 @@ TEST(StateMachine, NestsAsATaskMachineOfSubMachines) {
   EXPECT_THAT(dot, HasSubstr("\"CB1/q6\" -> \"CB1/q1\""));
 }
 
+TEST(StateMachine, JumpToResumesPartWayAsAnEntry) {
+  // CB3 resumed at q4 on the way back: CB1's machine from q4 runs q4 -> q5 -> q6 -> q1 on its
+  // last three events; the jump is an entry, not a step.
+  StateMachine cb1 = cb1Machine();
+  cb1.jumpTo("q4");
+  EXPECT_EQ(cb1.current(), "q4");
+  EXPECT_EQ(cb1.entries("q4"), 1);
+  EXPECT_EQ(cb1.steps(), 0u);
+  for (const char* event : {"zero_switch", "encoder_zero", "current_held"}) {
+    ASSERT_TRUE(cb1.fire(event)) << event;
+  }
+  EXPECT_EQ(cb1.current(), "q1");
+  EXPECT_EQ(cb1.entries("q1"), 2);  // q0 at reset, then the return
+  EXPECT_EQ(cb1.steps(), 3u);
+  EXPECT_THROW(cb1.jumpTo("q99"), Error);
+}
+
 }  // namespace
 }  // namespace mcws

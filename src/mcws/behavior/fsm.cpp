@@ -95,6 +95,12 @@ void StateMachine::requireStarted() const {
   if (!current_) throw Error("state machine '" + name_ + "': no initial state");
 }
 
+void StateMachine::jumpTo(const std::string& state) {
+  requireStarted();
+  current_ = stateIndex(state);
+  ++entries_[*current_];
+}
+
 StateMachine::Firing StateMachine::fire(const std::string& event) {
   requireStarted();
   const auto e = event_index_.find(event);

@@ -95,6 +95,11 @@ class StateMachine {
   /// \throws mcws::Error when there is no initial state.
   void reset();
 
+  /// \brief Puts the machine in `state` without a transition, as an entry (entries + 1, steps()
+  ///   unchanged): resuming a machine part-way, e.g. CB3 from q4 on the way back to the start.
+  /// \throws mcws::Error when the state is not in Q or there is no initial state.
+  void jumpTo(const std::string& state);
+
   /// \brief Feeds one event: fires delta(current, event) when it exists.
   /// \return whether a transition happened and which. An event without a transition from the
   ///   current state, or not in Sigma at all, changes nothing (fired = false).

@@ -1,0 +1,225 @@
+// mcws_behave: seed 004's behaviour planning rehearsed on a simulated insulator-cleaning robot:
+// the task plan for N discs run by the task machine, the combined behaviours' state machines and
+// the basic behaviours on a time-stepped robot, with faults injected and the safety invariant
+// checked at every step.
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+#include "common/app.h"
+#include "mcws/behavior/behavior_report.h"
+#include "mcws/io/atomic_file.h"
+
+namespace {
+
+using namespace mcws;
+
+std::string fixed(double value, int decimals) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(decimals);
+  out << value;
+  return out.str();
+}
+
+std::string summaryText(const RunSummary& s) {
+  std::ostringstream out;
+  out << "status: " << runStatusName(s.status) << "\n"
+      << "discs cleaned: " << s.discs_cleaned << " of " << s.discs_requested << "; at the end "
+      << s.final_disc << " disc(s) below the start\n"
+      << "duration: " << fixed(s.duration_s, 2)
+      << " s simulated (phase I, moving: " << fixed(s.phase_one_s, 2)
+      << " s; phase II, cleaning: " << fixed(s.phase_two_s, 2) << " s), " << s.steps << " steps\n"
+      << "sub-tasks completed: " << s.subtasks_completed
+      << "; basic behaviours run: " << s.behaviors_run << "; commands sent: " << s.commands_sent
+      << "\n"
+      << "battery: " << fixed(s.battery_voltage_end, 2) << " V at the end, "
+      << fixed(s.battery_charge_used, 3) << " A h used; "
+      << (s.battery_alarm_t ? "low-battery alarm at " + fixed(*s.battery_alarm_t, 2) + " s"
+                            : std::string("no alarm"))
+      << "\n";
+  out << "faults: " << (s.faults.empty() ? "none" : std::to_string(s.faults.size())) << "\n";
+  for (const FaultReaction& f : s.faults) {
+    out << "  t = " << fixed(f.t, 2) << " s  " << f.fault << ": " << f.reaction << "\n";
+  }
+  out << "safety invariant (a clamp grips the string at every step): "
+      << (s.violation ? "VIOLATED at " + s.violation->message
+                      : "held at all " + std::to_string(s.steps) + " steps")
+      << "\n";
+  return out.str();
+}
+
+nlohmann::ordered_json checkJson(const ValidationReport& report,
+                                 const std::vector<PoseFinding>& findings) {
+  nlohmann::ordered_json j;
+  j["valid"] = findings.empty();
+  j["state_vector_combinations"] = report.combinations;
+  j["allowed_poses"] = report.allowed_poses;
+  j["forbidden_poses"] = report.forbidden_poses;
+  j["states_with_poses"] = report.states;
+  j["poses_used"] = report.poses_used;
+  j["basic_behaviors"] = report.behaviors;
+  j["events"] = report.events;
+  j["combined_behaviors"] = nlohmann::ordered_json::array();
+  for (const CombinedBehaviorCounts& c : report.combined) {
+    j["combined_behaviors"].push_back({{"name", c.name},
+                                       {"states", c.states},
+                                       {"transitions", c.transitions},
+                                       {"events", c.events}});
+  }
+  j["pose_findings"] = nlohmann::ordered_json::array();
+  for (const PoseFinding& f : findings) j["pose_findings"].push_back(f.message);
+  return j;
+}
+
+/// A text output: written under a temporary name, renamed when the run is over.
+struct Output {
+  std::optional<io::AtomicFile> file;
+  void open(const std::string& path) {
+    if (!path.empty()) file.emplace(path);
+  }
+  void write(const std::string& bytes) {
+    if (file) file->write(bytes.data(), bytes.size());
+  }
+  void commit() {
+    if (file) file->commit();
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run("mcws_behave", [&] {
+    app::CommandLine cli(
+        "mcws_behave --model M.yaml (--check | --insulators N) [options]",
+        "Rehearses seed 004's cleaning job on a simulated insulator-cleaning robot: the plan for\n"
+        "N discs ((CB1, CB2) per disc down the string, then CB3 per disc back up) is echoed on\n"
+        "stderr, then run by the task machine (CB1, CB2, CB3, FAULT, MANUAL), each combined\n"
+        "behaviour's state machine and each basic behaviour on a time-stepped robot (dt 0.01 s),\n"
+        "with the faults of --faults injected and the safety invariant (at least one clamp grips)\n"
+        "checked at every step. Prints a summary (--json: one JSON object). Log events: "
+        "run_start,\n"
+        "subtask_start, command, <ending event> (zero_switch, encoder_reached, ...),\n"
+        "subtask_done, fault_injected, command_rejected, refused, link_lost, link_up,\n"
+        "link_restored, return_start, timeout, manual, operator, restore, restored, battery_low,\n"
+        "invariant_violated, run_end. The outputs are written also when the invariant fails.\n"
+        "Exit 0 when the run ends back at the start or in MANUAL, 1 when the invariant is "
+        "violated,\n"
+        "the time limit is reached, or an input is bad (--check: the model has a pose finding),\n"
+        "2 for a bad command line.");
+    cli.add()("model", app::po::value<std::string>(), "behaviour model (.yaml), see robots/")(
+        "insulators", app::po::value<std::string>(),
+        "discs to clean, as the worker counted them on the string (1-200)")(
+        "check", "validate the model and print its counts; run nothing")(
+        "faults", app::po::value<std::string>(),
+        "fault file (.yaml): faults, operator responses, policies; see scenarios/faults/")(
+        "log", app::po::value<std::string>(), "event log: one JSON object per line (.jsonl)")(
+        "timeline", app::po::value<std::string>(),
+        "joints, speeds, currents, switches, battery over time (.csv, units in the header)")(
+        "timeline-period", app::po::value<std::string>(),
+        "time between timeline rows [s] (default 0.1; the step is 0.01)")(
+        "plot", app::po::value<std::string>(),
+        "PNG of the joint speeds like the seed's Figure 10 (first disc's cycle)")(
+        "plot-all", "draw the whole run in --plot, not the first disc's cycle")(
+        "dot", app::po::value<std::string>(),
+        "directory for Graphviz DOT of CB1-CB3 and the task machine (PNG too if `dot` exists)")(
+        "json", "print the summary (or --check's counts) as one JSON object on stdout");
+    if (!cli.parse(argc, argv)) return app::kExitOk;
+    const std::string model_path = cli.required("model");
+    const bool check = cli.has("check");
+    if (check == cli.has("insulators")) {
+      throw app::UsageError("give either --check or --insulators N");
+    }
+    const std::string faults_path = cli.text("faults", "");
+    const std::string log_path = cli.text("log", ""), timeline_path = cli.text("timeline", "");
+    const std::string plot_path = cli.text("plot", ""), dot_dir = cli.text("dot", "");
+    const double period = app::parseNumber(cli.text("timeline-period", "0.1"), "timeline-period");
+    if (!(period > 0.0)) {
+      throw app::UsageError("--timeline-period: " + cli.text("timeline-period", "") +
+                            " s; must be > 0");
+    }
+    if (check) {
+      for (const char* flag :
+           {"faults", "log", "timeline", "plot", "plot-all", "timeline-period"}) {
+        if (cli.has(flag))
+          throw app::UsageError(std::string("--") + flag + ": needs a run, not --check");
+      }
+    }
+    const int insulators =
+        check
+            ? 0
+            : static_cast<int>(app::parseInteger(cli.required("insulators"), "insulators", 1, 200));
+    app::checkOutputs({{"log", log_path}, {"timeline", timeline_path}, {"plot", plot_path}},
+                      {model_path, faults_path});
+
+    const BehaviorModel model = loadBehaviorModel(model_path);
+    const ValidationReport report = validateBehaviorModel(model);
+    const std::vector<PoseFinding> findings = checkPoseConsistency(model);
+    if (!dot_dir.empty()) {
+      for (const std::string& file : writeStateMachineDots(model, dot_dir)) {
+        std::cerr << "mcws_behave: wrote " << file << "\n";
+      }
+    }
+    for (const PoseFinding& f : findings)
+      std::cerr << "mcws_behave: pose check: " << f.message << "\n";
+    if (check) {
+      if (cli.has("json")) {
+        std::cout << checkJson(report, findings).dump() << "\n";
+      } else {
+        std::cout << report.summary();
+        std::cout << (findings.empty() ? "valid\n"
+                                       : std::to_string(findings.size()) + " pose finding(s)\n");
+      }
+      return findings.empty() ? app::kExitOk : app::kExitFailure;
+    }
+
+    RunOptions options = RunOptions::forModel(model, insulators);
+    if (!faults_path.empty()) options.faults = loadFaultScript(faults_path);
+    std::cerr << "mcws_behave: plan for " << insulators << " disc(s):\n"
+              << describePlan(planCleaningTask(insulators));
+
+    Output log, timeline, plot;
+    log.open(log_path);
+    timeline.open(timeline_path);
+    plot.open(plot_path);
+    log.write(logHeaderJson(model_path, insulators, faults_path) + "\n");
+    TimelineRecorder recorder(period, options.simulator.dt);
+    RunObserver observer;
+    if (!log_path.empty()) {
+      observer.on_log = [&](const LogRecord& r) { log.write(logRecordJson(r) + "\n"); };
+    }
+    if (!timeline_path.empty() || !plot_path.empty()) observer.on_step = std::ref(recorder);
+    const RunSummary summary = runCleaningJob(model, options, observer);
+
+    if (!timeline_path.empty()) {
+      std::ostringstream csv;
+      writeTimelineCsv(csv, recorder.rows());
+      timeline.write(csv.str());
+    }
+    if (!plot_path.empty()) {
+      const auto window = cli.has("plot-all") ? std::make_pair(0.0, summary.duration_s)
+                                              : firstDiscWindow(recorder.rows());
+      plot.write(plotJointSpeeds(recorder.rows(), window.first, window.second,
+                                 model.name + ": " + std::to_string(insulators) + " disc(s), " +
+                                     runStatusName(summary.status)));
+    }
+    log.commit();
+    timeline.commit();
+    plot.commit();
+    if (cli.has("json")) {
+      std::cout << summaryJson(summary).dump() << "\n";
+    } else {
+      std::cout << summaryText(summary);
+    }
+    if (summary.status == RunStatus::kInvariantViolated) {
+      std::cerr << "mcws_behave: safety invariant violated at " << summary.violation->message
+                << "\n";
+      return app::kExitFailure;
+    }
+    if (summary.status == RunStatus::kTimeLimit) {
+      std::cerr << "mcws_behave: the simulated time limit was reached\n";
+      return app::kExitFailure;
+    }
+    return app::kExitOk;
+  });
+}

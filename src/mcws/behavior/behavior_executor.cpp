@@ -1,0 +1,850 @@
+#include "mcws/behavior/behavior_executor.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+/// The sensor events the simulator can raise, and the joints that have the sensor.
+bool eventFitsJoint(const std::string& event, SimJoint joint) {
+  const bool clamp = joint == kFixedClamp || joint == kMovingClamp;
+  if (event == "zero_switch") return clamp;
+  if (event == "current_held") return clamp;
+  if (event == "encoder_reached") return !clamp && joint != SimJoint::kJ6;
+  if (event == "encoder_zero") return joint != SimJoint::kJ6;
+  if (event == "speed_reached" || event == "speed_zero") return joint == SimJoint::kJ6;
+  return false;
+}
+
+std::string number(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+/// What a segment (one run of a combined behaviour) is for.
+struct Segment {
+  std::string combined;
+  /// Started at q0: completing it counts (CB1: one disc further down, CB2: a disc cleaned, CB3:
+  /// one disc back up).
+  bool counted{true};
+  /// On the way back: stop at the first state whose pose has both clamps closed.
+  bool stop_when_both_closed{false};
+};
+
+/// The basic behaviour being run.
+struct Active {
+  std::string behavior;
+  std::string event;  // its ending event
+  SimJoint joint{SimJoint::kJ1};
+  SimCommand command;
+  std::int64_t target_count{0};              // encoder_reached
+  double hold_current{0.0}, hold_time{0.0};  // current_held [A], [s]
+  std::optional<double> timeout;             // [s]
+  double entered_at{0.0};                    // state entry [s]
+  std::optional<double> held_since;          // current_held: when the current reached I [s]
+  bool restore{false};  // restoring a pose value a fault stopped (the brush), not a transition
+};
+
+enum class Mode { kRunning, kWaitingForLink, kManual, kDone };
+
+class CleaningRun {
+ public:
+  CleaningRun(const BehaviorModel& model, const RunOptions& options, const RunObserver& observer)
+      : model_(model), options_(options), observer_(observer), sim_(options.simulator) {
+    validateBehaviorModel(model_);
+    if (options_.insulators < 1) {
+      throw Error("insulators: " + std::to_string(options_.insulators) + " discs; must be >= 1");
+    }
+    if (!(options_.max_time_s > 0.0)) {
+      throw Error("max_time: " + number(options_.max_time_s) + " s; must be > 0");
+    }
+    summary_.plan = planCleaningTask(options_.insulators);
+    summary_.discs_requested = options_.insulators;
+    for (const char* name : {"CB1", "CB2", "CB3"}) {
+      const CombinedBehavior* cb = model_.combinedBehavior(name);
+      if (!cb) throw Error(model_.source + ": the task plan needs a combined behaviour " + name);
+      machines_.emplace(name, stateMachineOf(*cb));
+    }
+    findClampComponents();
+    checkRunnable();
+    faults_ = options_.faults.faults;
+  }
+
+  RunSummary run() {
+    log("run_start", "",
+        std::to_string(options_.insulators) + " discs, " + std::to_string(summary_.plan.size()) +
+            " sub-tasks");
+    notifyStep();
+    applyFaults();  // those at time 0 act on the first command
+    startPlanSubtask(0);
+    while (mode_ != Mode::kDone) {
+      if (sim_.time() >= options_.max_time_s) {
+        finish(RunStatus::kTimeLimit,
+               "simulated time limit " + number(options_.max_time_s) + " s reached");
+        break;
+      }
+      applyFaults();
+      superviseLink();
+      superviseOperator();
+      if (mode_ == Mode::kDone) break;
+      sim_.step();
+      accountPhase();
+      notifyStep();
+      if (!checkInvariant()) break;
+      superviseBattery();
+      if (mode_ == Mode::kRunning && active_) superviseBehavior();
+    }
+    const SimSnapshot& s = sim_.snapshot();
+    summary_.duration_s = s.time;
+    summary_.steps = s.step;
+    summary_.final_disc = disc_;
+    summary_.commands_sent = seq_;
+    summary_.battery_voltage_end = s.battery_voltage;
+    summary_.battery_charge_used =
+        options_.simulator.battery.capacity * options_.simulator.battery.initial_charge -
+        s.battery_charge;
+    return summary_;
+  }
+
+ private:
+  // ---- set-up ---------------------------------------------------------------------------------
+
+  void findClampComponents() {
+    const StateVectorSpec& spec = model_.state_vector;
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
+      const StateComponent& c = spec.components[k];
+      if (c.actuator == "J1") fixed_component_ = static_cast<int>(k);
+      if (c.actuator == "J2") moving_component_ = static_cast<int>(k);
+    }
+    for (const int k : {fixed_component_, moving_component_}) {
+      if (k < 0 || spec.components[k].indexOf("closed") < 0) {
+        throw Error(model_.source +
+                    ": the state vector needs a component driven by J1 and one by "
+                    "J2, each with a value 'closed' (the two clamps)");
+      }
+    }
+  }
+
+  /// Every transition's behaviour must be something the simulator can run.
+  void checkRunnable() const {
+    for (const CombinedBehavior& cb : model_.combined) {
+      for (const Transition& t : cb.transitions) {
+        const BehaviorRun run = resolveRun(model_, t);
+        const std::string where = model_.source + ":" + std::to_string(t.line) + ": " + cb.name +
+                                  ": " + t.from + " -> " + t.to + ": " + t.behavior;
+        SimJoint joint;
+        try {
+          joint = simJointFromName(run.behavior->body.actuator);
+        } catch (const Error& e) {
+          throw Error(where + ": " + e.what());
+        }
+        if (!eventFitsJoint(run.target->ends_on, joint)) {
+          throw Error(where + ": the simulator has no sensor for event '" + run.target->ends_on +
+                      "' on " + simJointName(joint));
+        }
+        commandOf(run, joint, where);  // throws for missing or mis-united parameters
+      }
+    }
+  }
+
+  /// The simulator command of a behaviour run. \throws naming `where`.
+  SimCommand commandOf(const BehaviorRun& run, SimJoint joint, const std::string& where) const {
+    const std::string& kind = run.target->command;
+    const Parameter* speed = run.behavior->parameter("speed");
+    if (kind == "close") return SimCommand::close(joint);
+    if (kind == "release") return SimCommand::release(joint);
+    if (kind == "stop") return SimCommand::stop(joint);
+    if (kind == "move_to") {
+      if (!run.position) throw Error(where + ": move_to without a position");
+      double cruise = 0.0;
+      if (speed) {
+        const std::string unit = joint == SimJoint::kJ5 ? "deg/s" : "mm/s";
+        if (speed->unit != unit) {
+          throw Error(where + ": parameter speed is in " + speed->unit + "; " +
+                      simJointName(joint) + " needs " + unit);
+        }
+        cruise = speed->value;
+      }
+      return SimCommand::moveTo(joint, *run.position, cruise);
+    }
+    if (kind == "spin") {
+      if (!speed || speed->unit != "rpm") {
+        throw Error(where + ": spin needs a parameter speed in rpm");
+      }
+      return SimCommand::spin(speed->value);
+    }
+    throw Error(where + ": command '" + kind + "' is not one the simulator takes");
+  }
+
+  // ---- logging --------------------------------------------------------------------------------
+
+  const Segment* segment() const { return segment_ ? &*segment_ : nullptr; }
+  StateMachine* machine() { return segment_ ? &machines_.at(segment_->combined) : nullptr; }
+  std::string stateName() const {
+    return segment_ ? machines_.at(segment_->combined).current() : std::string();
+  }
+
+  void log(const std::string& event, const std::string& behavior, const std::string& detail,
+           std::optional<std::uint64_t> seq = std::nullopt) {
+    if (!observer_.on_log) return;
+    LogRecord r;
+    r.t = sim_.time();
+    r.step = sim_.snapshot().step;
+    r.subtask = subtask_;
+    r.task_state = task_.current();
+    r.combined = segment_ ? segment_->combined : "";
+    r.state = stateName();
+    r.event = event;
+    r.behavior = behavior;
+    r.seq = seq;
+    r.disc = disc_;
+    r.detail = detail;
+    observer_.on_log(r);
+  }
+
+  void notifyStep() {
+    if (!observer_.on_step) return;
+    StepContext c;
+    c.subtask = subtask_;
+    c.task_state = task_.current();
+    c.combined = segment_ ? segment_->combined : "";
+    c.state = stateName();
+    c.behavior = active_ ? active_->behavior : "";
+    c.disc = disc_;
+    observer_.on_step(sim_.snapshot(), c);
+  }
+
+  void react(const std::string& fault, const std::string& reaction) {
+    summary_.faults.push_back({sim_.time(), fault, reaction});
+  }
+
+  void fireTask(const std::string& event) {
+    if (!task_.fire(event)) {
+      throw Error("task machine: no transition on '" + event + "' from '" + task_.current() + "'");
+    }
+  }
+
+  void finish(RunStatus status, const std::string& detail) {
+    summary_.status = status;
+    mode_ = Mode::kDone;
+    if (status == RunStatus::kCompleted || status == RunStatus::kReturned) fireTask("job_done");
+    log("run_end", "", std::string(runStatusName(status)) + ": " + detail);
+  }
+
+  // ---- sub-tasks ------------------------------------------------------------------------------
+
+  void startPlanSubtask(std::size_t index) {
+    plan_index_ = index;
+    const Subtask& s = summary_.plan[index];
+    startSegment({s.behavior, true, false}, s.action + " -> disc " + std::to_string(s.disc) +
+                                                " (plan " + std::to_string(index + 1) + "/" +
+                                                std::to_string(summary_.plan.size()) + ")");
+  }
+
+  void startSegment(const Segment& segment, const std::string& detail,
+                    const std::string& from_state = "") {
+    segment_ = segment;
+    ++subtask_;
+    StateMachine& m = *machine();
+    m.reset();
+    if (!from_state.empty()) m.jumpTo(from_state);
+    fireTask("next_" + segment.combined);
+    log("subtask_start", "", detail);
+    startBehavior(false);
+  }
+
+  bool bothClosed(const std::string& state) const {
+    const StatePose* p = model_.poseOf(state);
+    const StateVectorSpec& spec = model_.state_vector;
+    return p && p->pose[fixed_component_] == spec.components[fixed_component_].indexOf("closed") &&
+           p->pose[moving_component_] == spec.components[moving_component_].indexOf("closed");
+  }
+
+  /// The segment is over: its machine is back in a final state, or (on the way back) at a state
+  /// with both clamps closed.
+  void endSegment() {
+    StateMachine& m = *machine();
+    const bool completed = m.inFinal() && m.steps() > 0;
+    const Segment done = *segment_;
+    if (completed) {
+      ++summary_.subtasks_completed;
+      if (done.counted && done.combined == "CB1") ++disc_;
+      if (done.counted && done.combined == "CB3") --disc_;
+      if (done.counted && done.combined == "CB2") ++summary_.discs_cleaned;
+    }
+    log("subtask_done", "", completed ? "back in " + m.current() : "stopped in " + m.current());
+    active_.reset();
+    const std::string stopped_in = m.current();
+    if (returning_) {
+      if (!completed && !m.inFinal()) {
+        // Half-way (e.g. CB1's q4): CB3 from this state undoes the half-done move.
+        const CombinedBehavior* cb3 = model_.combinedBehavior("CB3");
+        if (std::find(cb3->states.begin(), cb3->states.end(), stopped_in) == cb3->states.end()) {
+          throw Error(model_.source + ": cannot return from state " + stopped_in +
+                      ": it is not a state of CB3");
+        }
+        startSegment({"CB3", false, false},
+                     "return: CB3 from " + stopped_in + " back to " + cb3->initial, stopped_in);
+      } else if (disc_ > 0) {
+        startSegment({"CB3", true, false},
+                     "return: move up one disc (" + std::to_string(disc_) + " below the start)");
+      } else {
+        finish(endStatus(), "back at the start");
+      }
+      return;
+    }
+    if (return_after_disc_ && done.combined == "CB2") {
+      startReturn("low battery: disc " + std::to_string(disc_) + " finished");
+      return;
+    }
+    if (plan_index_ + 1 < summary_.plan.size()) {
+      startPlanSubtask(plan_index_ + 1);
+    } else {
+      finish(endStatus(),
+             "plan done, " + std::to_string(summary_.discs_cleaned) + " discs cleaned");
+    }
+  }
+
+  // ---- behaviours -----------------------------------------------------------------------------
+
+  /// Runs the behaviour of the current state (resume = the state is re-entered after a fault).
+  void startBehavior(bool resume) {
+    StateMachine& m = *machine();
+    const std::string state = m.current();
+    const CombinedBehavior& cb = *model_.combinedBehavior(segment_->combined);
+    const Transition* t = cb.transitionFrom(state);
+    if (!t) throw Error(model_.source + ": " + cb.name + ": no transition out of " + state);
+    if (resume) {
+      m.jumpTo(state);  // re-entry: the timeout starts again
+      if (restorePose(state)) return;
+    }
+    const BehaviorRun run = resolveRun(model_, *t);
+    runBehavior(run, false);
+  }
+
+  void runBehavior(const BehaviorRun& run, bool restore) {
+    Active a;
+    a.behavior = run.behavior->name;
+    a.event = run.target->ends_on;
+    a.joint = simJointFromName(run.behavior->body.actuator);
+    a.command = commandOf(run, a.joint, run.behavior->name);
+    a.timeout = run.behavior->timeout_s;
+    a.entered_at = sim_.time();
+    a.restore = restore;
+    if (a.event == "encoder_reached") {
+      a.target_count = std::llround(a.command.value * countsPerUnit(a.joint));
+    }
+    if (a.event == "current_held") {
+      const Parameter* i = run.behavior->parameter("I");
+      const Parameter* hold = run.behavior->parameter("hold");
+      if (!i || !hold) {
+        throw Error(model_.source + ": " + a.behavior +
+                    ": current_held needs parameters I and hold");
+      }
+      a.hold_current = i->unit == "mA" ? i->value / 1000.0 : i->value;
+      a.hold_time = hold->unit == "ms" ? hold->value / 1000.0 : hold->value;
+    }
+    active_ = a;
+    if (restore) {
+      log("restore", a.behavior,
+          "a fault stopped " + std::string(simJointName(a.joint)) + "; " + stateName() +
+              " needs it: set again before resuming");
+    }
+    send(a.command, a.behavior);
+  }
+
+  double countsPerUnit(SimJoint joint) const {
+    const RobotSimulatorConfig& c = sim_.config();
+    switch (joint) {
+      case SimJoint::kJ3:
+        return c.j3.counts_per_unit;
+      case SimJoint::kJ4:
+        return c.j4.counts_per_unit;
+      case SimJoint::kJ5:
+        return c.j5.counts_per_unit;
+      default:
+        return 1.0;
+    }
+  }
+
+  /// Before resuming `state`: a pose value that stopping every joint undid (a spinning brush)
+  /// is set again first. \return whether a restoring behaviour was started.
+  bool restorePose(const std::string& state) {
+    const StatePose* pose = model_.poseOf(state);
+    if (!pose) return false;
+    for (std::size_t k = 0; k < model_.state_vector.components.size(); ++k) {
+      const StateComponent& c = model_.state_vector.components[k];
+      const std::string& value = c.values[pose->pose[k]];
+      for (const BasicBehavior& b : model_.behaviors) {
+        if (b.body.changes.size() != 1 || b.body.changes[0] != c.name) continue;
+        const BehaviorTarget* target = b.body.target(value);
+        if (!target || target->command != "spin") continue;
+        const BehaviorRun run{&b, target, k, pose->pose[k], std::nullopt};
+        const SimJoint joint = simJointFromName(b.body.actuator);
+        const SimCommand spin = commandOf(run, joint, b.name);
+        const SimJointState& j = sim_.snapshot().joint(joint);
+        if (std::abs(j.velocity - spin.value) > 1e-9 * std::max(1.0, std::abs(spin.value))) {
+          runBehavior(run, true);
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  bool endingEventSeen(Active& a) {
+    const SimSnapshot& s = sim_.snapshot();
+    const SimJointState& j = s.joint(a.joint);
+    if (a.event == "zero_switch") return j.zero_switch;
+    if (a.event == "encoder_reached") return j.encoder == a.target_count;
+    if (a.event == "encoder_zero") return j.encoder == 0;
+    if (a.event == "speed_zero") return !j.moving && j.velocity == 0.0;
+    if (a.event == "speed_reached") {
+      return !j.moving && std::abs(j.velocity - a.command.value) <=
+                              1e-9 * std::max(1.0, std::abs(a.command.value));
+    }
+    // current_held: at least I, without a break, for the hold time.
+    if (j.current >= a.hold_current) {
+      if (!a.held_since) a.held_since = s.time;
+      return s.time - *a.held_since >= a.hold_time - 1e-9;
+    }
+    a.held_since.reset();
+    return false;
+  }
+
+  void superviseBehavior() {
+    Active& a = *active_;
+    if (endingEventSeen(a)) {
+      if (a.command.kind == SimCommandKind::kClose || a.command.kind == SimCommandKind::kRelease) {
+        sim_.command(SimCommand::stop(a.joint));  // the jaw holds: cut the motor
+      }
+      ++summary_.behaviors_run;
+      if (a.restore) {
+        log("restored", a.behavior, a.event);
+        startBehavior(false);
+        return;
+      }
+      StateMachine& m = *machine();
+      const std::string from = m.current();
+      const std::string behavior = a.behavior;
+      if (!m.fire(a.event)) {
+        throw Error(segment_->combined + ": no transition on '" + a.event + "' from " + from);
+      }
+      active_.reset();
+      log(a.event, behavior, from + " -> " + m.current());
+      if ((m.inFinal() && m.steps() > 0) ||
+          (segment_->stop_when_both_closed && bothClosed(m.current()))) {
+        endSegment();
+      } else {
+        startBehavior(false);
+      }
+      return;
+    }
+    if (a.timeout && sim_.time() - a.entered_at >= *a.timeout - 1e-9) {
+      stopAll();
+      const std::string what =
+          a.behavior + " did not end on " + a.event + " within " + number(*a.timeout) + " s";
+      log("timeout", a.behavior, what);
+      handOver("timeout", what);
+    }
+  }
+
+  void stopAll() {
+    for (std::size_t k = 0; k < kSimJointCount; ++k) {
+      sim_.command(SimCommand::stop(static_cast<SimJoint>(k)));
+    }
+  }
+
+  // ---- commands, the command check and the interference check ---------------------------------
+
+  /// Sends a behaviour's command; \return false when it was refused (control handed over).
+  bool send(const SimCommand& command, const std::string& behavior) {
+    const bool ground = !returning_;  // on the way back the robot runs on its own
+    if (ground) {
+      if (takeFault(FaultKind::kCorruptCommand)) {
+        const std::uint64_t seq = ++seq_;
+        const std::string what = "seq " + std::to_string(seq) + " (" + describe(command) +
+                                 ") failed the robot's command check; its echo (seq " +
+                                 std::to_string(seq - 1) + ", " + stateName() +
+                                 ") did not match; resent";
+        log("command_rejected", behavior, what, seq);
+        react("corrupt_command", what);
+      }
+      if (command.kind != SimCommandKind::kStop) {
+        if (auto f = takeFault(FaultKind::kWrongCommand)) {
+          const std::uint64_t seq = ++seq_;
+          log("command", behavior, "received " + describe(f->command) + " (wrong command)", seq);
+          if (const auto reason = interference(f->command)) {
+            log("refused", behavior, describe(f->command) + ": " + *reason, seq);
+            react("wrong_command", "refused " + describe(f->command) + " (" + *reason +
+                                       "); the behaviour's own command sent instead");
+          } else {
+            sim_.command(f->command);
+            react("wrong_command",
+                  describe(f->command) + " passed the interference check and was executed");
+            return true;
+          }
+        }
+      }
+    }
+    const std::uint64_t seq = ++seq_;
+    if (const auto reason = interference(command)) {
+      log("refused", behavior, describe(command) + ": " + *reason, seq);
+      stopAll();
+      handOver("interference", "refused " + describe(command) + ": " + *reason);
+      return false;
+    }
+    sim_.command(command);
+    log("command", behavior,
+        describe(command) +
+            (ground ? "; echo seq " + std::to_string(seq) + " " + stateName() + " matches"
+                    : "; on board"),
+        seq);
+    return true;
+  }
+
+  /// Why `command` must not run from the current state, or nothing.
+  std::optional<std::string> interference(const SimCommand& command) const {
+    if (const auto reason = sim_.refuse(command)) return reason;
+    // The state-vector rules: the pose the command gives from the current state's pose.
+    const StatePose* pose = model_.poseOf(stateName());
+    if (!pose) return std::nullopt;
+    const StateVectorSpec& spec = model_.state_vector;
+    for (const BasicBehavior& b : model_.behaviors) {
+      if (b.body.actuator != simJointName(command.joint) || b.body.changes.size() != 1) continue;
+      const int k = spec.componentIndex(b.body.changes[0]);
+      if (k < 0) continue;
+      const StateComponent& c = spec.components[k];
+      for (const BehaviorTarget& target : b.body.targets) {
+        if (target.command != commandKindName(command.kind)) continue;
+        const int v = c.indexOf(target.value);
+        if (v < 0) continue;
+        if (command.kind == SimCommandKind::kMoveTo &&
+            (c.positions.empty() || std::abs(c.positions[v] - command.value) > 1e-9)) {
+          continue;
+        }
+        Pose next = pose->pose;
+        next[k] = v;
+        if (const PoseRule* rule = spec.brokenRule(next)) {
+          return "it would give " + c.name + " = " + target.value + " in " + stateName() +
+                 ", a pose rule '" + rule->name + "' forbids";
+        }
+        return std::nullopt;
+      }
+    }
+    return std::nullopt;
+  }
+
+  std::optional<InjectedFault> takeFault(FaultKind kind) {
+    for (auto it = pending_.begin(); it != pending_.end(); ++it) {
+      if (it->kind == kind) {
+        InjectedFault f = *it;
+        pending_.erase(it);
+        return f;
+      }
+    }
+    return std::nullopt;
+  }
+
+  // ---- faults and exceptions ------------------------------------------------------------------
+
+  void applyFaults() {
+    const double t = sim_.time();
+    while (next_fault_ < faults_.size() && faults_[next_fault_].at_s <= t + 1e-9) {
+      const InjectedFault& f = faults_[next_fault_++];
+      std::string detail = faultKindName(f.kind);
+      switch (f.kind) {
+        case FaultKind::kLinkDown:
+          sim_.setLinkUp(false);
+          if (f.duration_s) link_back_at_.push_back(t + *f.duration_s);
+          detail += f.duration_s ? " for " + number(*f.duration_s) + " s" : " for good";
+          break;
+        case FaultKind::kZeroSwitchStuck: {
+          const bool fixed = f.clamp == kFixedClamp;
+          const SimFault sf = fixed ? (f.reads_pressed ? SimFault::kFixedZeroSwitchAlwaysPressed
+                                                       : SimFault::kFixedZeroSwitchNeverPressed)
+                                    : (f.reads_pressed ? SimFault::kMovingZeroSwitchAlwaysPressed
+                                                       : SimFault::kMovingZeroSwitchNeverPressed);
+          sim_.setFault(sf);
+          detail += std::string(": ") + simJointName(f.clamp) + " reads " +
+                    (f.reads_pressed ? "pressed" : "not pressed");
+          break;
+        }
+        case FaultKind::kBatteryDrain:
+          drain_ += f.current_a;
+          sim_.setFault(SimFault::kBatteryDrain, drain_);
+          detail += ": +" + number(f.current_a) + " A";
+          break;
+        case FaultKind::kCorruptCommand:
+        case FaultKind::kWrongCommand:
+          pending_.push_back(f);
+          detail += ": armed for the next command";
+          break;
+      }
+      log("fault_injected", "", detail);
+    }
+    for (auto it = link_back_at_.begin(); it != link_back_at_.end();) {
+      if (*it <= t + 1e-9) {
+        it = link_back_at_.erase(it);
+        if (link_back_at_.empty()) {
+          sim_.setLinkUp(true);
+          log("link_up", "", "the radio link is back");
+        }
+      } else {
+        ++it;
+      }
+    }
+  }
+
+  void superviseLink() {
+    const bool up = sim_.snapshot().link_up;
+    if (mode_ == Mode::kRunning && !returning_ && !up) {
+      stopAll();
+      link_lost_at_ = sim_.time();
+      interrupted_ = segment_->combined;
+      mode_ = Mode::kWaitingForLink;
+      fireTask("link_lost");
+      log("link_lost", active_ ? active_->behavior : "",
+          "every joint stopped; waiting up to " + number(options_.faults.link_wait_s) +
+              " s for the link");
+      return;
+    }
+    if (mode_ != Mode::kWaitingForLink) return;
+    if (up) {
+      const double waited = sim_.time() - link_lost_at_;
+      react("link_down", "stopped, link back after " + number(waited) + " s, resumed");
+      mode_ = Mode::kRunning;
+      fireTask("resume_" + interrupted_);
+      log("link_restored", "", "resuming " + stateName());
+      startBehavior(true);
+    } else if (sim_.time() - link_lost_at_ >= options_.faults.link_wait_s - 1e-9) {
+      react("link_down", "stopped, no link after " + number(options_.faults.link_wait_s) +
+                             " s, returned to the start on its own");
+      mode_ = Mode::kRunning;
+      fireTask("resume_" + interrupted_);
+      startReturn("no link for " + number(options_.faults.link_wait_s) + " s");
+    }
+  }
+
+  /// Control to the operator (MANUAL), with the next scripted response if there is one.
+  void handOver(const std::string& fault, const std::string& what) {
+    interrupted_ = segment_->combined;
+    mode_ = Mode::kManual;
+    fireTask("hand_over");
+    const auto& responses = options_.faults.operator_responses;
+    if (next_response_ >= responses.size()) {
+      react(fault, what + "; control to the operator; no scripted response: the run stops");
+      finish(RunStatus::kHaltedInManual, "waiting for the operator after: " + what);
+      return;
+    }
+    response_ = responses[next_response_++];
+    response_at_ = sim_.time() + response_->after_s;
+    react(fault, what + "; control to the operator; scripted response " +
+                     operatorActionName(response_->action) + " after " +
+                     number(response_->after_s) + " s");
+    log("manual", "", "control to the operator: " + what);
+  }
+
+  void superviseOperator() {
+    if (mode_ != Mode::kManual || sim_.time() < response_at_ - 1e-9) return;
+    const OperatorAction action = response_->action;
+    response_.reset();
+    if (action == OperatorAction::kRepairAndResume) {
+      for (const SimFault f :
+           {SimFault::kFixedZeroSwitchNeverPressed, SimFault::kFixedZeroSwitchAlwaysPressed,
+            SimFault::kMovingZeroSwitchNeverPressed, SimFault::kMovingZeroSwitchAlwaysPressed}) {
+        sim_.setFault(f, 0.0);
+      }
+    }
+    mode_ = Mode::kRunning;
+    fireTask("resume_" + interrupted_);
+    log("operator", "", operatorActionName(action));
+    if (action == OperatorAction::kReturn) {
+      startReturn("the operator's order");
+    } else {
+      startBehavior(true);
+    }
+  }
+
+  void superviseBattery() {
+    if (battery_alarm_ || !sim_.snapshot().battery_low) return;
+    battery_alarm_ = true;
+    summary_.battery_alarm_t = sim_.time();
+    const std::string voltage = number(sim_.snapshot().battery_voltage) + " V";
+    log("battery_low", active_ ? active_->behavior : "", "alarm: battery at " + voltage);
+    if (options_.faults.low_battery == LowBatteryPolicy::kAlarmOnly) {
+      react("battery_low", "alarm at " + voltage + "; the job goes on (policy alarm_only)");
+    } else if (returning_ || (segment_ && segment_->combined == "CB3")) {
+      react("battery_low", "alarm at " + voltage + "; already on the way back");
+    } else {
+      return_after_disc_ = true;
+      react("battery_low", "alarm at " + voltage + "; finishing disc " +
+                               std::to_string(disc_ + (segment_->combined == "CB1" ? 1 : 0)) +
+                               ", then returning");
+    }
+  }
+
+  /// Back to the start: the current combined behaviour on to a pose with both clamps closed
+  /// (CB2: to its end), CB3 from there to q1, then one CB3 per disc below the start.
+  void startReturn(const std::string& why) {
+    returning_ = true;
+    log("return_start", "", why + "; " + std::to_string(disc_) + " disc(s) below the start");
+    if (!active_ && segment_ && machine()->inFinal()) {  // between sub-tasks
+      endSegmentForReturn();
+      return;
+    }
+    if (segment_->combined != "CB2") segment_->stop_when_both_closed = true;
+    StateMachine& m = *machine();
+    if (segment_->stop_when_both_closed && bothClosed(m.current())) {
+      endSegment();
+    } else {
+      startBehavior(true);
+    }
+  }
+
+  void endSegmentForReturn() {
+    if (disc_ > 0) {
+      startSegment({"CB3", true, false},
+                   "return: move up one disc (" + std::to_string(disc_) + " below the start)");
+    } else {
+      finish(endStatus(), "back at the start");
+    }
+  }
+
+  /// Back at the start: completed when every disc was cleaned, returned otherwise.
+  RunStatus endStatus() const {
+    return summary_.discs_cleaned == options_.insulators && disc_ == 0 ? RunStatus::kCompleted
+                                                                       : RunStatus::kReturned;
+  }
+
+  bool checkInvariant() {
+    const SimSnapshot& s = sim_.snapshot();
+    if (s.joint(kFixedClamp).gripping || s.joint(kMovingClamp).gripping) return true;
+    InvariantViolation v;
+    v.step = s.step;
+    v.t = s.time;
+    v.subtask = subtask_;
+    v.combined = segment_ ? segment_->combined : "";
+    v.state = stateName();
+    v.behavior = active_ ? active_->behavior : "";
+    std::ostringstream text;
+    text << "step " << v.step << " (t = " << v.t << " s): both clamps open: sub-task " << v.subtask
+         << " (" << v.combined << "), state " << v.state << ", behaviour "
+         << (v.behavior.empty() ? "none" : v.behavior);
+    v.message = text.str();
+    summary_.violation = v;
+    log("invariant_violated", v.behavior, v.message);
+    stopAll();
+    finish(RunStatus::kInvariantViolated, v.message);
+    return false;
+  }
+
+  void accountPhase() {
+    if (!segment_) return;
+    const double dt = sim_.config().dt;
+    (segment_->combined == "CB2" ? summary_.phase_two_s : summary_.phase_one_s) += dt;
+  }
+
+  const BehaviorModel& model_;
+  const RunOptions& options_;
+  const RunObserver& observer_;
+  RobotSimulator sim_;
+  StateMachine task_ = taskMachine();
+  std::map<std::string, StateMachine> machines_;
+  int fixed_component_{-1}, moving_component_{-1};
+  RunSummary summary_;
+
+  Mode mode_{Mode::kRunning};
+  std::size_t plan_index_{0};
+  std::optional<Segment> segment_;
+  std::optional<Active> active_;
+  int subtask_{0};
+  int disc_{0};
+  std::uint64_t seq_{0};
+  bool returning_{false};
+  bool return_after_disc_{false};
+  bool battery_alarm_{false};
+  std::string interrupted_;  // the superstate FAULT or MANUAL returns to
+
+  std::vector<InjectedFault> faults_;
+  std::size_t next_fault_{0};
+  std::vector<InjectedFault> pending_;  // corrupt and wrong commands waiting for a command
+  std::vector<double> link_back_at_;
+  double drain_{0.0};
+  double link_lost_at_{0.0};
+  std::optional<OperatorResponse> response_;
+  double response_at_{0.0};
+  std::size_t next_response_{0};
+};
+
+}  // namespace
+
+const char* runStatusName(RunStatus status) {
+  switch (status) {
+    case RunStatus::kCompleted:
+      return "completed";
+    case RunStatus::kReturned:
+      return "returned";
+    case RunStatus::kHaltedInManual:
+      return "halted_in_manual";
+    case RunStatus::kInvariantViolated:
+      return "invariant_violated";
+    case RunStatus::kTimeLimit:
+      return "time_limit";
+  }
+  return "unknown";
+}
+
+RobotSimulatorConfig simulatorConfigFor(const BehaviorModel& model, int insulators) {
+  RobotSimulatorConfig config;
+  if (model.insulator.pitch_mm > 0.0) config.string.pitch = model.insulator.pitch_mm;
+  config.string.home_gap = 2.0 * config.string.pitch;
+  config.string.tolerance = std::min(config.string.tolerance, 0.25 * config.string.pitch);
+  config.string.disc_count = std::max(insulators, 0) + 2;
+  return config;
+}
+
+RunOptions RunOptions::forModel(const BehaviorModel& model, int insulators) {
+  RunOptions options;
+  options.insulators = insulators;
+  options.simulator = simulatorConfigFor(model, insulators);
+  return options;
+}
+
+StateMachine taskMachine() {
+  StateMachine m("task");
+  for (const char* s : {"idle", "CB1", "CB2", "CB3", "FAULT", "MANUAL", "done"}) m.addState(s);
+  m.setStateLabel("CB1", "CB1\nmove down one disc");
+  m.setStateLabel("CB2", "CB2\nclean the disc");
+  m.setStateLabel("CB3", "CB3\nmove up one disc");
+  m.setStateLabel("FAULT", "FAULT\nlink lost: stopped");
+  m.setStateLabel("MANUAL", "MANUAL\noperator in control");
+  m.addTransition("idle", "next_CB1", "CB1");
+  m.addTransition("CB1", "next_CB2", "CB2");
+  m.addTransition("CB2", "next_CB1", "CB1");
+  // On to CB3 from any superstate: the plan's way back, or a return after a fault.
+  for (const char* s : {"CB1", "CB2", "CB3"}) {
+    m.addTransition(s, "next_CB3", "CB3");
+    m.addTransition(s, "job_done", "done");
+    m.addTransition(s, "link_lost", "FAULT");
+    m.addTransition(s, "hand_over", "MANUAL");
+    m.addTransition("FAULT", std::string("resume_") + s, s);
+    m.addTransition("MANUAL", std::string("resume_") + s, s);
+  }
+  m.setInitial("idle");
+  m.addFinal("done");
+  return m;
+}
+
+RunSummary runCleaningJob(const BehaviorModel& model, const RunOptions& options,
+                          const RunObserver& observer) {
+  return CleaningRun(model, options, observer).run();
+}
+
+}  // namespace mcws

@@ -1,0 +1,421 @@
+#include "mcws/behavior/behavior_report.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+#include "mcws/core/error.h"
+#include "mcws/io/atomic_file.h"
+#include "mcws/io/gnuplot.h"
+
+extern char** environ;
+
+namespace mcws {
+
+namespace fs = std::filesystem;
+using ordered_json = nlohmann::ordered_json;
+
+namespace {
+
+/// Compact JSON text; invalid UTF-8 in strings is replaced rather than thrown about.
+std::string dumpLine(const ordered_json& value) {
+  return value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
+}
+
+/// A time [s] rounded to the microsecond (no negative zero).
+double roundedTime(double t) {
+  const double rounded = std::round(t * 1e6) / 1e6;
+  return rounded == 0.0 ? 0.0 : rounded;
+}
+
+/// A number with up to 9 significant digits ("0" for negative zero).
+std::string number(double value) {
+  if (value == 0.0) return "0";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value);
+  return buffer;
+}
+
+/// A CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+const char* bit(bool value) { return value ? "1" : "0"; }
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// The last non-blank line of a text ("" when none).
+std::string lastLine(const std::string& text) {
+  std::istringstream lines(text);
+  std::string line, last;
+  while (std::getline(lines, line)) {
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  }
+  return last;
+}
+
+/// Graphviz `dot` found on PATH (an executable regular file), "" when it is not installed.
+std::string findDot() {
+  const char* path = std::getenv("PATH");
+  if (!path) return "";
+  std::istringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/dot";
+    struct stat info {};
+    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+        ::access(candidate.c_str(), X_OK) == 0) {
+      return candidate;
+    }
+  }
+  return "";
+}
+
+/// Runs `dot -Tpng input -o output`, stdout and stderr into `log`.
+/// \return the exit status (128 + signal when killed), or -1 when it cannot be started.
+int runDot(const std::string& dot, const std::string& input, const std::string& output,
+           const std::string& log, int& spawn_errno) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::string program = dot, format = "-Tpng", in = input, flag = "-o", out = output;
+  char* argv[] = {program.data(), format.data(), in.data(), flag.data(), out.data(), nullptr};
+  pid_t pid = 0;
+  spawn_errno = posix_spawn(&pid, dot.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawn_errno != 0) return -1;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) {
+      spawn_errno = errno;
+      return -1;
+    }
+  }
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+void writeWhole(const std::string& path, const std::string& bytes) {
+  io::AtomicFile file(path);
+  file.write(bytes.data(), bytes.size());
+  file.commit();
+}
+
+/// Renders `dot_path` to PNG bytes with `dot`. \throws mcws::Error naming `dot_path`.
+std::string renderPng(const std::string& dot, const std::string& dot_path) {
+  io::ScratchDir scratch;
+  const std::string png = scratch.file("graph.png"), log = scratch.file("dot.log");
+  int spawn_errno = 0;
+  const int status = runDot(dot, dot_path, png, log, spawn_errno);
+  if (status < 0) {
+    throw Error("cannot run '" + dot + "' on '" + dot_path + "': " + std::strerror(spawn_errno));
+  }
+  const std::string bytes = readAll(png);
+  if (status != 0 || bytes.rfind("\x89PNG", 0) != 0) {
+    const std::string message = lastLine(readAll(log));
+    throw Error("dot failed on '" + dot_path + "' (exit status " + std::to_string(status) + ")" +
+                (message.empty() ? "" : ": " + message));
+  }
+  return bytes;
+}
+
+}  // namespace
+
+std::string logRecordJson(const LogRecord& record) {
+  ordered_json line;
+  line["t"] = roundedTime(record.t);
+  line["step"] = record.step;
+  line["subtask"] = record.subtask;
+  line["task_state"] = record.task_state;
+  line["cb"] = record.combined;
+  line["state"] = record.state;
+  line["event"] = record.event;
+  line["behavior"] = record.behavior;
+  if (record.seq) line["seq"] = *record.seq;
+  line["disc"] = record.disc;
+  line["detail"] = record.detail;
+  return dumpLine(line);
+}
+
+std::string logHeaderJson(const std::string& model_path, int insulators,
+                          const std::string& faults_path) {
+  ordered_json line;
+  line["t"] = 0;
+  line["event"] = "log_header";
+  line["units"] = ordered_json::object({{"t", "s"}});
+  line["model"] = model_path;
+  line["insulators"] = insulators;
+  line["faults"] = faults_path.empty() ? ordered_json(nullptr) : ordered_json(faults_path);
+  return dumpLine(line);
+}
+
+nlohmann::ordered_json summaryJson(const RunSummary& summary) {
+  ordered_json out;
+  out["status"] = runStatusName(summary.status);
+  out["discs_requested"] = summary.discs_requested;
+  out["discs_cleaned"] = summary.discs_cleaned;
+  out["final_disc"] = summary.final_disc;
+  out["duration_s"] = summary.duration_s;
+  out["steps"] = summary.steps;
+  out["subtasks_completed"] = summary.subtasks_completed;
+  out["behaviors_run"] = summary.behaviors_run;
+  out["commands_sent"] = summary.commands_sent;
+  out["phase_one_s"] = summary.phase_one_s;
+  out["phase_two_s"] = summary.phase_two_s;
+  out["battery_voltage_end_V"] = summary.battery_voltage_end;
+  out["battery_charge_used_Ah"] = summary.battery_charge_used;
+  out["battery_alarm_t_s"] =
+      summary.battery_alarm_t ? ordered_json(*summary.battery_alarm_t) : ordered_json(nullptr);
+  ordered_json faults = ordered_json::array();
+  for (const FaultReaction& fault : summary.faults) {
+    ordered_json item;
+    item["t_s"] = fault.t;
+    item["fault"] = fault.fault;
+    item["reaction"] = fault.reaction;
+    faults.push_back(std::move(item));
+  }
+  out["faults"] = std::move(faults);
+  ordered_json invariant;
+  invariant["holds"] = !summary.violation.has_value();
+  if (const auto& v = summary.violation) {
+    ordered_json violation;
+    violation["step"] = v->step;
+    violation["t_s"] = v->t;
+    violation["subtask"] = v->subtask;
+    violation["cb"] = v->combined;
+    violation["state"] = v->state;
+    violation["behavior"] = v->behavior;
+    violation["message"] = v->message;
+    invariant["violation"] = std::move(violation);
+  } else {
+    invariant["violation"] = nullptr;
+  }
+  out["invariant"] = std::move(invariant);
+  ordered_json plan = ordered_json::array();
+  for (const Subtask& subtask : summary.plan) {
+    ordered_json item;
+    item["cb"] = subtask.behavior;
+    item["action"] = subtask.action;
+    item["disc"] = subtask.disc;
+    plan.push_back(std::move(item));
+  }
+  out["plan"] = std::move(plan);
+  return out;
+}
+
+TimelineRecorder::TimelineRecorder(double period, double dt) {
+  if (!(period > 0.0) || !std::isfinite(period)) {
+    throw Error("timeline: period = " + number(period) + " s, must be > 0");
+  }
+  if (!(dt > 0.0) || !std::isfinite(dt)) {
+    throw Error("timeline: dt = " + number(dt) + " s, must be > 0");
+  }
+  const double k = std::round(period / dt);
+  every_ = k >= 1.0 ? static_cast<std::uint64_t>(k) : 1;
+}
+
+void TimelineRecorder::operator()(const SimSnapshot& snapshot, const StepContext& context) {
+  if (snapshot.step % every_ != 0) return;
+  TimelineRow row;
+  row.t = snapshot.time;
+  row.step = snapshot.step;
+  row.subtask = context.subtask;
+  row.task_state = context.task_state;
+  row.combined = context.combined;
+  row.state = context.state;
+  for (std::size_t j = 0; j < kSimJointCount; ++j) {
+    row.position[j] = snapshot.joints[j].position;
+    row.velocity[j] = snapshot.joints[j].velocity;
+    row.current[j] = snapshot.joints[j].current;
+  }
+  row.fixed_zero_switch = snapshot.joint(kFixedClamp).zero_switch;
+  row.moving_zero_switch = snapshot.joint(kMovingClamp).zero_switch;
+  row.fixed_gripping = snapshot.joint(kFixedClamp).gripping;
+  row.moving_gripping = snapshot.joint(kMovingClamp).gripping;
+  row.battery_voltage = snapshot.battery_voltage;
+  row.battery_low = snapshot.battery_low;
+  row.link_up = snapshot.link_up;
+  rows_.push_back(std::move(row));
+}
+
+void writeTimelineCsv(std::ostream& out, const std::vector<TimelineRow>& rows) {
+  static const char* const kPositionUnits[kSimJointCount] = {"deg", "deg", "mm",
+                                                             "mm",  "deg", "deg"};
+  static const char* const kSpeedUnits[kSimJointCount] = {"deg_per_s", "deg_per_s", "mm_per_s",
+                                                          "mm_per_s",  "deg_per_s", "rpm"};
+  std::string header = "t_s,step,subtask,task_state,cb,state";
+  for (std::size_t j = 0; j < kSimJointCount; ++j) {
+    header += ",J" + std::to_string(j + 1) + "_" + kPositionUnits[j];
+  }
+  for (std::size_t j = 0; j < kSimJointCount; ++j) {
+    header += ",J" + std::to_string(j + 1) + "_" + kSpeedUnits[j];
+  }
+  for (std::size_t j = 0; j < kSimJointCount; ++j) header += ",J" + std::to_string(j + 1) + "_A";
+  header += ",J1_zero_switch,J2_zero_switch,J1_gripping,J2_gripping,battery_V,battery_low,link_up";
+  out << header << "\n";
+  for (const TimelineRow& row : rows) {
+    std::string line = number(row.t) + "," + std::to_string(row.step) + "," +
+                       std::to_string(row.subtask) + "," + csvField(row.task_state) + "," +
+                       csvField(row.combined) + "," + csvField(row.state);
+    for (double v : row.position) line += "," + number(v);
+    for (double v : row.velocity) line += "," + number(v);
+    for (double v : row.current) line += "," + number(v);
+    line += std::string(",") + bit(row.fixed_zero_switch) + "," + bit(row.moving_zero_switch) +
+            "," + bit(row.fixed_gripping) + "," + bit(row.moving_gripping) + "," +
+            number(row.battery_voltage) + "," + bit(row.battery_low) + "," + bit(row.link_up);
+    out << line << "\n";
+  }
+}
+
+std::string plotJointSpeeds(const std::vector<TimelineRow>& rows, double from_s, double to_s,
+                            const std::string& title) {
+  std::vector<const TimelineRow*> window;
+  for (const TimelineRow& row : rows) {
+    if (from_s <= row.t && row.t <= to_s) window.push_back(&row);
+  }
+  if (window.size() < 2) {
+    throw Error("joint speed plot: " + std::to_string(window.size()) + " timeline row(s) in [" +
+                number(from_s) + ", " + number(to_s) + "] s, need at least 2");
+  }
+  io::ScratchDir dir;
+  const std::string data = dir.file("speeds.dat"), png = dir.file("speeds.png");
+  {
+    std::ofstream file(data, std::ios::binary);
+    file << "# t_s J1_deg_per_s J2_deg_per_s J3_mm_per_s J4_mm_per_s J5_deg_per_s J6_rpm\n";
+    for (const TimelineRow* row : window) {
+      file << number(row->t);
+      for (double v : row->velocity) file << " " << number(v);
+      file << "\n";
+    }
+    if (!file) throw Error("joint speed plot: cannot write '" + data + "'");
+  }
+  // Phase shading: a rectangle per run of rows of one phase, from its first row to the next
+  // row of another phase (the last row at the end of the window).
+  const auto phaseOf = [](const TimelineRow& row) {
+    if (row.combined == "CB2") return 2;
+    if (row.combined == "CB1" || row.combined == "CB3") return 1;
+    return 0;
+  };
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1200,800 font 'Sans,11'\n"
+     << "set output " << io::gnuplotQuoted(png) << "\n";
+  int object = 1;
+  for (std::size_t i = 0; i < window.size();) {
+    const int phase = phaseOf(*window[i]);
+    std::size_t end = i + 1;
+    while (end < window.size() && phaseOf(*window[end]) == phase) ++end;
+    const double x0 = window[i]->t;
+    const double x1 = end < window.size() ? window[end]->t : window.back()->t;
+    if (phase != 0 && x1 > x0) {
+      gp << "set object " << object++ << " rect from " << number(x0) << ", graph 0 to "
+         << number(x1) << ", graph 1 behind fillcolor rgb "
+         << (phase == 2 ? "'#d6e6f5'" : "'#fbf0d9'") << " fillstyle solid 1.0 noborder\n";
+    }
+    i = end;
+  }
+  const double t0 = window.front()->t, t1 = window.back()->t;
+  if (t1 > t0) gp << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
+  // J6 on y2: its range padded as `set offsets` pads y1 (which it does not do for y2).
+  double j6_low = 0.0, j6_high = 0.0;
+  for (const TimelineRow* row : window) {
+    const double v = row->velocity[simJointIndex(SimJoint::kJ6)];
+    if (std::isfinite(v)) j6_low = std::min(j6_low, v), j6_high = std::max(j6_high, v);
+  }
+  if (j6_high - j6_low <= 0.0) j6_high = j6_low + 1.0;
+  const double j6_pad = 0.05 * (j6_high - j6_low);
+  j6_low -= j6_pad;
+  j6_high += j6_pad;
+  const std::string source = io::gnuplotQuoted(data);
+  const std::string shading =
+      "keyentry with boxes fillcolor rgb '#fbf0d9' fillstyle solid 1.0 noborder "
+      "title 'phase I (CB1, CB3)', keyentry with boxes fillcolor rgb '#d6e6f5' fillstyle solid "
+      "1.0 noborder title 'phase II (CB2)'";
+  gp << "set multiplot layout 2,1 title " << io::gnuplotQuoted(title) << "\n"
+     << "set grid\nset key at screen 0.995, graph 1 right top vertical box opaque\n"
+     << "set xlabel 'time [s]'\nset lmargin at screen 0.07\nset rmargin at screen 0.74\n"
+     << "set offsets 0, 0, graph 0.05, graph 0.05\n"
+     << "set title 'I: moving mechanism (J1-J3)'\n"
+     << "set ylabel 'J1, J2 [deg/s]; J3 [mm/s]'\n"
+     << "plot " << source << " using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'J1 [deg/s]', "
+     << source << " using 1:3 with lines lw 2 lc rgb '#ff7f0e' title 'J2 [deg/s]', " << source
+     << " using 1:4 with lines lw 2 lc rgb '#2ca02c' title 'J3 [mm/s]', " << shading << "\n"
+     << "set title 'II: cleaning mechanism (J4-J6)'\n"
+     << "set ylabel 'J4 [mm/s]; J5 [deg/s]'\nset y2label 'J6 [rpm]'\n"
+     << "set ytics nomirror\nset y2tics\nset y2range [" << number(j6_low) << ":" << number(j6_high)
+     << "]\n"
+     << "plot " << source << " using 1:5 with lines lw 2 lc rgb '#9467bd' title 'J4 [mm/s]', "
+     << source << " using 1:6 with lines lw 2 lc rgb '#8c564b' title 'J5 [deg/s]', " << source
+     << " using 1:7 axes x1y2 with lines lw 2 dt 2 lc rgb '#d62728' title 'J6 [rpm] (right)', "
+     << shading << "\n"
+     << "unset multiplot\n";
+  return io::runGnuplot(dir, gp.str(), png);
+}
+
+std::pair<double, double> firstDiscWindow(const std::vector<TimelineRow>& rows) {
+  if (rows.empty()) return {0.0, 0.0};
+  std::size_t i = 0;
+  while (i < rows.size() && rows[i].combined != "CB1") ++i;
+  std::size_t j = i;
+  while (j < rows.size() && rows[j].combined != "CB2") ++j;
+  if (j < rows.size()) {
+    while (j + 1 < rows.size() && rows[j + 1].combined == "CB2") ++j;
+    return {rows[i].t, rows[j].t};
+  }
+  return {rows.front().t, rows.back().t};
+}
+
+std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw Error("cannot create the directory '" + dir + "'" +
+                (ec ? ": " + ec.message() : ": it is not a directory"));
+  }
+  std::vector<std::pair<std::string, std::string>> graphs;  // (name, DOT text)
+  for (const CombinedBehavior& combined : model.combined) {
+    graphs.emplace_back(combined.name, stateMachineOf(combined).toDot());
+  }
+  graphs.emplace_back("task", taskMachine().toDot());
+
+  const std::string dot = findDot();
+  std::vector<std::string> written;
+  for (const auto& [name, text] : graphs) {
+    const std::string dot_path = (fs::path(dir) / (name + ".dot")).string();
+    writeWhole(dot_path, text);
+    written.push_back(dot_path);
+    if (dot.empty()) continue;
+    const std::string png_path = (fs::path(dir) / (name + ".png")).string();
+    writeWhole(png_path, renderPng(dot, dot_path));
+    written.push_back(png_path);
+  }
+  return written;
+}
+
+}  // namespace mcws

@@ -1,0 +1,192 @@
+// mcws_behave through its command line: --check, a clean run with its log, timeline, plot, DOT
+// and JSON summary, the literal model stopped by the invariant (exit 1), faults from a file, the
+// same log bytes twice, and bad command lines and files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kBehave = MCWS_BEHAVE_EXE;
+const std::string kModel = test::robotPath("insulator_cleaner_behaviors");
+const std::string kLiteral = std::string(MCWS_ROBOTS_DIR) +
+                             "/../tests/behavior/data/insulator_cleaner_behaviors_literal.yaml";
+const std::string kFaults = std::string(MCWS_SCENARIOS_DIR) + "/faults/";
+
+std::vector<nlohmann::json> jsonLines(const std::string& text) {
+  std::vector<nlohmann::json> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) out.push_back(nlohmann::json::parse(line));
+  return out;
+}
+
+TEST(BehaveApp, CheckPrintsTheCountsOfTheShippedModel) {
+  const test::RunResult r = test::run(kBehave + " --model " + kModel + " --check");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("96 combinations, 17 allowed, 79 forbidden"));
+  EXPECT_THAT(r.out, HasSubstr("valid"));
+  const test::RunResult j = test::run(kBehave + " --model " + kModel + " --check --json");
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const nlohmann::json report = nlohmann::json::parse(j.out);
+  EXPECT_EQ(report["state_vector_combinations"], 96);
+  EXPECT_EQ(report["allowed_poses"], 17);
+  EXPECT_EQ(report["basic_behaviors"], 9);
+  EXPECT_EQ(report["valid"], true);
+  ASSERT_EQ(report["combined_behaviors"].size(), 3u);
+  EXPECT_EQ(report["combined_behaviors"][0]["name"], "CB1");
+  EXPECT_EQ(report["combined_behaviors"][0]["transitions"], 6);
+  EXPECT_EQ(report["combined_behaviors"][1]["transitions"], 8);
+}
+
+TEST(BehaveApp, CheckFlagsTheSeedsLiteralCb1) {
+  const test::RunResult r = test::run(kBehave + " --model " + kLiteral + " --check");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("q6 -> q1"));
+  EXPECT_THAT(r.out, HasSubstr("1 pose finding"));
+}
+
+TEST(BehaveApp, ACleanRunWritesLogTimelinePlotDotAndSummary) {
+  test::TempDir dir;
+  const std::string log = dir.file("run.jsonl"), csv = dir.file("run.csv"),
+                    png = dir.file("run.png"), dot = dir.file("dot");
+  const test::RunResult r =
+      test::run(kBehave + " --model " + kModel + " --insulators 3 --log " + log + " --timeline " +
+                csv + " --plot " + png + " --dot " + dot + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The plan is echoed for the worker to confirm.
+  EXPECT_THAT(r.err, HasSubstr("1 CB1 move down one disc -> disc 1"));
+  EXPECT_THAT(r.err, HasSubstr("9 CB3 move up one disc -> disc 0"));
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["status"], "completed");
+  EXPECT_EQ(summary["discs_cleaned"], 3);
+  EXPECT_EQ(summary["final_disc"], 0);
+  EXPECT_EQ(summary["behaviors_run"], 60);
+  EXPECT_EQ(summary["invariant"]["holds"], true);
+
+  const std::vector<nlohmann::json> lines = jsonLines(test::readFile(log));
+  ASSERT_GT(lines.size(), 60u);
+  EXPECT_EQ(lines[0]["event"], "log_header");
+  int transitions = 0;
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    for (const char* key : {"t", "subtask", "state", "event", "behavior"}) {
+      EXPECT_TRUE(lines[k].contains(key)) << key << " in " << lines[k].dump();
+    }
+    const std::string event = lines[k]["event"];
+    transitions += event == "zero_switch" || event == "encoder_reached" ||
+                   event == "encoder_zero" || event == "current_held" || event == "speed_reached" ||
+                   event == "speed_zero";
+  }
+  EXPECT_EQ(transitions, 60);  // every behaviour ended on its event and fired its transition
+  EXPECT_EQ(lines.back()["event"], "run_end");
+
+  const std::string timeline = test::readFile(csv);
+  EXPECT_EQ(timeline.rfind("t_s,step,subtask,task_state,cb,state,J1_deg,", 0), 0u);
+  // One row every 0.1 s of the simulated duration, plus the header and the row at 0.
+  const double duration = summary["duration_s"];
+  EXPECT_NEAR(test::lineCount(timeline), duration / 0.1 + 2, 1.0);
+  EXPECT_EQ(test::readFile(png).rfind("\x89PNG", 0), 0u);
+  for (const char* name : {"CB1.dot", "CB2.dot", "CB3.dot", "task.dot"}) {
+    EXPECT_THAT(test::readFile(dot + "/" + name), HasSubstr("digraph")) << name;
+  }
+}
+
+TEST(BehaveApp, SameInputsSameLogBytes) {
+  test::TempDir dir;
+  const std::string args = " --model " + kModel + " --insulators 2 --faults " + kFaults +
+                           "rehearsal.yaml --timeline-period 0.5";
+  ASSERT_EQ(test::run(kBehave + args + " --log " + dir.file("a.jsonl") + " --timeline " +
+                      dir.file("a.csv"))
+                .exit_code,
+            0);
+  ASSERT_EQ(test::run(kBehave + args + " --log " + dir.file("b.jsonl") + " --timeline " +
+                      dir.file("b.csv"))
+                .exit_code,
+            0);
+  EXPECT_EQ(test::readFile(dir.file("a.jsonl")), test::readFile(dir.file("b.jsonl")));
+  EXPECT_EQ(test::readFile(dir.file("a.csv")), test::readFile(dir.file("b.csv")));
+  EXPECT_GT(test::readFile(dir.file("a.jsonl")).size(), 1000u);
+}
+
+TEST(BehaveApp, TheLiteralModelIsStoppedByTheInvariantWithExit1) {
+  test::TempDir dir;
+  const std::string log = dir.file("literal.jsonl");
+  const test::RunResult r =
+      test::run(kBehave + " --model " + kLiteral + " --insulators 3 --log " + log + " --json");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("safety invariant violated at step "));
+  EXPECT_THAT(r.err, HasSubstr("both clamps open"));
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["status"], "invariant_violated");
+  EXPECT_EQ(summary["invariant"]["holds"], false);
+  EXPECT_EQ(summary["invariant"]["violation"]["state"], "q1");
+  EXPECT_EQ(summary["invariant"]["violation"]["behavior"], "BB_UG_Release");
+  // The log is kept: it is what shows the engineer how the robot got there.
+  const std::vector<nlohmann::json> lines = jsonLines(test::readFile(log));
+  ASSERT_GE(lines.size(), 2u);
+  EXPECT_EQ(lines[lines.size() - 2]["event"], "invariant_violated");
+}
+
+TEST(BehaveApp, EachShippedFaultFileGivesItsDocumentedReaction) {
+  struct Case {
+    const char* file;
+    int discs;
+    const char* status;
+    const char* fault;
+  };
+  for (const Case& c : {Case{"link_outage.yaml", 3, "completed", "link_down"},
+                        Case{"link_lost.yaml", 3, "returned", "link_down"},
+                        Case{"stuck_switch.yaml", 3, "completed", "timeout"},
+                        Case{"low_battery.yaml", 8, "returned", "battery_low"},
+                        Case{"rehearsal.yaml", 3, "completed", "wrong_command"}}) {
+    const test::RunResult r =
+        test::run(kBehave + " --model " + kModel + " --insulators " + std::to_string(c.discs) +
+                  " --faults " + kFaults + c.file + " --json");
+    ASSERT_EQ(r.exit_code, 0) << c.file << "\n" << r.err;
+    const nlohmann::json summary = nlohmann::json::parse(r.out);
+    EXPECT_EQ(summary["status"], c.status) << c.file;
+    EXPECT_EQ(summary["invariant"]["holds"], true) << c.file;
+    EXPECT_EQ(summary["final_disc"], 0) << c.file;
+    bool seen = false;
+    for (const auto& f : summary["faults"]) seen = seen || f["fault"] == c.fault;
+    EXPECT_TRUE(seen) << c.file << ": " << summary["faults"].dump();
+  }
+}
+
+TEST(BehaveApp, BadCommandLinesAndFilesAreOneLineErrors) {
+  test::TempDir out;
+  const std::string log = " --log " + out.file("run.jsonl");
+  test::expectToolFailure(kBehave, "--model " + kModel + log, 2, "--check or --insulators", out);
+  test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 0" + log, 2, "insulators",
+                          out);
+  test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 3x" + log, 2, "3x", out);
+  test::expectToolFailure(kBehave, "--model " + kModel + " --check --insulators 3", 2,
+                          "--check or --insulators", out);
+  test::expectToolFailure(kBehave, "--insulators 3" + log, 2, "model", out);
+  test::expectToolFailure(kBehave,
+                          "--model " + kModel + " --insulators 3 --timeline-period 0" + log, 2,
+                          "timeline-period", out);
+  test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 3 --log " + kModel, 2,
+                          "log", out);
+  // A bad fault file names its file and line.
+  test::TempDir in;
+  const std::string faults = in.file("f.yaml");
+  test::writeFile(faults, "faults:\n  - {at: 10 s, type: link_dwn}\n");
+  test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 3 --faults " + faults + log,
+                          1, "f.yaml:2", out);
+  test::expectToolFailure(kBehave, "--model " + in.file("missing.yaml") + " --insulators 3" + log,
+                          1, "missing.yaml", out);
+  EXPECT_EQ(test::readFile(faults), "faults:\n  - {at: 10 s, type: link_dwn}\n");
+}
+
+}  // namespace
+}  // namespace mcws

@@ -1,0 +1,459 @@
+// Seed 004 sections 2.2-2.4 and 3.2: the executor runs the task plan on the simulated robot.
+// Expectations are the seed's CB1 table, the model file's CB2 and CB3, and times worked by hand
+// from the simulator's closed-form motions.
+#include "mcws/behavior/behavior_executor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mcws/core/error.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+const BehaviorModel& model() {
+  static const BehaviorModel m = loadBehaviorModel(test::robotPath("insulator_cleaner_behaviors"));
+  return m;
+}
+
+const BehaviorModel& literalModel() {
+  static const BehaviorModel m =
+      loadBehaviorModel(std::string(MCWS_ROBOTS_DIR) +
+                        "/../tests/behavior/data/insulator_cleaner_behaviors_literal.yaml");
+  return m;
+}
+
+/// Everything a run reported.
+struct Recorded {
+  std::vector<LogRecord> log;
+  std::vector<SimSnapshot> steps;
+  std::vector<StepContext> contexts;
+  RunSummary summary;
+  /// Steps at which neither clamp gripped, counted independently of the executor.
+  int unsafe_steps{0};
+
+  /// The log records of one event, in order.
+  std::vector<LogRecord> events(const std::string& event) const {
+    std::vector<LogRecord> out;
+    for (const LogRecord& r : log) {
+      if (r.event == event) out.push_back(r);
+    }
+    return out;
+  }
+  /// The records of sub-task k.
+  std::vector<LogRecord> subtask(int k) const {
+    std::vector<LogRecord> out;
+    for (const LogRecord& r : log) {
+      if (r.subtask == k) out.push_back(r);
+    }
+    return out;
+  }
+};
+
+Recorded runJob(const BehaviorModel& m, int discs, const FaultScript& faults = {}) {
+  RunOptions options = RunOptions::forModel(m, discs);
+  options.faults = faults;
+  Recorded rec;
+  RunObserver observer;
+  observer.on_log = [&](const LogRecord& r) { rec.log.push_back(r); };
+  observer.on_step = [&](const SimSnapshot& s, const StepContext& c) {
+    rec.steps.push_back(s);
+    rec.contexts.push_back(c);
+    if (!s.joint(kFixedClamp).gripping && !s.joint(kMovingClamp).gripping) ++rec.unsafe_steps;
+  };
+  rec.summary = runCleaningJob(m, options, observer);
+  return rec;
+}
+
+/// The transitions fired in sub-task k: "from -> to" with behaviour and event.
+struct Fired {
+  std::string from, to, behavior, event;
+};
+std::vector<Fired> firedIn(const Recorded& rec, int k) {
+  std::vector<Fired> out;
+  for (const LogRecord& r : rec.subtask(k)) {
+    const auto arrow = r.detail.find(" -> ");
+    if (r.event == "subtask_start" || r.event == "subtask_done" || arrow == std::string::npos ||
+        r.seq) {
+      continue;
+    }
+    out.push_back({r.detail.substr(0, arrow), r.detail.substr(arrow + 4), r.behavior, r.event});
+  }
+  return out;
+}
+
+InjectedFault fault(FaultKind kind, double at) {
+  InjectedFault f;
+  f.kind = kind;
+  f.at_s = at;
+  return f;
+}
+
+TEST(Executor, Cb1FollowsTheSeedsTableSixBehavioursOnePitchDown) {
+  const Recorded rec = runJob(model(), 1);
+  // The seed's section 3.2 walk-through, with the corrected q6 -> q1 (the moving clamp closes).
+  const std::vector<Fired> expected = {
+      {"q1", "q2", "BB_UG_Release", "zero_switch"}, {"q2", "q3", "BB_MP_Extend", "encoder_reached"},
+      {"q3", "q4", "BB_UG_Clamp", "current_held"},  {"q4", "q5", "BB_LG_Release", "zero_switch"},
+      {"q5", "q6", "BB_MP_Home", "encoder_zero"},   {"q6", "q1", "BB_LG_Clamp", "current_held"}};
+  const std::vector<Fired> fired = firedIn(rec, 1);
+  ASSERT_EQ(fired.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(fired[k].from, expected[k].from) << k;
+    EXPECT_EQ(fired[k].to, expected[k].to) << k;
+    EXPECT_EQ(fired[k].behavior, expected[k].behavior) << k;
+    EXPECT_EQ(fired[k].event, expected[k].event) << k;
+  }
+  int commands = 0;
+  for (const LogRecord& r : rec.subtask(1)) commands += r.event == "command";
+  EXPECT_EQ(commands, 6);
+  // The robot body (fixed platform) went down exactly one pitch; J3 out to one pitch and home.
+  double j3_peak = 0.0, body_at_end = 0.0;
+  for (std::size_t k = 0; k < rec.steps.size(); ++k) {
+    if (rec.contexts[k].subtask != 1) continue;
+    j3_peak = std::max(j3_peak, rec.steps[k].joint(SimJoint::kJ3).position);
+    body_at_end = rec.steps[k].fixed_platform_position;
+  }
+  EXPECT_DOUBLE_EQ(j3_peak, 155.0);
+  EXPECT_NEAR(body_at_end, 155.0, 1e-9);
+  // Hand-worked times: the fixed jaw opens from its 25 deg contact angle at 10 deg/s, so its
+  // zero switch closes at 2.5 s; J3 then runs 155 mm at 10 mm/s with 40 mm/s^2 ramps:
+  // 155 / 10 + 10 / 40 = 15.75 s, and the encoder (100 counts/mm) reads 15500 once the
+  // remaining distance 40 tau^2 / 2 is below 0.005 mm, i.e. tau < 0.0158 s before the end.
+  EXPECT_NEAR(rec.subtask(1)[2 + 1].t, 2.5, 1e-9);  // subtask_start, command, zero_switch
+  const double extended = firedIn(rec, 1).size() ? rec.events("encoder_reached")[0].t : 0.0;
+  EXPECT_LE(extended, 2.5 + 15.75 + 1e-9);
+  EXPECT_GE(extended, 2.5 + 15.75 - 0.0159);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, Cb2VisitsQ7ToQ13AndCleansBothShedsAllRound) {
+  const Recorded rec = runJob(model(), 1);
+  const std::vector<Fired> fired = firedIn(rec, 2);
+  const std::vector<std::string> states = {"q1",  "q7",  "q8",  "q9", "q10",
+                                           "q11", "q12", "q13", "q1"};
+  ASSERT_EQ(fired.size(), states.size() - 1);
+  for (std::size_t k = 0; k < fired.size(); ++k) {
+    EXPECT_EQ(fired[k].from, states[k]) << k;
+    EXPECT_EQ(fired[k].to, states[k + 1]) << k;
+  }
+  // While the guide turns in q8 (upper shed) and q11 (lower shed), J4 holds the shed's position
+  // (60 and 100 mm in the model), the brush spins at 300 rpm, and J5 sweeps the whole circle.
+  struct Sweep {
+    double j4, lo{1e9}, hi{-1e9};
+    bool held{true};
+  };
+  Sweep upper{60.0}, lower{100.0};
+  for (std::size_t k = 0; k < rec.steps.size(); ++k) {
+    if (rec.contexts[k].subtask != 2) continue;
+    Sweep* s = rec.contexts[k].state == "q8"    ? &upper
+               : rec.contexts[k].state == "q11" ? &lower
+                                                : nullptr;
+    if (!s) continue;
+    const SimSnapshot& snap = rec.steps[k];
+    s->lo = std::min(s->lo, snap.joint(SimJoint::kJ5).position);
+    s->hi = std::max(s->hi, snap.joint(SimJoint::kJ5).position);
+    s->held = s->held && snap.joint(SimJoint::kJ4).position == s->j4 &&
+              snap.joint(SimJoint::kJ6).velocity == 300.0;
+  }
+  for (const Sweep* s : {&upper, &lower}) {
+    EXPECT_TRUE(s->held) << s->j4;
+    // The turn's ending event fires when the encoder (50 counts/deg) reads the target count,
+    // i.e. within half a count, 0.01 deg, of the end.
+    EXPECT_NEAR(s->lo, 0.0, 0.01) << s->j4;
+    EXPECT_NEAR(s->hi, 360.0, 0.01) << s->j4;
+  }
+  EXPECT_EQ(rec.summary.discs_cleaned, 1);
+}
+
+TEST(Executor, ThreeDiscsRunThePlanInOrderAndEndWhereMounted) {
+  const Recorded rec = runJob(model(), 3);
+  const std::vector<std::string> expected = {"CB1", "CB2", "CB1", "CB2", "CB1",
+                                             "CB2", "CB3", "CB3", "CB3"};
+  const std::vector<LogRecord> starts = rec.events("subtask_start");
+  ASSERT_EQ(starts.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(starts[k].combined, expected[k]) << k;
+    EXPECT_EQ(starts[k].subtask, static_cast<int>(k + 1));
+  }
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  EXPECT_EQ(rec.summary.discs_cleaned, 3);
+  EXPECT_EQ(rec.summary.final_disc, 0);
+  EXPECT_EQ(rec.summary.subtasks_completed, 9);
+  EXPECT_EQ(rec.summary.behaviors_run, 3u * 6 + 3 * 8 + 3 * 6);
+  // Where the worker mounted it: fixed clamp on the fitting (0 mm), moving clamp two pitches below.
+  EXPECT_NEAR(rec.steps.back().fixed_platform_position, 0.0, 1e-9);
+  EXPECT_NEAR(rec.steps.back().moving_platform_position, 310.0, 1e-9);
+  EXPECT_NEAR(rec.summary.phase_one_s + rec.summary.phase_two_s, rec.summary.duration_s, 1e-6);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+  EXPECT_EQ(rec.summary.faults.size(), 0u);
+}
+
+TEST(Executor, TheSeedsLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
+  // Read literally, q6 -> q1 closes the fixed clamp (already closed) and leaves the moving clamp
+  // open; the robot cleans disc 1 holding by one clamp and the second CB1's first step (the
+  // fixed clamp releases) opens both. The run must stop at that very step.
+  const Recorded rec = runJob(literalModel(), 3);
+  ASSERT_EQ(rec.summary.status, RunStatus::kInvariantViolated);
+  ASSERT_TRUE(rec.summary.violation);
+  const InvariantViolation& v = *rec.summary.violation;
+  EXPECT_EQ(v.subtask, 3);
+  EXPECT_EQ(v.combined, "CB1");
+  EXPECT_EQ(v.state, "q1");
+  EXPECT_EQ(v.behavior, "BB_UG_Release");
+  const LogRecord start = rec.events("subtask_start")[2];
+  EXPECT_EQ(v.step, start.step + 1);  // the jaw leaves the disc in the first step of its release
+  EXPECT_NE(v.message.find("step " + std::to_string(v.step)), std::string::npos) << v.message;
+  EXPECT_EQ(rec.unsafe_steps, 1);  // the violating step, and nothing after it
+  EXPECT_EQ(rec.steps.back().step, v.step);
+  // The shipped model runs the same plan safely.
+  EXPECT_EQ(runJob(model(), 3).summary.status, RunStatus::kCompleted);
+}
+
+TEST(Executor, ALinkLostForLessThanTheWaitStopsThenResumes) {
+  FaultScript faults;
+  faults.link_wait_s = 60.0;
+  InjectedFault down = fault(FaultKind::kLinkDown, 10.0);  // during CB1's J3 extension
+  down.duration_s = 40.0;
+  faults.faults = {down};
+  const Recorded rec = runJob(model(), 2, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  EXPECT_EQ(rec.summary.discs_cleaned, 2);
+  ASSERT_EQ(rec.events("link_lost").size(), 1u);
+  ASSERT_EQ(rec.events("link_restored").size(), 1u);
+  EXPECT_NEAR(rec.events("link_lost")[0].t, 10.0, 1e-9);
+  EXPECT_NEAR(rec.events("link_restored")[0].t, 50.0, 1e-9);
+  EXPECT_EQ(rec.events("link_lost")[0].task_state, "FAULT");
+  EXPECT_EQ(rec.events("link_restored")[0].task_state, "CB1");
+  // J3 brakes from 10 mm/s at 40 mm/s^2 (0.25 s) and then stands still until the link is back.
+  double first = -1.0;
+  for (std::size_t k = 0; k < rec.steps.size(); ++k) {
+    const double t = rec.steps[k].time;
+    if (t < 10.3 || t > 50.0) continue;
+    const double j3 = rec.steps[k].joint(SimJoint::kJ3).position;
+    if (first < 0.0) first = j3;
+    EXPECT_EQ(j3, first) << t;
+  }
+  // The interrupted behaviour was sent again after the outage: seven commands in sub-task 1.
+  int commands = 0;
+  for (const LogRecord& r : rec.subtask(1)) commands += r.event == "command";
+  EXPECT_EQ(commands, 7);
+  ASSERT_EQ(rec.summary.faults.size(), 1u);
+  EXPECT_EQ(rec.summary.faults[0].fault, "link_down");
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, ALinkLostForGoodBringsTheRobotBackToTheStart) {
+  // Lost in the second CB1 with the fixed clamp open (q2, J3 extending): CB1 goes on to q4
+  // (both clamps closed), CB3 from q4 undoes the half move, then one CB3 for disc 1.
+  const Recorded clean = runJob(model(), 3);
+  const double second_cb1 = clean.events("subtask_start")[2].t;
+  FaultScript faults;
+  faults.link_wait_s = 30.0;
+  faults.faults = {fault(FaultKind::kLinkDown, second_cb1 + 10.0)};
+  const Recorded rec = runJob(model(), 3, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_EQ(rec.summary.discs_cleaned, 1);
+  EXPECT_EQ(rec.summary.final_disc, 0);
+  ASSERT_EQ(rec.events("return_start").size(), 1u);
+  EXPECT_NEAR(rec.events("return_start")[0].t, second_cb1 + 40.0, 1e-9);
+  const std::vector<LogRecord> starts = rec.events("subtask_start");
+  ASSERT_EQ(starts.size(), 5u);  // CB1, CB2, CB1 (cut), CB3 from q4, CB3
+  EXPECT_EQ(starts[3].combined, "CB3");
+  EXPECT_EQ(starts[3].state, "q4");
+  EXPECT_EQ(starts[4].combined, "CB3");
+  EXPECT_EQ(starts[4].state, "q1");
+  EXPECT_NEAR(rec.steps.back().fixed_platform_position, 0.0, 1e-9);
+  EXPECT_NEAR(rec.steps.back().moving_platform_position, 310.0, 1e-9);
+  EXPECT_TRUE(rec.steps.back().joint(kFixedClamp).gripping);
+  EXPECT_TRUE(rec.steps.back().joint(kMovingClamp).gripping);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, ALinkLostWhileCleaningFinishesTheDiscThenReturns) {
+  const Recorded clean = runJob(model(), 2);
+  const double first_cb2 = clean.events("subtask_start")[1].t;
+  FaultScript faults;
+  faults.link_wait_s = 5.0;
+  faults.faults = {fault(FaultKind::kLinkDown, first_cb2 + 20.0)};  // the guide turning, q8
+  const Recorded rec = runJob(model(), 2, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_EQ(rec.summary.discs_cleaned, 1);
+  EXPECT_EQ(rec.summary.final_disc, 0);
+  // The brush was stopped with everything else and spun up again before the guide resumed.
+  ASSERT_EQ(rec.events("restore").size(), 1u);
+  EXPECT_EQ(rec.events("restore")[0].behavior, "BB_Brush");
+  EXPECT_EQ(rec.events("restore")[0].state, "q8");
+  EXPECT_NEAR(rec.steps.back().fixed_platform_position, 0.0, 1e-9);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, AStuckZeroSwitchTimesOutToTheOperatorWhoRepairsIt) {
+  FaultScript faults;
+  InjectedFault stuck = fault(FaultKind::kZeroSwitchStuck, 0.0);
+  stuck.clamp = kFixedClamp;
+  stuck.reads_pressed = false;
+  faults.faults = {stuck};
+  faults.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
+  const Recorded rec = runJob(model(), 1, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  // BB_UG_Release's timeout is 15 s from q1's entry at 0 s; the operator acts 30 s later; the
+  // re-sent release finds the repaired switch pressed at once (the jaw is fully open).
+  ASSERT_EQ(rec.events("timeout").size(), 1u);
+  EXPECT_NEAR(rec.events("timeout")[0].t, 15.0, 1e-9);
+  EXPECT_EQ(rec.events("timeout")[0].behavior, "BB_UG_Release");
+  ASSERT_EQ(rec.events("operator").size(), 1u);
+  EXPECT_NEAR(rec.events("operator")[0].t, 45.0, 1e-9);
+  EXPECT_EQ(rec.events("manual")[0].task_state, "MANUAL");
+  EXPECT_NEAR(rec.events("zero_switch")[0].t, 45.01, 1e-9);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+
+  // With no scripted response the run ends in MANUAL, the robot stopped and holding.
+  faults.operator_responses.clear();
+  const Recorded halted = runJob(model(), 1, faults);
+  EXPECT_EQ(halted.summary.status, RunStatus::kHaltedInManual);
+  EXPECT_NEAR(halted.summary.duration_s, 15.0, 1e-9);
+  EXPECT_TRUE(halted.steps.back().joint(kMovingClamp).gripping);
+}
+
+TEST(Executor, LowBatteryRaisesTheAlarmAndFinishesTheDiscBeforeReturning) {
+  // A 20 A drain from the start: the voltage falls below 22.2 V when (22.2 - 21) / (25.2 - 21)
+  // = 2/7 of the 5 A h is left, i.e. after 3.571 A h / (20 + 0.3 + motors) A, about 630 s: on
+  // the way down, some discs before the eighth.
+  FaultScript faults;
+  InjectedFault drain = fault(FaultKind::kBatteryDrain, 0.0);
+  drain.current_a = 20.0;
+  faults.faults = {drain};
+  const Recorded rec = runJob(model(), 8, faults);
+  ASSERT_TRUE(rec.summary.battery_alarm_t);
+  const double alarm = *rec.summary.battery_alarm_t;
+  ASSERT_EQ(rec.events("battery_low").size(), 1u);
+  // Independent check: the first step the simulator reported the flag.
+  double first_low = -1.0;
+  for (const SimSnapshot& s : rec.steps) {
+    if (s.battery_low) {
+      first_low = s.time;
+      break;
+    }
+  }
+  EXPECT_EQ(alarm, first_low);
+  // The disc in hand at the alarm is finished (its CB2 completes), then the robot returns.
+  int disc_at_alarm = 0;
+  bool in_cb1 = false;
+  for (const LogRecord& r : rec.log) {
+    if (r.t > alarm) break;
+    disc_at_alarm = r.disc;
+    in_cb1 = r.combined == "CB1";
+  }
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_EQ(rec.summary.discs_cleaned, disc_at_alarm + (in_cb1 ? 1 : 0));
+  EXPECT_LT(rec.summary.discs_cleaned, 8);
+  EXPECT_EQ(rec.summary.final_disc, 0);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+  // Policy alarm_only: the same alarm, and the whole job.
+  faults.low_battery = LowBatteryPolicy::kAlarmOnly;
+  const Recorded on = runJob(model(), 8, faults);
+  EXPECT_EQ(on.summary.battery_alarm_t, rec.summary.battery_alarm_t);
+  EXPECT_EQ(on.summary.status, RunStatus::kCompleted);
+  EXPECT_EQ(on.summary.discs_cleaned, 8);
+}
+
+TEST(Executor, ACorruptedCommandIsRejectedAndResent) {
+  FaultScript faults;
+  faults.faults = {fault(FaultKind::kCorruptCommand, 2.0)};  // hits q2's J3 command at 2.5 s
+  const Recorded rec = runJob(model(), 1, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  const std::vector<LogRecord> rejected = rec.events("command_rejected");
+  ASSERT_EQ(rejected.size(), 1u);
+  EXPECT_EQ(rejected[0].behavior, "BB_MP_Extend");  // the first command sent after 2 s
+  ASSERT_TRUE(rejected[0].seq);
+  // The same command goes again with the next sequence number, at the same step.
+  const std::vector<LogRecord> commands = rec.events("command");
+  bool resent = false;
+  for (const LogRecord& c : commands) {
+    resent = resent || (c.seq && *c.seq == *rejected[0].seq + 1 && c.behavior == "BB_MP_Extend" &&
+                        c.step == rejected[0].step);
+  }
+  EXPECT_TRUE(resent);
+  EXPECT_EQ(rec.summary.commands_sent, 20u + 1u);
+}
+
+TEST(Executor, TheInterferenceCheckRefusesWrongCommands) {
+  // Beyond J4's 130 mm limit: the simulator's (the robot file's) joint limits.
+  FaultScript faults;
+  InjectedFault beyond = fault(FaultKind::kWrongCommand, 0.0);
+  beyond.command = SimCommand::moveTo(SimJoint::kJ4, 200.0);
+  // J4 in over the upper shed while the fixed clamp is open (CB1's q2): the pose rule
+  // fixed_clamp_open_parks_the_cleaner forbids it.
+  InjectedFault forbidden = fault(FaultKind::kWrongCommand, 1.0);
+  forbidden.command = SimCommand::moveTo(SimJoint::kJ4, 60.0);
+  faults.faults = {beyond, forbidden};
+  const Recorded rec = runJob(model(), 1, faults);
+  const std::vector<LogRecord> refused = rec.events("refused");
+  ASSERT_EQ(refused.size(), 2u);
+  EXPECT_NE(refused[0].detail.find("J4"), std::string::npos) << refused[0].detail;
+  EXPECT_NE(refused[0].detail.find("200"), std::string::npos) << refused[0].detail;
+  EXPECT_EQ(refused[1].state, "q2");
+  EXPECT_NE(refused[1].detail.find("fixed_clamp_open_parks_the_cleaner"), std::string::npos)
+      << refused[1].detail;
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  EXPECT_EQ(rec.summary.faults.size(), 2u);
+  // The refused commands never reached J4 in CB1.
+  for (std::size_t k = 0; k < rec.steps.size(); ++k) {
+    if (rec.contexts[k].combined == "CB1") {
+      EXPECT_EQ(rec.steps[k].joint(SimJoint::kJ4).position, 0.0);
+    }
+  }
+}
+
+TEST(Executor, SameInputsSameLog) {
+  FaultScript faults;
+  InjectedFault down = fault(FaultKind::kLinkDown, 70.0);
+  down.duration_s = 12.0;
+  faults.faults = {down, fault(FaultKind::kCorruptCommand, 100.0)};
+  const Recorded a = runJob(model(), 2, faults), b = runJob(model(), 2, faults);
+  ASSERT_EQ(a.log.size(), b.log.size());
+  for (std::size_t k = 0; k < a.log.size(); ++k) {
+    EXPECT_EQ(a.log[k].t, b.log[k].t);
+    EXPECT_EQ(a.log[k].step, b.log[k].step);
+    EXPECT_EQ(a.log[k].event, b.log[k].event);
+    EXPECT_EQ(a.log[k].detail, b.log[k].detail);
+    EXPECT_EQ(a.log[k].state, b.log[k].state);
+  }
+  ASSERT_EQ(a.steps.size(), b.steps.size());
+  EXPECT_TRUE(a.steps.back() == b.steps.back());
+}
+
+TEST(Executor, TheTaskMachineHasTheSeedsSuperstates) {
+  StateMachine task = taskMachine();
+  for (const char* s : {"CB1", "CB2", "CB3", "FAULT", "MANUAL"}) EXPECT_TRUE(task.hasState(s)) << s;
+  EXPECT_EQ(task.current(), "idle");
+  EXPECT_TRUE(task.fire("next_CB1"));
+  EXPECT_TRUE(task.fire("link_lost"));
+  EXPECT_EQ(task.current(), "FAULT");
+  EXPECT_FALSE(task.fire("next_CB2"));  // nothing runs while the link is down
+  EXPECT_TRUE(task.fire("resume_CB1"));
+  EXPECT_TRUE(task.fire("hand_over"));
+  EXPECT_EQ(task.current(), "MANUAL");
+  EXPECT_TRUE(task.fire("resume_CB1"));
+  EXPECT_TRUE(task.fire("next_CB2"));
+  EXPECT_TRUE(task.fire("next_CB3"));
+  EXPECT_TRUE(task.fire("job_done"));
+  EXPECT_TRUE(task.inFinal());
+}
+
+TEST(Executor, BadOptionsAreRejected) {
+  RunOptions options = RunOptions::forModel(model(), 0);
+  EXPECT_NE(test::errorOf([&] { runCleaningJob(model(), options); }).find("insulators"),
+            std::string::npos);
+  options = RunOptions::forModel(model(), 2);
+  options.max_time_s = 100.0;
+  EXPECT_EQ(runCleaningJob(model(), options).status, RunStatus::kTimeLimit);
+}
+
+}  // namespace
+}  // namespace mcws
