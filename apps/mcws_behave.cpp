@@ -2,6 +2,7 @@
 // the task plan for N discs run by the task machine, the combined behaviours' state machines and
 // the basic behaviours on a time-stepped robot, with faults injected and the safety invariant
 // checked at every step.
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -13,64 +14,6 @@
 namespace {
 
 using namespace mcws;
-
-std::string fixed(double value, int decimals) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(decimals);
-  out << value;
-  return out.str();
-}
-
-std::string summaryText(const RunSummary& s) {
-  std::ostringstream out;
-  out << "status: " << runStatusName(s.status) << "\n"
-      << "discs cleaned: " << s.discs_cleaned << " of " << s.discs_requested << "; at the end "
-      << s.final_disc << " disc(s) below the start\n"
-      << "duration: " << fixed(s.duration_s, 2)
-      << " s simulated (phase I, moving: " << fixed(s.phase_one_s, 2)
-      << " s; phase II, cleaning: " << fixed(s.phase_two_s, 2) << " s), " << s.steps << " steps\n"
-      << "sub-tasks completed: " << s.subtasks_completed
-      << "; basic behaviours run: " << s.behaviors_run << "; commands sent: " << s.commands_sent
-      << "\n"
-      << "battery: " << fixed(s.battery_voltage_end, 2) << " V at the end, "
-      << fixed(s.battery_charge_used, 3) << " A h used; "
-      << (s.battery_alarm_t ? "low-battery alarm at " + fixed(*s.battery_alarm_t, 2) + " s"
-                            : std::string("no alarm"))
-      << "\n";
-  out << "faults: " << (s.faults.empty() ? "none" : std::to_string(s.faults.size())) << "\n";
-  for (const FaultReaction& f : s.faults) {
-    out << "  t = " << fixed(f.t, 2) << " s  " << f.fault << ": " << f.reaction << "\n";
-  }
-  out << "safety invariant (a clamp grips the string at every step): "
-      << (s.violation ? "VIOLATED at " + s.violation->message
-                      : "held at all " + std::to_string(s.steps) + " steps")
-      << "\n";
-  return out.str();
-}
-
-nlohmann::ordered_json checkJson(const ValidationReport& report,
-                                 const std::vector<PoseFinding>& findings) {
-  nlohmann::ordered_json j;
-  j["valid"] = findings.empty();
-  j["state_vector_combinations"] = report.combinations;
-  j["allowed_poses"] = report.allowed_poses;
-  j["forbidden_poses"] = report.forbidden_poses;
-  j["states_with_poses"] = report.states;
-  j["poses_used"] = report.poses_used;
-  j["basic_behaviors"] = report.behaviors;
-  j["events"] = report.events;
-  j["combined_behaviors"] = nlohmann::ordered_json::array();
-  for (const CombinedBehaviorCounts& c : report.combined) {
-    j["combined_behaviors"].push_back({{"name", c.name},
-                                       {"states", c.states},
-                                       {"transitions", c.transitions},
-                                       {"events", c.events}});
-  }
-  j["pose_findings"] = nlohmann::ordered_json::array();
-  for (const PoseFinding& f : findings) j["pose_findings"].push_back(f.message);
-  return j;
-}
 
 /// A text output: written under a temporary name, renamed when the run is over.
 struct Output {
@@ -155,26 +98,24 @@ int main(int argc, char** argv) {
     const BehaviorModel model = loadBehaviorModel(model_path);
     const ValidationReport report = validateBehaviorModel(model);
     const std::vector<PoseFinding> findings = checkPoseConsistency(model);
+    for (const PoseFinding& f : findings) {
+      std::cerr << "mcws_behave: pose check: " << f.message << "\n";
+    }
+    RunOptions options = RunOptions::forModel(model, std::max(insulators, 1));
+    if (!faults_path.empty()) options.faults = loadFaultScript(faults_path);
     if (!dot_dir.empty()) {
       for (const std::string& file : writeStateMachineDots(model, dot_dir)) {
         std::cerr << "mcws_behave: wrote " << file << "\n";
       }
     }
-    for (const PoseFinding& f : findings)
-      std::cerr << "mcws_behave: pose check: " << f.message << "\n";
     if (check) {
-      if (cli.has("json")) {
-        std::cout << checkJson(report, findings).dump() << "\n";
-      } else {
-        std::cout << report.summary();
-        std::cout << (findings.empty() ? "valid\n"
-                                       : std::to_string(findings.size()) + " pose finding(s)\n");
-      }
+      std::cout << (cli.has("json")
+                        ? checkJson(report, findings).dump() + "\n"
+                        : report.summary() + (findings.empty() ? "valid\n"
+                                                               : std::to_string(findings.size()) +
+                                                                     " pose finding(s)\n"));
       return findings.empty() ? app::kExitOk : app::kExitFailure;
     }
-
-    RunOptions options = RunOptions::forModel(model, insulators);
-    if (!faults_path.empty()) options.faults = loadFaultScript(faults_path);
     std::cerr << "mcws_behave: plan for " << insulators << " disc(s):\n"
               << describePlan(planCleaningTask(insulators));
 
@@ -206,11 +147,7 @@ int main(int argc, char** argv) {
     log.commit();
     timeline.commit();
     plot.commit();
-    if (cli.has("json")) {
-      std::cout << summaryJson(summary).dump() << "\n";
-    } else {
-      std::cout << summaryText(summary);
-    }
+    std::cout << (cli.has("json") ? summaryJson(summary).dump() + "\n" : summaryText(summary));
     if (summary.status == RunStatus::kInvariantViolated) {
       std::cerr << "mcws_behave: safety invariant violated at " << summary.violation->message
                 << "\n";

@@ -3,7 +3,8 @@
 # de-icing arm of seed 000 (its X-Z plane workspace, Fig. 5, and its 3-D workspace, Fig. 6; 6000
 # samples each), extract the X-Z boundary from 100000 samples (Fig. 13), measure the workspace's
 # area and volume, and write the clouds and their pictures; then plan seed 001's maintenance arm
-# under base sway (chosen path, report, validation) and draw the two-joint configuration space.
+# under base sway (chosen path, report, validation) and draw the two-joint configuration space;
+# then rehearse seed 004's cleaning job on a 28-disc string (clean, and with one of every fault).
 # Usage: scripts/run_main.sh [OUTPUT_DIR]   (default: out/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -59,6 +60,15 @@ volume=$(refined_measure deicing_3d_50k "" "")
 mv "$out/.maintenance4_plan.txt.tmp" "$out/maintenance4_plan.txt"
 "$bin/mcws_plan" --scenario "$root/scenarios/planar2.yaml" --output "$out/planar2_path.csv" \
   --plot "$out/planar2_cspace.png" --plot-offsets "$out/planar2_offsets.png" >/dev/null
+behaviors=$root/robots/insulator_cleaner_behaviors.yaml
+"$bin/mcws_behave" --model "$behaviors" --insulators 28 --log "$out/cleaning_28.jsonl" \
+  --timeline "$out/cleaning_28.csv" --plot "$out/cleaning_28.png" --dot "$out/behaviors" \
+  >"$out/.cleaning_28.txt.tmp" 2>/dev/null
+mv "$out/.cleaning_28.txt.tmp" "$out/cleaning_28.txt"
+"$bin/mcws_behave" --model "$behaviors" --insulators 3 --faults "$root/scenarios/faults/rehearsal.yaml" \
+  --log "$out/rehearsal_3.jsonl" --plot "$out/rehearsal_3.png" --plot-all \
+  >"$out/.rehearsal_3.txt.tmp" 2>/dev/null
+mv "$out/.rehearsal_3.txt.tmp" "$out/rehearsal_3.txt"
 
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
@@ -69,3 +79,8 @@ echo "mcws: seed 001 planning under base sway written to $out:"
 for f in maintenance4_path.csv maintenance4_plan.txt planar2_path.csv planar2_cspace.png \
   planar2_offsets.png; do echo "  $out/$f"; done
 sed -n '/^validation/,$p' "$out/maintenance4_plan.txt"
+echo "mcws: seed 004 cleaning rehearsals written to $out:"
+for f in cleaning_28.txt cleaning_28.jsonl cleaning_28.csv cleaning_28.png behaviors/ rehearsal_3.txt \
+  rehearsal_3.jsonl rehearsal_3.png; do echo "  $out/$f"; done
+sed -n '1,3p' "$out/cleaning_28.txt"
+sed -n '/^faults/,$p' "$out/rehearsal_3.txt"

@@ -418,4 +418,66 @@ std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const
   return written;
 }
 
+namespace {
+
+std::string fixed(double value, int decimals) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(decimals);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+std::string summaryText(const RunSummary& s) {
+  std::ostringstream out;
+  out << "status: " << runStatusName(s.status) << "\n"
+      << "discs cleaned: " << s.discs_cleaned << " of " << s.discs_requested << "; at the end "
+      << s.final_disc << " disc(s) below the start\n"
+      << "duration: " << fixed(s.duration_s, 2)
+      << " s simulated (phase I, moving: " << fixed(s.phase_one_s, 2)
+      << " s; phase II, cleaning: " << fixed(s.phase_two_s, 2) << " s), " << s.steps << " steps\n"
+      << "sub-tasks completed: " << s.subtasks_completed
+      << "; basic behaviours run: " << s.behaviors_run << "; commands sent: " << s.commands_sent
+      << "\n"
+      << "battery: " << fixed(s.battery_voltage_end, 2) << " V at the end, "
+      << fixed(s.battery_charge_used, 3) << " A h used; "
+      << (s.battery_alarm_t ? "low-battery alarm at " + fixed(*s.battery_alarm_t, 2) + " s"
+                            : std::string("no alarm"))
+      << "\n";
+  out << "faults: " << (s.faults.empty() ? "none" : std::to_string(s.faults.size())) << "\n";
+  for (const FaultReaction& f : s.faults) {
+    out << "  t = " << fixed(f.t, 2) << " s  " << f.fault << ": " << f.reaction << "\n";
+  }
+  out << "safety invariant (a clamp grips the string at every step): "
+      << (s.violation ? "VIOLATED at " + s.violation->message
+                      : "held at all " + std::to_string(s.steps) + " steps")
+      << "\n";
+  return out.str();
+}
+
+nlohmann::ordered_json checkJson(const ValidationReport& report,
+                                 const std::vector<PoseFinding>& findings) {
+  nlohmann::ordered_json j;
+  j["valid"] = findings.empty();
+  j["state_vector_combinations"] = report.combinations;
+  j["allowed_poses"] = report.allowed_poses;
+  j["forbidden_poses"] = report.forbidden_poses;
+  j["states_with_poses"] = report.states;
+  j["poses_used"] = report.poses_used;
+  j["basic_behaviors"] = report.behaviors;
+  j["events"] = report.events;
+  j["combined_behaviors"] = nlohmann::ordered_json::array();
+  for (const CombinedBehaviorCounts& c : report.combined) {
+    j["combined_behaviors"].push_back({{"name", c.name},
+                                       {"states", c.states},
+                                       {"transitions", c.transitions},
+                                       {"events", c.events}});
+  }
+  j["pose_findings"] = nlohmann::ordered_json::array();
+  for (const PoseFinding& f : findings) j["pose_findings"].push_back(f.message);
+  return j;
+}
+
 }  // namespace mcws

@@ -40,6 +40,17 @@ std::string logHeaderJson(const std::string& model_path, int insulators,
 /// state, behavior, message}}, plan [{cb, action, disc}].
 nlohmann::ordered_json summaryJson(const RunSummary& summary);
 
+/// \brief The summary as text for a person: status, discs, durations by phase, counts, battery,
+/// every fault with its reaction, the invariant; numbers with their units.
+std::string summaryText(const RunSummary& summary);
+
+/// \brief `mcws_behave --check --json`: valid (no pose findings), the state vector's counts
+/// (state_vector_combinations, allowed_poses, forbidden_poses, states_with_poses, poses_used),
+/// basic_behaviors, events, combined_behaviors [{name, states, transitions, events}],
+/// pose_findings [messages].
+nlohmann::ordered_json checkJson(const ValidationReport& report,
+                                 const std::vector<PoseFinding>& findings);
+
 /// \brief One timeline row: the snapshot's values and what ran.
 struct TimelineRow {
   double t{0.0};  ///< [s]
