@@ -274,6 +274,40 @@ TEST(Executor, ALinkLostForGoodBringsTheRobotBackToTheStart) {
   EXPECT_EQ(rec.unsafe_steps, 0);
 }
 
+TEST(Executor, ALinkLostForGoodAtAnyTimeEndsSafelyAtTheStart) {
+  // The link lost for good every 2.5 s through a 2-disc job, in every state of CB1, CB2 and CB3
+  // and mid-behaviour (a jaw half open, J3 half way): the robot must end where the worker
+  // mounted it (checked on the simulator's body position, not the executor's count), holding the
+  // string with both clamps, and never let go of it.
+  const Recorded clean = runJob(model(), 2);
+  const double end = clean.summary.duration_s;
+  int returned = 0;
+  for (double at = 0.0; at < end; at += 2.5) {
+    FaultScript faults;
+    faults.link_wait_s = 5.0;
+    faults.faults = {fault(FaultKind::kLinkDown, at)};
+    RunOptions options = RunOptions::forModel(model(), 2);
+    options.faults = faults;
+    int unsafe = 0;
+    SimSnapshot last;
+    RunObserver observer;
+    observer.on_step = [&](const SimSnapshot& s, const StepContext&) {
+      unsafe += !s.joint(kFixedClamp).gripping && !s.joint(kMovingClamp).gripping;
+      last = s;
+    };
+    const RunSummary summary = runCleaningJob(model(), options, observer);
+    EXPECT_EQ(unsafe, 0) << "link lost at " << at << " s";
+    EXPECT_TRUE(summary.status == RunStatus::kReturned || summary.status == RunStatus::kCompleted)
+        << at << ": " << runStatusName(summary.status);
+    EXPECT_NEAR(last.fixed_platform_position, 0.0, 1e-9) << at;
+    EXPECT_NEAR(last.moving_platform_position, 310.0, 1e-9) << at;
+    EXPECT_TRUE(last.joint(kFixedClamp).gripping && last.joint(kMovingClamp).gripping) << at;
+    EXPECT_EQ(summary.final_disc, 0) << at;
+    returned += summary.status == RunStatus::kReturned;
+  }
+  EXPECT_GT(returned, 50);
+}
+
 TEST(Executor, ALinkLostWhileCleaningFinishesTheDiscThenReturns) {
   const Recorded clean = runJob(model(), 2);
   const double first_cb2 = clean.events("subtask_start")[1].t;

@@ -690,22 +690,19 @@ class CleaningRun {
     }
   }
 
-  /// Back to the start: the current combined behaviour on to a pose with both clamps closed
-  /// (CB2: to its end), CB3 from there to q1, then one CB3 per disc below the start.
+  /// Back to the start: the interrupted behaviour is finished first (it may have half moved a
+  /// jaw: the state's pose is not what the robot has), then CB1 goes on to the next state with
+  /// both clamps closed, CB2 and CB3 to their end; CB3 from a CB1 state other than q1 undoes
+  /// the half-done move; then one CB3 per disc below the start.
   void startReturn(const std::string& why) {
     returning_ = true;
     log("return_start", "", why + "; " + std::to_string(disc_) + " disc(s) below the start");
-    if (!active_ && segment_ && machine()->inFinal()) {  // between sub-tasks
+    if (!active_) {  // between sub-tasks
       endSegmentForReturn();
       return;
     }
-    if (segment_->combined != "CB2") segment_->stop_when_both_closed = true;
-    StateMachine& m = *machine();
-    if (segment_->stop_when_both_closed && bothClosed(m.current())) {
-      endSegment();
-    } else {
-      startBehavior(true);
-    }
+    if (segment_->combined == "CB1") segment_->stop_when_both_closed = true;
+    startBehavior(true);
   }
 
   void endSegmentForReturn() {

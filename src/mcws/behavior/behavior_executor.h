@@ -22,11 +22,11 @@
 ///   number and FSM state, which the ground station compares with what it sent, resending on a
 ///   mismatch. The link lost: every joint stops; if the link is back within `link_wait`, the
 ///   interrupted behaviour runs again (state re-entered); if not, the robot returns on its own.
-/// - the return to the start: the current combined behaviour goes on until the robot holds the
-///   string with both clamps (CB2 to its end, which parks the cleaner; CB1 or CB3 to the next
-///   state whose pose has both clamps closed), CB3 from there to q1 if that state is not q1
-///   (undoing a half-done CB1), then one CB3 per disc below the start (completed CB1 minus
-///   completed CB3).
+/// - the return to the start: the interrupted behaviour is finished (it may have half opened a
+///   jaw), then CB1 goes on to the next state whose pose has both clamps closed, CB2 (which
+///   parks the cleaner) and CB3 (already on the way up) to their end; from a CB1 state other
+///   than q1 (q4), CB3 runs from there to q1, undoing the half-done move; then one CB3 per disc
+///   below the start (completed CB1 minus completed CB3).
 /// - a behaviour timeout: every joint stops and control passes to the operator (MANUAL); the
 ///   fault file scripts what the operator does and when (repair and resume, resume, return); with
 ///   no response left the run ends in MANUAL.
