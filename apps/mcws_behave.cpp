@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
         "invariant_violated, run_end. The outputs are written also when the invariant fails.\n"
         "Exit 0 when the run ends back at the start or in MANUAL, 1 when the invariant is "
         "violated,\n"
-        "the time limit is reached, or an input is bad (--check: the model has a pose finding),\n"
+        "the battery runs empty, the time limit is reached, or an input is bad (--check: the model "
+        "has a pose finding),\n"
         "2 for a bad command line.");
     cli.add()("model", app::po::value<std::string>(), "behaviour model (.yaml), see robots/")(
         "insulators", app::po::value<std::string>(),
@@ -151,6 +152,10 @@ int main(int argc, char** argv) {
     if (summary.status == RunStatus::kInvariantViolated) {
       std::cerr << "mcws_behave: safety invariant violated at " << summary.violation->message
                 << "\n";
+      return app::kExitFailure;
+    }
+    if (summary.status == RunStatus::kBatteryEmpty) {
+      std::cerr << "mcws_behave: the battery ran empty; the robot is stranded on the string\n";
       return app::kExitFailure;
     }
     if (summary.status == RunStatus::kTimeLimit) {

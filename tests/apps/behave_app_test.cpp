@@ -146,7 +146,7 @@ TEST(BehaveApp, EachShippedFaultFileGivesItsDocumentedReaction) {
   for (const Case& c : {Case{"link_outage.yaml", 3, "completed", "link_down"},
                         Case{"link_lost.yaml", 3, "returned", "link_down"},
                         Case{"stuck_switch.yaml", 3, "completed", "timeout"},
-                        Case{"low_battery.yaml", 8, "returned", "battery_low"},
+                        Case{"low_battery.yaml", 28, "returned", "battery_low"},
                         Case{"rehearsal.yaml", 3, "completed", "wrong_command"}}) {
     const test::RunResult r =
         test::run(kBehave + " --model " + kModel + " --insulators " + std::to_string(c.discs) +

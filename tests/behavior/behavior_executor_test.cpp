@@ -196,7 +196,7 @@ TEST(Executor, ThreeDiscsRunThePlanInOrderAndEndWhereMounted) {
 TEST(Executor, TheSeedsLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
   // Read literally, q6 -> q1 closes the fixed clamp (already closed) and leaves the moving clamp
   // open; the robot cleans disc 1 holding by one clamp and the second CB1's first step (the
-  // fixed clamp releases) opens both. The run must stop at that very step.
+  // fixed clamp releases) would open both. The run must stop there, before the command.
   const Recorded rec = runJob(literalModel(), 3);
   ASSERT_EQ(rec.summary.status, RunStatus::kInvariantViolated);
   ASSERT_TRUE(rec.summary.violation);
@@ -206,10 +206,14 @@ TEST(Executor, TheSeedsLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
   EXPECT_EQ(v.state, "q1");
   EXPECT_EQ(v.behavior, "BB_UG_Release");
   const LogRecord start = rec.events("subtask_start")[2];
-  EXPECT_EQ(v.step, start.step + 1);  // the jaw leaves the disc in the first step of its release
+  // Caught before the release is sent: the moving clamp's sensors say it does not grip.
+  EXPECT_EQ(v.step, start.step);
   EXPECT_NE(v.message.find("step " + std::to_string(v.step)), std::string::npos) << v.message;
-  EXPECT_EQ(rec.unsafe_steps, 1);  // the violating step, and nothing after it
+  EXPECT_NE(v.message.find("both clamps open"), std::string::npos) << v.message;
+  EXPECT_EQ(rec.unsafe_steps, 0);
   EXPECT_EQ(rec.steps.back().step, v.step);
+  EXPECT_FALSE(rec.steps.back().joint(kMovingClamp).gripping);  // the literal q6 -> q1
+  EXPECT_TRUE(rec.steps.back().joint(kFixedClamp).gripping);
   // The shipped model runs the same plan safely.
   EXPECT_EQ(runJob(model(), 3).summary.status, RunStatus::kCompleted);
 }
@@ -219,7 +223,7 @@ TEST(Executor, ALinkLostForLessThanTheWaitStopsThenResumes) {
   faults.link_wait_s = 60.0;
   InjectedFault down = fault(FaultKind::kLinkDown, 10.0);  // during CB1's J3 extension
   down.duration_s = 40.0;
-  faults.faults = {down};
+  faults.faults = std::vector<InjectedFault>{down};
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
   EXPECT_EQ(rec.summary.discs_cleaned, 2);
@@ -254,7 +258,7 @@ TEST(Executor, ALinkLostForGoodBringsTheRobotBackToTheStart) {
   const double second_cb1 = clean.events("subtask_start")[2].t;
   FaultScript faults;
   faults.link_wait_s = 30.0;
-  faults.faults = {fault(FaultKind::kLinkDown, second_cb1 + 10.0)};
+  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, second_cb1 + 10.0)};
   const Recorded rec = runJob(model(), 3, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
   EXPECT_EQ(rec.summary.discs_cleaned, 1);
@@ -285,7 +289,7 @@ TEST(Executor, ALinkLostForGoodAtAnyTimeEndsSafelyAtTheStart) {
   for (double at = 0.0; at < end; at += 2.5) {
     FaultScript faults;
     faults.link_wait_s = 5.0;
-    faults.faults = {fault(FaultKind::kLinkDown, at)};
+    faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, at)};
     RunOptions options = RunOptions::forModel(model(), 2);
     options.faults = faults;
     int unsafe = 0;
@@ -313,7 +317,8 @@ TEST(Executor, ALinkLostWhileCleaningFinishesTheDiscThenReturns) {
   const double first_cb2 = clean.events("subtask_start")[1].t;
   FaultScript faults;
   faults.link_wait_s = 5.0;
-  faults.faults = {fault(FaultKind::kLinkDown, first_cb2 + 20.0)};  // the guide turning, q8
+  faults.faults = std::vector<InjectedFault>{
+      fault(FaultKind::kLinkDown, first_cb2 + 20.0)};  // the guide turning, q8
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
   EXPECT_EQ(rec.summary.discs_cleaned, 1);
@@ -331,7 +336,7 @@ TEST(Executor, AStuckZeroSwitchTimesOutToTheOperatorWhoRepairsIt) {
   InjectedFault stuck = fault(FaultKind::kZeroSwitchStuck, 0.0);
   stuck.clamp = kFixedClamp;
   stuck.reads_pressed = false;
-  faults.faults = {stuck};
+  faults.faults = std::vector<InjectedFault>{stuck};
   faults.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
   const Recorded rec = runJob(model(), 1, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
@@ -354,51 +359,85 @@ TEST(Executor, AStuckZeroSwitchTimesOutToTheOperatorWhoRepairsIt) {
   EXPECT_TRUE(halted.steps.back().joint(kMovingClamp).gripping);
 }
 
-TEST(Executor, LowBatteryRaisesTheAlarmAndFinishesTheDiscBeforeReturning) {
-  // A 20 A drain from the start: the voltage falls below 22.2 V when (22.2 - 21) / (25.2 - 21)
-  // = 2/7 of the 5 A h is left, i.e. after 3.571 A h / (20 + 0.3 + motors) A, about 630 s: on
-  // the way down, some discs before the eighth.
-  FaultScript faults;
-  InjectedFault drain = fault(FaultKind::kBatteryDrain, 0.0);
-  drain.current_a = 20.0;
-  faults.faults = {drain};
-  const Recorded rec = runJob(model(), 8, faults);
-  ASSERT_TRUE(rec.summary.battery_alarm_t);
-  const double alarm = *rec.summary.battery_alarm_t;
-  ASSERT_EQ(rec.events("battery_low").size(), 1u);
-  // Independent check: the first step the simulator reported the flag.
-  double first_low = -1.0;
-  for (const SimSnapshot& s : rec.steps) {
-    if (s.battery_low) {
-      first_low = s.time;
-      break;
+/// A run watched only through the simulator's sensors: the first low-battery step, the guide's
+/// full turns (one per cleaned shed pair: J5 reaching 360 deg), where the body ends.
+struct BatteryWatch {
+  double first_low{-1.0};
+  int turns_before_low{0}, turns{0};
+  bool at_turn{false};
+  int unsafe{0};
+  SimSnapshot last;
+  RunSummary summary;
+};
+
+BatteryWatch watchBattery(int discs, double capacity, double drain, LowBatteryPolicy policy) {
+  RunOptions options = RunOptions::forModel(model(), discs);
+  options.simulator.battery.capacity = capacity;
+  options.faults.low_battery = policy;
+  if (drain > 0.0) {
+    InjectedFault f = fault(FaultKind::kBatteryDrain, 0.0);
+    f.current_a = drain;
+    options.faults.faults = std::vector<InjectedFault>{f};
+  }
+  BatteryWatch w;
+  RunObserver observer;
+  observer.on_step = [&](const SimSnapshot& s, const StepContext&) {
+    if (s.battery_low && w.first_low < 0.0) w.first_low = s.time;
+    const bool at_turn = s.joint(SimJoint::kJ5).position >= 359.99;
+    if (at_turn && !w.at_turn) {
+      ++w.turns;
+      if (w.first_low < 0.0) ++w.turns_before_low;
     }
-  }
-  EXPECT_EQ(alarm, first_low);
-  // The disc in hand at the alarm is finished (its CB2 completes), then the robot returns.
-  int disc_at_alarm = 0;
-  bool in_cb1 = false;
-  for (const LogRecord& r : rec.log) {
-    if (r.t > alarm) break;
-    disc_at_alarm = r.disc;
-    in_cb1 = r.combined == "CB1";
-  }
-  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
-  EXPECT_EQ(rec.summary.discs_cleaned, disc_at_alarm + (in_cb1 ? 1 : 0));
-  EXPECT_LT(rec.summary.discs_cleaned, 8);
-  EXPECT_EQ(rec.summary.final_disc, 0);
-  EXPECT_EQ(rec.unsafe_steps, 0);
-  // Policy alarm_only: the same alarm, and the whole job.
-  faults.low_battery = LowBatteryPolicy::kAlarmOnly;
-  const Recorded on = runJob(model(), 8, faults);
-  EXPECT_EQ(on.summary.battery_alarm_t, rec.summary.battery_alarm_t);
-  EXPECT_EQ(on.summary.status, RunStatus::kCompleted);
-  EXPECT_EQ(on.summary.discs_cleaned, 8);
+    w.at_turn = at_turn;
+    w.unsafe += !s.joint(kFixedClamp).gripping && !s.joint(kMovingClamp).gripping;
+    w.last = s;
+  };
+  w.summary = runCleaningJob(model(), options, observer);
+  return w;
+}
+
+TEST(Executor, LowBatteryRaisesTheAlarmAndFinishesTheDiscBeforeReturning) {
+  // A 0.5 A h battery and no fault: the voltage falls below 22.2 V when (22.2 - 21) / (25.2 - 21)
+  // = 2/7 of the charge is left, about 1000 s into the job (about 1.3 A on average), on the
+  // way down a 10-disc string. The robot finishes the disc in hand and returns; the rest of the
+  // charge (0.4 of the time spent) covers one disc and the climb (42 s a disc).
+  const BatteryWatch w = watchBattery(10, 0.5, 0.0, LowBatteryPolicy::kFinishDiscAndReturn);
+  ASSERT_GT(w.first_low, 0.0);
+  ASSERT_TRUE(w.summary.battery_alarm_t);
+  EXPECT_EQ(*w.summary.battery_alarm_t, w.first_low);
+  EXPECT_EQ(w.summary.status, RunStatus::kReturned);
+  // The guide reaches 360 deg once a disc (then turns back); the alarm came during disc k + 1,
+  // which is finished: k + 1 turns in all.
+  const int disc_in_hand = w.turns_before_low + 1;
+  EXPECT_EQ(w.turns, disc_in_hand);
+  EXPECT_EQ(w.summary.discs_cleaned, disc_in_hand);
+  EXPECT_LT(disc_in_hand, 10);
+  EXPECT_NEAR(w.last.fixed_platform_position, 0.0, 1e-9);
+  EXPECT_EQ(w.unsafe, 0);
+  // Policy alarm_only (the seed's rule alone): the same alarm; the job goes on down the string
+  // and the battery runs empty before the robot is back.
+  const BatteryWatch on = watchBattery(10, 0.5, 0.0, LowBatteryPolicy::kAlarmOnly);
+  EXPECT_EQ(on.first_low, w.first_low);
+  EXPECT_EQ(on.summary.status, RunStatus::kBatteryEmpty);
+  EXPECT_GT(on.turns, w.turns);
+  EXPECT_EQ(on.unsafe, 0);
+}
+
+TEST(Executor, AnEmptyBatteryStopsTheRobotWhereItHangs) {
+  // 100 A drawn from a 5 A h battery: empty after 5 / 100.3 h (about 180 s) or less; every joint
+  // stops and the run ends, the robot still holding the string.
+  const BatteryWatch w = watchBattery(3, 5.0, 100.0, LowBatteryPolicy::kFinishDiscAndReturn);
+  EXPECT_EQ(w.summary.status, RunStatus::kBatteryEmpty);
+  EXPECT_LE(w.summary.duration_s, 5.0 / 100.3 * 3600.0 + 0.01);
+  EXPECT_EQ(w.last.battery_charge, 0.0);
+  EXPECT_EQ(w.unsafe, 0);
+  EXPECT_TRUE(w.last.joint(kFixedClamp).gripping || w.last.joint(kMovingClamp).gripping);
 }
 
 TEST(Executor, ACorruptedCommandIsRejectedAndResent) {
   FaultScript faults;
-  faults.faults = {fault(FaultKind::kCorruptCommand, 2.0)};  // hits q2's J3 command at 2.5 s
+  faults.faults = std::vector<InjectedFault>{
+      fault(FaultKind::kCorruptCommand, 2.0)};  // hits q2's J3 command at 2.5 s
   const Recorded rec = runJob(model(), 1, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
   const std::vector<LogRecord> rejected = rec.events("command_rejected");
@@ -425,7 +464,7 @@ TEST(Executor, TheInterferenceCheckRefusesWrongCommands) {
   // fixed_clamp_open_parks_the_cleaner forbids it.
   InjectedFault forbidden = fault(FaultKind::kWrongCommand, 1.0);
   forbidden.command = SimCommand::moveTo(SimJoint::kJ4, 60.0);
-  faults.faults = {beyond, forbidden};
+  faults.faults = std::vector<InjectedFault>{beyond, forbidden};
   const Recorded rec = runJob(model(), 1, faults);
   const std::vector<LogRecord> refused = rec.events("refused");
   ASSERT_EQ(refused.size(), 2u);
@@ -444,11 +483,144 @@ TEST(Executor, TheInterferenceCheckRefusesWrongCommands) {
   }
 }
 
+InjectedFault stuckSwitch(SimJoint clamp, double at, bool reads_pressed) {
+  InjectedFault f = fault(FaultKind::kZeroSwitchStuck, at);
+  f.clamp = clamp;
+  f.reads_pressed = reads_pressed;
+  return f;
+}
+
+TEST(Executor, AWrongReleaseThatPassesTheCheckNeverDropsTheRobot) {
+  // The moving clamp released by a wrong command in q1 (allowed: the fixed one grips); the
+  // state's own release then never went out, times out, and the operator resumes it: sending
+  // it would open both clamps, so the run stops before the command (exit 1 in mcws_behave).
+  FaultScript faults;
+  InjectedFault wrong = fault(FaultKind::kWrongCommand, 0.0);
+  wrong.command = SimCommand::release(kMovingClamp);
+  faults.faults = std::vector<InjectedFault>{wrong};
+  faults.operator_responses = {{10.0, OperatorAction::kResume, 0}};
+  const Recorded rec = runJob(model(), 2, faults);
+  EXPECT_EQ(rec.summary.status, RunStatus::kInvariantViolated);
+  ASSERT_TRUE(rec.summary.violation);
+  EXPECT_NEAR(rec.summary.violation->t, 25.0, 1e-9);  // timeout 15 s + operator 10 s
+  EXPECT_EQ(rec.summary.violation->behavior, "BB_UG_Release");
+  EXPECT_EQ(rec.unsafe_steps, 0);
+  EXPECT_TRUE(rec.steps.back().joint(kFixedClamp).gripping);
+}
+
+TEST(Executor, AZeroSwitchStuckPressedIsCaughtByTheEncoder) {
+  // The fixed clamp's switch reads pressed from 100 s (second CB1 starts at 111.17 s): the release
+  // "ends" at once with the jaw still at the disc; the encoder disagrees, so the robot stops
+  // before J3 drags the clamp, and the operator repairs the switch.
+  FaultScript faults;
+  faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 100.0, true)};
+  faults.operator_responses = {{20.0, OperatorAction::kRepairAndResume, 0}};
+  const Recorded rec = runJob(model(), 2, faults);
+  const std::vector<LogRecord> mismatch = rec.events("sensor_mismatch");
+  ASSERT_EQ(mismatch.size(), 1u);
+  EXPECT_EQ(mismatch[0].behavior, "BB_UG_Release");
+  EXPECT_EQ(mismatch[0].state, "q1");
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  // J3 never moved while the fixed jaw was not fully open in CB1's q2.
+  for (std::size_t k = 0; k < rec.steps.size(); ++k) {
+    if (rec.contexts[k].state == "q2" && rec.contexts[k].combined == "CB1") {
+      EXPECT_LE(rec.steps[k].joint(kFixedClamp).position, 0.05) << rec.steps[k].time;
+    }
+  }
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, TheOperatorActsOnlyOverALiveLink) {
+  // Stuck switch -> timeout at 15 s -> MANUAL; the link drops at 20 s for 60 s; the operator's
+  // repair due at 15 + 30 = 45 s waits for the link (80 s).
+  FaultScript faults;
+  InjectedFault down = fault(FaultKind::kLinkDown, 20.0);
+  down.duration_s = 60.0;
+  faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 0.0, false), down};
+  faults.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
+  const Recorded rec = runJob(model(), 1, faults);
+  ASSERT_EQ(rec.events("operator").size(), 1u);
+  EXPECT_NEAR(rec.events("operator")[0].t, 80.0, 1e-9);
+  EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  // Down for good instead: the operator can never act; the run ends in MANUAL, robot holding.
+  faults.faults[1].duration_s.reset();
+  const Recorded lost = runJob(model(), 1, faults);
+  EXPECT_EQ(lost.summary.status, RunStatus::kHaltedInManual);
+  EXPECT_NEAR(lost.summary.duration_s, 45.0, 1e-9);
+  EXPECT_EQ(lost.events("operator").size(), 0u);
+  EXPECT_EQ(lost.unsafe_steps, 0);
+}
+
+TEST(Executor, AShortOutageDoesNotEndOneForGood) {
+  FaultScript faults;
+  faults.link_wait_s = 10.0;
+  InjectedFault brief = fault(FaultKind::kLinkDown, 12.0);
+  brief.duration_s = 3.0;
+  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0), brief};
+  const Recorded rec = runJob(model(), 2, faults);
+  EXPECT_EQ(rec.events("link_up").size(), 0u);
+  EXPECT_EQ(rec.events("link_restored").size(), 0u);
+  ASSERT_EQ(rec.events("return_start").size(), 1u);
+  EXPECT_NEAR(rec.events("return_start")[0].t, 20.0, 1e-9);
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_FALSE(rec.steps.back().link_up);
+}
+
+TEST(Executor, ALinkDownFromTheStartSendsNothingAndMovesNothing) {
+  // Nothing has moved: the return is to stay. No command goes over the dead link, J3 never
+  // moves, and the robot ends where it was mounted, holding with both clamps.
+  FaultScript faults;
+  faults.link_wait_s = 5.0;
+  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 0.0)};
+  const Recorded rec = runJob(model(), 2, faults);
+  for (const LogRecord& r : rec.events("command"))
+    EXPECT_EQ(r.detail.find("echo"), std::string::npos);
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_EQ(rec.summary.discs_cleaned, 0);
+  for (const SimSnapshot& s : rec.steps) EXPECT_EQ(s.joint(SimJoint::kJ3).position, 0.0);
+  EXPECT_NEAR(rec.steps.back().fixed_platform_position, 0.0, 1e-9);
+  EXPECT_TRUE(rec.steps.back().joint(kFixedClamp).gripping);
+  EXPECT_TRUE(rec.steps.back().joint(kMovingClamp).gripping);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, TheOperatorsReturnReclosesAStuckReleaseAndUndoesTheHalfMove) {
+  // The moving clamp's switch sticks (never pressed) in CB1's q4 (fixed clamp already one pitch
+  // down): BB_LG_Release times out; the operator orders the return: J2 closes again (q4, both
+  // gripping), CB3 from q4 brings the body back up, and the robot ends at the start.
+  FaultScript faults;
+  faults.faults = std::vector<InjectedFault>{stuckSwitch(kMovingClamp, 20.0, false)};
+  faults.operator_responses = {{5.0, OperatorAction::kReturn, 0}};
+  const Recorded rec = runJob(model(), 2, faults);
+  ASSERT_EQ(rec.events("reclose").size(), 1u);
+  EXPECT_EQ(rec.events("reclose")[0].behavior, "BB_LG_Clamp");
+  EXPECT_EQ(rec.events("reclose")[0].state, "q4");
+  EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
+  EXPECT_EQ(rec.summary.discs_cleaned, 0);
+  EXPECT_NEAR(rec.steps.back().fixed_platform_position, 0.0, 1e-9);
+  EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, FaultsThatFindNoGroundCommandAreReported) {
+  // Armed while the robot returns on its own: no command from the ground station ever comes.
+  FaultScript faults;
+  faults.link_wait_s = 5.0;
+  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0),
+                                             fault(FaultKind::kCorruptCommand, 20.0)};
+  const Recorded rec = runJob(model(), 2, faults);
+  bool reported = false;
+  for (const FaultReaction& f : rec.summary.faults) {
+    reported = reported || (f.fault == "corrupt_command" &&
+                            f.reaction.find("never acted") != std::string::npos);
+  }
+  EXPECT_TRUE(reported);
+}
+
 TEST(Executor, SameInputsSameLog) {
   FaultScript faults;
   InjectedFault down = fault(FaultKind::kLinkDown, 70.0);
   down.duration_s = 12.0;
-  faults.faults = {down, fault(FaultKind::kCorruptCommand, 100.0)};
+  faults.faults = std::vector<InjectedFault>{down, fault(FaultKind::kCorruptCommand, 100.0)};
   const Recorded a = runJob(model(), 2, faults), b = runJob(model(), 2, faults);
   ASSERT_EQ(a.log.size(), b.log.size());
   for (std::size_t k = 0; k < a.log.size(); ++k) {

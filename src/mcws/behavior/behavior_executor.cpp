@@ -33,8 +33,9 @@ struct Segment {
   /// Started at q0: completing it counts (CB1: one disc further down, CB2: a disc cleaned, CB3:
   /// one disc back up).
   bool counted{true};
-  /// On the way back: stop at the first state whose pose has both clamps closed.
-  bool stop_when_both_closed{false};
+  /// On the way back (CB1, CB3): settle at the nearest state whose pose has both clamps closed
+  /// (settle()) before going on.
+  bool settling{false};
 };
 
 /// The basic behaviour being run.
@@ -49,6 +50,9 @@ struct Active {
   double entered_at{0.0};                    // state entry [s]
   std::optional<double> held_since;          // current_held: when the current reached I [s]
   bool restore{false};  // restoring a pose value a fault stopped (the brush), not a transition
+  /// On the way back: re-closing an open clamp instead of the state's own behaviour; the state
+  /// the robot is then in.
+  std::optional<std::string> reclose_to;
 };
 
 enum class Mode { kRunning, kWaitingForLink, kManual, kDone };
@@ -97,6 +101,12 @@ class CleaningRun {
       accountPhase();
       notifyStep();
       if (!checkInvariant()) break;
+      if (sim_.snapshot().battery_charge <= 0.0) {
+        stopAll();
+        react("battery_empty", "every joint stopped: the robot hangs on the string");
+        finish(RunStatus::kBatteryEmpty, "the battery is empty");
+        break;
+      }
       superviseBattery();
       if (mode_ == Mode::kRunning && active_) superviseBehavior();
     }
@@ -231,6 +241,10 @@ class CleaningRun {
   }
 
   void finish(RunStatus status, const std::string& detail) {
+    for (const InjectedFault& f : pending_) {
+      react(faultKindName(f.kind), "never acted: no command came from the ground station after it");
+    }
+    pending_.clear();
     summary_.status = status;
     mode_ = Mode::kDone;
     if (status == RunStatus::kCompleted || status == RunStatus::kReturned) fireTask("job_done");
@@ -259,18 +273,11 @@ class CleaningRun {
     startBehavior(false);
   }
 
-  bool bothClosed(const std::string& state) const {
-    const StatePose* p = model_.poseOf(state);
-    const StateVectorSpec& spec = model_.state_vector;
-    return p && p->pose[fixed_component_] == spec.components[fixed_component_].indexOf("closed") &&
-           p->pose[moving_component_] == spec.components[moving_component_].indexOf("closed");
-  }
-
   /// The segment is over: its machine is back in a final state, or (on the way back) at a state
   /// with both clamps closed.
-  void endSegment() {
+  void endSegment(bool abandoned = false) {
     StateMachine& m = *machine();
-    const bool completed = m.inFinal() && m.steps() > 0;
+    const bool completed = !abandoned && m.inFinal() && m.steps() > 0;
     const Segment done = *segment_;
     if (completed) {
       ++summary_.subtasks_completed;
@@ -328,7 +335,8 @@ class CleaningRun {
     runBehavior(run, false);
   }
 
-  void runBehavior(const BehaviorRun& run, bool restore) {
+  void runBehavior(const BehaviorRun& run, bool restore,
+                   std::optional<std::string> reclose_to = std::nullopt) {
     Active a;
     a.behavior = run.behavior->name;
     a.event = run.target->ends_on;
@@ -337,6 +345,7 @@ class CleaningRun {
     a.timeout = run.behavior->timeout_s;
     a.entered_at = sim_.time();
     a.restore = restore;
+    a.reclose_to = std::move(reclose_to);
     if (a.event == "encoder_reached") {
       a.target_count = std::llround(a.command.value * countsPerUnit(a.joint));
     }
@@ -418,8 +427,28 @@ class CleaningRun {
     return false;
   }
 
+  /// A zero switch that reads pressed while the clamp's encoder says the jaw is still closed
+  /// (more than half a degree open): a sensor fault, like a timeout (seed section 2.4 (2)).
+  std::optional<std::string> sensorMismatch(const Active& a) const {
+    if (a.event != "zero_switch") return std::nullopt;
+    const SimJointState& j = sim_.snapshot().joint(a.joint);
+    const SimClampConfig& c =
+        a.joint == kFixedClamp ? sim_.config().fixed_clamp : sim_.config().moving_clamp;
+    if (!j.zero_switch || std::abs(static_cast<double>(j.encoder)) <= 0.5 * c.counts_per_deg) {
+      return std::nullopt;
+    }
+    return std::string(simJointName(a.joint)) + "'s zero switch reads pressed but its encoder " +
+           "reads " + number(static_cast<double>(j.encoder) / c.counts_per_deg) + " deg";
+  }
+
   void superviseBehavior() {
     Active& a = *active_;
+    if (const auto mismatch = sensorMismatch(a)) {
+      stopAll();
+      log("sensor_mismatch", a.behavior, *mismatch);
+      handOver("sensor_mismatch", *mismatch);
+      return;
+    }
     if (endingEventSeen(a)) {
       if (a.command.kind == SimCommandKind::kClose || a.command.kind == SimCommandKind::kRelease) {
         sim_.command(SimCommand::stop(a.joint));  // the jaw holds: cut the motor
@@ -430,6 +459,13 @@ class CleaningRun {
         startBehavior(false);
         return;
       }
+      if (a.reclose_to) {
+        const std::string to = *a.reclose_to;
+        active_.reset();
+        log("reclosed", a.behavior, "both clamps grip: the robot is in " + to);
+        landOn(to, true);
+        return;
+      }
       StateMachine& m = *machine();
       const std::string from = m.current();
       const std::string behavior = a.behavior;
@@ -438,9 +474,10 @@ class CleaningRun {
       }
       active_.reset();
       log(a.event, behavior, from + " -> " + m.current());
-      if ((m.inFinal() && m.steps() > 0) ||
-          (segment_->stop_when_both_closed && bothClosed(m.current()))) {
+      if (m.inFinal() && m.steps() > 0) {
         endSegment();
+      } else if (segment_->settling) {
+        settle();
       } else {
         startBehavior(false);
       }
@@ -466,6 +503,14 @@ class CleaningRun {
   /// Sends a behaviour's command; \return false when it was refused (control handed over).
   bool send(const SimCommand& command, const std::string& behavior) {
     const bool ground = !returning_;  // on the way back the robot runs on its own
+    if (ground && !sim_.snapshot().link_up) {
+      log("command_not_sent", behavior, describe(command) + ": the link is down");
+      return true;  // the link supervision stops everything and resends it
+    }
+    if (const auto both = opensBothClamps(command)) {
+      violate("before sending " + describe(command) + ": " + *both);
+      return false;
+    }
     if (ground) {
       if (takeFault(FaultKind::kCorruptCommand)) {
         const std::uint64_t seq = ++seq_;
@@ -509,9 +554,20 @@ class CleaningRun {
     return true;
   }
 
+  /// Why releasing a clamp would leave the robot hanging by neither (the other clamp does not
+  /// grip, as its sensors say), or nothing.
+  std::optional<std::string> opensBothClamps(const SimCommand& command) const {
+    if (command.kind != SimCommandKind::kRelease) return std::nullopt;
+    const SimJoint other = command.joint == kFixedClamp ? kMovingClamp : kFixedClamp;
+    if (sim_.snapshot().joint(other).gripping) return std::nullopt;
+    return std::string("it would open ") + simJointName(command.joint) + " while " +
+           simJointName(other) + " does not grip: both clamps open";
+  }
+
   /// Why `command` must not run from the current state, or nothing.
   std::optional<std::string> interference(const SimCommand& command) const {
     if (const auto reason = sim_.refuse(command)) return reason;
+    if (const auto reason = opensBothClamps(command)) return reason;
     // The state-vector rules: the pose the command gives from the current state's pose.
     const StatePose* pose = model_.poseOf(stateName());
     if (!pose) return std::nullopt;
@@ -562,7 +618,11 @@ class CleaningRun {
       switch (f.kind) {
         case FaultKind::kLinkDown:
           sim_.setLinkUp(false);
-          if (f.duration_s) link_back_at_.push_back(t + *f.duration_s);
+          if (f.duration_s) {
+            link_back_at_.push_back(t + *f.duration_s);
+          } else {
+            link_down_for_good_ = true;
+          }
           detail += f.duration_s ? " for " + number(*f.duration_s) + " s" : " for good";
           break;
         case FaultKind::kZeroSwitchStuck: {
@@ -592,7 +652,7 @@ class CleaningRun {
     for (auto it = link_back_at_.begin(); it != link_back_at_.end();) {
       if (*it <= t + 1e-9) {
         it = link_back_at_.erase(it);
-        if (link_back_at_.empty()) {
+        if (link_back_at_.empty() && !link_down_for_good_) {
           sim_.setLinkUp(true);
           log("link_up", "", "the radio link is back");
         }
@@ -604,7 +664,18 @@ class CleaningRun {
 
   void superviseLink() {
     const bool up = sim_.snapshot().link_up;
+    if (up) link_loss_noted_ = false;
+    if (!up && !link_loss_noted_ && (returning_ || mode_ == Mode::kManual)) {
+      link_loss_noted_ = true;
+      const std::string what = returning_ ? "during the return: nothing changes, the robot "
+                                            "returns on its own"
+                                          : "in MANUAL: the robot stays stopped; the operator "
+                                            "acts once the link is back";
+      log("link_lost", active_ ? active_->behavior : "", what);
+      react("link_down", what);
+    }
     if (mode_ == Mode::kRunning && !returning_ && !up) {
+      link_loss_noted_ = true;
       stopAll();
       link_lost_at_ = sim_.time();
       interrupted_ = segment_->combined;
@@ -653,6 +724,13 @@ class CleaningRun {
 
   void superviseOperator() {
     if (mode_ != Mode::kManual || sim_.time() < response_at_ - 1e-9) return;
+    if (!returning_ && !sim_.snapshot().link_up) {  // the operator works from the ground
+      if (link_back_at_.empty() || link_down_for_good_) {
+        finish(RunStatus::kHaltedInManual,
+               "the operator cannot reach the robot: the link is down for good");
+      }
+      return;
+    }
     const OperatorAction action = response_->action;
     response_.reset();
     if (action == OperatorAction::kRepairAndResume) {
@@ -701,8 +779,102 @@ class CleaningRun {
       endSegmentForReturn();
       return;
     }
-    if (segment_->combined == "CB1") segment_->stop_when_both_closed = true;
-    startBehavior(true);
+    if (segment_->combined == "CB2") {
+      startBehavior(true);  // CB2 holds with both clamps throughout: on to its end
+    } else {
+      segment_->settling = true;
+      settle();
+    }
+  }
+
+  /// The joint value class of J3 its encoder reads exactly (home, extended), or -1 mid-travel.
+  int j3Class() const {
+    const StateVectorSpec& spec = model_.state_vector;
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
+      const StateComponent& c = spec.components[k];
+      if (c.actuator != "J3") continue;
+      const std::int64_t encoder = sim_.snapshot().joint(SimJoint::kJ3).encoder;
+      for (std::size_t v = 0; v < c.positions.size(); ++v) {
+        if (encoder == std::llround(c.positions[v] * countsPerUnit(SimJoint::kJ3))) {
+          return static_cast<int>(v);
+        }
+      }
+    }
+    return -1;
+  }
+
+  /// On the way back in CB1 or CB3: reach a state whose pose has both clamps closed by the
+  /// shortest safe way. Both clamps gripping: the robot is there. One clamp open (or half
+  /// released) with J3 at a named position, so that its platform sits at a disc: close it again
+  /// (the clamp's close behaviour) unless the state's own behaviour is that very close; J3 mid
+  /// travel: finish the state's own behaviour first, then settle again.
+  void settle() {
+    StateMachine& m = *machine();
+    const std::string state = m.current();
+    const SimSnapshot& s = sim_.snapshot();
+    const bool fixed = s.joint(kFixedClamp).gripping, moving = s.joint(kMovingClamp).gripping;
+    const CombinedBehavior& cb = *model_.combinedBehavior(segment_->combined);
+    const Transition& own_transition = *cb.transitionFrom(state);
+    const BehaviorRun own = resolveRun(model_, own_transition);
+    const SimJoint open = fixed ? kMovingClamp : kFixedClamp;
+    const int j3 = j3Class();
+    if (j3 < 0 || (!(fixed && moving) && own.behavior->body.actuator == simJointName(open) &&
+                   own.target->command == "close")) {
+      startBehavior(true);  // J3 mid travel, or the state's own behaviour closes the clamp
+      return;
+    }
+    // The state whose pose is the robot's once both clamps grip: the state's pose with both
+    // clamps closed and J3 where its encoder says.
+    const StateVectorSpec& spec = model_.state_vector;
+    Pose pose = model_.poseOf(state)->pose;
+    for (const int k : {fixed_component_, moving_component_}) {
+      pose[k] = spec.components[k].indexOf("closed");
+    }
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
+      if (spec.components[k].actuator == "J3") pose[k] = j3;
+    }
+    std::string to;
+    for (const std::string& q : cb.states) {
+      if (model_.poseOf(q)->pose == pose) to = q;
+    }
+    if (to.empty()) {  // the model has no such state: go on instead
+      startBehavior(true);
+      return;
+    }
+    if (fixed && moving) {  // already there (the state's own close gripped before the stop)
+      landOn(to, to != own_transition.to);
+      return;
+    }
+    const int component = open == kFixedClamp ? fixed_component_ : moving_component_;
+    for (const BasicBehavior& b : model_.behaviors) {
+      const BehaviorTarget* target = b.body.target("closed");
+      if (b.body.actuator != simJointName(open) || !target || target->command != "close") continue;
+      m.jumpTo(state);
+      const BehaviorRun run{&b, target, static_cast<std::size_t>(component),
+                            spec.components[component].indexOf("closed"), std::nullopt};
+      log("reclose", b.name,
+          std::string(simJointName(open)) + " closes again instead of " + own.behavior->name +
+              ": the shortest way to both clamps gripping, in " + to);
+      runBehavior(run, false, to);
+      return;
+    }
+    startBehavior(true);  // the model has no behaviour that closes this clamp
+  }
+
+  /// The robot holds the string with both clamps in state `to` of the current CB1 or CB3
+  /// (`reversal`: reached by closing a clamp again, not by the machine's own transitions).
+  void landOn(const std::string& to, bool reversal) {
+    StateMachine& m = *machine();
+    segment_->settling = false;
+    if (to != m.current()) m.jumpTo(to);
+    if (m.inFinal()) {
+      // Back where the segment started (a reversal) or at its end (its last transition).
+      endSegment(reversal || m.steps() == 0);
+    } else if (segment_->combined == "CB1") {
+      endSegment(true);  // CB3 from here undoes the half-done move
+    } else {
+      startBehavior(false);  // CB3: on up to its end
+    }
   }
 
   void endSegmentForReturn() {
@@ -723,6 +895,14 @@ class CleaningRun {
   bool checkInvariant() {
     const SimSnapshot& s = sim_.snapshot();
     if (s.joint(kFixedClamp).gripping || s.joint(kMovingClamp).gripping) return true;
+    violate("both clamps open");
+    return false;
+  }
+
+  /// Stops the run on the safety invariant (never both clamps open): broken at this step, or
+  /// about to be by a command.
+  void violate(const std::string& what) {
+    const SimSnapshot& s = sim_.snapshot();
     InvariantViolation v;
     v.step = s.step;
     v.t = s.time;
@@ -731,7 +911,7 @@ class CleaningRun {
     v.state = stateName();
     v.behavior = active_ ? active_->behavior : "";
     std::ostringstream text;
-    text << "step " << v.step << " (t = " << v.t << " s): both clamps open: sub-task " << v.subtask
+    text << "step " << v.step << " (t = " << v.t << " s): " << what << ": sub-task " << v.subtask
          << " (" << v.combined << "), state " << v.state << ", behaviour "
          << (v.behavior.empty() ? "none" : v.behavior);
     v.message = text.str();
@@ -739,7 +919,6 @@ class CleaningRun {
     log("invariant_violated", v.behavior, v.message);
     stopAll();
     finish(RunStatus::kInvariantViolated, v.message);
-    return false;
   }
 
   void accountPhase() {
@@ -773,6 +952,8 @@ class CleaningRun {
   std::size_t next_fault_{0};
   std::vector<InjectedFault> pending_;  // corrupt and wrong commands waiting for a command
   std::vector<double> link_back_at_;
+  bool link_down_for_good_{false};
+  bool link_loss_noted_{false};  // a loss during MANUAL or the return was reported
   double drain_{0.0};
   double link_lost_at_{0.0};
   std::optional<OperatorResponse> response_;
@@ -794,6 +975,8 @@ const char* runStatusName(RunStatus status) {
       return "invariant_violated";
     case RunStatus::kTimeLimit:
       return "time_limit";
+    case RunStatus::kBatteryEmpty:
+      return "battery_empty";
   }
   return "unknown";
 }

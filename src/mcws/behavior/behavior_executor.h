@@ -22,14 +22,20 @@
 ///   number and FSM state, which the ground station compares with what it sent, resending on a
 ///   mismatch. The link lost: every joint stops; if the link is back within `link_wait`, the
 ///   interrupted behaviour runs again (state re-entered); if not, the robot returns on its own.
-/// - the return to the start: the interrupted behaviour is finished (it may have half opened a
-///   jaw), then CB1 goes on to the next state whose pose has both clamps closed, CB2 (which
-///   parks the cleaner) and CB3 (already on the way up) to their end; from a CB1 state other
-///   than q1 (q4), CB3 runs from there to q1, undoing the half-done move; then one CB3 per disc
-///   below the start (completed CB1 minus completed CB3).
-/// - a behaviour timeout: every joint stops and control passes to the operator (MANUAL); the
-///   fault file scripts what the operator does and when (repair and resume, resume, return); with
-///   no response left the run ends in MANUAL.
+/// - the return to the start: first both clamps must grip, by the shortest way: a clamp that is
+///   open or half released closes again when J3's encoder is at a named position (its platform
+///   sits at a disc), unless the state's own behaviour is that close; with J3 mid travel the
+///   interrupted behaviour finishes first. CB2 (which parks the cleaner) and CB3 (already on the
+///   way up) go on to their end; from a CB1 state other than q1 (q4), CB3 runs to q1, undoing the
+///   half-done move; then one CB3 per disc below the start (completed CB1 minus completed CB3).
+/// - a behaviour timeout, or a zero switch pressed while the clamp's encoder says the jaw is
+///   still more than 0.5 deg open (a sensor fault): every joint stops and control passes to the
+///   operator (MANUAL); the fault file scripts what the operator does and when (repair and
+///   resume, resume, return), acted on once the link is up; with no response left, or the link
+///   down for good, the run ends in MANUAL.
+/// - commands from the ground station are not sent while the link is down; faults armed for a
+///   command that never comes are reported as such at the end.
+/// - an empty battery stops every joint and ends the run (status kBatteryEmpty).
 /// - low battery: the alarm (once); with LowBatteryPolicy::kFinishDiscAndReturn the robot
 ///   finishes the disc in hand (its CB1 and CB2) and returns.
 /// - interference: before each command, a kinematic check refuses it with a reason: the
@@ -38,8 +44,10 @@
 ///   state's pose, must be allowed). robots/insulator_cleaner.yaml has no collision geometry,
 ///   so there is no collision check. A refused command from the ground station (a wrong command)
 ///   is replaced by the behaviour's own; a refused own command hands control to the operator.
-/// - the safety invariant, checked after every simulated step: at least one clamp grips the
-///   string. A violation ends the run at once (status "invariant_violated", with the step).
+/// - the safety invariant, at least one clamp grips the string: checked after every simulated
+///   step, and before every command (a release is never sent while the other clamp's sensors say
+///   it does not grip). A violation ends the run at once (status "invariant_violated", with the
+///   step).
 ///
 /// Resuming a state whose pose has the brush spinning (stopped by a fault) first spins it up
 /// again: the behaviour that sets that pose value runs, then the interrupted one.
@@ -107,8 +115,10 @@ enum class RunStatus {
   kHaltedInManual,     ///< control handed to the operator, no scripted response left
   kInvariantViolated,  ///< both clamps open at some step
   kTimeLimit,          ///< the simulated time limit was reached
+  kBatteryEmpty,       ///< the battery ran empty: the robot stopped, hanging on the string
 };
-/// \brief "completed", "returned", "halted_in_manual", "invariant_violated", "time_limit".
+/// \brief "completed", "returned", "halted_in_manual", "invariant_violated", "time_limit",
+/// "battery_empty".
 const char* runStatusName(RunStatus status);
 
 /// \brief The result of a run.
