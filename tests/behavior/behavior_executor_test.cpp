@@ -351,6 +351,14 @@ TEST(Executor, AStuckZeroSwitchTimesOutToTheOperatorWhoRepairsIt) {
   EXPECT_NEAR(rec.events("zero_switch")[0].t, 45.01, 1e-9);
   EXPECT_EQ(rec.unsafe_steps, 0);
 
+  // Resumed without a repair: the release times out again 15 s after the state is re-entered
+  // (the timeout restarts on re-entry), and with no response left the run ends in MANUAL.
+  faults.operator_responses = {{30.0, OperatorAction::kResume, 0}};
+  const Recorded again = runJob(model(), 1, faults);
+  ASSERT_EQ(again.events("timeout").size(), 2u);
+  EXPECT_NEAR(again.events("timeout")[1].t, 45.0 + 15.0, 1e-9);
+  EXPECT_EQ(again.summary.status, RunStatus::kHaltedInManual);
+
   // With no scripted response the run ends in MANUAL, the robot stopped and holding.
   faults.operator_responses.clear();
   const Recorded halted = runJob(model(), 1, faults);
@@ -624,12 +632,14 @@ TEST(Executor, SameInputsSameLog) {
   const Recorded a = runJob(model(), 2, faults), b = runJob(model(), 2, faults);
   ASSERT_EQ(a.log.size(), b.log.size());
   for (std::size_t k = 0; k < a.log.size(); ++k) {
-    EXPECT_EQ(a.log[k].t, b.log[k].t);
-    EXPECT_EQ(a.log[k].step, b.log[k].step);
-    EXPECT_EQ(a.log[k].event, b.log[k].event);
-    EXPECT_EQ(a.log[k].detail, b.log[k].detail);
-    EXPECT_EQ(a.log[k].state, b.log[k].state);
+    const LogRecord &x = a.log[k], &y = b.log[k];
+    EXPECT_TRUE(x.t == y.t && x.step == y.step && x.subtask == y.subtask &&
+                x.task_state == y.task_state && x.combined == y.combined && x.state == y.state &&
+                x.event == y.event && x.behavior == y.behavior && x.seq == y.seq &&
+                x.disc == y.disc && x.detail == y.detail)
+        << k;
   }
+  for (std::size_t k = 0; k < a.steps.size(); ++k) ASSERT_TRUE(a.steps[k] == b.steps[k]) << k;
   ASSERT_EQ(a.steps.size(), b.steps.size());
   EXPECT_TRUE(a.steps.back() == b.steps.back());
 }
@@ -650,6 +660,21 @@ TEST(Executor, TheTaskMachineHasTheSeedsSuperstates) {
   EXPECT_TRUE(task.fire("next_CB3"));
   EXPECT_TRUE(task.fire("job_done"));
   EXPECT_TRUE(task.inFinal());
+  // What it must not allow: cleaning or climbing before moving down, a second CB2 in a row,
+  // resuming another superstate than the interrupted one's kind, leaving done.
+  task.reset();
+  EXPECT_FALSE(task.fire("next_CB2"));
+  EXPECT_FALSE(task.fire("next_CB3"));
+  EXPECT_FALSE(task.fire("job_done"));
+  ASSERT_TRUE(task.fire("next_CB1"));
+  ASSERT_TRUE(task.fire("next_CB2"));
+  EXPECT_FALSE(task.fire("next_CB2"));
+  EXPECT_FALSE(task.fire("resume_CB2"));
+  ASSERT_TRUE(task.fire("next_CB3"));
+  EXPECT_FALSE(task.fire("next_CB1"));  // no way down again once climbing
+  EXPECT_FALSE(task.fire("next_CB2"));
+  ASSERT_TRUE(task.fire("job_done"));
+  for (const std::string& e : task.events()) EXPECT_FALSE(task.fire(e)) << e;
 }
 
 TEST(Executor, BadOptionsAreRejected) {
