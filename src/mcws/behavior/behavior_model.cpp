@@ -12,8 +12,8 @@
 #include <set>
 #include <sstream>
 
-#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_yaml.h"
 
 namespace mcws {
@@ -25,36 +25,16 @@ const std::set<std::string> kParameterUnits = {"A",   "mA",  "V",    "s",     "m
 /// Commands a basic behaviour may give its actuator.
 const std::set<std::string> kCommands = {"close", "release", "move_to", "spin", "stop"};
 
-/// "a, b, c".
-template <typename Container>
-std::string joined(const Container& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + std::string(item);
-  return out;
-}
-
-int lineOf(const YAML::Node& node) { return node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
-
-std::string at(const std::string& source, int line) {
-  return source + (line > 0 ? ":" + std::to_string(line) : "");
-}
-
-/// A value with its unit, "155 mm".
-struct Quantity {
-  double value{0.0};
-  std::string unit;
-};
-
-class BehaviorModelReader {
+class BehaviorModelReader : YamlReader {
  public:
-  explicit BehaviorModelReader(std::string source) : source_(std::move(source)) {}
+  explicit BehaviorModelReader(std::string source) : YamlReader(std::move(source)) {}
 
   BehaviorModel read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of behaviour model fields");
     checkKeys(root, "model",
               {"name", "robot", "insulator", "events", "state_vector", "pose_rules",
                "basic_behaviors", "poses", "combined_behaviors"});
-    model_.source = source_;
+    model_.source = source();
     model_.name = text(require(root, "name", "model"), "name");
     if (const YAML::Node robot = root["robot"]) readRobot(robot);
     if (const YAML::Node insulator = root["insulator"]) readInsulator(insulator);
@@ -68,79 +48,9 @@ class BehaviorModelReader {
   }
 
  private:
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    throw Error(at(source_, lineOf(node)) + ": " + message);
-  }
-
-  void checkKeys(const YAML::Node& map, const std::string& where,
-                 const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, where + ": must be a map");
-    std::set<std::string> seen;
-    for (const auto& item : map) {
-      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
-      const std::string key = item.first.Scalar();
-      if (!seen.insert(key).second) fail(item.first, where + ": key '" + key + "' given twice");
-      if (!allowed.count(key)) {
-        fail(item.first, where + ": unknown key '" + key + "' (allowed: " + joined(allowed) + ")");
-      }
-    }
-  }
-
-  /// Checks a map whose keys are names of the file's own (states, events, ports): plain and
-  /// given once.
-  void checkNames(const YAML::Node& map, const std::string& where) const {
-    if (!map.IsMap()) fail(map, where + ": must be a map");
-    std::set<std::string> seen;
-    for (const auto& item : map) {
-      if (!item.first.IsScalar() || item.first.Scalar().empty()) {
-        fail(item.first, where + ": a key must be a plain name");
-      }
-      if (!seen.insert(item.first.Scalar()).second) {
-        fail(item.first, where + ": key '" + item.first.Scalar() + "' given twice");
-      }
-    }
-  }
-
-  YAML::Node require(const YAML::Node& map, const std::string& key,
-                     const std::string& where) const {
-    const YAML::Node node = map[key];
-    if (!node) fail(map, where + ": missing field '" + key + "'");
-    return node;
-  }
-
-  std::string text(const YAML::Node& node, const std::string& where) const {
-    if (!node.IsScalar()) fail(node, where + ": must be a single value");
-    if (node.Scalar().empty()) fail(node, where + ": must not be empty");
-    return node.Scalar();
-  }
-
-  /// A scalar or a list of scalars.
-  std::vector<std::string> texts(const YAML::Node& node, const std::string& where) const {
-    std::vector<std::string> out;
-    if (node.IsSequence()) {
-      for (const YAML::Node& item : node) out.push_back(text(item, where));
-    } else {
-      out.push_back(text(node, where));
-    }
-    return out;
-  }
-
   Quantity quantity(const YAML::Node& node, const std::string& where,
                     const std::set<std::string>& units) const {
-    const std::string value = text(node, where);
-    std::istringstream words(value);
-    std::string number, unit, extra;
-    words >> number >> unit;
-    Quantity q;
-    if (unit.empty() || (words >> extra) || !parseDecimal(number, q.value)) {
-      fail(node, where + ": '" + value + "' is not a number and a unit (e.g. '155 mm')");
-    }
-    if (!units.count(unit)) {
-      fail(node,
-           where + ": unknown unit '" + unit + "' in '" + value + "' (" + joined(units) + ")");
-    }
-    q.unit = unit;
-    return q;
+    return YamlReader::quantity(node, where, text(node, where), units, "155 mm");
   }
 
   double positive(const YAML::Node& node, const std::string& where,
@@ -153,7 +63,7 @@ class BehaviorModelReader {
   void readRobot(const YAML::Node& node) {
     const std::string file = text(node, "robot");
     std::filesystem::path path(file);
-    if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
+    if (path.is_relative()) path = std::filesystem::path(source()).parent_path() / path;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
       fail(node, "robot: '" + file + "' does not exist (looked for " + path.string() + ")");
@@ -417,7 +327,6 @@ class BehaviorModelReader {
     }
   }
 
-  std::string source_;
   BehaviorModel model_;
 };
 
@@ -436,7 +345,7 @@ class Validator {
 
  private:
   [[noreturn]] void fail(int line, const std::string& message) const {
-    throw Error(at(model_.source, line) + ": " + message);
+    throw Error(atLine(model_.source, line) + ": " + message);
   }
 
   void checkStateVector() const {
@@ -829,8 +738,8 @@ std::string ValidationReport::summary() const {
 }
 
 BehaviorRun resolveRun(const BehaviorModel& model, const Transition& transition) {
-  const std::string where = at(model.source, transition.line) + ": transition " + transition.from +
-                            " -> " + transition.to + ": ";
+  const std::string where = atLine(model.source, transition.line) + ": transition " +
+                            transition.from + " -> " + transition.to + ": ";
   BehaviorRun run;
   run.behavior = model.behavior(transition.behavior);
   if (!run.behavior) throw Error(where + "unknown behaviour '" + transition.behavior + "'");
@@ -869,14 +778,14 @@ std::vector<PoseFinding> checkPoseConsistency(const BehaviorModel& model) {
       const StatePose* from = model.poseOf(t.from);
       const StatePose* to = model.poseOf(t.to);
       if (!from || !to) {
-        throw Error(at(model.source, t.line) + ": " + cb.name + ": transition " + t.from + " -> " +
-                    t.to + ": a state without a pose");
+        throw Error(atLine(model.source, t.line) + ": " + cb.name + ": transition " + t.from +
+                    " -> " + t.to + ": a state without a pose");
       }
       const BehaviorRun run = resolveRun(model, t);
       const Pose reached = applyRun(run, from->pose);
       if (reached == to->pose) continue;
       const StateComponent& c = spec.components[run.component];
-      std::string message = at(model.source, t.line) + ": " + cb.name + ": " + t.from + " -> " +
+      std::string message = atLine(model.source, t.line) + ": " + cb.name + ": " + t.from + " -> " +
                             t.to + ": " + t.behavior + " sets " + c.name + " to " +
                             c.values[run.value];
       if (reached == from->pose) {

@@ -1,16 +1,8 @@
 #include "mcws/behavior/behavior_report.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,8 +12,7 @@
 #include "mcws/core/error.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/gnuplot.h"
-
-extern char** environ;
+#include "mcws/io/process.h"
 
 namespace mcws {
 
@@ -62,66 +53,6 @@ std::string csvField(const std::string& text) {
 
 const char* bit(bool value) { return value ? "1" : "0"; }
 
-std::string readAll(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// The last non-blank line of a text ("" when none).
-std::string lastLine(const std::string& text) {
-  std::istringstream lines(text);
-  std::string line, last;
-  while (std::getline(lines, line)) {
-    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-  }
-  return last;
-}
-
-/// Graphviz `dot` found on PATH (an executable regular file), "" when it is not installed.
-std::string findDot() {
-  const char* path = std::getenv("PATH");
-  if (!path) return "";
-  std::istringstream dirs(path);
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/dot";
-    struct stat info {};
-    if (::stat(candidate.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0) {
-      return candidate;
-    }
-  }
-  return "";
-}
-
-/// Runs `dot -Tpng input -o output`, stdout and stderr into `log`.
-/// \return the exit status (128 + signal when killed), or -1 when it cannot be started.
-int runDot(const std::string& dot, const std::string& input, const std::string& output,
-           const std::string& log, int& spawn_errno) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::string program = dot, format = "-Tpng", in = input, flag = "-o", out = output;
-  char* argv[] = {program.data(), format.data(), in.data(), flag.data(), out.data(), nullptr};
-  pid_t pid = 0;
-  spawn_errno = posix_spawn(&pid, dot.c_str(), &actions, nullptr, argv, environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (spawn_errno != 0) return -1;
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) {
-      spawn_errno = errno;
-      return -1;
-    }
-  }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
 void writeWhole(const std::string& path, const std::string& bytes) {
   io::AtomicFile file(path);
   file.write(bytes.data(), bytes.size());
@@ -133,13 +64,13 @@ std::string renderPng(const std::string& dot, const std::string& dot_path) {
   io::ScratchDir scratch;
   const std::string png = scratch.file("graph.png"), log = scratch.file("dot.log");
   int spawn_errno = 0;
-  const int status = runDot(dot, dot_path, png, log, spawn_errno);
+  const int status = io::runProgram({dot, "-Tpng", dot_path, "-o", png}, log, spawn_errno);
   if (status < 0) {
     throw Error("cannot run '" + dot + "' on '" + dot_path + "': " + std::strerror(spawn_errno));
   }
-  const std::string bytes = readAll(png);
+  const std::string bytes = io::readFile(png);
   if (status != 0 || bytes.rfind("\x89PNG", 0) != 0) {
-    const std::string message = lastLine(readAll(log));
+    const std::string message = io::lastLine(io::readFile(log), " \t\r");
     throw Error("dot failed on '" + dot_path + "' (exit status " + std::to_string(status) + ")" +
                 (message.empty() ? "" : ": " + message));
   }
@@ -404,7 +335,7 @@ std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const
   }
   graphs.emplace_back("task", taskMachine().toDot());
 
-  const std::string dot = findDot();
+  const std::string dot = io::findOnPath("dot");  // Graphviz; "" when it is not installed
   std::vector<std::string> written;
   for (const auto& [name, text] : graphs) {
     const std::string dot_path = (fs::path(dir) / (name + ".dot")).string();

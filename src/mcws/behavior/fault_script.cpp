@@ -11,25 +11,11 @@
 #include <sstream>
 #include <utility>
 
-#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/core/yaml_reader.h"
 
 namespace mcws {
 namespace {
-
-/// "a, b, c".
-template <typename Container>
-std::string joined(const Container& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + std::string(item);
-  return out;
-}
-
-int lineOf(const YAML::Node& node) { return node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
-
-std::string at(const std::string& source, int line) {
-  return source + (line > 0 ? ":" + std::to_string(line) : "");
-}
 
 /// Units of a time, and their size in seconds.
 const std::map<std::string, double> kTimeUnits = {{"s", 1.0}, {"ms", 0.001}, {"min", 60.0}};
@@ -67,20 +53,20 @@ const std::map<std::string, LowBatteryPolicy> kLowBatteryPolicies = {
 const std::map<std::string, SimJoint> kClamps = {{"fixed", kFixedClamp}, {"moving", kMovingClamp}};
 const std::map<std::string, bool> kReadings = {{"pressed", true}, {"not_pressed", false}};
 
-/// The names of a name -> value table, "a, b, c".
+/// The names of a name -> value table, in order.
 template <typename Value>
-std::string namesOf(const std::map<std::string, Value>& table) {
-  std::vector<std::string> names;
-  for (const auto& item : table) names.push_back(item.first);
-  return joined(names);
+std::set<std::string> namesOf(const std::map<std::string, Value>& table) {
+  std::set<std::string> names;
+  for (const auto& item : table) names.insert(item.first);
+  return names;
 }
 
-class FaultScriptReader {
+class FaultScriptReader : YamlReader {
  public:
-  explicit FaultScriptReader(std::string source) : source_(std::move(source)) {}
+  explicit FaultScriptReader(std::string source) : YamlReader(std::move(source)) {}
 
   FaultScript read(const YAML::Node& root) {
-    script_.source = source_;
+    script_.source = source();
     if (!root || root.IsNull()) return std::move(script_);  // empty, or comments only
     if (!root.IsMap()) {
       fail(root, "fault file: the document must be a map with keys faults, operator, policy");
@@ -93,25 +79,6 @@ class FaultScriptReader {
   }
 
  private:
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    throw Error(at(source_, lineOf(node)) + ": " + message);
-  }
-
-  /// Every key plain, given once and one of `allowed`.
-  void checkKeys(const YAML::Node& map, const std::string& where,
-                 const std::set<std::string>& allowed) const {
-    if (!map.IsMap()) fail(map, where + ": must be a map");
-    std::set<std::string> seen;
-    for (const auto& item : map) {
-      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
-      const std::string key = item.first.Scalar();
-      if (!seen.insert(key).second) fail(item.first, where + ": key '" + key + "' given twice");
-      if (!allowed.count(key)) {
-        fail(item.first, where + ": unknown key '" + key + "' (allowed: " + joined(allowed) + ")");
-      }
-    }
-  }
-
   /// The value of `key` in `map` (undefined when absent); a key with no value fails at the key's
   /// line (yaml-cpp marks an empty value at the token after it).
   YAML::Node field(const YAML::Node& map, const std::string& key, const std::string& where) const {
@@ -130,11 +97,10 @@ class FaultScriptReader {
     return node;
   }
 
+  /// YamlReader::text(), but "has no value" for a node with none.
   std::string text(const YAML::Node& node, const std::string& where) const {
     if (node.IsNull()) fail(node, where + ": has no value");
-    if (!node.IsScalar()) fail(node, where + ": must be a single value");
-    if (node.Scalar().empty()) fail(node, where + ": must not be empty");
-    return node.Scalar();
+    return YamlReader::text(node, where);
   }
 
   /// The value called `text(node)` in `table`, or "where: unknown what 'name' (names)".
@@ -144,7 +110,7 @@ class FaultScriptReader {
     const std::string name = text(node, where + ": " + key);
     const auto it = table.find(name);
     if (it == table.end()) {
-      fail(node, where + ": unknown " + what + " '" + name + "' (" + namesOf(table) + ")");
+      fail(node, where + ": unknown " + what + " '" + name + "' (" + joined(namesOf(table)) + ")");
     }
     return it->second;
   }
@@ -153,19 +119,8 @@ class FaultScriptReader {
   double quantity(const YAML::Node& node, const std::string& where,
                   const std::map<std::string, double>& units, const std::string& example) const {
     const std::string value = text(node, where);
-    std::istringstream words(value);
-    std::string number, unit, extra;
-    words >> number >> unit;
-    double q = 0.0;
-    if (unit.empty() || (words >> extra) || !parseDecimal(number, q)) {
-      fail(node, where + ": '" + value + "' is not a number and a unit (e.g. '" + example + "')");
-    }
-    const auto it = units.find(unit);
-    if (it == units.end()) {
-      fail(node,
-           where + ": unknown unit '" + unit + "' in '" + value + "' (" + namesOf(units) + ")");
-    }
-    const double converted = q * it->second + 0.0;  // + 0.0: no -0
+    const Quantity q = YamlReader::quantity(node, where, value, namesOf(units), example);
+    const double converted = q.value * units.at(q.unit) + 0.0;  // + 0.0: no -0
     if (!std::isfinite(converted)) fail(node, where + ": '" + value + "' is out of range");
     return converted;
   }
@@ -306,7 +261,6 @@ class FaultScriptReader {
     }
   }
 
-  std::string source_;
   FaultScript script_;
 };
 
@@ -355,7 +309,7 @@ FaultScript parseFaultScript(const std::string& text, const std::string& source)
   try {
     documents = YAML::LoadAll(text);
   } catch (const YAML::Exception& e) {
-    throw Error(at(source, e.mark.line >= 0 ? e.mark.line + 1 : 0) + ": YAML syntax: " + e.msg);
+    throw Error(atLine(source, e.mark.line >= 0 ? e.mark.line + 1 : 0) + ": YAML syntax: " + e.msg);
   }
   if (documents.size() > 1) {
     throw Error(source + ": holds " + std::to_string(documents.size()) +

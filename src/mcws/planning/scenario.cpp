@@ -13,6 +13,7 @@
 #include "mcws/collision/collision_model.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_yaml.h"
 
 namespace mcws {
@@ -52,9 +53,9 @@ bool parseExpression(std::string text, double& value) {
   return std::isfinite(value);
 }
 
-class ScenarioReader {
+class ScenarioReader : YamlReader {
  public:
-  explicit ScenarioReader(std::string source) : source_(std::move(source)) {}
+  explicit ScenarioReader(std::string source) : YamlReader(std::move(source)) {}
 
   Scenario read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of scenario fields");
@@ -62,14 +63,14 @@ class ScenarioReader {
         root, "scenario",
         {"name", "robot", "start", "goal", "joint_scale", "base", "sway", "planner", "validation"});
     Scenario scenario;
-    scenario.source = source_;
-    scenario.name = text(require(root, "name", "scenario"), "name");
+    scenario.source = source();
+    scenario.name = scalar(require(root, "name", "scenario"), "name");
     SwayPlanningProblem& problem = scenario.problem;
 
     const YAML::Node robot_node = require(root, "robot", "scenario");
-    const std::string robot_file = text(robot_node, "robot");
+    const std::string robot_file = scalar(robot_node, "robot");
     std::filesystem::path path(robot_file);
-    if (path.is_relative()) path = std::filesystem::path(source_).parent_path() / path;
+    if (path.is_relative()) path = std::filesystem::path(source()).parent_path() / path;
     if (!std::filesystem::exists(path)) {
       fail(robot_node,
            "robot: '" + robot_file + "' does not exist (looked for " + path.string() + ")");
@@ -118,11 +119,8 @@ class ScenarioReader {
   }
 
  private:
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
-    const int line = node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
-    throw Error(source_ + (line ? ":" + std::to_string(line) : "") + ": " + message);
-  }
-
+  /// The scenario file's own wording ("unknown field 'k'", no list of the allowed keys), not
+  /// YamlReader::checkKeys().
   void checkKeys(const YAML::Node& map, const std::string& where,
                  const std::set<std::string>& allowed) const {
     if (!map.IsMap()) fail(map, where + ": must be a map");
@@ -134,20 +132,8 @@ class ScenarioReader {
     }
   }
 
-  YAML::Node require(const YAML::Node& map, const std::string& key,
-                     const std::string& where) const {
-    const YAML::Node node = map[key];
-    if (!node) fail(map, where + ": missing field '" + key + "'");
-    return node;
-  }
-
-  std::string text(const YAML::Node& node, const std::string& field) const {
-    if (!node.IsScalar()) fail(node, field + ": must be a single value");
-    return node.Scalar();
-  }
-
   double number(const YAML::Node& node, const std::string& field) const {
-    const std::string value = text(node, field);
+    const std::string value = scalar(node, field);
     double out = 0.0;
     if (!parseExpression(value, out)) fail(node, field + ": '" + value + "' is not a number");
     return out;
@@ -171,7 +157,7 @@ class ScenarioReader {
 
   double quantity(const YAML::Node& node, char want, const std::string& field) const {
     try {
-      return parseQuantity(text(node, field), want, unit_);
+      return parseQuantity(scalar(node, field), want, unit_);
     } catch (const Error& e) {
       fail(node, field + ": " + e.what());
     }
@@ -260,8 +246,8 @@ class ScenarioReader {
 
   void readCovariance(const YAML::Node& node, SwayModel& sway) {
     checkKeys(node, "sway: covariance", {"length", "angle", "matrix"});
-    const std::string length = text(require(node, "length", "sway: covariance"), "length");
-    const std::string angle = text(require(node, "angle", "sway: covariance"), "angle");
+    const std::string length = scalar(require(node, "length", "sway: covariance"), "length");
+    const std::string angle = scalar(require(node, "angle", "sway: covariance"), "angle");
     double length_scale = 0.0, angle_scale = 0.0;
     try {
       length_scale = parseQuantity("1 " + length, 'l', unit_);
@@ -315,7 +301,7 @@ class ScenarioReader {
              "planner: segment_length " + node["segment_length"].Scalar() + " must be > 0");
     }
     if (const YAML::Node rule = node["rule"]) {
-      const std::string name = text(rule, "planner: rule");
+      const std::string name = scalar(rule, "planner: rule");
       if (name == "literal") {
         problem.score.rule = ScoreRule::kLiteral;
       } else if (name == "weighted") {
@@ -332,7 +318,7 @@ class ScenarioReader {
       }
     }
     if (const YAML::Node on = node["threshold_on"]) {
-      const std::string name = text(on, "planner: threshold_on");
+      const std::string name = scalar(on, "planner: threshold_on");
       if (name != "P" && name != "whole_path") {
         fail(on, "planner: threshold_on '" + name + "' is not P or whole_path");
       }
@@ -355,7 +341,6 @@ class ScenarioReader {
     return value;
   }
 
-  std::string source_;
   LengthUnit unit_{LengthUnit::kMetre};
 };
 

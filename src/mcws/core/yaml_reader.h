@@ -1,0 +1,174 @@
+#pragma once
+/// \file
+/// \brief The checks the mcws YAML readers share: "file:line: message" errors, known keys,
+/// required fields, single values and numbers with a unit.
+///
+/// Header-only; only the readers that link yaml-cpp include it (mcws::core does not link it).
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/core/decimal.h"
+#include "mcws/core/error.h"
+
+namespace mcws {
+
+/// \brief The items of a container of strings, "a, b, c" ("" when empty).
+template <typename Container>
+std::string joined(const Container& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + std::string(item);
+  return out;
+}
+
+/// \brief The 1-based line of `node` in its file, 0 when yaml-cpp does not know it.
+inline int lineOf(const YAML::Node& node) {
+  return node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+}
+
+/// \brief "source:line", or "source" alone when `line` is 0 (unknown).
+inline std::string atLine(const std::string& source, int line) {
+  return source + (line > 0 ? ":" + std::to_string(line) : "");
+}
+
+/// \brief A number with its unit, "155 mm", as written (not converted).
+struct Quantity {
+  double value{0.0};
+  std::string unit;
+};
+
+/// \brief Base of a reader of one YAML file: every check throws mcws::Error with the message
+/// "source:line: where: what is wrong", the line being that of the offending node.
+///
+/// `where` names the item being read ("insulator", "faults[2]: at"); the helpers append the
+/// problem to it.
+///
+/// \code
+/// class FooReader : YamlReader {
+///  public:
+///   explicit FooReader(std::string source) : YamlReader(std::move(source)) {}
+///   Foo read(const YAML::Node& root) {
+///     checkKeys(root, "foo", {"name", "size"});
+///     Foo foo;
+///     foo.name = text(require(root, "name", "foo"), "foo: name");
+///     ...
+///   }
+/// };
+/// \endcode
+class YamlReader {
+ public:
+  /// \param source the file name (or other label) that starts every message.
+  explicit YamlReader(std::string source) : source_(std::move(source)) {}
+
+  /// \brief The file name that starts every message.
+  const std::string& source() const { return source_; }
+
+  /// \brief Throws "source:line: message" at the line of `node` ("source: message" when its line
+  /// is unknown). \throws mcws::Error always.
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& message) const {
+    throw Error(atLine(source_, lineOf(node)) + ": " + message);
+  }
+
+  /// \brief Checks that `map` is a map whose keys are plain names, each given once and each one
+  /// of `allowed`.
+  /// \throws mcws::Error "where: must be a map", "where: a key must be a plain name", "where: key
+  /// 'k' given twice" or "where: unknown key 'k' (allowed: a, b, c)".
+  void checkKeys(const YAML::Node& map, const std::string& where,
+                 const std::set<std::string>& allowed) const {
+    if (!map.IsMap()) fail(map, where + ": must be a map");
+    std::set<std::string> seen;
+    for (const auto& item : map) {
+      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
+      const std::string key = item.first.Scalar();
+      if (!seen.insert(key).second) fail(item.first, where + ": key '" + key + "' given twice");
+      if (!allowed.count(key)) {
+        fail(item.first, where + ": unknown key '" + key + "' (allowed: " + joined(allowed) + ")");
+      }
+    }
+  }
+
+  /// \brief Checks a map whose keys are names of the file's own (states, events, ports): plain,
+  /// not empty and given once.
+  /// \throws mcws::Error "where: must be a map", "where: a key must be a plain name" or "where:
+  /// key 'k' given twice".
+  void checkNames(const YAML::Node& map, const std::string& where) const {
+    if (!map.IsMap()) fail(map, where + ": must be a map");
+    std::set<std::string> seen;
+    for (const auto& item : map) {
+      if (!item.first.IsScalar() || item.first.Scalar().empty()) {
+        fail(item.first, where + ": a key must be a plain name");
+      }
+      if (!seen.insert(item.first.Scalar()).second) {
+        fail(item.first, where + ": key '" + item.first.Scalar() + "' given twice");
+      }
+    }
+  }
+
+  /// \brief The value of `key` in `map`.
+  /// \throws mcws::Error "where: missing field 'key'" (at the map's line) when it is absent.
+  YAML::Node require(const YAML::Node& map, const std::string& key,
+                     const std::string& where) const {
+    const YAML::Node node = map[key];
+    if (!node) fail(map, where + ": missing field '" + key + "'");
+    return node;
+  }
+
+  /// \brief The text of a single value, possibly empty.
+  /// \throws mcws::Error "where: must be a single value" for a list, a map or no value.
+  std::string scalar(const YAML::Node& node, const std::string& where) const {
+    if (!node.IsScalar()) fail(node, where + ": must be a single value");
+    return node.Scalar();
+  }
+
+  /// \brief The text of a single, non-empty value.
+  /// \throws mcws::Error as scalar(), or "where: must not be empty".
+  std::string text(const YAML::Node& node, const std::string& where) const {
+    const std::string value = scalar(node, where);
+    if (value.empty()) fail(node, where + ": must not be empty");
+    return value;
+  }
+
+  /// \brief The texts of a single value or of a list of single values (each as text()).
+  std::vector<std::string> texts(const YAML::Node& node, const std::string& where) const {
+    std::vector<std::string> out;
+    if (node.IsSequence()) {
+      for (const YAML::Node& item : node) out.push_back(text(item, where));
+    } else {
+      out.push_back(text(node, where));
+    }
+    return out;
+  }
+
+  /// \brief `value`, the text of `node` as the reader read it, split into a number (a plain
+  /// decimal, mcws::parseDecimal) and a unit: "155 mm".
+  /// \param units the units allowed.
+  /// \param example a valid value for the message, "155 mm".
+  /// \throws mcws::Error "where: 'value' is not a number and a unit (e.g. 'example')" or "where:
+  /// unknown unit 'u' in 'value' (a, b, c)".
+  Quantity quantity(const YAML::Node& node, const std::string& where, const std::string& value,
+                    const std::set<std::string>& units, const std::string& example) const {
+    std::istringstream words(value);
+    std::string number, unit, extra;
+    words >> number >> unit;
+    Quantity q;
+    if (unit.empty() || (words >> extra) || !parseDecimal(number, q.value)) {
+      fail(node, where + ": '" + value + "' is not a number and a unit (e.g. '" + example + "')");
+    }
+    if (!units.count(unit)) {
+      fail(node,
+           where + ": unknown unit '" + unit + "' in '" + value + "' (" + joined(units) + ")");
+    }
+    q.unit = unit;
+    return q;
+  }
+
+ private:
+  std::string source_;
+};
+
+}  // namespace mcws
