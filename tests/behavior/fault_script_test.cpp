@@ -289,6 +289,18 @@ TEST(FaultScript, RejectsNonPositiveDurationsAndCurrents) {
                  "faults[1]: current", {"'0 mA'", "> 0"});
 }
 
+TEST(FaultScript, RejectsWaitsOfMoreThanADay) {
+  // The run would step through them 0.01 s at a time.
+  expectRejected("operator:\n  - {after: 1441 min, action: resume}\n", 2, "operator[1]: after",
+                 {"'1441 min'", "more than a day"});
+  expectRejected("policy:\n  link_wait: 86401 s\n", 2, "policy: link_wait",
+                 {"'86401 s'", "more than a day"});
+  const FaultScript day = parseFaultScript(
+      "policy: {link_wait: 1440 min}\noperator:\n  - {after: 86400 s, action: resume}\n", "f");
+  EXPECT_EQ(day.link_wait_s, 86400.0);
+  EXPECT_EQ(day.operator_responses[0].after_s, 86400.0);
+}
+
 TEST(FaultScript, RejectsBadUnits) {
   expectRejected("faults:\n  - {at: 5 h, type: link_down}\n", 2, "faults[1]: at",
                  {"unknown unit 'h'", "'5 h'", "(min, ms, s)"});

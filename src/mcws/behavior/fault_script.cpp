@@ -19,6 +19,7 @@ namespace {
 
 /// Units of a time, and their size in seconds.
 const std::map<std::string, double> kTimeUnits = {{"s", 1.0}, {"ms", 0.001}, {"min", 60.0}};
+constexpr double kOneDay = 86400.0;  // [s]
 /// Units of a current, and their size in amperes.
 const std::map<std::string, double> kCurrentUnits = {{"A", 1.0}, {"mA", 0.001}};
 
@@ -139,6 +140,15 @@ class FaultScriptReader : YamlReader {
     return value;
   }
 
+  /// A waiting time the run must sit through: at most one day (a longer wait is a typing
+  /// mistake, and the run would step through it 0.01 s at a time).
+  double withinADay(const YAML::Node& node, const std::string& where, double seconds) const {
+    if (seconds > kOneDay) {
+      fail(node, where + ": '" + node.Scalar() + "' is more than a day (86400 s)");
+    }
+    return seconds;
+  }
+
   /// A list, or nothing (`faults:` with no entries).
   bool isList(const YAML::Node& node, const std::string& where, const std::string& what) const {
     if (node.IsNull()) return false;
@@ -150,7 +160,8 @@ class FaultScriptReader : YamlReader {
     if (node.IsNull()) return;
     checkKeys(node, "policy", {"link_wait", "low_battery"});
     if (const YAML::Node wait = field(node, "link_wait", "policy")) {
-      script_.link_wait_s = positive(wait, "policy: link_wait", kTimeUnits, "30 s");
+      script_.link_wait_s = withinADay(wait, "policy: link_wait",
+                                       positive(wait, "policy: link_wait", kTimeUnits, "30 s"));
     }
     if (const YAML::Node low = field(node, "low_battery", "policy")) {
       script_.low_battery =
@@ -253,8 +264,9 @@ class FaultScriptReader : YamlReader {
       checkKeys(row, where, {"after", "action"});
       OperatorResponse response;
       response.line = lineOf(row);
-      response.after_s =
-          nonNegative(require(row, "after", where), where + ": after", kTimeUnits, "30 s");
+      const YAML::Node after = require(row, "after", where);
+      response.after_s = withinADay(after, where + ": after",
+                                    nonNegative(after, where + ": after", kTimeUnits, "30 s"));
       response.action =
           lookUp(require(row, "action", where), where, "action", "action", kOperatorActions);
       script_.operator_responses.push_back(response);

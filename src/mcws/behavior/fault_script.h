@@ -18,7 +18,8 @@
 /// operator:                           # the k-th hand-over to the operator gets the k-th entry
 ///   - {after: 30 s, action: repair_and_resume}       # or resume, or return
 /// \endcode
-/// Times: s, ms or min; `at` >= 0, `after` >= 0, `duration` and `link_wait` > 0. Currents: A
+/// Times: s, ms or min; `at` >= 0, `after` >= 0, `duration` and `link_wait` > 0; `after` and
+/// `link_wait` at most a day (86400 s). Currents: A
 /// or mA, > 0. `wrong_command` takes a joint J1..J6, a command (close, release, stop, move_to,
 /// spin) and, for move_to and spin only, a value (move_to: mm for J3, J4, deg for the others;
 /// spin: rpm); it always runs at the joint's full speed. Whether the joint takes that command
