@@ -7,16 +7,8 @@
 # the comparison. The load average is printed because the machine may be shared.
 # Usage: scripts/bench_behave.sh [RUNS] [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-runs=${1:-5}
-build=${2:-$root/build}
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcws_bench.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 model=$root/robots/insulator_cleaner_behaviors.yaml
-
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 
 echo
 echo "| mcws_behave --insulators 28 | wall [s] | peak memory [MB] | simulated [s] | simulated / wall |"

@@ -8,16 +8,8 @@
 # same runs. The load average is printed because the machine may be shared.
 # Usage: scripts/bench_plan.sh [RUNS] [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-runs=${1:-5}
-build=${2:-$root/build}
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcws_bench.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "$0")/bench_common.sh"
 scenario=$root/scenarios/maintenance4.yaml
-
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
 
 for mode in evaluation validation; do
