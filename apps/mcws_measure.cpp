@@ -37,6 +37,9 @@ int main(int argc, char** argv) {
         "delaunay: simplex size limit, local spacings (default 3)")(
         "correction", app::po::value<std::string>(),
         "delaunay: efron | none (default efron; none for refined clouds)")(
+        "leave-one-out", app::po::value<std::string>(),
+        "efron: star (each vertex's star, all threads; default) | reinsert (remove, locate,\n"
+        "reinsert each vertex: the same count, one thread, slower)")(
         "column-width", app::po::value<std::string>(),
         "column: L [length unit] (default automatic)")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -57,6 +60,9 @@ int main(int argc, char** argv) {
     const std::string correction = cli.text("correction", "efron");
     if (correction != "efron" && correction != "none")
       throw app::UsageError("--correction: '" + correction + "' is not efron or none");
+    const std::string leave_one_out = cli.text("leave-one-out", "star");
+    if (leave_one_out != "star" && leave_one_out != "reinsert")
+      throw app::UsageError("--leave-one-out: '" + leave_one_out + "' is not star or reinsert");
     const double alpha = app::parseNumber(cli.text("alpha", "3"), "alpha");
     if (!(alpha > 0.0))
       throw app::UsageError("--alpha: must be positive, not " + cli.text("alpha", ""));
@@ -84,6 +90,8 @@ int main(int argc, char** argv) {
       MeasureOptions options;
       options.alpha_factor = alpha;
       options.edge_correction = correction == "efron";
+      options.leave_one_out =
+          leave_one_out == "star" ? LeaveOneOut::kStar : LeaveOneOut::kRemoveAndReinsert;
       if (region.size() >= kProgressPoints) {  // minutes for a million points in 3-D
         options.phase = [&](const std::string& phase) {
           std::cerr << "mcws_measure: " << phase << " (" << region.size() << " points, "

@@ -49,6 +49,25 @@ TEST(DelaunayMeasure, TheEdgeCorrectionIsWhatMakesItAccurate) {
   EXPECT_GT(m.outside, 0u);
 }
 
+TEST(DelaunayMeasure, StarLeaveOneOutCountsWhatRemovingEachVertexCounts) {
+  // The brute force: remove every boundary vertex from the triangulation, locate its point, put
+  // it back. The star method must count exactly the same vertices outside, on shapes with a
+  // convex rim, a hole (annulus), corners (box) and 2-D and 3-D.
+  MeasureOptions brute;
+  brute.leave_one_out = LeaveOneOut::kRemoveAndReinsert;
+  for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
+    for (const std::uint64_t seed : {1, 2}) {
+      const auto cloud = shapeCloud(shape, 20000, seed);
+      const int dims = shapeIsPlanar(shape) ? 2 : 3;
+      const RegionMeasure star = delaunayMeasure(cloud, dims, MeasureOptions());
+      const RegionMeasure removed = delaunayMeasure(cloud, dims, brute);
+      EXPECT_GT(star.outside, 0u);
+      EXPECT_EQ(star.outside, removed.outside) << static_cast<int>(shape) << " seed " << seed;
+      EXPECT_EQ(star.measure, removed.measure);
+    }
+  }
+}
+
 std::string measureError(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions) {
   try {
     delaunayMeasure(cloud, dimensions);

@@ -49,6 +49,104 @@ std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr&
   return spacing;
 }
 
+// Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
+// triangulation changes only its star: the hole is filled by the part of the Delaunay
+// triangulation of v's neighbours that lies in it (Devillers, "On deletion in Delaunay
+// triangulations", 1999). v's point lies in its own star, so the simplex that holds it once v
+// is gone is the simplex of that small triangulation that holds it; a vertex on the convex hull
+// lies outside the hull of the others. Each vertex is read-only work on the big triangulation,
+// so the vertices are shared among threads; the count does not depend on their number.
+
+template <typename Delaunay>
+std::size_t outsideByStar2(const Delaunay& dt,
+                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                           const std::vector<double>& spacing, double alpha_factor) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
+  using Local = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
+  std::size_t outside = 0;
+#pragma omp parallel reduction(+ : outside)
+  {
+    std::vector<std::pair<K::Point_2, std::uint32_t>> star;
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
+      const auto v = boundary[i];
+      star.clear();
+      bool on_hull = false;
+      auto u = dt.incident_vertices(v), done = u;
+      do {
+        if (dt.is_infinite(u)) {
+          on_hull = true;
+        } else {
+          star.emplace_back(u->point(), u->info());
+        }
+      } while (++u != done);
+      if (on_hull) {
+        ++outside;
+        continue;
+      }
+      const Local local(star.begin(), star.end());
+      const auto f =
+          local.dimension() == 2 ? local.locate(v->point()) : typename Local::Face_handle();
+      bool covered = false;
+      if (f != typename Local::Face_handle() && !local.is_infinite(f)) {
+        const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
+        const double limit =
+            alpha_factor * std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
+        covered = CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit;
+      }
+      outside += !covered;
+    }
+  }
+  return outside;
+}
+
+template <typename Delaunay>
+std::size_t outsideByStar3(const Delaunay& dt,
+                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                           const std::vector<double>& spacing, double alpha_factor) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
+  using Local = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
+  std::size_t outside = 0;
+#pragma omp parallel reduction(+ : outside)
+  {
+    std::vector<std::pair<K::Point_3, std::uint32_t>> star;
+    std::vector<typename Delaunay::Vertex_handle> neighbours;
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
+      const auto v = boundary[i];
+      neighbours.clear();
+      dt.adjacent_vertices_threadsafe(v, std::back_inserter(neighbours));  // no visit flags
+      star.clear();
+      bool on_hull = false;
+      for (const auto& u : neighbours) {
+        if (dt.is_infinite(u)) {
+          on_hull = true;
+          break;
+        }
+        star.emplace_back(u->point(), u->info());
+      }
+      if (on_hull) {
+        ++outside;
+        continue;
+      }
+      const Local local(star.begin(), star.end());
+      const auto c =
+          local.dimension() == 3 ? local.locate(v->point()) : typename Local::Cell_handle();
+      bool covered = false;
+      if (c != typename Local::Cell_handle() && !local.is_infinite(c)) {
+        double largest = 0.0;
+        for (int k = 0; k < 4; ++k) largest = std::max(largest, spacing[c->vertex(k)->info()]);
+        const double limit = alpha_factor * largest;
+        covered =
+            CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
+                                 c->vertex(2)->point(), c->vertex(3)->point()) <= limit * limit;
+      }
+      outside += !covered;
+    }
+  }
+  return outside;
+}
+
 RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
                         const std::vector<double>& spacing, const MeasureOptions& options) {
   const double alpha_factor = options.alpha_factor;
@@ -88,6 +186,10 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   result.boundary_vertices = boundary.size();
   if (!options.edge_correction) return result;
   if (options.phase) options.phase("edge correction");
+  if (options.leave_one_out == LeaveOneOut::kStar) {
+    result.outside = outsideByStar2(dt, boundary, spacing, alpha_factor);
+    return result;
+  }
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
   for (const auto v : boundary) {
     const K::Point_2 p = v->point();
@@ -150,6 +252,10 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
   result.boundary_vertices = boundary.size();
   if (!options.edge_correction) return result;
   if (options.phase) options.phase("edge correction");
+  if (options.leave_one_out == LeaveOneOut::kStar) {
+    result.outside = outsideByStar3(dt, boundary, spacing, alpha_factor);
+    return result;
+  }
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
   for (const auto v : boundary) {
     const K::Point_3 p = v->point();

@@ -30,8 +30,8 @@ struct RegionMeasure {
 /// for uniform samples (Efron 1965; Ripley and Rasson 1977, "Finding the edge of a Poisson
 /// forest") says the missing share equals the chance that one more sample falls outside. Leave
 /// one out estimates it: V, the number of points that lie outside the region built from all the
-/// others (found by removing each boundary vertex from the triangulation, locating it and putting
-/// it back), over N. The result is A_N / (1 - V / N); for a convex hull V is exactly its vertex
+/// others (for each boundary vertex, from the Delaunay triangulation of its neighbours, which is
+/// what fills its star when it is removed; see LeaveOneOut), over N. The result is A_N / (1 - V / N); for a convex hull V is exactly its vertex
 /// count. The correction assumes the density is uniform near the edge, as for the validation
 /// shapes; a cloud much sparser along its edge than inside (a projected ball, joint-space samples
 /// near the workspace's tips) comes out low, and refining the boundary is the remedy.
@@ -46,12 +46,24 @@ struct RegionMeasure {
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               double alpha_factor = 3.0);
 
+/// \brief How the edge correction finds the boundary vertices outside the region of the others.
+enum class LeaveOneOut {
+  /// From each vertex's star: the Delaunay triangulation of its neighbours, which is what fills
+  /// the hole when the vertex is removed; read-only on the big triangulation, on all threads.
+  kStar,
+  /// Remove each vertex from the triangulation, locate its point, put it back (one thread).
+  kRemoveAndReinsert,
+};
+
 /// \brief Options of delaunayMeasure().
 struct MeasureOptions {
   double alpha_factor{3.0};
   /// False: no leave-one-out step; measure = uncorrected (for refined clouds, whose samples lie on
   /// the edge itself: see mcws_refine).
   bool edge_correction{true};
+  /// How the leave-one-out count is computed; both give the same count for points in general
+  /// position (ties between cospherical simplices may be broken differently).
+  LeaveOneOut leave_one_out{LeaveOneOut::kStar};
   /// Called as each phase starts ("local spacing", "triangulation", "edge correction").
   std::function<void(const std::string&)> phase;
 };
