@@ -49,6 +49,22 @@ std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr&
   return spacing;
 }
 
+/// Whether a triangle (D = 2) or tetrahedron (D = 3) belongs to the region: its circumradius is
+/// at most `alpha_factor` times the local spacing at its sparsest vertex.
+template <int D, typename Simplex>
+bool withinAlpha(const Simplex& s, const std::vector<double>& spacing, double alpha_factor) {
+  double local = 0.0;
+  for (int k = 0; k <= D; ++k) local = std::max(local, spacing[s->vertex(k)->info()]);
+  const double limit = alpha_factor * local;
+  if constexpr (D == 2) {
+    return CGAL::squared_radius(s->vertex(0)->point(), s->vertex(1)->point(),
+                                s->vertex(2)->point()) <= limit * limit;
+  } else {
+    return CGAL::squared_radius(s->vertex(0)->point(), s->vertex(1)->point(), s->vertex(2)->point(),
+                                s->vertex(3)->point()) <= limit * limit;
+  }
+}
+
 // Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
 // triangulation changes only its star: the hole is filled by the part of the Delaunay
 // triangulation of v's neighbours that lies in it (Devillers, "On deletion in Delaunay
@@ -87,13 +103,8 @@ std::size_t outsideByStar2(const Delaunay& dt,
       const Local local(star.begin(), star.end());
       const auto f =
           local.dimension() == 2 ? local.locate(v->point()) : typename Local::Face_handle();
-      bool covered = false;
-      if (f != typename Local::Face_handle() && !local.is_infinite(f)) {
-        const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
-        const double limit =
-            alpha_factor * std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
-        covered = CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit;
-      }
+      const bool covered = f != typename Local::Face_handle() && !local.is_infinite(f) &&
+                           withinAlpha<2>(f, spacing, alpha_factor);
       outside += !covered;
     }
   }
@@ -132,15 +143,8 @@ std::size_t outsideByStar3(const Delaunay& dt,
       const Local local(star.begin(), star.end());
       const auto c =
           local.dimension() == 3 ? local.locate(v->point()) : typename Local::Cell_handle();
-      bool covered = false;
-      if (c != typename Local::Cell_handle() && !local.is_infinite(c)) {
-        double largest = 0.0;
-        for (int k = 0; k < 4; ++k) largest = std::max(largest, spacing[c->vertex(k)->info()]);
-        const double limit = alpha_factor * largest;
-        covered =
-            CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
-                                 c->vertex(2)->point(), c->vertex(3)->point()) <= limit * limit;
-      }
+      const bool covered = c != typename Local::Cell_handle() && !local.is_infinite(c) &&
+                           withinAlpha<3>(c, spacing, alpha_factor);
       outside += !covered;
     }
   }
@@ -165,12 +169,10 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   RegionMeasure result;
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = 0;
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
-    const double local = std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
-    const double limit = alpha_factor * local;
-    if (CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit) {
+    if (withinAlpha<2>(f, spacing, alpha_factor)) {
       f->info() = 1;
-      result.uncorrected += std::abs(CGAL::area(a->point(), b->point(), c->point()));
+      result.uncorrected +=
+          std::abs(CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
     }
   }
   std::vector<Delaunay::Vertex_handle> boundary;
@@ -195,15 +197,10 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
     const K::Point_2 p = v->point();
     const std::uint32_t index = v->info();
     dt.remove(v);
-    bool covered = false;
     // Without v the others may span only a line: then p is outside their region.
     const auto f = dt.dimension() == 2 ? dt.locate(p) : Delaunay::Face_handle();
-    if (f != Delaunay::Face_handle() && !dt.is_infinite(f)) {
-      const auto &a = f->vertex(0), &b = f->vertex(1), &c = f->vertex(2);
-      const double limit =
-          alpha_factor * std::max({spacing[a->info()], spacing[b->info()], spacing[c->info()]});
-      covered = CGAL::squared_radius(a->point(), b->point(), c->point()) <= limit * limit;
-    }
+    const bool covered = f != Delaunay::Face_handle() && !dt.is_infinite(f) &&
+                         withinAlpha<2>(f, spacing, alpha_factor);
     result.outside += !covered;
     dt.insert(p)->info() = index;
   }
@@ -229,14 +226,10 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
   RegionMeasure result;
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = 0;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    double local = 0.0;
-    for (int k = 0; k < 4; ++k) local = std::max(local, spacing[c->vertex(k)->info()]);
-    const double limit = alpha_factor * local;
-    const auto &p = c->vertex(0)->point(), &q = c->vertex(1)->point(), &r = c->vertex(2)->point(),
-               &s = c->vertex(3)->point();
-    if (CGAL::squared_radius(p, q, r, s) <= limit * limit) {
+    if (withinAlpha<3>(c, spacing, alpha_factor)) {
       c->info() = 1;
-      result.uncorrected += std::abs(CGAL::volume(p, q, r, s));
+      result.uncorrected += std::abs(CGAL::volume(c->vertex(0)->point(), c->vertex(1)->point(),
+                                                  c->vertex(2)->point(), c->vertex(3)->point()));
     }
   }
   std::vector<Delaunay::Vertex_handle> boundary;
@@ -261,16 +254,10 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
     const K::Point_3 p = v->point();
     const std::uint32_t index = v->info();
     dt.remove(v);
-    bool covered = false;
     // Without v the others may span only a plane: then p is outside their region.
     const auto c = dt.dimension() == 3 ? dt.locate(p) : Delaunay::Cell_handle();
-    if (c != Delaunay::Cell_handle() && !dt.is_infinite(c)) {
-      double local = 0.0;
-      for (int k = 0; k < 4; ++k) local = std::max(local, spacing[c->vertex(k)->info()]);
-      const double limit = alpha_factor * local;
-      covered = CGAL::squared_radius(c->vertex(0)->point(), c->vertex(1)->point(),
-                                     c->vertex(2)->point(), c->vertex(3)->point()) <= limit * limit;
-    }
+    const bool covered = c != Delaunay::Cell_handle() && !dt.is_infinite(c) &&
+                         withinAlpha<3>(c, spacing, alpha_factor);
     result.outside += !covered;
     dt.insert(p)->info() = index;
   }

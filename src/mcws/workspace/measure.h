@@ -31,11 +31,12 @@ struct RegionMeasure {
 /// forest") says the missing share equals the chance that one more sample falls outside. Leave
 /// one out estimates it: V, the number of points that lie outside the region built from all the
 /// others (for each boundary vertex, from the Delaunay triangulation of its neighbours, which is
-/// what fills its star when it is removed; see LeaveOneOut), over N. The result is A_N / (1 - V / N); for a convex hull V is exactly its vertex
-/// count. The correction assumes the density is uniform near the edge, as for the validation
-/// shapes; a cloud much sparser along its edge than inside (a projected ball, joint-space samples
-/// near the workspace's tips) comes out low, and refining the boundary is the remedy.
-/// \param points the region's points; for a planar region x and y hold the plane's coordinates
+/// what fills its star when it is removed; see LeaveOneOut), over N. The result is A_N / (1 - V /
+/// N); for a convex hull V is exactly its vertex count. The correction assumes the density is
+/// uniform near the edge, as for the validation shapes; a cloud much sparser along its edge than
+/// inside (a projected ball, joint-space samples near the workspace's tips) comes out low, and
+/// refining the boundary is the remedy. \param points the region's points; for a planar region x
+/// and y hold the plane's coordinates
 ///   and z is ignored (dimensions = 2).
 /// \param dimensions 2 (area) or 3 (volume).
 /// \param alpha_factor the circumradius limit in local spacings (> 0; 3 keeps every interior
