@@ -678,7 +678,6 @@ class CleaningRun {
       link_loss_noted_ = true;
       stopAll();
       link_lost_at_ = sim_.time();
-      interrupted_ = segment_->combined;
       mode_ = Mode::kWaitingForLink;
       fireTask("link_lost");
       log("link_lost", active_ ? active_->behavior : "",
@@ -691,21 +690,20 @@ class CleaningRun {
       const double waited = sim_.time() - link_lost_at_;
       react("link_down", "stopped, link back after " + number(waited) + " s, resumed");
       mode_ = Mode::kRunning;
-      fireTask("resume_" + interrupted_);
+      fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
       log("link_restored", "", "resuming " + stateName());
       startBehavior(true);
     } else if (sim_.time() - link_lost_at_ >= options_.faults.link_wait_s - 1e-9) {
       react("link_down", "stopped, no link after " + number(options_.faults.link_wait_s) +
                              " s, returned to the start on its own");
       mode_ = Mode::kRunning;
-      fireTask("resume_" + interrupted_);
+      fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
       startReturn("no link for " + number(options_.faults.link_wait_s) + " s");
     }
   }
 
   /// Control to the operator (MANUAL), with the next scripted response if there is one.
   void handOver(const std::string& fault, const std::string& what) {
-    interrupted_ = segment_->combined;
     mode_ = Mode::kManual;
     fireTask("hand_over");
     const auto& responses = options_.faults.operator_responses;
@@ -741,7 +739,7 @@ class CleaningRun {
       }
     }
     mode_ = Mode::kRunning;
-    fireTask("resume_" + interrupted_);
+    fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
     log("operator", "", operatorActionName(action));
     if (action == OperatorAction::kReturn) {
       startReturn("the operator's order");
@@ -946,7 +944,6 @@ class CleaningRun {
   bool returning_{false};
   bool return_after_disc_{false};
   bool battery_alarm_{false};
-  std::string interrupted_;  // the superstate FAULT or MANUAL returns to
 
   std::vector<InjectedFault> faults_;
   std::size_t next_fault_{0};
