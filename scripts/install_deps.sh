@@ -18,6 +18,8 @@ packages=(
   nlohmann-json3-dev            # --json output of the stage tools
   gnuplot-nox                   # PNG pictures of clouds
   libcgal-dev                   # alpha shapes / Delaunay for areas and volumes
+  libtbb-dev                    # CGAL's parallel 3-D Delaunay triangulation (mcws_measure)
+  libnanoflann-dev              # k-nearest-neighbour kd-tree for the local spacing (mcws_measure)
   libfcl-dev                    # collision checking (FCL: OBBRSS mesh trees, primitives)
   libompl-dev                   # motion planning roadmaps (OMPL's PRM) for mcws_plan
   graphviz                      # renders the behaviour state machines (mcws_behave --dot) to PNG

@@ -7,13 +7,20 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
-#include <pcl/kdtree/kdtree_flann.h>
+#include <omp.h>
+#include <tbb/global_control.h>
 
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/workspace/nearest_neighbours.h"
 #include "mcws/workspace/unique_positions.h"
 
 namespace mcws {
@@ -21,32 +28,37 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 constexpr int kNeighbour = 8;
+/// Cells per side of the lock grid of the parallel 3-D triangulation (CGAL's examples use 50).
+constexpr int kLockGridCells = 50;
 /// More points outside the others' region than this share: the cloud is too small to estimate
 /// the band it misses (a uniform cloud of 100 points in a disk has about 15 %).
 constexpr double kLargestMissingShare = 0.5;
 
 /// Local spacing at every point: distance to the k-th nearest neighbour over its mean for a
 /// uniform cloud of mean spacing 1, sqrt(k / pi) in 2-D and (3k / (4 pi))^(1/3) in 3-D.
-std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-                                 int dimensions) {
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree(false);
-  tree.setInputCloud(cloud);
+std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
+                                 int threads) {
   const double scale =
       dimensions == 2 ? std::sqrt(kNeighbour / M_PI) : std::cbrt(3.0 * kNeighbour / (4.0 * M_PI));
-  std::vector<double> spacing(cloud->size());
-#pragma omp parallel
-  {
-    pcl::Indices nn;
-    std::vector<float> d2;
-#pragma omp for schedule(static)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(cloud->size()); ++i) {
-      const int found = tree.nearestKSearch((*cloud)[i], kNeighbour + 1, nn, d2);
-      float largest = 0.0f;
-      for (int k = 0; k < found; ++k) largest = std::max(largest, d2[k]);
-      spacing[i] = std::sqrt(static_cast<double>(largest)) / scale;
-    }
+  const std::vector<float> d2 = kthNeighbourSquaredDistance(cloud, dimensions, kNeighbour, threads);
+  std::vector<double> spacing(d2.size());
+  for (std::size_t i = 0; i < d2.size(); ++i) {
+    spacing[i] = std::sqrt(static_cast<double>(d2[i])) / scale;
   }
   return spacing;
+}
+
+/// A simplex's vertex points in the order of their indices (the vertex info), so that what is
+/// computed from them does not depend on how the triangulation happens to store the simplex
+/// (which differs with the thread count of a parallel triangulation).
+template <int D, typename Simplex>
+auto canonicalPoints(const Simplex& s) {
+  std::array<std::pair<std::uint32_t, int>, D + 1> order;
+  for (int k = 0; k <= D; ++k) order[k] = {s->vertex(k)->info(), k};
+  std::sort(order.begin(), order.end());
+  std::array<typename std::decay_t<decltype(s->vertex(0)->point())>, D + 1> p;
+  for (int k = 0; k <= D; ++k) p[k] = s->vertex(order[k].second)->point();
+  return p;
 }
 
 /// Whether a triangle (D = 2) or tetrahedron (D = 3) belongs to the region: its circumradius is
@@ -56,13 +68,77 @@ bool withinAlpha(const Simplex& s, const std::vector<double>& spacing, double al
   double local = 0.0;
   for (int k = 0; k <= D; ++k) local = std::max(local, spacing[s->vertex(k)->info()]);
   const double limit = alpha_factor * local;
+  const auto p = canonicalPoints<D>(s);
   if constexpr (D == 2) {
-    return CGAL::squared_radius(s->vertex(0)->point(), s->vertex(1)->point(),
-                                s->vertex(2)->point()) <= limit * limit;
+    return CGAL::squared_radius(p[0], p[1], p[2]) <= limit * limit;
   } else {
-    return CGAL::squared_radius(s->vertex(0)->point(), s->vertex(1)->point(), s->vertex(2)->point(),
-                                s->vertex(3)->point()) <= limit * limit;
+    return CGAL::squared_radius(p[0], p[1], p[2], p[3]) <= limit * limit;
   }
+}
+
+/// Area of a triangle (D = 2) or volume of a tetrahedron (D = 3).
+template <int D, typename Simplex>
+double simplexMeasure(const Simplex& s) {
+  const auto p = canonicalPoints<D>(s);
+  if constexpr (D == 2) {
+    return std::abs(CGAL::area(p[0], p[1], p[2]));
+  } else {
+    return std::abs(CGAL::volume(p[0], p[1], p[2], p[3]));
+  }
+}
+
+/// A sum of non-negative terms that does not depend on their order (a parallel triangulation
+/// lists its simplices in an order that depends on the thread count): each term is rounded to a
+/// multiple of 2^-61 of a bound on the total (the bounding box's area or volume) and the
+/// multiples add exactly as integers. The rounding, at most 2^-62 of the bound per term, is far
+/// below what adding doubles loses over millions of terms.
+class OrderFreeSum {
+ public:
+  explicit OrderFreeSum(double bound) : shift_(61 - std::ilogb(bound)) {}
+  void add(double term) { total_ += std::llround(std::ldexp(term, shift_)); }
+  double value() const { return std::ldexp(static_cast<double>(total_), -shift_); }
+
+ private:
+  int shift_;
+  __int128 total_{0};
+};
+
+/// Area (D = 2) or volume (D = 3) of the points' bounding box.
+double boundingMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions) {
+  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : points) {
+    const Eigen::Array3d q(p.x, p.y, p.z);
+    lo = lo.min(q);
+    hi = hi.max(q);
+  }
+  const Eigen::Array3d extent = hi - lo;
+  return dimensions == 2 ? extent[0] * extent[1] : extent.prod();
+}
+
+/// The vertices between kept and dropped simplices (info 1 and 0; the infinite ones are dropped),
+/// in the triangulation's vertex order. A vertex has both kinds around it exactly when some facet
+/// through it separates a kept simplex from a dropped one (its star is connected through such
+/// facets), so one pass over the kept simplices' facets finds them all.
+template <int D, typename Delaunay, typename SimplexIterator>
+std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& dt,
+                                                               SimplexIterator first,
+                                                               SimplexIterator last,
+                                                               std::size_t points) {
+  std::vector<char> on_boundary(points, 0);  // by vertex info, the point's index
+  for (auto s = first; s != last; ++s) {
+    if (!s->info()) continue;
+    for (int i = 0; i <= D; ++i) {
+      if (s->neighbor(i)->info()) continue;
+      for (int j = 0; j <= D; ++j) {
+        if (j != i) on_boundary[s->vertex(j)->info()] = 1;  // the facet opposite vertex i
+      }
+    }
+  }
+  std::vector<typename Delaunay::Vertex_handle> boundary;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    if (on_boundary[v->info()]) boundary.push_back(v);
+  }
+  return boundary;
 }
 
 // Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
@@ -76,11 +152,11 @@ bool withinAlpha(const Simplex& s, const std::vector<double>& spacing, double al
 template <typename Delaunay>
 std::size_t outsideByStar2(const Delaunay& dt,
                            const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                           const std::vector<double>& spacing, double alpha_factor) {
+                           const std::vector<double>& spacing, double alpha_factor, int threads) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
   using Local = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
   std::size_t outside = 0;
-#pragma omp parallel reduction(+ : outside)
+#pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<std::pair<K::Point_2, std::uint32_t>> star;
 #pragma omp for schedule(dynamic, 256)
@@ -114,11 +190,11 @@ std::size_t outsideByStar2(const Delaunay& dt,
 template <typename Delaunay>
 std::size_t outsideByStar3(const Delaunay& dt,
                            const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                           const std::vector<double>& spacing, double alpha_factor) {
+                           const std::vector<double>& spacing, double alpha_factor, int threads) {
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
   using Local = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
   std::size_t outside = 0;
-#pragma omp parallel reduction(+ : outside)
+#pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<std::pair<K::Point_3, std::uint32_t>> star;
     std::vector<typename Delaunay::Vertex_handle> neighbours;
@@ -167,29 +243,23 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
 
   RegionMeasure result;
+  OrderFreeSum kept(boundingMeasure(points, 2));
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = 0;
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     if (withinAlpha<2>(f, spacing, alpha_factor)) {
       f->info() = 1;
-      result.uncorrected +=
-          std::abs(CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+      kept.add(simplexMeasure<2>(f));
     }
   }
-  std::vector<Delaunay::Vertex_handle> boundary;
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    auto f = dt.incident_faces(v), done = f;
-    bool kept = false, dropped = false;
-    do {
-      (f->info() ? kept : dropped) = true;
-    } while (++f != done);
-    if (kept && dropped) boundary.push_back(v);
-  }
+  result.uncorrected = kept.value();
+  const auto boundary =
+      boundaryVertices<2>(dt, dt.finite_faces_begin(), dt.finite_faces_end(), points.size());
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (!options.edge_correction) return result;
   if (options.phase) options.phase("edge correction");
   if (options.leave_one_out == LeaveOneOut::kStar) {
-    result.outside = outsideByStar2(dt, boundary, spacing, alpha_factor);
+    result.outside = outsideByStar2(dt, boundary, spacing, alpha_factor, options.threads);
     return result;
   }
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
@@ -207,46 +277,57 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   return result;
 }
 
+/// The 3-D measure on a triangulation built on all threads (`Concurrency` = CGAL::Parallel_tag,
+/// TBB) or on one (CGAL::Sequential_tag, which the remove-and-reinsert leave-one-out needs). The
+/// Delaunay triangulation of points in general position is unique, so both give the same
+/// simplices; what is summed over them does not depend on the order they are listed in.
+template <typename Concurrency>
 RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
                         const std::vector<double>& spacing, const MeasureOptions& options) {
   const double alpha_factor = options.alpha_factor;
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
   using Cb = CGAL::Triangulation_cell_base_with_info_3<char, K>;
-  using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
+  using Delaunay =
+      CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb, Concurrency>>;
   std::vector<std::pair<K::Point_3, std::uint32_t>> input;
   input.reserve(points.size());
+  CGAL::Bbox_3 box;
   for (std::size_t i = 0; i < points.size(); ++i) {
     input.emplace_back(K::Point_3(points[i].x, points[i].y, points[i].z),
                        static_cast<std::uint32_t>(i));
+    box += input.back().first.bbox();
   }
   if (options.phase) options.phase("triangulation");
-  Delaunay dt(input.begin(), input.end());
+  Delaunay dt;
+  if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
+    // Threads insert spatially sorted points, each locking the cells of a grid over the box.
+    typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
+    dt.set_lock_data_structure(&locks);
+    dt.insert(input.begin(), input.end());
+    dt.set_lock_data_structure(nullptr);  // what follows only reads
+  } else {
+    dt.insert(input.begin(), input.end());
+  }
   if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
 
   RegionMeasure result;
+  OrderFreeSum kept(boundingMeasure(points, 3));
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = 0;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     if (withinAlpha<3>(c, spacing, alpha_factor)) {
       c->info() = 1;
-      result.uncorrected += std::abs(CGAL::volume(c->vertex(0)->point(), c->vertex(1)->point(),
-                                                  c->vertex(2)->point(), c->vertex(3)->point()));
+      kept.add(simplexMeasure<3>(c));
     }
   }
-  std::vector<Delaunay::Vertex_handle> boundary;
-  std::vector<Delaunay::Cell_handle> cells;
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    cells.clear();
-    dt.incident_cells(v, std::back_inserter(cells));
-    bool kept = false, dropped = false;
-    for (const auto& c : cells) (c->info() ? kept : dropped) = true;
-    if (kept && dropped) boundary.push_back(v);
-  }
+  result.uncorrected = kept.value();
+  const auto boundary =
+      boundaryVertices<3>(dt, dt.finite_cells_begin(), dt.finite_cells_end(), points.size());
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (!options.edge_correction) return result;
   if (options.phase) options.phase("edge correction");
   if (options.leave_one_out == LeaveOneOut::kStar) {
-    result.outside = outsideByStar3(dt, boundary, spacing, alpha_factor);
+    result.outside = outsideByStar3(dt, boundary, spacing, alpha_factor, options.threads);
     return result;
   }
   // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
@@ -255,8 +336,8 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
     const std::uint32_t index = v->info();
     dt.remove(v);
     // Without v the others may span only a plane: then p is outside their region.
-    const auto c = dt.dimension() == 3 ? dt.locate(p) : Delaunay::Cell_handle();
-    const bool covered = c != Delaunay::Cell_handle() && !dt.is_infinite(c) &&
+    const auto c = dt.dimension() == 3 ? dt.locate(p) : typename Delaunay::Cell_handle();
+    const bool covered = c != typename Delaunay::Cell_handle() && !dt.is_infinite(c) &&
                          withinAlpha<3>(c, spacing, alpha_factor);
     result.outside += !covered;
     dt.insert(p)->info() = index;
@@ -296,9 +377,20 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   auto flat =
       std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(projected, position_of));
   if (options.phase) options.phase("local spacing");
-  const std::vector<double> spacing = localSpacing(flat, dimensions);
-  RegionMeasure result =
-      dimensions == 2 ? measure2d(*flat, spacing, options) : measure3d(*flat, spacing, options);
+  MeasureOptions resolved = options;
+  resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const std::vector<double> spacing = localSpacing(*flat, dimensions, resolved.threads);
+  // CGAL's parallel triangulation runs on TBB's threads: as many as OpenMP's.
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
+                                        static_cast<std::size_t>(resolved.threads));
+  RegionMeasure result;
+  if (dimensions == 2) {
+    result = measure2d(*flat, spacing, resolved);
+  } else if (resolved.threads > 1 && options.leave_one_out == LeaveOneOut::kStar) {
+    result = measure3d<CGAL::Parallel_tag>(*flat, spacing, resolved);
+  } else {
+    result = measure3d<CGAL::Sequential_tag>(*flat, spacing, resolved);
+  }
   result.alpha_factor = alpha_factor;
   if (!(result.uncorrected > 0.0)) {
     throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +

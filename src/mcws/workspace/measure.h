@@ -65,6 +65,10 @@ struct MeasureOptions {
   /// How the leave-one-out count is computed; both give the same count for points in general
   /// position (ties between cospherical simplices may be broken differently).
   LeaveOneOut leave_one_out{LeaveOneOut::kStar};
+  /// Worker threads (OpenMP for the neighbour search and the edge correction, TBB for CGAL's
+  /// parallel 3-D triangulation); 0: OpenMP's default (all cores unless OMP_NUM_THREADS). The
+  /// result does not depend on it.
+  int threads{0};
   /// Called as each phase starts ("local spacing", "triangulation", "edge correction").
   std::function<void(const std::string&)> phase;
 };

@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// \brief The k-th nearest neighbour of every point of a cloud.
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <vector>
+
+namespace mcws {
+
+/// \brief Squared distance from every point to its k-th nearest other point, exactly.
+///
+/// One kd-tree (nanoflann) over x, y (`dimensions` = 2; z is ignored) or x, y, z (3); the
+/// queries run on all threads in the tree's leaf order, so neighbouring queries walk the same
+/// nodes (five times faster than in the cloud's order on a shuffled cloud of 10^6 points).
+/// Distances are computed in float, as PCL's `KdTreeFLANN` computes them; each result depends
+/// only on the cloud, not on the thread count.
+/// \param cloud the points; copies of a position count as distinct points at distance 0.
+/// \param dimensions 2 or 3.
+/// \param k the neighbour's rank among the other points (k >= 1); a cloud of at most k points
+///   gives each point its farthest other point (0 for a single point).
+/// \param threads worker threads; 0: OpenMP's default.
+/// \throws mcws::Error for a bad `dimensions` or `k`.
+std::vector<float> kthNeighbourSquaredDistance(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                                               int dimensions, int k, int threads = 0);
+
+}  // namespace mcws
