@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
         "(Efron's\n"
         "identity; it assumes the density near the edge is about that inside, as for uniform\n"
         "samples). A cloud from mcws_refine has samples on the edge itself (joint limits):\n"
-        "measure it with --correction none. Method 'column': seed 000's rectangles,\n"
+        "measure it with --correction none (--alpha 5). Method 'column': seed 000's rectangles,\n"
         "eqs. (2)-(4), over --boundary points\n"
         "grouped into crossings per column. With --boundary the default also reports the column\n"
         "method as a cross-check.");
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
         "xy | xz | yz: an area in that plane (default: volume)")(
         "method", app::po::value<std::string>(), "delaunay | column (default delaunay)")(
         "alpha", app::po::value<std::string>(),
-        "delaunay: simplex size limit, local spacings (default 3)")(
+        "delaunay: simplex size limit, local spacings (default 3; 5 with --correction none)")(
         "correction", app::po::value<std::string>(),
         "delaunay: efron | none (default efron; none for refined clouds)")(
         "leave-one-out", app::po::value<std::string>(),
@@ -63,7 +63,11 @@ int main(int argc, char** argv) {
     const std::string leave_one_out = cli.text("leave-one-out", "star");
     if (leave_one_out != "star" && leave_one_out != "reinsert")
       throw app::UsageError("--leave-one-out: '" + leave_one_out + "' is not star or reinsert");
-    const double alpha = app::parseNumber(cli.text("alpha", "3"), "alpha");
+    // A refined cloud packs samples onto the joint-limit surfaces, where the k-th neighbour
+    // measures the surface's density and understates the spacing just inside: alpha 5 keeps the
+    // simplices there (de-icing arm, 10^6 samples: volume -0.19 % at 3, -0.02 % at 5).
+    const double alpha =
+        app::parseNumber(cli.text("alpha", correction == "none" ? "5" : "3"), "alpha");
     if (!(alpha > 0.0))
       throw app::UsageError("--alpha: must be positive, not " + cli.text("alpha", ""));
     const double width = app::parseNumber(cli.text("column-width", "0"), "column-width");

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
         "cloud", app::po::value<std::string>(),
         "cloud to copy into the output before the new samples")(
         "spread", app::po::value<std::string>(),
-        "neighbourhood half-width, a fraction of each joint's range in (0, 1] (default 0.05)")(
+        "neighbourhood half-width, a fraction of each joint's range in (0, 1] (default 0.1)")(
         "point", app::po::value<std::string>(), "tool | flange, as sampled (default tool)")(
         "seed", app::po::value<std::string>(), "random seed, a whole number >= 0 (default 1)")(
         "threads", app::po::value<std::string>(), "worker threads, 0 = all cores (default 0)")(
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     RefineOptions options;
     options.seed = static_cast<std::uint64_t>(app::parseInteger(
         cli.text("seed", "1"), "seed", 0, std::numeric_limits<std::int64_t>::max()));
-    options.spread = app::parseNumber(cli.text("spread", "0.05"), "spread");
+    options.spread = app::parseNumber(cli.text("spread", "0.1"), "spread");
     if (!(options.spread > 0.0 && options.spread <= 1.0))
       throw app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
     const std::string point = cli.text("point", "tool");

@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
   if (sizes.empty()) sizes = {100000, 1000000};
   // Plain: n joint samples, Efron-corrected measure. Refined: n/2 samples, their boundary
   // (mcws_boundary's defaults), n/2 refined samples (mcws_refine's default spread), measured
-  // without correction (the refined samples lie on the edge itself).
+  // as mcws_measure --correction none does: without correction (the refined samples lie on the
+  // edge itself) and with alpha 5.
   auto project = [](const pcl::PointCloud<mcws::WorkspacePoint>& cloud, bool xz) {
     pcl::PointCloud<pcl::PointXYZ> points;
     for (const auto& p : cloud) {
@@ -43,13 +44,16 @@ int main(int argc, char** argv) {
     boundary.setPlane(xz ? mcws::BoundaryPlane::kXZ : mcws::BoundaryPlane::k3D);
     boundary.setAdaptiveRadius(xz ? 24 : 16, 2.0);
     if (xz) boundary.setMinimumGap(92.0 * M_PI / 180.0);
-    if (xz) boundary.setHullDepth(std::getenv("HULL") ? std::atof(std::getenv("HULL")) : 1.0);
+    if (xz) boundary.setHullDepth(1.0);
     pcl::PointCloud<mcws::WorkspacePoint> rim;
     boundary.filter(rim);
     mcws::RefineOptions refine;
     refine.seed = options.seed + 1000;
     *cloud += mcws::sampleCloud(mcws::RefineSampler(robot, rim, refine), n - n / 2, 0);
-    return mcws::delaunayMeasure(project(*cloud, xz), xz ? 2 : 3).uncorrected;
+    mcws::MeasureOptions measure;
+    measure.edge_correction = false;
+    measure.alpha_factor = 5.0;
+    return mcws::delaunayMeasure(project(*cloud, xz), xz ? 2 : 3, measure).uncorrected;
   };
   std::printf("| joint samples | X-Z area, plain | refined | 3-D volume, plain | refined |\n");
   std::printf("|---|---|---|---|---|\n");

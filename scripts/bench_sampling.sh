@@ -2,7 +2,7 @@
 # Sampling benchmarks for BENCHMARKS.md: (1) Google Benchmark of the sampler's forward kinematics
 # (file writing excluded) and of the PCD writer alone; (2) timed whole runs of mcws_sample with
 # 10 million samples (/usr/bin/time -v: wall time, peak memory) beside dd writing the same number
-# of bytes to the same disk. Medians of 5 (benchmarks) and 3 (whole runs) in one run of this script.
+# of bytes to the same disk. Medians of 5 (benchmarks and whole runs) in one run of this script.
 # Usage: scripts/bench_sampling.sh [BUILD_DIR]   (needs a release build)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -18,12 +18,12 @@ echo "## Google Benchmark (median of 5)"
 echo
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
-echo "## Whole runs, 10000000 samples, --threads 2 (median of 3)"
+echo "## Whole runs, 10000000 samples, --threads 2 (median of 5)"
 echo "| robot | wall s | peak RSS MB | file MB | RSS / file | dd same bytes s |"
 echo "|---|---|---|---|---|---|"
 for robot in ta1400 inspection6; do
   : >"$tmp/wall"; : >"$tmp/rss"; : >"$tmp/dd"
-  for _ in 1 2 3; do
+  for _ in 1 2 3 4 5; do
     rm -f "$tmp/ws.pcd"; sync
     /usr/bin/time -v "$build/apps/mcws_sample" --robot "$root/robots/$robot.yaml" \
       --samples 10000000 --threads 2 --output "$tmp/ws.pcd" 2>"$tmp/time.log"

@@ -64,6 +64,7 @@ TEST_F(RefineApp, WritesTheCloudThenTheNewSamplesTheSameForAnyThreadCount) {
                                       " --plane xz --correction none --json");
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_EQ(nlohmann::json::parse(m.out)["correction"], "none");
+  EXPECT_EQ(nlohmann::json::parse(m.out)["alpha"], 5.0);  // the default for refined clouds
 }
 
 TEST_F(RefineApp, RejectsBadInput) {
