@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
         "leave-one-out", app::po::value<std::string>(),
         "efron: star (each vertex's star, all threads; default) | reinsert (remove, locate,\n"
         "reinsert each vertex: the same count, one thread, slower)")(
+        "threads", app::po::value<std::string>(),
+        "delaunay: worker threads, 0 = all cores (default 0; the result is the same for any)")(
         "column-width", app::po::value<std::string>(),
         "column: L [length unit] (default automatic)")("json", "print a JSON summary on stdout");
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -70,6 +72,8 @@ int main(int argc, char** argv) {
         app::parseNumber(cli.text("alpha", correction == "none" ? "5" : "3"), "alpha");
     if (!(alpha > 0.0))
       throw app::UsageError("--alpha: must be positive, not " + cli.text("alpha", ""));
+    const int threads =
+        static_cast<int>(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
     const double width = app::parseNumber(cli.text("column-width", "0"), "column-width");
     if (width < 0.0) throw app::UsageError("--column-width: must be positive");
 
@@ -94,6 +98,7 @@ int main(int argc, char** argv) {
       MeasureOptions options;
       options.alpha_factor = alpha;
       options.edge_correction = correction == "efron";
+      options.threads = threads;
       options.leave_one_out =
           leave_one_out == "star" ? LeaveOneOut::kStar : LeaveOneOut::kRemoveAndReinsert;
       if (region.size() >= kProgressPoints) {  // minutes for a million points in 3-D

@@ -55,7 +55,29 @@ TEST_F(MeasureApp, DiskAreaWithColumnCrossCheck) {
   EXPECT_EQ(nlohmann::json::parse(column.out)["area"], json["cross_check"]["area"]);
 }
 
+TEST_F(MeasureApp, SameVolumeForAnyThreadCount) {
+  // The 3-D triangulation runs on TBB's threads and lists its cells in an order that depends on
+  // their number; the volume (an order-free sum) and the counts must not.
+  const std::string ball = dir_.file("ball.pcd");
+  ASSERT_EQ(
+      test::run(std::string(MCWS_SAMPLE_EXE) + " --shape ball --samples 60000 --output " + ball)
+          .exit_code,
+      0);
+  nlohmann::json first;
+  for (const char* threads : {"1", "2", "3"}) {
+    const test::RunResult r =
+        test::run(kMeasure + " --input " + ball + " --threads " + threads + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    auto json = nlohmann::json::parse(r.out);
+    EXPECT_NEAR(json["volume"].get<double>() / (4.0 / 3.0 * M_PI), 1.0, 0.002) << threads;
+    json.erase("seconds");
+    if (first.is_null()) first = json;
+    EXPECT_EQ(json, first) << threads << " threads";  // every number to the last bit
+  }
+}
+
 TEST_F(MeasureApp, BadInput) {
+  expectFailure("--input " + disk_ + " --plane xy --threads -1", 2, "--threads");
   expectFailure("--input " + disk_ + " --plane xy --method voxels", 2, "--method: 'voxels' is not");
   expectFailure("--input " + disk_ + " --plane xy --method column", 2,
                 "--method column measures an area: give --plane and --boundary");

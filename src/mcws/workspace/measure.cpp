@@ -242,6 +242,7 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   Delaunay dt(input.begin(), input.end());
   if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
 
+  if (options.phase) options.phase("alpha test");
   RegionMeasure result;
   OrderFreeSum kept(boundingMeasure(points, 2));
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = 0;
@@ -310,6 +311,7 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
 
+  if (options.phase) options.phase("alpha test");
   RegionMeasure result;
   OrderFreeSum kept(boundingMeasure(points, 3));
   for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = 0;

@@ -69,7 +69,8 @@ struct MeasureOptions {
   /// parallel 3-D triangulation); 0: OpenMP's default (all cores unless OMP_NUM_THREADS). The
   /// result does not depend on it.
   int threads{0};
-  /// Called as each phase starts ("local spacing", "triangulation", "edge correction").
+  /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
+  /// correction").
   std::function<void(const std::string&)> phase;
 };
 
