@@ -240,6 +240,7 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   if (options.phase) options.phase("triangulation");
   Delaunay dt(input.begin(), input.end());
+  input = {};  // the triangulation holds the points now
   if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
 
   if (options.phase) options.phase("alpha test");
@@ -309,6 +310,7 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
   } else {
     dt.insert(input.begin(), input.end());
   }
+  input = {};  // the triangulation holds the points now
   if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
 
   if (options.phase) options.phase("alpha test");
@@ -369,15 +371,18 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
     throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
                 std::to_string(points.size()));
   }
-  pcl::PointCloud<pcl::PointXYZ> projected = points;
-  if (dimensions == 2) {
-    for (auto& p : projected) p.z = 0.0f;
-  }
   // One position per set of copies (CGAL would merge them anyway), so copies neither shrink the
   // local spacing nor count as points.
   std::vector<pcl::index_t> position_of;
-  auto flat =
-      std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(uniquePositions(projected, position_of));
+  auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  if (dimensions == 2) {
+    pcl::PointCloud<pcl::PointXYZ> projected = points;
+    for (auto& p : projected) p.z = 0.0f;
+    *flat = uniquePositions(projected, position_of);
+  } else {
+    *flat = uniquePositions(points, position_of);
+  }
+  position_of = {};
   if (options.phase) options.phase("local spacing");
   MeasureOptions resolved = options;
   resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
