@@ -104,6 +104,22 @@ TEST(RefineSampler, RejectsBadParentsAndSpreads) {
   EXPECT_THROW(RefineSampler(robot, pcl::PointCloud<WorkspacePoint>(), {}), Error);
 }
 
+/// The refined pipeline: n plain samples, their boundary (mcws_boundary's adaptive radius for
+/// the plane), then m samples refined from it (the default spread).
+pcl::PointCloud<WorkspacePoint> plainThenRefined(const Robot& robot, std::size_t n, std::size_t m,
+                                                 BoundaryPlane plane,
+                                                 const RobotSamplerOptions& options = {}) {
+  auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(parentsOf(robot, n, options));
+  OrthantBoundary<WorkspacePoint> boundary;
+  boundary.setInputCloud(cloud);
+  boundary.setPlane(plane);
+  boundary.setAdaptiveRadius(plane == BoundaryPlane::k3D ? 16 : 24, 2.0);
+  pcl::PointCloud<WorkspacePoint> rim;
+  boundary.filter(rim);
+  *cloud += sampleCloud(RefineSampler(robot, rim, {}), m, 0);
+  return *cloud;
+}
+
 TEST(RefineSampler, BeatsPlainSamplingOfTheSameSizeOnTheDeicingArea) {
   // The closed-form X-Z region (tests/deicing_region.h) is the reference. Plain: 100000 joint
   // samples, Efron-corrected. Refined: 50000 samples, their boundary, 50000 refined samples,
@@ -119,15 +135,9 @@ TEST(RefineSampler, BeatsPlainSamplingOfTheSameSizeOnTheDeicingArea) {
   };
   const double plain = area(parentsOf(robot, 100000, plane)).measure / exact - 1;
 
-  auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(parentsOf(robot, 50000, plane));
-  OrthantBoundary<WorkspacePoint> boundary;
-  boundary.setInputCloud(cloud);
-  boundary.setPlane(BoundaryPlane::kXZ);
-  boundary.setAdaptiveRadius(24, 2.0);
-  pcl::PointCloud<WorkspacePoint> rim;
-  boundary.filter(rim);
-  *cloud += sampleCloud(RefineSampler(robot, rim, {}), 50000, 0);
-  const double refined = area(*cloud).uncorrected / exact - 1;
+  const double refined =
+      area(plainThenRefined(robot, 50000, 50000, BoundaryPlane::kXZ, plane)).uncorrected / exact -
+      1;
 
   EXPECT_LT(std::abs(refined), 0.5 * std::abs(plain))
       << "plain " << plain << " refined " << refined;
@@ -142,16 +152,10 @@ TEST(RefineSampler, RefinedDeicingVolumeWithAlphaFive) {
   // simplices there. Measured: -0.17 % (seed 1), -0.21 % (seed 2) at alpha 5; -0.59 % at 3.
   const double exact = test::integrateDeicing(0.1).volume;
   const Robot robot = loadRobot(test::robotPath("deicing"));
-  auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(parentsOf(robot, 100000));
-  OrthantBoundary<WorkspacePoint> boundary;
-  boundary.setInputCloud(cloud);
-  boundary.setPlane(BoundaryPlane::k3D);
-  boundary.setAdaptiveRadius(16, 2.0);
-  pcl::PointCloud<WorkspacePoint> rim;
-  boundary.filter(rim);
-  *cloud += sampleCloud(RefineSampler(robot, rim, {}), 100000, 0);
   pcl::PointCloud<pcl::PointXYZ> points;
-  for (const auto& p : *cloud) points.push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  for (const auto& p : plainThenRefined(robot, 100000, 100000, BoundaryPlane::k3D)) {
+    points.push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  }
   MeasureOptions options;
   options.edge_correction = false;
   options.alpha_factor = 5.0;
