@@ -25,16 +25,16 @@ echo
 echo "| cloud | build | wall, median of $runs [s] | peak memory, median [MB] |"
 echo "|---|---|---|---|"
 for cloud in "ball.pcd" "disk.pcd --plane xy"; do
-  for b in "${builds[@]}"; do : >"$tmp/runs.$(basename "$(dirname "$b")")"; done
+  for k in "${!builds[@]}"; do : >"$tmp/runs.$k"; done
   for _ in $(seq "$runs"); do
-    for b in "${builds[@]}"; do
+    for k in "${!builds[@]}"; do
       # shellcheck disable=SC2086  # the cloud entry carries its flags
-      measure_once "$b" $cloud >>"$tmp/runs.$(basename "$(dirname "$b")")"
+      measure_once "${builds[$k]}" $cloud >>"$tmp/runs.$k"
     done
   done
-  for b in "${builds[@]}"; do
-    f=$tmp/runs.$(basename "$(dirname "$b")")
-    printf '| %s | %s | %s | %.0f |\n' "${cloud%% *}" "$b" "$(cut -d' ' -f1 "$f" | median)" \
+  for k in "${!builds[@]}"; do
+    f=$tmp/runs.$k
+    printf '| %s | %s | %s | %.0f |\n' "${cloud%% *}" "${builds[$k]}" "$(cut -d' ' -f1 "$f" | median)" \
       "$(cut -d' ' -f2 "$f" | median | awk '{print $1 / 1024}')"
   done
 done

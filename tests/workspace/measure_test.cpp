@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "mcws/core/error.h"
 #include "mcws/workspace/sampler.h"
@@ -189,6 +190,71 @@ TEST(DelaunayMeasure, WithoutEdgeCorrectionTheMeasureIsTheKeptSimplicesTotal) {
   EXPECT_EQ(plain.outside, 0u);
   EXPECT_GT(corrected.measure, plain.measure);  // the band along the edge, added back
   EXPECT_EQ(phases, (std::vector<std::string>{"local spacing", "triangulation", "alpha test"}));
+}
+
+TEST(DelaunayMeasure, WithEverySimplexKeptTheBoundaryVerticesAreTheHullsCorners) {
+  // With an alpha limit no simplex reaches, only the infinite simplices are dropped: the
+  // boundary vertices are the convex hull's, known here by construction.
+  MeasureOptions options;
+  options.alpha_factor = 1e6;
+  options.edge_correction = false;
+  pcl::PointCloud<pcl::PointXYZ> disk;
+  for (int i = 0; i < 12; ++i) {
+    disk.push_back(pcl::PointXYZ(std::cos(i * M_PI / 6), std::sin(i * M_PI / 6), 0.0f));
+  }
+  for (const auto& p : shapeCloud(Shape::kDisk, 30, 4)) {
+    disk.push_back(pcl::PointXYZ(0.8f * p.x, 0.8f * p.y, 0.0f));
+  }
+  const RegionMeasure area = delaunayMeasure(disk, 2, options);
+  EXPECT_EQ(area.boundary_vertices, 12u);
+  EXPECT_NEAR(area.measure, 3.0, 1e-6);  // the regular 12-gon: 3 r^2
+  pcl::PointCloud<pcl::PointXYZ> cube;
+  for (int i = 0; i < 8; ++i) cube.push_back(pcl::PointXYZ(i & 1, (i >> 1) & 1, (i >> 2) & 1));
+  for (const auto& p : shapeCloud(Shape::kBox, 40, 4)) {  // [-0.5, 0.5]^3, shrunk inside
+    cube.push_back(pcl::PointXYZ(0.5f + 0.8f * p.x, 0.5f + 0.8f * p.y, 0.5f + 0.8f * p.z));
+  }
+  const RegionMeasure volume = delaunayMeasure(cube, 3, options);
+  EXPECT_EQ(volume.boundary_vertices, 8u);
+  EXPECT_NEAR(volume.measure, 1.0, 1e-12);
+}
+
+TEST(DelaunayMeasure, LatticeBallGivesTheSameMeasureForAnyThreadCount) {
+  // A cubic lattice (spacing 0.3, so that volumes are not exact binary fractions and their sum
+  // depends on its order) in a ball of 8 spacings: every cube of the lattice has eight
+  // (nearly) cospherical corners, so the triangulation rests on CGAL's symbolic perturbation. One
+  // thread builds the triangulation sequentially, two and three in parallel; every number must
+  // agree to the last bit (a plain sum of doubles fails here).
+  pcl::PointCloud<pcl::PointXYZ> lattice;
+  for (int x = -8; x <= 8; ++x) {
+    for (int y = -8; y <= 8; ++y) {
+      for (int z = -8; z <= 8; ++z) {
+        if (x * x + y * y + z * z <= 64)
+          lattice.push_back(pcl::PointXYZ(0.3f * x, 0.3f * y, 0.3f * z));
+      }
+    }
+  }
+  MeasureOptions options;
+  options.threads = 1;
+  const RegionMeasure one = delaunayMeasure(lattice, 3, options);
+  EXPECT_GT(one.outside, 0u);
+  EXPECT_NEAR(one.measure / (4.0 / 3.0 * M_PI * 512.0 * 0.027), 1.0, 0.1);
+  for (int threads : {2, 3}) {
+    options.threads = threads;
+    const RegionMeasure many = delaunayMeasure(lattice, 3, options);
+    EXPECT_EQ(many.measure, one.measure) << threads;
+    EXPECT_EQ(many.uncorrected, one.uncorrected) << threads;
+    EXPECT_EQ(many.boundary_vertices, one.boundary_vertices) << threads;
+    EXPECT_EQ(many.outside, one.outside) << threads;
+  }
+}
+
+TEST(DelaunayMeasure, RejectsNonFiniteCoordinates) {
+  pcl::PointCloud<pcl::PointXYZ> cloud = shapeCloud(Shape::kBall, 100, 1);
+  cloud[7].z = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THAT(measureError(cloud, 3), HasSubstr("point 7 has a non-finite coordinate"));
+  cloud[7].z = 0.0f;  // ignored in 2-D
+  cloud[9].x = std::numeric_limits<float>::infinity();
+  EXPECT_THAT(measureError(cloud, 2), HasSubstr("point 9 has a non-finite coordinate"));
 }
 
 }  // namespace

@@ -94,7 +94,12 @@ double simplexMeasure(const Simplex& s) {
 /// below what adding doubles loses over millions of terms.
 class OrderFreeSum {
  public:
-  explicit OrderFreeSum(double bound) : shift_(61 - std::ilogb(bound)) {}
+  explicit OrderFreeSum(double bound) : shift_(0) {
+    if (!(bound > 0.0 && std::isfinite(bound))) {
+      throw Error("the bound of a sum must be a positive number, got " + std::to_string(bound));
+    }
+    shift_ = 61 - std::ilogb(bound);
+  }
   void add(double term) { total_ += std::llround(std::ldexp(term, shift_)); }
   double value() const { return std::ldexp(static_cast<double>(total_), -shift_); }
 
@@ -147,7 +152,11 @@ std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& d
 // triangulations", 1999). v's point lies in its own star, so the simplex that holds it once v
 // is gone is the simplex of that small triangulation that holds it; a vertex on the convex hull
 // lies outside the hull of the others. Each vertex is read-only work on the big triangulation,
-// so the vertices are shared among threads; the count does not depend on their number.
+// so the vertices are shared among threads; the count does not depend on their number. The
+// neighbours are sorted by index before the small triangulation is built: a parallel
+// triangulation lists them in an order that depends on the thread count, and where v's point
+// lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
+// returns depends on how that triangulation was built.
 
 template <typename Delaunay>
 std::size_t outsideByStar2(const Delaunay& dt,
@@ -176,6 +185,8 @@ std::size_t outsideByStar2(const Delaunay& dt,
         ++outside;
         continue;
       }
+      std::sort(star.begin(), star.end(),
+                [](const auto& a, const auto& b) { return a.second < b.second; });
       const Local local(star.begin(), star.end());
       const auto f =
           local.dimension() == 2 ? local.locate(v->point()) : typename Local::Face_handle();
@@ -216,6 +227,8 @@ std::size_t outsideByStar3(const Delaunay& dt,
         ++outside;
         continue;
       }
+      std::sort(star.begin(), star.end(),
+                [](const auto& a, const auto& b) { return a.second < b.second; });
       const Local local(star.begin(), star.end());
       const auto c =
           local.dimension() == 3 ? local.locate(v->point()) : typename Local::Cell_handle();
@@ -280,9 +293,10 @@ RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
 }
 
 /// The 3-D measure on a triangulation built on all threads (`Concurrency` = CGAL::Parallel_tag,
-/// TBB) or on one (CGAL::Sequential_tag, which the remove-and-reinsert leave-one-out needs). The
-/// Delaunay triangulation of points in general position is unique, so both give the same
-/// simplices; what is summed over them does not depend on the order they are listed in.
+/// TBB) or on one (CGAL::Sequential_tag, which the remove-and-reinsert leave-one-out needs).
+/// CGAL breaks ties between cospherical points by a symbolic perturbation, so the Delaunay
+/// triangulation is the same whatever the insertion order and thread count, degenerate input
+/// included; what is summed over it does not depend on the order its cells are listed in.
 template <typename Concurrency>
 RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
                         const std::vector<double>& spacing, const MeasureOptions& options) {
@@ -305,7 +319,12 @@ RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
     // Threads insert spatially sorted points, each locking the cells of a grid over the box.
     typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
     dt.set_lock_data_structure(&locks);
-    dt.insert(input.begin(), input.end());
+    try {
+      dt.insert(input.begin(), input.end());
+    } catch (...) {
+      dt.set_lock_data_structure(nullptr);  // the locks end with this scope
+      throw;
+    }
     dt.set_lock_data_structure(nullptr);  // what follows only reads
   } else {
     dt.insert(input.begin(), input.end());
@@ -371,6 +390,12 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
     throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
                 std::to_string(points.size()));
   }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || (dimensions == 3 && !std::isfinite(p.z))) {
+      throw Error("point " + std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
   // One position per set of copies (CGAL would merge them anyway), so copies neither shrink the
   // local spacing nor count as points.
   std::vector<pcl::index_t> position_of;
@@ -387,7 +412,8 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   MeasureOptions resolved = options;
   resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const std::vector<double> spacing = localSpacing(*flat, dimensions, resolved.threads);
-  // CGAL's parallel triangulation runs on TBB's threads: as many as OpenMP's.
+  // CGAL's parallel triangulation runs on TBB's threads: at most as many as OpenMP's (TBB also
+  // stops at the core count). The limit holds for the whole process while this call runs.
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                         static_cast<std::size_t>(resolved.threads));
   RegionMeasure result;

@@ -66,8 +66,9 @@ struct MeasureOptions {
   /// position (ties between cospherical simplices may be broken differently).
   LeaveOneOut leave_one_out{LeaveOneOut::kStar};
   /// Worker threads (OpenMP for the neighbour search and the edge correction, TBB for CGAL's
-  /// parallel 3-D triangulation); 0: OpenMP's default (all cores unless OMP_NUM_THREADS). The
-  /// result does not depend on it.
+  /// parallel 3-D triangulation, which also stops at the core count); 0: OpenMP's default (all
+  /// cores unless OMP_NUM_THREADS). The result does not depend on it. TBB's limit is process-wide
+  /// while the call runs (concurrent calls share the smallest).
   int threads{0};
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
   /// correction").

@@ -34,8 +34,7 @@ std::vector<float> kthNeighbour(const pcl::PointCloud<pcl::PointXYZ>& cloud, int
       nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>,
                                           CloudAdaptor, D, std::uint32_t>;
   const CloudAdaptor adaptor{cloud};
-  Tree tree(D, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));
-  tree.buildIndex();
+  const Tree tree(D, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize));  // builds it
   const std::size_t wanted = std::min<std::size_t>(static_cast<std::size_t>(k) + 1, cloud.size());
   std::vector<float> result(cloud.size(), 0.0f);
 #pragma omp parallel num_threads(threads)
