@@ -39,10 +39,8 @@ int main(int argc, char** argv) {
     if (method == "column" || method == "column-sector") {
       mcws::OrthantBoundary<mcws::WorkspacePoint> boundary;
       boundary.setInputCloud(sampled);
-      boundary.setPlane(mcws::BoundaryPlane::kXY);
-      boundary.setAdaptiveRadius(24, 2.0);
-      boundary.setMinimumGap(92.0 * M_PI / 180.0);
-      boundary.setHullDepth(method == "column" ? 1.0 : 0.0);
+      boundary.setPlane(mcws::BoundaryPlane::kXY);  // the recommended settings
+      if (method == "column-sector") boundary.setHullDepth(0.0);
       pcl::Indices kept;
       boundary.filter(kept);
       pcl::PointCloud<pcl::PointXYZ> rim;

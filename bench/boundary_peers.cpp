@@ -210,14 +210,13 @@ Outcome cgalFixedAlphaShape3(const Context& c, double alpha) {
   return out;
 }
 
-// mcws_boundary's defaults (adaptive radius, k = 24 in 2-D and 16 in 3-D, 92-degree sector; in
-// 2-D the hull depth, 1 by default) and the area by seed 000's column method over its points.
+// The filter's recommended settings (adaptive radius, k = 24 in 2-D and 16 in 3-D, 92-degree
+// sector; in 2-D the hull depth, 1 unless given) and the area by the paper's column method over
+// its points.
 Outcome orthant(const Context& c, double hull_depth) {
   mcws::OrthantBoundary<pcl::PointXYZ> filter;
   filter.setInputCloud(c.cloud);
   filter.setPlane(c.dimensions == 2 ? mcws::BoundaryPlane::kXY : mcws::BoundaryPlane::k3D);
-  filter.setAdaptiveRadius(c.dimensions == 2 ? 24 : 16, 2.0);
-  filter.setMinimumGap(92.0 * M_PI / 180.0);
   filter.setHullDepth(hull_depth);
   filter.setNumberOfThreads(c.threads);
   Outcome out;

@@ -38,13 +38,16 @@ int main(int argc, char** argv) {
     } else {
       filter.setAutoRadius(factor);
     }
-    filter.setFrames(frames == "axis"      ? 1u
-                     : frames == "outward" ? 2u
-                     : frames == "both"    ? 3u
-                     : frames == "any"     ? 4u
-                                           : 0u);
-    if (std::getenv("GAP")) filter.setMinimumGap(std::atof(std::getenv("GAP")) * M_PI / 180.0);
-    if (std::getenv("HULL")) filter.setHullDepth(std::atof(std::getenv("HULL")));
+    using mcws::OrthantFrame;
+    filter.setFrames(frames == "axis"      ? OrthantFrame::kAxis
+                     : frames == "outward" ? OrthantFrame::kOutward
+                     : frames == "both"    ? OrthantFrame::kAxis | OrthantFrame::kOutward
+                     : frames == "any"     ? OrthantFrame::kAnyRotation
+                                           : mcws::OrthantFrames());
+    // The paper's test alone unless GAP [degrees] or HULL [spacings] say otherwise.
+    filter.setMinimumGap((std::getenv("GAP") ? std::atof(std::getenv("GAP")) : 90.0) * M_PI /
+                         180.0);
+    filter.setHullDepth(std::getenv("HULL") ? std::atof(std::getenv("HULL")) : 0.0);
     pcl::Indices kept;
     const auto start = std::chrono::steady_clock::now();
     filter.filter(kept);

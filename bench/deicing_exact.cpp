@@ -41,10 +41,7 @@ int main(int argc, char** argv) {
         mcws::sampleCloud(mcws::RobotSampler(robot, options), n / 2, 0));
     mcws::OrthantBoundary<mcws::WorkspacePoint> boundary;
     boundary.setInputCloud(cloud);
-    boundary.setPlane(xz ? mcws::BoundaryPlane::kXZ : mcws::BoundaryPlane::k3D);
-    boundary.setAdaptiveRadius(xz ? 24 : 16, 2.0);
-    if (xz) boundary.setMinimumGap(92.0 * M_PI / 180.0);
-    if (xz) boundary.setHullDepth(1.0);
+    boundary.setPlane(xz ? mcws::BoundaryPlane::kXZ : mcws::BoundaryPlane::k3D);  // recommended
     pcl::PointCloud<mcws::WorkspacePoint> rim;
     boundary.filter(rim);
     mcws::RefineOptions refine;

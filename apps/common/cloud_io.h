@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mcws/io/pcd_stream_writer.h"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws::app {
 

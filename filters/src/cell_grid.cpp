@@ -144,8 +144,8 @@ bool CellGridSearch::gather(pcl::index_t i, double reach) {
   return true;
 }
 
-bool CellGridSearch::kthDistance2(pcl::index_t i, int count, float& d2,
-                                  std::vector<CellGrid::Neighbour>* nearest) {
+std::optional<float> CellGridSearch::kthDistance2(pcl::index_t i, int count,
+                                                  std::vector<Neighbour>* nearest) {
   double reach = std::min(std::max(first_reach_, grid_.cellSize()), max_reach_);
   for (;; reach = std::min(2 * reach, max_reach_)) {
     gather(i, reach);
@@ -167,24 +167,24 @@ bool CellGridSearch::kthDistance2(pcl::index_t i, int count, float& d2,
       if (m >= static_cast<std::size_t>(count) || bound == limit) break;
     }
     if (m < static_cast<std::size_t>(count)) {
-      if (reach >= max_reach_) return false;
+      if (reach >= max_reach_) return std::nullopt;
       continue;
     }
     std::nth_element(smallest_.begin(), smallest_.begin() + (count - 1), smallest_.begin() + m);
-    d2 = smallest_[count - 1];
+    const float d2 = smallest_[count - 1];
     hint_ = d2;
-    if (!nearest) return true;
+    if (!nearest) return d2;
     // The points themselves: those strictly closer, then ties at d2 up to `count`.
     within(i, d2, *nearest);
     for (std::size_t k = 0; k < n && nearest->size() < static_cast<std::size_t>(count); ++k) {
       if (d2s[k] == d2) nearest->push_back(grid_.neighbour(candidates_.slot[k], cloud_[i], d2));
     }
-    return true;
+    return d2;
   }
 }
 
 bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
-                                    std::vector<CellGrid::Neighbour>& subset) {
+                                    std::vector<Neighbour>& subset) {
   const double reach = grid_.cellSize();
   if (!gather(i, reach)) return false;
   // If fewer than `count` points have d^2 < inner, then d^2 >= inner, r_i >= scale sqrt(inner)
@@ -196,15 +196,14 @@ bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
   return within(i, limit, subset, inner) < static_cast<std::size_t>(count);
 }
 
-bool CellGridSearch::radius(pcl::index_t i, double radius,
-                            std::vector<CellGrid::Neighbour>& found) {
+bool CellGridSearch::radius(pcl::index_t i, double radius, std::vector<Neighbour>& found) {
   if (!gather(i, radius)) return false;
   within(i, static_cast<float>(radius * radius), found);  // d^2 < float(r^2), as KdTreeFLANN
   return true;
 }
 
-std::size_t CellGridSearch::within(pcl::index_t i, float limit,
-                                   std::vector<CellGrid::Neighbour>& out, float count_below) {
+std::size_t CellGridSearch::within(pcl::index_t i, float limit, std::vector<Neighbour>& out,
+                                   float count_below) {
   // Branch-free: the slots of those within first, then their offsets.
   const std::size_t n = candidates_.size;
   if (kept_.size() < n) kept_.resize(n);

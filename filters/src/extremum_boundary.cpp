@@ -1,7 +1,7 @@
 #include "mcws/filters/extremum_boundary.h"
 
 #include "mcws/filters/impl/extremum_boundary.hpp"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 

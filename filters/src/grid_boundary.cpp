@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "mcws/filters/impl/grid_boundary.hpp"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 

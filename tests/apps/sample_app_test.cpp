@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -22,6 +22,17 @@ using ::testing::HasSubstr;
 constexpr double kMinPrecision = 0.99;
 constexpr double kMinRecall = 0.97;
 
+/// The paper's test alone, as the filter ran before its recommended settings: a 90-degree gap
+/// (in 2-D) and no hull-depth stage. The tests of the test itself start from it.
+template <typename Filter>
+void paperTestOnly(Filter& filter) {
+  filter.setMinimumGap(M_PI / 2);
+  filter.setHullDepth(0.0);
+}
+
+const OrthantFrames kEveryFrameSet[] = {OrthantFrame::kAxis, OrthantFrame::kOutward,
+                                        OrthantFrame::kAnyRotation, OrthantFrames()};
+
 template <typename PointT>
 typename pcl::PointCloud<PointT>::Ptr gridCloud(int n, int dimensions) {
   auto cloud = std::make_shared<pcl::PointCloud<PointT>>();
@@ -52,15 +63,16 @@ TYPED_TEST_SUITE(OrthantBoundaryTyped, PointTypes);
 TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheRimOfASquareGridInEveryFrame) {
   constexpr int n = 21;
   const auto cloud = gridCloud<TypeParam>(n, 2);
-  for (unsigned frames : {1u, 2u, 4u, 0u}) {
+  for (const OrthantFrames frames : kEveryFrameSet) {
     OrthantBoundary<TypeParam> filter;
+    paperTestOnly(filter);
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
     filter.setRadiusSearch(1.5);  // the 8 grid neighbours
     filter.setFrames(frames);
     pcl::Indices kept;
     filter.filter(kept);
-    EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << "frames " << frames;
+    EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << "frames " << frames.bits();
     for (const auto i : kept) {
       const auto& p = (*cloud)[i];
       EXPECT_TRUE(onGridRim(pcl::PointXYZ(p.x, p.y, p.z), n, 2)) << p.x << "," << p.y;
@@ -76,6 +88,7 @@ TYPED_TEST(OrthantBoundaryTyped, HullDepthKeepsExactlyTheRimOfASquareGrid) {
   const auto cloud = gridCloud<TypeParam>(n, 2);
   for (const double radius : {1.5, 0.0}) {
     OrthantBoundary<TypeParam> filter;
+    filter.setMinimumGap(M_PI / 2);
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
     if (radius > 0) {
@@ -106,8 +119,9 @@ TEST(OrthantBoundary, KeepsExactlyTheRimOfAnOffsetGridWithInexactCoordinates) {
     OrthantBoundary<pcl::PointXYZ> filter;
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
-    filter.setAdaptiveRadius(24, 2.0);  // mcws_boundary's default: many collinear directions
+    filter.setAdaptiveRadius(24, 2.0);  // many collinear directions
     filter.setMinimumGap(gap_degrees * M_PI / 180.0);
+    filter.setHullDepth(0.0);
     pcl::Indices kept;
     filter.filter(kept);
     EXPECT_EQ(kept.size(), static_cast<std::size_t>(4 * (n - 1))) << gap_degrees;
@@ -138,6 +152,7 @@ TYPED_TEST(OrthantBoundaryTyped, KeptAndRemovedPartitionTheInputAndNaNIsAlwaysRe
   pcl::Indices positive_removed;
   for (bool negative : {false, true}) {
     OrthantBoundary<TypeParam> filter(true);
+    paperTestOnly(filter);
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
     filter.setAdaptiveRadius(24, 2.0);
@@ -192,14 +207,14 @@ Quality quality(Shape shape, std::size_t n, const pcl::Indices& kept,
   return {static_cast<double>(close) / kept.size(), static_cast<double>(found) / near};
 }
 
-Quality runOnShape(Shape shape, std::size_t n, int k, std::uint64_t seed) {
+/// The recommended settings without the hull-depth stage: the sector (2-D) or octant (3-D) test.
+Quality runOnShape(Shape shape, std::size_t n, std::uint64_t seed) {
   const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
       sampleCloud(ShapeSampler(shape, seed), n, 0));
   OrthantBoundary<WorkspacePoint> filter;
   filter.setInputCloud(cloud);
   filter.setPlane(shapeIsPlanar(shape) ? BoundaryPlane::kXY : BoundaryPlane::k3D);
-  filter.setAdaptiveRadius(k, 2.0);
-  filter.setMinimumGap(92.0 * M_PI / 180.0);  // mcws_boundary's default
+  filter.setHullDepth(0.0);
   pcl::Indices kept;
   filter.filter(kept);
   return quality(shape, n, kept, *cloud);
@@ -207,13 +222,13 @@ Quality runOnShape(Shape shape, std::size_t n, int k, std::uint64_t seed) {
 
 TEST(OrthantBoundary, MeetsPrecisionAndRecallOnDiskAnnulusAndBall) {
   for (std::uint64_t seed : {1, 2}) {
-    const Quality disk = runOnShape(Shape::kDisk, 100000, 24, seed);
+    const Quality disk = runOnShape(Shape::kDisk, 100000, seed);
     EXPECT_GE(disk.precision, kMinPrecision);
     EXPECT_GE(disk.recall, kMinRecall);
-    const Quality annulus = runOnShape(Shape::kAnnulus, 100000, 24, seed);
+    const Quality annulus = runOnShape(Shape::kAnnulus, 100000, seed);
     EXPECT_GE(annulus.precision, kMinPrecision);
     EXPECT_GE(annulus.recall, kMinRecall);
-    const Quality ball = runOnShape(Shape::kBall, 50000, 16, seed);
+    const Quality ball = runOnShape(Shape::kBall, 50000, seed);
     EXPECT_GE(ball.precision, kMinPrecision);
     EXPECT_GE(ball.recall, kMinRecall);
   }
@@ -226,12 +241,9 @@ TEST(OrthantBoundary, HullDepthFindsEveryPointNearTheBoundaryAndNoneDeeper) {
     constexpr std::size_t n = 100000;
     const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
         sampleCloud(ShapeSampler(shape, 3), n, 0));
-    OrthantBoundary<WorkspacePoint> filter;
+    OrthantBoundary<WorkspacePoint> filter;  // the recommended settings: hull depth 1
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
-    filter.setAdaptiveRadius(24, 2.0);
-    filter.setMinimumGap(92.0 * M_PI / 180.0);
-    filter.setHullDepth(1.0);
     pcl::Indices kept;
     filter.filter(kept);
     const Quality q = quality(shape, n, kept, *cloud);
@@ -246,7 +258,7 @@ TEST(OrthantBoundary, HullDepthOfARegularPolygonIsItsApothem) {
   constexpr int corners = 12;
   const double apothem = 2.0 * std::cos(M_PI / corners);
   for (const double a : {0.0, 0.5, 1.5, apothem}) {
-    std::vector<detail::Neighbour> nn;
+    std::vector<Neighbour> nn;
     nn.emplace_back(0.0f, 0.0f, 0.0f, 0.0f, 0);
     for (int k = 0; k < corners; ++k) {
       const double angle = (2 * k + 1) * M_PI / corners;
@@ -254,9 +266,9 @@ TEST(OrthantBoundary, HullDepthOfARegularPolygonIsItsApothem) {
       const auto y = static_cast<float>(2.0 * std::sin(angle));
       nn.emplace_back(x, y, 0.0f, x * x + y * y, k + 1);
     }
-    detail::HullScratch scratch;
+    orthant::HullScratch scratch;
     const double spacing = std::sqrt(12.0 / 13.0);
-    EXPECT_NEAR(detail::hullDepthInSpacings(nn, scratch), (apothem - a) / spacing, 1e-6)
+    EXPECT_NEAR(orthant::hullDepthInSpacings(nn, scratch), (apothem - a) / spacing, 1e-6)
         << "a = " << a;
   }
 }
@@ -270,7 +282,7 @@ TEST(OrthantBoundary, HullDepthAgreesWithBruteForceOverEveryPairOfPoints) {
   auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(draws++, 0); };
   for (int trial = 0; trial < 200; ++trial) {
     const int m = 3 + trial % 40;
-    std::vector<detail::Neighbour> nn;
+    std::vector<Neighbour> nn;
     nn.emplace_back(0.0f, 0.0f, 0.0f, 0.0f, 0);
     const double shift = trial % 3 == 0 ? 1.5 : 0.0;  // p outside the others' hull: depth 0
     for (int k = 0; k < m; ++k) {
@@ -295,9 +307,9 @@ TEST(OrthantBoundary, HullDepthAgreesWithBruteForceOverEveryPairOfPoints) {
         depth = std::min(depth, std::max(0.0, turn(i, j, 0.0, 0.0) / length));
       }
     }
-    detail::HullScratch scratch;
+    orthant::HullScratch scratch;
     const double expected = depth / std::sqrt(area / (m + 1));
-    EXPECT_NEAR(detail::hullDepthInSpacings(nn, scratch), expected, 1e-9 * (1.0 + expected))
+    EXPECT_NEAR(orthant::hullDepthInSpacings(nn, scratch), expected, 1e-9 * (1.0 + expected))
         << "trial " << trial;
   }
 }
@@ -307,6 +319,7 @@ TEST(OrthantBoundary, FindsTheInnerCircleOfTheAnnulus) {
   const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
       sampleCloud(ShapeSampler(Shape::kAnnulus, 4), n, 0));
   OrthantBoundary<WorkspacePoint> filter;
+  paperTestOnly(filter);
   filter.setInputCloud(cloud);
   filter.setPlane(BoundaryPlane::kXY);
   filter.setAdaptiveRadius(24, 2.0);
@@ -326,9 +339,8 @@ TEST(OrthantBoundary, SameResultForAnyThreadCount) {
       sampleCloud(ShapeSampler(Shape::kBall, 5), 30000, 0));
   pcl::Indices kept[2];
   for (int threads : {1, 2}) {
-    OrthantBoundary<WorkspacePoint> filter;
+    OrthantBoundary<WorkspacePoint> filter;  // the recommended settings
     filter.setInputCloud(cloud);
-    filter.setAdaptiveRadius(16, 2.0);
     filter.setNumberOfThreads(threads);
     filter.filter(kept[threads - 1]);
   }
@@ -340,8 +352,6 @@ TEST(OrthantBoundary, SameResultForAnyThreadCount) {
     OrthantBoundary<WorkspacePoint> filter;
     filter.setInputCloud(disk);
     filter.setPlane(BoundaryPlane::kXY);
-    filter.setAdaptiveRadius(24, 2.0);
-    filter.setHullDepth(1.0);
     filter.setNumberOfThreads(threads);
     filter.filter(rim[threads - 1]);
   }
@@ -354,9 +364,10 @@ TEST(OrthantBoundary, TwoStageTestEqualsOneTestAtTheOuterRadius) {
   pcl::copyPointCloud(sampleCloud(ShapeSampler(Shape::kDisk, 6), 20000, 0), *cloud);
   auto run = [&](double r, double R) {
     OrthantBoundary<pcl::PointXYZ> filter;
+    paperTestOnly(filter);
     filter.setInputCloud(cloud);
     filter.setPlane(BoundaryPlane::kXY);
-    filter.setFrames(OrthantBoundary<pcl::PointXYZ>::kAxisFrame);  // seed 000's own test
+    filter.setFrames(OrthantFrame::kAxis);  // the paper's own test
     filter.setRadiusSearch(r);
     filter.setOuterRadius(R);
     pcl::Indices kept;
@@ -403,14 +414,16 @@ TEST(OrthantBoundary, GridSearchGivesTheTreesResult) {
       {"annulus adaptive", disk, BoundaryPlane::kXY, [](auto& f) { f.setAdaptiveRadius(24, 2); }},
       {"annulus auto", disk, BoundaryPlane::kXY, [](auto& f) { f.setAutoRadius(0); }},
       {"annulus fixed axis", disk, BoundaryPlane::kXY,
-       [](auto& f) { f.setRadiusSearch(0.03), f.setFrames(1u); }},
+       [](auto& f) { f.setRadiusSearch(0.03), f.setFrames(OrthantFrame::kAxis); }},
       {"annulus two-stage outward", disk, BoundaryPlane::kXY,
-       [](auto& f) { f.setRadiusSearch(0.02), f.setOuterRadius(0.04), f.setFrames(2u); }},
+       [](auto& f) {
+         f.setRadiusSearch(0.02), f.setOuterRadius(0.04), f.setFrames(OrthantFrame::kOutward);
+       }},
       {"annulus adaptive outer", disk, BoundaryPlane::kXY,
        [](auto& f) { f.setAdaptiveRadius(12, 1.5), f.setOuterRadius(1.6); }},
       {"ball adaptive", ball, BoundaryPlane::k3D, [](auto& f) { f.setAdaptiveRadius(16, 2); }},
       {"ball axis", ball, BoundaryPlane::k3D,
-       [](auto& f) { f.setAdaptiveRadius(16, 2), f.setFrames(1u); }},
+       [](auto& f) { f.setAdaptiveRadius(16, 2), f.setFrames(OrthantFrame::kAxis); }},
       {"uneven disk", unevenCloud(30000, 2), BoundaryPlane::kXY,
        [](auto& f) { f.setAdaptiveRadius(24, 2); }},
       {"annulus hull depth", disk, BoundaryPlane::kXY,
@@ -427,13 +440,14 @@ TEST(OrthantBoundary, GridSearchGivesTheTreesResult) {
       // Radius 1 on a unit lattice: the 4 nearest neighbours sit exactly on the sphere and the
       // tree's strict d^2 < r^2 leaves them out, so every point is alone.
       {"lattice at the tie", lattice, BoundaryPlane::kXY,
-       [](auto& f) { f.setRadiusSearch(1.0), f.setFrames(1u); }},
+       [](auto& f) { f.setRadiusSearch(1.0), f.setFrames(OrthantFrame::kAxis); }},
       {"cube lattice", cube, BoundaryPlane::k3D, [](auto& f) { f.setAdaptiveRadius(16, 2); }},
   };
   for (const auto& c : cases) {
     pcl::Indices kept[2];
     for (int grid = 0; grid < 2; ++grid) {
       OrthantBoundary<pcl::PointXYZ> filter;
+      paperTestOnly(filter);
       filter.setInputCloud(c.cloud);
       filter.setPlane(c.plane);
       c.configure(filter);
@@ -448,7 +462,7 @@ TEST(OrthantBoundary, GridSearchGivesTheTreesResult) {
 TEST(OrthantBoundary, AngleBinsFollowTheAngle) {
   // Brute force against atan2 in double: every direction's bin holds its angle, up to the error
   // the quick sector test allows for.
-  const double width = 2 * M_PI / detail::kAngleBins;
+  const double width = 2 * M_PI / orthant::kAngleBins;
   for (int k = 0; k < 200000; ++k) {
     const double t = 2 * M_PI * (k + 0.37) / 200000.0;
     const float scale = k % 3 == 0 ? 1e-3f : (k % 3 == 1 ? 1.0f : 1e4f);
@@ -456,13 +470,13 @@ TEST(OrthantBoundary, AngleBinsFollowTheAngle) {
                 y = scale * static_cast<float>(std::sin(t));
     double angle = std::atan2(static_cast<double>(y), static_cast<double>(x));
     if (angle < 0) angle += 2 * M_PI;
-    const unsigned bin = detail::angleBin(x, y);
-    ASSERT_LT(bin, static_cast<unsigned>(detail::kAngleBins));
-    const double lo = bin * width - detail::kAngleError,
-                 hi = (bin + 1) * width + detail::kAngleError;
+    const unsigned bin = orthant::angleBin(x, y);
+    ASSERT_LT(bin, static_cast<unsigned>(orthant::kAngleBins));
+    const double lo = bin * width - orthant::kAngleError,
+                 hi = (bin + 1) * width + orthant::kAngleError;
     const bool inside = (angle >= lo && angle <= hi) ||
-                        (bin == 0 && angle >= 2 * M_PI - detail::kAngleError) ||
-                        (bin == detail::kAngleBins - 1 && angle <= detail::kAngleError);
+                        (bin == 0 && angle >= 2 * M_PI - orthant::kAngleError) ||
+                        (bin == orthant::kAngleBins - 1 && angle <= orthant::kAngleError);
     ASSERT_TRUE(inside) << "x " << x << " y " << y << " angle " << angle << " bin " << bin;
   }
   for (float x : {1.0f, -1.0f, 0.0f}) {  // the axes and diagonals
@@ -470,8 +484,8 @@ TEST(OrthantBoundary, AngleBinsFollowTheAngle) {
       if (x == 0 && y == 0) continue;
       double angle = std::atan2(y, x);
       if (angle < 0) angle += 2 * M_PI;
-      const double bin = detail::angleBin(x, y);
-      EXPECT_LE(std::fabs(bin * width - angle) - detail::kAngleError, width + 1e-9)
+      const double bin = orthant::angleBin(x, y);
+      EXPECT_LE(std::fabs(bin * width - angle) - orthant::kAngleError, width + 1e-9)
           << x << "," << y;
     }
   }
@@ -480,6 +494,7 @@ TEST(OrthantBoundary, AngleBinsFollowTheAngle) {
 TEST(OrthantBoundary, DegenerateClouds) {
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   OrthantBoundary<pcl::PointXYZ> filter;
+  paperTestOnly(filter);
   filter.setPlane(BoundaryPlane::kXY);
   filter.setAutoRadius(0.0);
   filter.setInputCloud(cloud);
@@ -519,14 +534,51 @@ TEST(OrthantBoundary, ALonelyPointIsBoundaryInEveryFrame) {
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   cloud->push_back(pcl::PointXYZ(0, 0, 0));
   cloud->push_back(pcl::PointXYZ(10, 0, 0));
-  for (unsigned frames : {1u, 2u, 3u}) {
+  for (const OrthantFrames frames : kEveryFrameSet) {
     OrthantBoundary<pcl::PointXYZ> filter;
     filter.setInputCloud(cloud);
     filter.setRadiusSearch(1.0);
     filter.setFrames(frames);
     pcl::Indices kept;
     filter.filter(kept);
-    EXPECT_EQ(kept.size(), 2u) << "frames " << frames;
+    EXPECT_EQ(kept.size(), 2u) << "frames " << frames.bits();
+  }
+}
+
+TEST(OrthantBoundary, DefaultConstructedFilterUsesTheRecommendedSettings) {
+  // The documented recommendation, written out by hand, against what the filter does untouched.
+  struct Case {
+    Shape shape;
+    BoundaryPlane plane;
+    int k;
+    double hull_depth;
+  };
+  for (const Case c : {Case{Shape::kAnnulus, BoundaryPlane::kXY, 24, 1.0},
+                       Case{Shape::kBall, BoundaryPlane::k3D, 16, 0.0}}) {
+    const auto cloud = std::make_shared<pcl::PointCloud<WorkspacePoint>>(
+        sampleCloud(ShapeSampler(c.shape, 12), 20000, 0));
+    OrthantBoundary<WorkspacePoint> untouched;
+    untouched.setPlane(c.plane);
+    EXPECT_EQ(untouched.getRadiusMode(), RadiusMode::kAdaptive);
+    EXPECT_EQ(untouched.getAdaptiveNeighbours(), c.k);
+    EXPECT_DOUBLE_EQ(untouched.getMinimumGap(), 92.0 * M_PI / 180.0);
+    EXPECT_DOUBLE_EQ(untouched.getHullDepth(), c.hull_depth);
+    EXPECT_TRUE(untouched.getFrames().empty());
+    OrthantBoundary<WorkspacePoint> by_hand;
+    by_hand.setPlane(c.plane);
+    by_hand.setAdaptiveRadius(c.k, 2.0);
+    by_hand.setMinimumGap(92.0 * M_PI / 180.0);
+    by_hand.setHullDepth(c.hull_depth);
+    by_hand.setFrames(c.plane == BoundaryPlane::k3D ? OrthantFrame::kAxis | OrthantFrame::kOutward
+                                                    : OrthantFrame::kAnyRotation);
+    pcl::Indices kept[2];
+    untouched.setInputCloud(cloud);
+    untouched.filter(kept[0]);
+    by_hand.setInputCloud(cloud);
+    by_hand.filter(kept[1]);
+    EXPECT_EQ(kept[0], kept[1]);
+    EXPECT_GT(kept[0].size(), 0u);
+    EXPECT_DOUBLE_EQ(untouched.usedRadius(), by_hand.usedRadius());
   }
 }
 
@@ -554,6 +606,8 @@ TEST(OrthantBoundary, RejectsBadParameters) {
                 f.setOuterRadius(1.0);
               }),
               HasSubstr("outer radius 1 is smaller than radius 2"));
+  EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(0, 2.0); }),
+              HasSubstr("adaptive k must be at least 1"));
   EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(8, -2.0); }),
               HasSubstr("adaptive radius scale must be a positive number"));
   EXPECT_THAT(

@@ -5,7 +5,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -11,7 +11,7 @@
 
 #include "mcws/collision/collision_model.h"
 #include "mcws/kinematics/robot.h"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 
 namespace fcl {
 template <typename S>

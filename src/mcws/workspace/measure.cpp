@@ -21,7 +21,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/workspace/nearest_neighbours.h"
-#include "mcws/workspace/unique_positions.h"
+#include "mcws/points/unique_positions.h"
 
 namespace mcws {
 namespace {

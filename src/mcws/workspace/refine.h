@@ -10,7 +10,7 @@
 
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot.h"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 #include "mcws/workspace/sampler.h"
 
 namespace mcws {

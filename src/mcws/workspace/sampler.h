@@ -17,7 +17,7 @@
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot.h"
-#include "mcws/workspace/point_types.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 

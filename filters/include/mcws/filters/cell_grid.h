@@ -11,6 +11,8 @@
 #include <limits>
 #include <vector>
 
+#include "mcws/filters/neighbour_search.h"
+
 namespace mcws {
 
 /// \brief Points bucketed into square (2-D) or cubic (3-D) cells of side `cell`, stored cell by
@@ -21,20 +23,9 @@ namespace mcws {
 /// d^2 < float(r * r), so a radius search returns the same set as KdTreeFLANN::radiusSearch and
 /// the k-th nearest distance equals the largest of nearestKSearch's. Cells are visited only where
 /// they meet the search ball. CellGridSearch bounds how far a search may reach; one that would
-/// need more returns false, and the caller falls back to the tree.
+/// need more is declined, and the caller falls back to the tree (GridThenTreeSearch).
 class CellGrid {
  public:
-  /// \brief A candidate neighbour q of a query point p: its offset q - p [length unit], the
-  /// squared distance [length unit^2] and its index in the cloud.
-  struct Neighbour {
-    Neighbour() {}  // uninitialised: buffers are resized, then written
-    Neighbour(float x, float y, float z, float d2, pcl::index_t index)
-        : x(x), y(y), z(z), d2(d2), index(index) {}
-    float x, y, z;
-    float d2;
-    pcl::index_t index;
-  };
-
   /// \brief Buckets `cloud` (finite points; z ignored when `dimensions` == 2) into cells of side
   /// `cell` [length unit], enlarged if the grid would have more than 4 cells per point.
   CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell);
@@ -82,10 +73,11 @@ class CellGrid {
   std::vector<pcl::index_t> index_;   // cloud index in cell order
 };
 
-/// \brief A k-nearest and radius search for one thread, on a CellGrid, remembering the candidates
-/// it collected for the last query point so that a radius search after a k-nearest search on the
-/// same point costs no second pass over the cells.
-class CellGridSearch {
+/// \brief The NeighbourSearch of one thread on a CellGrid. It remembers the candidates it
+/// collected for the last query point, so that a radius search after a k-nearest search on the
+/// same point costs no second pass over the cells. It declines a search that would reach beyond
+/// `max_reach`.
+class CellGridSearch : public NeighbourSearch {
  public:
   /// \param first_reach the radius a k-nearest search first collects [length unit]: about the
   ///   radius searches expected next, so that they reuse its candidates.
@@ -94,27 +86,21 @@ class CellGridSearch {
                  double first_reach, double max_reach)
       : grid_(grid), cloud_(cloud), first_reach_(first_reach), max_reach_(max_reach) {}
 
-  /// \brief The squared distance to the `count`-th nearest point of point i (i itself counted,
-  /// as nearestKSearch counts it), and those `count` points in `*nearest` unless it is null;
-  /// false if it lies beyond the grid's reach.
-  bool kthDistance2(pcl::index_t i, int count, float& d2,
-                    std::vector<CellGrid::Neighbour>* nearest);
-  /// \brief The points j with d^2(i, j) < float(radius^2), i included; false if `radius` is
-  /// beyond the grid's reach.
-  bool radius(pcl::index_t i, double radius, std::vector<CellGrid::Neighbour>& found);
-  /// \brief For the adaptive radius r_i = scale * d, d^2 the squared distance kthDistance2(i,
-  /// count) finds (float arithmetic as there): when so few points lie near i that r_i must
-  /// reach past one cell side, the points within one cell side, a subset of those within r_i,
-  /// in `subset`, and true; false (r_i may be shorter) otherwise.
+  std::optional<float> kthDistance2(pcl::index_t i, int count,
+                                    std::vector<Neighbour>* nearest) override;
+  bool radius(pcl::index_t i, double radius, std::vector<Neighbour>& found) override;
+  /// \brief Proves r_i longer than one cell side when fewer than `count` points lie within
+  /// cell / scale of i; the subset is then the points within one cell side (float arithmetic as
+  /// in kthDistance2).
   bool adaptiveSubset(pcl::index_t i, int count, float scale,
-                      std::vector<CellGrid::Neighbour>& subset);
+                      std::vector<Neighbour>& subset) override;
 
  private:
   /// Candidates of point i up to `reach` (false beyond max_reach_), kept for the next search.
   bool gather(pcl::index_t i, double reach);
   /// The candidates with d^2 < `limit`, as neighbours of point i, into `out`; returns how many
   /// candidates have d^2 < `count_below`.
-  std::size_t within(pcl::index_t i, float limit, std::vector<CellGrid::Neighbour>& out,
+  std::size_t within(pcl::index_t i, float limit, std::vector<Neighbour>& out,
                      float count_below = 0.0f);
 
   const CellGrid& grid_;

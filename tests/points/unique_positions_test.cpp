@@ -1,4 +1,4 @@
-#include "mcws/workspace/unique_positions.h"
+#include "mcws/points/unique_positions.h"
 
 #include <gtest/gtest.h>
 

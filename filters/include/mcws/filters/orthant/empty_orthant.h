@@ -1,0 +1,134 @@
+#pragma once
+/// \file
+/// \brief Does some quadrant (2-D) or octant (3-D) around p hold none of p's neighbours, in the
+/// axis frame or in the outward frame? The test of Yin, Wang & Yu 2010, section 4.3.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "mcws/filters/neighbour_search.h"
+#include "mcws/filters/orthant/frames.h"
+
+namespace mcws::orthant {
+
+/// \brief Quadrant of (x, y) with half-open angular sectors [0, 90), [90, 180), [180, 270),
+/// [270, 360) degrees: a neighbour lying exactly on an axis falls on one side, cyclically, so that
+/// the rim of a grid keeps an empty quadrant on every side.
+inline unsigned quadrant(float x, float y) {
+  if (x > 0 && y >= 0) return 0;
+  if (x <= 0 && y > 0) return 1;
+  if (x < 0 && y <= 0) return 2;
+  return 3;
+}
+
+/// \brief Octant: the quadrant of (x, y) and the side of z; z == 0 goes up for even quadrants and
+/// down for odd ones, so that in-plane neighbours leave two octants empty on either side of a
+/// face.
+inline unsigned octant(float x, float y, float z) {
+  const unsigned q = quadrant(x, y);
+  const bool up = z > 0 || (z == 0 && q % 2 == 0);
+  return q + (up ? 4u : 0u);
+}
+
+/// \brief Sign code of a direction: bits x > 0, x < 0, y > 0, y < 0, z > 0, z < 0 (0 for the
+/// origin).
+inline unsigned signCode(float x, float y, float z) {
+  return unsigned{x > 0} | unsigned{x < 0} << 1 | unsigned{y > 0} << 2 | unsigned{y < 0} << 3 |
+         unsigned{z > 0} << 4 | unsigned{z < 0} << 5;
+}
+
+/// \brief For every sign code, the bit of the orthant holding such directions, 1 << quadrant(x, y)
+/// (2-D, z ignored) or 1 << octant(x, y, z) (3-D), and 0 for the origin: p itself or a copy falls
+/// in no orthant. A table look-up instead of the branches of quadrant() and octant(), whose
+/// outcome is random from one neighbour to the next.
+inline const std::uint8_t* orthantBits(int dimensions) {
+  struct Table {
+    std::uint8_t bit[2][64];  // [dimensions - 2][sign code]
+    Table() : bit{} {
+      for (unsigned code = 0; code < 64; ++code) {
+        auto sign = [code](unsigned shift) {
+          return static_cast<float>(static_cast<int>((code >> shift) & 1u) -
+                                    static_cast<int>((code >> (shift + 1)) & 1u));
+        };
+        const float x = sign(0), y = sign(2), z = sign(4);
+        if (x != 0 || y != 0) bit[0][code] = static_cast<std::uint8_t>(1u << quadrant(x, y));
+        if (x != 0 || y != 0 || z != 0)
+          bit[1][code] = static_cast<std::uint8_t>(1u << octant(x, y, z));
+      }
+    }
+  };
+  static const Table table;
+  return table.bit[dimensions - 2];
+}
+
+/// \brief The rows of the outward frame for the unit outward direction n: in 2-D, n bisects the
+/// first quadrant; in 3-D, e_k = n / sqrt(3) + sqrt(2/3) (cos t_k a + sin t_k b), t_k = 0, 120,
+/// 240 degrees, an orthonormal frame whose first octant has n as its diagonal.
+inline Eigen::Matrix3f outwardFrame(const Eigen::Vector3f& n, int dimensions) {
+  Eigen::Matrix3f E = Eigen::Matrix3f::Identity();
+  if (dimensions == 2) {
+    const Eigen::Vector3f a(-n.y(), n.x(), 0.0f);
+    E.row(0) = (n + a) / std::sqrt(2.0f);
+    E.row(1) = (n - a) / std::sqrt(2.0f);
+  } else {
+    const Eigen::Vector3f a = n.unitOrthogonal();
+    const Eigen::Vector3f b = n.cross(a);
+    const float s = std::sqrt(2.0f / 3.0f), c = 1.0f / std::sqrt(3.0f);
+    E.row(0) = c * n + s * a;
+    E.row(1) = c * n + s * (-0.5f * a + 0.8660254f * b);
+    E.row(2) = c * n + s * (-0.5f * a - 0.8660254f * b);
+  }
+  return E;
+}
+
+/// \brief True when some orthant around p holds none of `neighbours` (offsets from p in the
+/// cloud's axes, z = 0 in 2-D) in the axis frame or the outward frame, whichever `frames` holds
+/// (any rotation is the sector test's, empty_sector.h).
+///
+/// The outward direction is -(c - p), c the neighbours' centroid. Edge cases: with no neighbour
+/// apart from p (copies have no orthant), every orthant is empty: true. A neighbourhood whose
+/// centroid lies within 1e-6 of its size from p has no outward direction and is interior in the
+/// outward frame.
+inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimensions,
+                            OrthantFrames frames) {
+  const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
+  const std::uint8_t* bits = orthantBits(dimensions);
+  // One pass for the axis frame's orthants and what the outward frame needs: the centroid's offset
+  // from p, summed as offsets so that far from the origin no precision is lost, and in double so
+  // that the order of the neighbours (tree or grid) does not matter; and the neighbourhood's size,
+  // against which "symmetric" is judged.
+  unsigned axis_mask = 0;
+  double sx = 0.0, sy = 0.0, sz = 0.0;
+  float size2 = 0.0f;
+  for (const auto& q : neighbours) {
+    axis_mask |= bits[signCode(q.x, q.y, q.z)];
+    sx += q.x;
+    sy += q.y;
+    sz += q.z;
+    size2 = std::max(size2, q.d2);
+  }
+  if (axis_mask == 0) return true;
+  if (frames.has(OrthantFrame::kAxis) && axis_mask != full) return true;
+  if (!frames.has(OrthantFrame::kOutward)) return false;
+  const double count = static_cast<double>(neighbours.size());
+  Eigen::Vector3f n(static_cast<float>(-sx / count), static_cast<float>(-sy / count),
+                    static_cast<float>(-sz / count));
+  if (dimensions == 2) n.z() = 0;
+  const float length = n.norm();
+  if (!(length > 1e-6f * std::sqrt(size2))) return false;
+  n /= length;
+  const Eigen::Matrix3f E = outwardFrame(n, dimensions);
+  unsigned outward_mask = 0;
+  for (const auto& q : neighbours) {
+    const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+    outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+    if (outward_mask == full) return false;
+  }
+  return true;
+}
+
+}  // namespace mcws::orthant

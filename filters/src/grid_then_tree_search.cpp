@@ -1,0 +1,57 @@
+#include "mcws/filters/grid_then_tree_search.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcws {
+namespace {
+
+/// The grid's cell side as a fraction of the typical radius: the k nearest are then found within
+/// one ring of cells and the radius neighbourhood within two.
+constexpr double kCellPerRadius = 0.55;
+/// How far a grid search may reach [cell sides]; beyond that (sparse regions) the tree searches.
+/// A lonely point at the rim of a uniform cloud needs 4 or 5 cells in 2-D.
+double maxReachInCells(int dimensions) { return dimensions == 2 ? 8.0 : 4.0; }
+/// A k-nearest search first collects this many times the typical radius, so that the radius
+/// searches after it reuse its candidates.
+constexpr double kFirstReach = 1.15;
+/// A cell holding this many times the expected number of points sends its points to the tree,
+/// which copes better with density far above the mean.
+constexpr double kCrowdedCell = 16.0;
+
+}  // namespace
+
+GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& positions,
+                                       std::vector<pcl::index_t>& position_of, int dimensions,
+                                       double typical_radius, double mean_spacing, bool use_grid)
+    : positions_(std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(std::move(positions))),
+      grid_(*positions_, dimensions, kCellPerRadius * typical_radius),
+      use_grid_(use_grid),
+      first_reach_(kFirstReach * typical_radius),
+      max_reach_(maxReachInCells(dimensions) * grid_.cellSize()) {
+  const std::size_t n = positions_->size();
+  // Renumbered in cell order: point k of the new cloud is point order()[k] of the old one.
+  auto sorted = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  sorted->resize(n);
+  std::vector<pcl::index_t> rank(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    (*sorted)[k] = (*positions_)[grid_.order()[k]];
+    rank[grid_.order()[k]] = static_cast<pcl::index_t>(k);
+  }
+  for (auto& position : position_of) position = rank[position];
+  positions_ = sorted;
+  grid_.renumberInCellOrder();
+  const double expected = mean_spacing > 0.0 ? std::pow(grid_.cellSize() / mean_spacing, dimensions)
+                                             : static_cast<double>(n);
+  crowded_ = static_cast<std::size_t>(kCrowdedCell * std::max(1.0, expected));
+}
+
+const pcl::KdTreeFLANN<pcl::PointXYZ>& GridThenTreeSearch::tree() {
+  if (!tree_) {
+    tree_ = std::make_unique<pcl::KdTreeFLANN<pcl::PointXYZ>>(false);  // unsorted results
+    tree_->setInputCloud(positions_);
+  }
+  return *tree_;
+}
+
+}  // namespace mcws
