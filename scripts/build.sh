@@ -1,9 +1,28 @@
 #!/usr/bin/env bash
-# Configures and builds mcws. Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...]
+# Configures and builds mcws.
+# Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...] [--target NAME...]
+# Without --target every target is built (tools, tests, benchmarks, examples, as the MCWS_BUILD_*
+# options say); with it only the named targets and what they link. The cache is not changed by
+# --target, so a later full build in the same directory still builds everything.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-$root/build}
 shift || true
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >"$build.configure.log" 2>&1 ||
-  { cat "$build.configure.log" >&2; exit 1; }
-cmake --build "$build" -j "$(nproc)"
+cmake_args=() targets=()
+while (($#)); do
+  if [[ $1 == --target ]]; then
+    (($# >= 2)) || { echo "build.sh: --target needs a target name" >&2; exit 2; }
+    targets+=("$2")
+    shift 2
+  else
+    cmake_args+=("$1")
+    shift
+  fi
+done
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" \
+  >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 1; }
+if ((${#targets[@]})); then
+  cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
+else
+  cmake --build "$build" -j "$(nproc)"
+fi
