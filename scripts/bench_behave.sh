@@ -7,7 +7,8 @@
 # the comparison. The load average is printed because the machine may be shared.
 # Usage: scripts/bench_behave.sh [RUNS] [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-source "$(dirname "$0")/bench_common.sh"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh"
 model=$root/robots/insulator_cleaner_behaviors.yaml
 
 echo
@@ -19,10 +20,8 @@ for mode in summary outputs plot; do
   [[ $mode == plot ]] && args+=(--plot "$tmp/run.png")
   : >"$tmp/wall"; : >"$tmp/rss"
   for _ in $(seq "$runs"); do
-    start=$(date +%s.%N)
-    /usr/bin/time -f "%M" -o "$tmp/time" "$build/apps/mcws_behave" --model "$model" \
-      --insulators 28 --json "${args[@]}" >"$tmp/out.json" 2>/dev/null
-    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/wall"
+    wall_time "$tmp/wall" /usr/bin/time -f "%M" -o "$tmp/time" "$build/apps/mcws_behave" \
+      --model "$model" --insulators 28 --json "${args[@]}" >"$tmp/out.json" 2>/dev/null
     cat "$tmp/time" >>"$tmp/rss"
   done
   simulated=$(python3 -c "import json; print(json.load(open('$tmp/out.json'))['duration_s'])")

@@ -4,28 +4,23 @@
 # with every point searched in the KdTreeFLANN (--tree-search) for comparison.
 # Usage: scripts/bench_boundary_speed.sh [RUNS]   (default 5; needs a release build in build/)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-bin=$root/build/apps
-runs=${1:-5}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-"$bin/mcws_sample" --shape disk --samples 200000 --output "$work/disk200k.pcd" 2>/dev/null
-"$bin/mcws_sample" --shape disk --samples 1000000 --output "$work/disk1m.pcd" 2>/dev/null
-"$bin/mcws_sample" --shape ball --samples 1000000 --output "$work/ball1m.pcd" 2>/dev/null
-median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR + 1) / 2)]}'; }
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh" "${1:-}"
+bin=$build/apps
+"$bin/mcws_sample" --shape disk --samples 200000 --output "$tmp/disk200k.pcd" 2>/dev/null
+"$bin/mcws_sample" --shape disk --samples 1000000 --output "$tmp/disk1m.pcd" 2>/dev/null
+"$bin/mcws_sample" --shape ball --samples 1000000 --output "$tmp/ball1m.pcd" 2>/dev/null
 run() {  # label, cloud, flags...
   local label=$1 cloud=$2
   shift 2
-  local times=()
+  : >"$tmp/wall"
   for _ in $(seq "$runs"); do
-    local start end
-    start=$(date +%s.%N)
-    "$bin/mcws_boundary" --input "$work/$cloud" --output "$work/out.pcd" "$@" 2>/dev/null
-    end=$(date +%s.%N)
-    times+=("$(echo "$end - $start" | bc)")
+    wall_time "$tmp/wall" "$bin/mcws_boundary" --input "$tmp/$cloud" --output "$tmp/out.pcd" \
+      "$@" 2>/dev/null
   done
-  printf '| %s | %s s |\n' "$label" "$(printf '%s\n' "${times[@]}" | median)"
+  printf '| %s | %s s |\n' "$label" "$(median <"$tmp/wall")"
 }
+echo
 echo "| cloud, search | whole stage, median of $runs |"
 echo "|---|---|"
 run "disk 200000, grid" disk200k.pcd --plane xy

@@ -7,31 +7,22 @@
 # machine may be shared.
 # Usage: scripts/bench_collision.sh [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build}
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcws_bench.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh" 5 "${1:-}"
 echo
 echo "## Google Benchmark (median of 5)"
-"$build/bench/bench_collision" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-  --benchmark_min_time=0.5 2>/dev/null | grep -E "_median" | sed 's/_median//'
+benchmark_medians "$build/bench/bench_collision"
 echo
 
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 echo "## Whole runs, mcws_sample --collision --threads 2 (median of 5)"
 echo "| robot | samples | wall s | samples/s |"
 echo "|---|---|---|---|"
 for run in "ta1400 2000000" "ta1400_mesh 500000"; do
   set -- $run
   : >"$tmp/wall"
-  for _ in 1 2 3 4 5; do
-    start=$(date +%s.%N)
-    "$build/apps/mcws_sample" --robot "$root/robots/$1.yaml" --collision --samples "$2" \
-      --threads 2 --output "$tmp/c.pcd" 2>/dev/null
-    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/wall"
+  for _ in $(seq "$runs"); do
+    wall_time "$tmp/wall" "$build/apps/mcws_sample" --robot "$root/robots/$1.yaml" --collision \
+      --samples "$2" --threads 2 --output "$tmp/c.pcd" 2>/dev/null
     rm -f "$tmp/c.pcd"
   done
   wall=$(median <"$tmp/wall")

@@ -8,7 +8,8 @@
 # pipeline's whole wall time, median of RUNS runs.
 # Usage: scripts/bench_deicing_pipeline.sh [RUNS] [BUILD_DIR] [N]   (default 5, build/, 1000000)
 set -euo pipefail
-source "$(dirname "$0")/bench_common.sh"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh"
 n=${3:-1000000}
 bin=$build/apps
 robot=$root/robots/deicing.yaml
@@ -45,9 +46,7 @@ for what in volume area; do
   else fix="--fix theta3=0" plane="--plane xz" exact=$exact_area unit="cm^2"; fi
   : >"$tmp/wall"
   for _ in $(seq "$runs"); do
-    start=$(date +%s.%N)
-    refined "$fix" "$plane" >"$tmp/refined.json"
-    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/wall"
+    wall_time "$tmp/wall" refined "$fix" "$plane" >"$tmp/refined.json"
   done
   printf '| %s [%s] | %s | %s | %.2f |\n' "$what" "$unit" "$(plain "$fix" "$plane" | error "$what" "$exact")" \
     "$(error "$what" "$exact" <"$tmp/refined.json")" "$(median <"$tmp/wall")"

@@ -5,7 +5,8 @@
 # error of the 1e6 ball over 10 seeds for each build.
 # Usage: scripts/bench_measure.sh [RUNS] [BUILD_DIR] [OTHER_BUILD_DIR]
 set -euo pipefail
-source "$(dirname "$0")/bench_common.sh"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh"
 other=${3:-}
 builds=("$build")
 [[ -n $other ]] && builds+=("$other")

@@ -8,7 +8,8 @@
 # same runs. The load average is printed because the machine may be shared.
 # Usage: scripts/bench_plan.sh [RUNS] [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-source "$(dirname "$0")/bench_common.sh"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh"
 scenario=$root/scenarios/maintenance4.yaml
 field() { python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))" "$@"; }
 
@@ -17,10 +18,8 @@ for mode in evaluation validation; do
   args=(--validation-poses 0)
   [[ $mode == validation ]] && args=()
   for _ in $(seq "$runs"); do
-    start=$(date +%s.%N)
-    "$build/apps/mcws_plan" --scenario "$scenario" --output "$tmp/path.csv" --threads 2 --json \
-      "${args[@]}" >"$tmp/out.json" 2>/dev/null
-    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/wall"
+    wall_time "$tmp/wall" "$build/apps/mcws_plan" --scenario "$scenario" --output "$tmp/path.csv" \
+      --threads 2 --json "${args[@]}" >"$tmp/out.json" 2>/dev/null
     field "$tmp/out.json" "d['rounds'][0]['roadmap_seconds']" >>"$tmp/roadmap"
     field "$tmp/out.json" "d['rounds'][0]['evaluation_seconds']" >>"$tmp/segments"
     if [[ $mode == validation ]]; then

@@ -5,25 +5,22 @@
 # of bytes to the same disk. Medians of 5 (benchmarks and whole runs) in one run of this script.
 # Usage: scripts/bench_sampling.sh [BUILD_DIR]   (needs a release build)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build}
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/mcws_bench.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-
-echo "machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(date -u +%Y-%m-%d)"
+# shellcheck source=lib/bench_common.sh
+source "$(dirname "$0")/lib/bench_common.sh" 5 "${1:-}"
 echo
 echo "## Google Benchmark (median of 5)"
-"$build/bench/bench_sampler" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
-  --benchmark_min_time=0.5 2>/dev/null | grep -E "_median" | sed 's/_median//'
+benchmark_medians "$build/bench/bench_sampler"
 echo
 
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 echo "## Whole runs, 10000000 samples, --threads 2 (median of 5)"
 echo "| robot | wall s | peak RSS MB | file MB | RSS / file | dd same bytes s |"
 echo "|---|---|---|---|---|---|"
+write_zeros() {  # bytes, file: dd writing as many bytes as mcws_sample wrote
+  head -c "$1" /dev/zero | dd of="$2" bs=12M iflag=fullblock status=none
+}
 for robot in ta1400 inspection6; do
   : >"$tmp/wall"; : >"$tmp/rss"; : >"$tmp/dd"
-  for _ in 1 2 3 4 5; do
+  for _ in $(seq "$runs"); do
     rm -f "$tmp/ws.pcd"; sync
     /usr/bin/time -v "$build/apps/mcws_sample" --robot "$root/robots/$robot.yaml" \
       --samples 10000000 --threads 2 --output "$tmp/ws.pcd" 2>"$tmp/time.log"
@@ -32,9 +29,7 @@ for robot in ta1400 inspection6; do
     awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss"
     bytes=$(stat -c %s "$tmp/ws.pcd")
     rm -f "$tmp/ws.pcd" "$tmp/dd.bin"; sync
-    start=$(date +%s.%N)
-    head -c "$bytes" /dev/zero | dd of="$tmp/dd.bin" bs=12M iflag=fullblock status=none
-    awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN {print b - a}' >>"$tmp/dd"
+    wall_time "$tmp/dd" write_zeros "$bytes" "$tmp/dd.bin"
     rm -f "$tmp/dd.bin"
   done
   wall=$(median <"$tmp/wall"); rss=$(median <"$tmp/rss"); dd_s=$(median <"$tmp/dd")

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <set>
 #include <utility>
@@ -54,6 +55,29 @@ typename pcl::PointCloud<PointT>::Ptr shapeCloud(Shape shape, std::size_t n, std
   return cloud;
 }
 
+/// The indices `filter` keeps of `cloud`, its points projected to `plane`.
+template <typename Filter>
+pcl::Indices boundaryOf(Filter& filter, const typename Filter::PointCloudConstPtr& cloud,
+                        BoundaryPlane plane = BoundaryPlane::kXY) {
+  filter.setInputCloud(cloud);
+  filter.setPlane(plane);
+  pcl::Indices kept;
+  filter.filter(kept);
+  return kept;
+}
+
+/// The message of the mcws::Error boundaryOf() throws, or "no error".
+template <typename Filter>
+std::string errorOf(Filter& filter, const typename Filter::PointCloudConstPtr& cloud,
+                    BoundaryPlane plane = BoundaryPlane::kXY) {
+  try {
+    boundaryOf(filter, cloud, plane);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 template <typename PointT>
 class BaselineTyped : public ::testing::Test {};
 using PointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZL, WorkspacePoint>;
@@ -66,11 +90,8 @@ TYPED_TEST(BaselineTyped, GridWithUnitCellsKeepsExactlyTheRimOfASquareGrid) {
   constexpr int n = 20;
   const auto cloud = squareGrid<TypeParam>(n);
   GridBoundary<TypeParam> grid;
-  grid.setInputCloud(cloud);
-  grid.setPlane(BoundaryPlane::kXY);
   grid.setCellSize(1.0);  // one point per cell
-  pcl::Indices kept;
-  grid.filter(kept);
+  const pcl::Indices kept = boundaryOf(grid, cloud);
   std::set<Cell> rim;
   for (float k = 0; k < n; ++k) rim.insert({{0.0f, k}, {n - 1.0f, k}, {k, 0.0f}, {k, n - 1.0f}});
   EXPECT_EQ(kept.size(), rim.size());
@@ -88,11 +109,8 @@ TEST(GridBoundary, CellsOfFourPointsGiveTheirMeansAndTheLowestIndexNearestToIt) 
   // lowest index, (2i, 2j), is kept.
   const auto cloud = squareGrid<pcl::PointXYZ>(20);
   GridBoundary<pcl::PointXYZ> grid;
-  grid.setInputCloud(cloud);
-  grid.setPlane(BoundaryPlane::kXY);
   grid.setCellSize(2.0);
-  pcl::Indices kept;
-  grid.filter(kept);
+  const pcl::Indices kept = boundaryOf(grid, cloud);
   std::set<Cell> corners, means;
   for (int i = 0; i < 10; ++i) {
     for (int j = 0; j < 10; ++j) {
@@ -133,10 +151,7 @@ TEST(GridBoundary, ThreeDimensionalCellsKeepTheSurfaceOfACubeGrid) {
 TEST(GridBoundary, AutomaticCellsFindBothCirclesOfTheAnnulusAndNothingBetween) {
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kAnnulus, 20000, 4);
   GridBoundary<pcl::PointXYZ> grid;
-  grid.setInputCloud(cloud);
-  grid.setPlane(BoundaryPlane::kXY);
-  pcl::Indices kept;
-  grid.filter(kept);
+  const pcl::Indices kept = boundaryOf(grid, cloud);
   // The automatic rule: h sqrt(m), m = ln(2 n / m) = 7.84 for n = 20000 (by hand), and the
   // annulus's spacing sqrt(0.75 pi / n) (meanSpacing estimates it within a few %).
   const double h = std::sqrt(0.75 * M_PI / 20000);
@@ -159,6 +174,7 @@ TEST(GridBoundary, AutomaticCellsFindBothCirclesOfTheAnnulusAndNothingBetween) {
   // Each circle crosses at least (circumference / cell) cells.
   EXPECT_GT(inner, static_cast<std::size_t>(M_PI / cell));
   EXPECT_GT(outer, static_cast<std::size_t>(2 * M_PI / cell));
+  EXPECT_EQ(kept.size(), grid.boundaryCells());  // one point per boundary cell
   EXPECT_EQ(grid.cellMeans().size(), kept.size());
 }
 
@@ -167,83 +183,29 @@ TEST(GridBoundary, TheColumnAreaOfItsMeansIsBelowTheDiskAsTheSeedSays) {
   // computed from them by its column method is a little low (its Table 2: 0.7 % to 7 %).
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kDisk, 100000, 1);
   GridBoundary<pcl::PointXYZ> grid;
-  grid.setInputCloud(cloud);
-  grid.setPlane(BoundaryPlane::kXY);
-  pcl::Indices kept;
-  grid.filter(kept);
+  boundaryOf(grid, cloud);
   const double area = columnArea(grid.cellMeans()).area;
   EXPECT_LT(area, M_PI);
   EXPECT_GT(area, 0.95 * M_PI);
 }
 
-TYPED_TEST(BaselineTyped, GridNegativeModeIsTheComplementAndNaNIsAlwaysRemoved) {
-  auto cloud = shapeCloud<TypeParam>(Shape::kDisk, 20000, 3);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  (*cloud)[5].x = nan;
-  (*cloud)[77].y = nan;
-  pcl::Indices positive_kept, positive_removed;
-  for (bool negative : {false, true}) {
-    GridBoundary<TypeParam> grid(true);
-    grid.setInputCloud(cloud);
-    grid.setPlane(BoundaryPlane::kXY);
-    grid.setNegative(negative);
-    pcl::Indices kept;
-    grid.filter(kept);
-    const pcl::Indices& removed = *grid.getRemovedIndices();
-    EXPECT_EQ(kept.size() + removed.size(), cloud->size());
-    EXPECT_EQ(std::count(kept.begin(), kept.end(), 5), 0);
-    EXPECT_EQ(std::count(kept.begin(), kept.end(), 77), 0);
-    if (!negative) {
-      positive_kept = kept;
-      positive_removed = removed;
-      EXPECT_EQ(kept.size(), grid.boundaryCells());
-      continue;
-    }
-    pcl::Indices expected;  // what positive mode removed, less the NaN points
-    for (const auto i : positive_removed) {
-      if (i != 5 && i != 77) expected.push_back(i);
-    }
-    EXPECT_EQ(kept, expected);
-    pcl::Indices expected_removed = positive_kept;
-    expected_removed.push_back(5);
-    expected_removed.push_back(77);
-    std::sort(expected_removed.begin(), expected_removed.end());
-    EXPECT_EQ(removed, expected_removed);
-  }
-}
-
 TEST(GridBoundary, DegenerateClouds) {
   GridBoundary<pcl::PointXYZ> grid;
-  grid.setPlane(BoundaryPlane::kXY);
-  pcl::Indices kept;
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  grid.setInputCloud(cloud);
-  grid.filter(kept);  // empty: nothing kept, no error
-  EXPECT_TRUE(kept.empty());
+  EXPECT_TRUE(boundaryOf(grid, cloud).empty());  // empty: nothing kept, no error
   cloud->push_back(pcl::PointXYZ(1, 2, 3));
-  grid.setInputCloud(cloud);
-  grid.filter(kept);
-  EXPECT_EQ(kept, pcl::Indices({0}));  // one point: its own boundary cell
+  EXPECT_EQ(boundaryOf(grid, cloud), pcl::Indices({0}));  // one point: its own boundary cell
   for (int k = 0; k < 4; ++k) cloud->push_back(pcl::PointXYZ(1, 2, 3));
-  grid.setInputCloud(cloud);
-  grid.filter(kept);
-  EXPECT_EQ(kept, pcl::Indices({0}));  // identical points: one cell, the first point
+  // Identical points: one cell, the first point.
+  EXPECT_EQ(boundaryOf(grid, cloud), pcl::Indices({0}));
 }
 
 TEST(GridBoundary, RejectsBadParameters) {
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kDisk, 1000, 1);
   auto message = [&](double cell) {
     GridBoundary<pcl::PointXYZ> grid;
-    grid.setInputCloud(cloud);
-    grid.setPlane(BoundaryPlane::kXY);
     grid.setCellSize(cell);
-    pcl::Indices kept;
-    try {
-      grid.filter(kept);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return errorOf(grid, cloud);
   };
   EXPECT_EQ(message(0.0), "GridBoundary: cell size 0 must be a positive number");
   EXPECT_EQ(message(-0.5), "GridBoundary: cell size -0.5 must be a positive number");
@@ -261,12 +223,9 @@ TYPED_TEST(BaselineTyped, ExtremumKeepsTheLowestAndHighestPointOfEachColumn) {
   constexpr int n = 20;
   const auto cloud = squareGrid<TypeParam>(n);
   ExtremumBoundary<TypeParam> extremum;
-  extremum.setInputCloud(cloud);
-  extremum.setPlane(BoundaryPlane::kXY);
   extremum.setColumnWidth(1.0);   // one grid column per column
   extremum.setGapThreshold(1.5);  // the grid's spacing 1 is no gap
-  pcl::Indices kept;
-  extremum.filter(kept);
+  const pcl::Indices kept = boundaryOf(extremum, cloud);
   std::set<Cell> expected;
   for (float x = 0; x < n; ++x) expected.insert({{x, 0.0f}, {x, n - 1.0f}});
   EXPECT_EQ(positions(*cloud, kept), expected);
@@ -278,12 +237,9 @@ TEST(ExtremumBoundary, WideColumnsKeepTheFirstOfPointsAtTheSameExtreme) {
   // Columns of 2 grid columns: x = 2i and 2i + 1 tie at y = 0 and y = 19; the lower index wins.
   const auto cloud = squareGrid<pcl::PointXYZ>(20);
   ExtremumBoundary<pcl::PointXYZ> extremum;
-  extremum.setInputCloud(cloud);
-  extremum.setPlane(BoundaryPlane::kXY);
   extremum.setColumnWidth(2.0);
   extremum.setGapThreshold(1.5);
-  pcl::Indices kept;
-  extremum.filter(kept);
+  const pcl::Indices kept = boundaryOf(extremum, cloud);
   std::set<Cell> expected;
   for (int i = 0; i < 10; ++i) expected.insert({{2.0f * i, 0.0f}, {2.0f * i, 19.0f}});
   EXPECT_EQ(positions(*cloud, kept), expected);
@@ -294,31 +250,23 @@ TEST(ExtremumBoundary, GapsAboveTheThresholdGiveInnerBoundaryPoints) {
   // to y = 15, a gap of 11.
   const auto cloud = squareGrid<pcl::PointXYZ>(20, 5, 14);
   ExtremumBoundary<pcl::PointXYZ> extremum;
-  extremum.setInputCloud(cloud);
-  extremum.setPlane(BoundaryPlane::kXY);
   extremum.setColumnWidth(1.0);
   for (double threshold : {1.5, 10.9}) {
     extremum.setGapThreshold(threshold);
-    pcl::Indices kept;
-    extremum.filter(kept);
+    const pcl::Indices kept = boundaryOf(extremum, cloud);
     std::set<Cell> expected;
     for (float x = 0; x < 20; ++x) expected.insert({{x, 0.0f}, {x, 19.0f}});
     for (float x = 5; x <= 14; ++x) expected.insert({{x, 4.0f}, {x, 15.0f}});
     EXPECT_EQ(positions(*cloud, kept), expected) << threshold;
   }
   extremum.setGapThreshold(11.0);  // not above the threshold: the hole is missed
-  pcl::Indices kept;
-  extremum.filter(kept);
-  EXPECT_EQ(kept.size(), 40u);
+  EXPECT_EQ(boundaryOf(extremum, cloud).size(), 40u);
 }
 
 TEST(ExtremumBoundary, FindsTheHoleOfTheAnnulusWithAutomaticParameters) {
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kAnnulus, 20000, 4);
   ExtremumBoundary<pcl::PointXYZ> extremum;
-  extremum.setInputCloud(cloud);
-  extremum.setPlane(BoundaryPlane::kXY);
-  pcl::Indices kept;
-  extremum.filter(kept);
+  const pcl::Indices kept = boundaryOf(extremum, cloud);
   const double width = extremum.usedColumnWidth();
   // The rule: t = ln(2 n) h^2 / dL with dL = h sqrt(m) as for the grid.
   EXPECT_NEAR(extremum.usedGapThreshold(),
@@ -344,83 +292,32 @@ TEST(ExtremumBoundary, ColumnsRunAlongTheFirstAxisOfThePlane) {
     for (int z = 0; z < 10; ++z) cloud->push_back(pcl::PointXYZ(x, 5.0f, z));
   }
   ExtremumBoundary<pcl::PointXYZ> extremum;
-  extremum.setInputCloud(cloud);
-  extremum.setPlane(BoundaryPlane::kXZ);
   extremum.setColumnWidth(1.0);
   extremum.setGapThreshold(1.5);
-  pcl::Indices kept;
-  extremum.filter(kept);
+  const pcl::Indices kept = boundaryOf(extremum, cloud, BoundaryPlane::kXZ);
   std::set<Cell> got;
   for (const auto i : kept) got.emplace((*cloud)[i].x, (*cloud)[i].z);
   EXPECT_EQ(got, std::set<Cell>({{0, 0}, {0, 9}, {1, 0}, {1, 9}, {2, 0}, {2, 9}}));
 }
 
-TYPED_TEST(BaselineTyped, ExtremumNegativeModeIsTheComplementAndNaNIsAlwaysRemoved) {
-  auto cloud = shapeCloud<TypeParam>(Shape::kAnnulus, 20000, 3);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  (*cloud)[5].x = nan;
-  (*cloud)[77].z = nan;
-  pcl::Indices positive_kept, positive_removed;
-  for (bool negative : {false, true}) {
-    ExtremumBoundary<TypeParam> extremum(true);
-    extremum.setInputCloud(cloud);
-    extremum.setPlane(BoundaryPlane::kXY);
-    extremum.setNegative(negative);
-    pcl::Indices kept;
-    extremum.filter(kept);
-    const pcl::Indices& removed = *extremum.getRemovedIndices();
-    EXPECT_EQ(kept.size() + removed.size(), cloud->size());
-    EXPECT_EQ(std::count(kept.begin(), kept.end(), 5), 0);
-    EXPECT_EQ(std::count(kept.begin(), kept.end(), 77), 0);
-    if (!negative) {
-      positive_kept = kept;
-      positive_removed = removed;
-      continue;
-    }
-    pcl::Indices expected;
-    for (const auto i : positive_removed) {
-      if (i != 5 && i != 77) expected.push_back(i);
-    }
-    EXPECT_EQ(kept, expected);
-    pcl::Indices expected_removed = positive_kept;
-    expected_removed.push_back(5);
-    expected_removed.push_back(77);
-    std::sort(expected_removed.begin(), expected_removed.end());
-    EXPECT_EQ(removed, expected_removed);
-  }
-}
-
 TEST(ExtremumBoundary, DegenerateClouds) {
   ExtremumBoundary<pcl::PointXYZ> extremum;
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  extremum.setInputCloud(cloud);
-  pcl::Indices kept;
-  extremum.filter(kept);
-  EXPECT_TRUE(kept.empty());
+  EXPECT_TRUE(boundaryOf(extremum, cloud).empty());
   cloud->push_back(pcl::PointXYZ(1, 2, 3));
-  extremum.setInputCloud(cloud);
-  extremum.filter(kept);
-  EXPECT_EQ(kept, pcl::Indices({0}));
+  EXPECT_EQ(boundaryOf(extremum, cloud), pcl::Indices({0}));
   for (int k = 0; k < 4; ++k) cloud->push_back(pcl::PointXYZ(1, 2, 3));
-  extremum.setInputCloud(cloud);
-  extremum.filter(kept);
-  EXPECT_EQ(kept, pcl::Indices({0}));  // lowest and highest are the same, first, point
+  // The lowest and highest are the same, first, point.
+  EXPECT_EQ(boundaryOf(extremum, cloud), pcl::Indices({0}));
 }
 
 TEST(ExtremumBoundary, RejectsBadParameters) {
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kDisk, 1000, 1);
-  auto message = [&](const std::function<void(ExtremumBoundary<pcl::PointXYZ>&)>& set) {
+  auto message = [&](const std::function<void(ExtremumBoundary<pcl::PointXYZ>&)>& set,
+                     BoundaryPlane plane = BoundaryPlane::kXY) {
     ExtremumBoundary<pcl::PointXYZ> extremum;
-    extremum.setInputCloud(cloud);
-    extremum.setPlane(BoundaryPlane::kXY);
     set(extremum);
-    pcl::Indices kept;
-    try {
-      extremum.filter(kept);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return errorOf(extremum, cloud, plane);
   };
   EXPECT_EQ(message([](auto& f) { f.setColumnWidth(0.0); }),
             "ExtremumBoundary: column width 0 must be a positive number");
@@ -430,9 +327,49 @@ TEST(ExtremumBoundary, RejectsBadParameters) {
             "ExtremumBoundary: gap threshold 0 must be a positive number");
   EXPECT_EQ(message([](auto& f) { f.setGapThreshold(-1.0); }),
             "ExtremumBoundary: gap threshold -1 must be a positive number");
-  EXPECT_EQ(message([](auto& f) { f.setPlane(BoundaryPlane::k3D); }),
+  EXPECT_EQ(message([](auto&) {}, BoundaryPlane::k3D),
             "ExtremumBoundary: the extremum method needs a plane (xy, xz or yz), not 3d");
   EXPECT_EQ(message([](auto&) {}), "no error");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Both baselines as PCL filters
+
+/// Each baseline filter over each point type.
+template <typename Filter>
+class BaselineFilter : public ::testing::Test {};
+using BaselineFilters =
+    ::testing::Types<GridBoundary<pcl::PointXYZ>, GridBoundary<pcl::PointXYZL>,
+                     GridBoundary<WorkspacePoint>, ExtremumBoundary<pcl::PointXYZ>,
+                     ExtremumBoundary<pcl::PointXYZL>, ExtremumBoundary<WorkspacePoint>>;
+TYPED_TEST_SUITE(BaselineFilter, BaselineFilters);
+
+TYPED_TEST(BaselineFilter, NegativeModeIsTheComplementAndNaNIsAlwaysRemoved) {
+  using PointT = typename TypeParam::PointCloud::PointType;
+  auto cloud = shapeCloud<PointT>(Shape::kAnnulus, 20000, 3);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const pcl::Indices not_finite = {5, 77, 78};  // NaN in x, in y, in z
+  (*cloud)[5].x = nan;
+  (*cloud)[77].y = nan;
+  (*cloud)[78].z = nan;
+  auto split = [&](bool negative) {
+    TypeParam filter(true);  // with removed indices
+    filter.setNegative(negative);
+    const pcl::Indices kept = boundaryOf(filter, cloud);
+    return std::make_pair(kept, *filter.getRemovedIndices());
+  };
+  const auto [kept, removed] = split(false);
+  EXPECT_EQ(kept.size() + removed.size(), cloud->size());
+  for (const auto i : not_finite) EXPECT_EQ(std::count(kept.begin(), kept.end(), i), 0);
+  const auto [negative_kept, negative_removed] = split(true);
+  pcl::Indices expected;  // what positive mode removed, less the non-finite points
+  std::copy_if(removed.begin(), removed.end(), std::back_inserter(expected),
+               [&](auto i) { return std::count(not_finite.begin(), not_finite.end(), i) == 0; });
+  EXPECT_EQ(negative_kept, expected);
+  pcl::Indices expected_removed = kept;  // what positive mode kept, and the non-finite points
+  expected_removed.insert(expected_removed.end(), not_finite.begin(), not_finite.end());
+  std::sort(expected_removed.begin(), expected_removed.end());
+  EXPECT_EQ(negative_removed, expected_removed);
 }
 
 }  // namespace

@@ -119,105 +119,111 @@ std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh&
 
 CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& model,
                                    const CollisionCheckerOptions& options)
-    : robot_(robot), options_(options) {
+    : robot_(robot), options_(options), tool_body_(robot.dof() + 1) {
   if (model.links.size() != robot.joints.size() + 1) {
     throw Error("collision model has " + std::to_string(model.links.size()) + " links; robot '" +
                 robot.name + "' has " + std::to_string(robot.joints.size() + 1) +
                 " (base and one per joint)");
   }
-  std::vector<const BodySpec*> specs;
-  for (const BodySpec& link : model.links) specs.push_back(&link);
-  specs.push_back(&model.tool);
-  for (const BodySpec& object : model.environment) specs.push_back(&object);
-  tool_body_ = robot.dof() + 1;
+  // Bodies in the order of their indices: the links (base first), the tool, the environment.
+  for (const BodySpec& link : model.links) bodies_.push_back(makeBody(link));
+  bodies_.push_back(makeBody(model.tool));
+  for (const BodySpec& object : model.environment) bodies_.push_back(makeBody(object));
+  listPairs(allowedPairs(model));
+}
 
-  for (const BodySpec* spec : specs) {
-    Body body;
-    body.name = spec->name;
-    std::vector<Eigen::Vector3d> extreme;  // points whose bounding sphere bounds the body
-    for (const ShapeSpec& in : spec->shapes) {
-      Shape shape;
-      shape.type = in.type;
-      shape.T_body_shape = in.T_body_shape;
-      shape.radius = in.radius;
-      shape.index = shape_count_++;
-      switch (in.type) {
-        case ShapeType::kCapsule:
-        case ShapeType::kSphere: {
-          shape.swept = shape.lss = options.exact_capsules;
-          shape.p_from = in.p_from;
-          shape.p_to = in.p_to;
-          const Eigen::Vector3d axis = in.p_to - in.p_from;
-          const double length = axis.norm();
-          shape.T_body_shape = Eigen::Isometry3d::Identity();
-          shape.T_body_shape.translation() = 0.5 * (in.p_from + in.p_to);
-          if (length > 0.0) {
-            shape.T_body_shape.linear() =
-                Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis / length)
-                    .toRotationMatrix();
-            shape.geometry = std::make_shared<fcl::Capsule<double>>(in.radius, length);
-          } else {
-            shape.geometry = std::make_shared<fcl::Sphere<double>>(in.radius);
-          }
-          shape.center = 0.5 * (in.p_from + in.p_to);
-          shape.bound = 0.5 * length + in.radius;
-          break;
-        }
-        case ShapeType::kBox: {
-          shape.geometry = std::make_shared<fcl::Box<double>>(in.size);
-          shape.center = in.T_body_shape.translation();
-          shape.bound = 0.5 * in.size.norm();
-          // Bounding capsule: the longest axis, radius the half-diagonal of the other two.
-          int longest = 0;
-          in.size.maxCoeff(&longest);
-          const Eigen::Vector3d half = 0.5 * in.size;
-          const Eigen::Vector3d axis = half[longest] * Eigen::Vector3d::Unit(longest);
-          shape.p_from = in.T_body_shape * (-axis);
-          shape.p_to = in.T_body_shape * axis;
-          shape.radius =
-              std::sqrt(half.squaredNorm() - half[longest] * half[longest]) * (1.0 + 1e-12);
-          shape.lss = options.bounding_spheres;
-          break;
-        }
-        case ShapeType::kCylinder: {
-          shape.geometry = std::make_shared<fcl::Cylinder<double>>(in.radius, in.length);
-          shape.center = in.T_body_shape.translation();
-          shape.bound = std::hypot(in.radius, 0.5 * in.length);
-          // Bounding capsule: the axis, same radius (it adds only the two end caps).
-          const Eigen::Vector3d axis(0, 0, 0.5 * in.length);
-          shape.p_from = in.T_body_shape * (-axis);
-          shape.p_to = in.T_body_shape * axis;
-          shape.radius = in.radius * (1.0 + 1e-12);
-          shape.lss = options.bounding_spheres;
-          break;
-        }
-        case ShapeType::kMesh: {
-          shape.geometry = meshGeometry(*in.mesh);
-          std::vector<Eigen::Vector3d> vertices;
-          vertices.reserve(in.mesh->vertices.size());
-          for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
-          std::tie(shape.center, shape.bound) = boundPoints(vertices);
-          std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
-          shape.lss = options.bounding_spheres;
-          break;
-        }
-      }
-      // Six points of the shape's bounding sphere bound the body's sphere from below; take the
-      // sphere's axis extremes so that the body sphere contains every shape sphere.
-      for (int k = 0; k < 3; ++k) {
-        extreme.push_back(shape.center + shape.bound * Eigen::Vector3d::Unit(k));
-        extreme.push_back(shape.center - shape.bound * Eigen::Vector3d::Unit(k));
-      }
-      body.shapes.push_back(std::move(shape));
+CollisionChecker::Body CollisionChecker::makeBody(const BodySpec& spec) {
+  Body body;
+  body.name = spec.name;
+  std::vector<Eigen::Vector3d> extreme;  // points whose bounding sphere bounds the body
+  for (const ShapeSpec& in : spec.shapes) {
+    Shape shape = makeShape(in);
+    // Six points of the shape's bounding sphere bound the body's sphere from below; take the
+    // sphere's axis extremes so that the body sphere contains every shape sphere.
+    for (int k = 0; k < 3; ++k) {
+      extreme.push_back(shape.center + shape.bound * Eigen::Vector3d::Unit(k));
+      extreme.push_back(shape.center - shape.bound * Eigen::Vector3d::Unit(k));
     }
-    if (!body.shapes.empty()) {
-      body.center = boundPoints(extreme).first;
-      for (const Shape& shape : body.shapes)
-        body.bound = std::max(body.bound, (shape.center - body.center).norm() + shape.bound);
-    }
-    bodies_.push_back(std::move(body));
+    body.shapes.push_back(std::move(shape));
   }
+  if (!body.shapes.empty()) {
+    body.center = boundPoints(extreme).first;
+    for (const Shape& shape : body.shapes)
+      body.bound = std::max(body.bound, (shape.center - body.center).norm() + shape.bound);
+  }
+  return body;
+}
 
+CollisionChecker::Shape CollisionChecker::makeShape(const ShapeSpec& in) {
+  Shape shape;
+  shape.type = in.type;
+  shape.T_body_shape = in.T_body_shape;
+  shape.radius = in.radius;
+  shape.index = shape_count_++;
+  switch (in.type) {
+    case ShapeType::kCapsule:
+    case ShapeType::kSphere: {
+      shape.swept = shape.lss = options_.exact_capsules;
+      shape.p_from = in.p_from;
+      shape.p_to = in.p_to;
+      const Eigen::Vector3d axis = in.p_to - in.p_from;
+      const double length = axis.norm();
+      shape.T_body_shape = Eigen::Isometry3d::Identity();
+      shape.T_body_shape.translation() = 0.5 * (in.p_from + in.p_to);
+      if (length > 0.0) {
+        shape.T_body_shape.linear() =
+            Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis / length)
+                .toRotationMatrix();
+        shape.geometry = std::make_shared<fcl::Capsule<double>>(in.radius, length);
+      } else {
+        shape.geometry = std::make_shared<fcl::Sphere<double>>(in.radius);
+      }
+      shape.center = 0.5 * (in.p_from + in.p_to);
+      shape.bound = 0.5 * length + in.radius;
+      break;
+    }
+    case ShapeType::kBox: {
+      shape.geometry = std::make_shared<fcl::Box<double>>(in.size);
+      shape.center = in.T_body_shape.translation();
+      shape.bound = 0.5 * in.size.norm();
+      // Bounding capsule: the longest axis, radius the half-diagonal of the other two.
+      int longest = 0;
+      in.size.maxCoeff(&longest);
+      const Eigen::Vector3d half = 0.5 * in.size;
+      const Eigen::Vector3d axis = half[longest] * Eigen::Vector3d::Unit(longest);
+      shape.p_from = in.T_body_shape * (-axis);
+      shape.p_to = in.T_body_shape * axis;
+      shape.radius = std::sqrt(half.squaredNorm() - half[longest] * half[longest]) * (1.0 + 1e-12);
+      shape.lss = options_.bounding_spheres;
+      break;
+    }
+    case ShapeType::kCylinder: {
+      shape.geometry = std::make_shared<fcl::Cylinder<double>>(in.radius, in.length);
+      shape.center = in.T_body_shape.translation();
+      shape.bound = std::hypot(in.radius, 0.5 * in.length);
+      // Bounding capsule: the axis, same radius (it adds only the two end caps).
+      const Eigen::Vector3d axis(0, 0, 0.5 * in.length);
+      shape.p_from = in.T_body_shape * (-axis);
+      shape.p_to = in.T_body_shape * axis;
+      shape.radius = in.radius * (1.0 + 1e-12);
+      shape.lss = options_.bounding_spheres;
+      break;
+    }
+    case ShapeType::kMesh: {
+      shape.geometry = meshGeometry(*in.mesh);
+      std::vector<Eigen::Vector3d> vertices;
+      vertices.reserve(in.mesh->vertices.size());
+      for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
+      std::tie(shape.center, shape.bound) = boundPoints(vertices);
+      std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
+      shape.lss = options_.bounding_spheres;
+      break;
+    }
+  }
+  return shape;
+}
+
+std::set<std::pair<int, int>> CollisionChecker::allowedPairs(const CollisionModel& model) const {
   auto index = [&](const std::string& name) {
     for (std::size_t i = 0; i < bodies_.size(); ++i)
       if (bodies_[i].name == name) return static_cast<int>(i);
@@ -228,12 +234,16 @@ CollisionChecker::CollisionChecker(const Robot& robot, const CollisionModel& mod
     const int i = index(a), j = index(b);
     allowed.insert({std::min(i, j), std::max(i, j)});
   }
+  return allowed;
+}
+
+void CollisionChecker::listPairs(const std::set<std::pair<int, int>>& allowed) {
   auto add = [&](int a, int b, std::uint32_t label) {
     if (bodies_[a].shapes.empty() || bodies_[b].shapes.empty()) return;
     if (allowed.count({std::min(a, b), std::max(a, b)})) return;
     pairs_.push_back({a, b, label});
   };
-  const int links = robot.dof() + 1;
+  const int links = robot_.dof() + 1;
   for (int a = 0; a < links; ++a)
     for (int b = a + 2; b < links; ++b) add(a, b, kLabelLinkLink);
   for (int a = 0; a < links - 1; ++a) add(a, tool_body_, kLabelToolLink);

@@ -6,7 +6,9 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mcws/collision/collision_model.h"
@@ -129,6 +131,16 @@ class CollisionChecker {
  private:
   struct Shape;
   struct Body;
+  /// The checker's body for a body of the model: its shapes, its bounding sphere.
+  Body makeBody(const BodySpec& spec);
+  /// The checker's shape for a shape of the model: FCL geometry, bounding sphere and capsule;
+  /// numbers it among all shapes.
+  Shape makeShape(const ShapeSpec& in);
+  /// The model's allowed pairs as body indices (lower first). \throws mcws::Error for a name
+  /// that is not a body.
+  std::set<std::pair<int, int>> allowedPairs(const CollisionModel& model) const;
+  /// Fills pairs_ in the order label() tests them (see the class comment), less `allowed`.
+  void listPairs(const std::set<std::pair<int, int>>& allowed);
   void computePoses(const double* q, const Eigen::Isometry3d& T_world_base,
                     Scratch::Data& data) const;
   double shapeClearance(const Shape& a, const Shape& b, double cap, Scratch::Data& data, int body_a,

@@ -5,28 +5,25 @@
 #include <pcl/io/vtk_lib_io.h>
 #include <yaml-cpp/yaml.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <set>
-#include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/core/text_file.h"
+#include "mcws/core/yaml_reader.h"
 
 namespace mcws {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-constexpr double kLargestValue = 1e9;  ///< as the robot parser: larger is a typing mistake
 
 /// Reads the `collision:` section; every mistake becomes "file:line: collision: ...".
-class CollisionYamlReader {
+class CollisionYamlReader : YamlReader {
  public:
   CollisionYamlReader(const Robot& robot, std::string source)
-      : robot_(robot), source_(std::move(source)) {}
+      : YamlReader(std::move(source)), robot_(robot) {}
 
   CollisionModel read(const YAML::Node& root) {
     CollisionModel model;
@@ -47,7 +44,7 @@ class CollisionYamlReader {
 
     if (const YAML::Node links = section["links"]) {
       if (!links.IsMap()) fail(links, "collision: links: must be a map from link name to shapes");
-      checkUniqueKeys(links, "collision: links");
+      checkNames(links, "collision: links");
       for (const auto& item : links) {
         const std::string name = item.first.Scalar();
         BodySpec* body = nullptr;
@@ -106,62 +103,15 @@ class CollisionYamlReader {
   }
 
  private:
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const {
-    std::ostringstream msg;
-    msg << source_;
-    if (node.IsDefined() && node.Mark().line >= 0) msg << ":" << node.Mark().line + 1;
-    msg << ": " << what;
-    throw Error(msg.str());
-  }
-
-  std::string where(const YAML::Node& node) const {
-    return source_ + (node.Mark().line >= 0 ? ":" + std::to_string(node.Mark().line + 1) : "");
-  }
-
   bool isJoint(const std::string& name) const {
     for (const Joint& joint : robot_.joints)
       if (joint.name == name) return true;
     return false;
   }
 
-  void checkUniqueKeys(const YAML::Node& map, const std::string& where) const {
-    std::set<std::string> seen;
-    for (const auto& item : map) {
-      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
-      if (!seen.insert(item.first.Scalar()).second)
-        fail(item.first, where + ": key '" + item.first.Scalar() + "' given twice");
-    }
-  }
-
-  void checkKeys(const YAML::Node& map, const std::string& where,
-                 const std::set<std::string>& allowed) const {
-    checkUniqueKeys(map, where);
-    for (const auto& item : map) {
-      if (!allowed.count(item.first.Scalar())) {
-        std::string list;
-        for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
-        fail(item.first,
-             where + ": unknown key '" + item.first.Scalar() + "' (allowed: " + list + ")");
-      }
-    }
-  }
-
-  double toNumber(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsScalar()) fail(node, what + " must be a number");
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": '" + node.Scalar() + "' is not a number");
-    }
-    if (!std::isfinite(value) || std::abs(value) > kLargestValue)
-      fail(node, what + ": '" + node.Scalar() + "' is not a finite number of at most 1e9 in size");
-    return value;
-  }
-
   double positive(const YAML::Node& map, const std::string& key, const std::string& where) const {
     if (!map[key]) fail(map, where + ": missing field '" + key + "'");
-    const double value = toNumber(map[key], where + ": " + key);
+    const double value = finiteNumber(map[key], where + ": " + key);
     if (value <= 0.0) fail(map[key], where + ": " + key + " " + map[key].Scalar() + " must be > 0");
     return value;
   }
@@ -176,7 +126,7 @@ class CollisionYamlReader {
     if (!node.IsSequence() || node.size() != 3)
       fail(node, where + ": " + key + " must be [x, y, z]");
     Eigen::Vector3d v;
-    for (int k = 0; k < 3; ++k) v[k] = toNumber(node[k], where + ": " + key);
+    for (int k = 0; k < 3; ++k) v[k] = finiteNumber(node[k], where + ": " + key);
     return v;
   }
 
@@ -195,7 +145,7 @@ class CollisionYamlReader {
     std::set<std::string> keys{"type"};
     if (named) keys.insert("name");
     ShapeSpec shape;
-    shape.source = this->where(node);
+    shape.source = atLine(source(), lineOf(node));
     auto placement = [&] {
       keys.insert({"xyz", "rpy"});
       shape.T_body_shape = poseFromXyzRpy(vector3(node, "xyz", where, false),
@@ -237,7 +187,7 @@ class CollisionYamlReader {
         fail(node, where + ": missing field 'file'");
       const double scale = node["scale"] ? positive(node, "scale", where) : 1.0;
       std::filesystem::path file = node["file"].Scalar();
-      if (file.is_relative()) file = std::filesystem::path(source_).parent_path() / file;
+      if (file.is_relative()) file = std::filesystem::path(source()).parent_path() / file;
       try {
         shape.mesh = std::make_shared<const TriangleMesh>(loadMesh(file.string(), scale));
       } catch (const Error& e) {
@@ -252,7 +202,6 @@ class CollisionYamlReader {
   }
 
   const Robot& robot_;
-  std::string source_;
   double angle_scale_{kDegree};
 };
 
@@ -286,11 +235,7 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 }
 
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open robot file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseCollisionYaml(robot, text.str(), path);
+  return parseCollisionYaml(robot, readTextFile(path, "robot file"), path);
 }
 
 bool hasGeometry(const CollisionModel& model) {

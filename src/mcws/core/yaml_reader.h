@@ -1,12 +1,13 @@
 #pragma once
 /// \file
 /// \brief The checks the mcws YAML readers share: "file:line: message" errors, known keys,
-/// required fields, single values and numbers with a unit.
+/// required fields, single values, numbers and numbers with a unit.
 ///
 /// Header-only; only the readers that link yaml-cpp include it (mcws::core does not link it).
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <set>
 #include <sstream>
 #include <string>
@@ -26,9 +27,10 @@ std::string joined(const Container& items) {
   return out;
 }
 
-/// \brief The 1-based line of `node` in its file, 0 when yaml-cpp does not know it.
+/// \brief The 1-based line of `node` in its file, 0 when yaml-cpp does not know it (also for a
+/// node that is not in the file, such as `map["absent"]`).
 inline int lineOf(const YAML::Node& node) {
-  return node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
+  return node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0;
 }
 
 /// \brief "source:line", or "source" alone when `line` is 0 (unknown).
@@ -130,6 +132,32 @@ class YamlReader {
   std::string text(const YAML::Node& node, const std::string& where) const {
     const std::string value = scalar(node, where);
     if (value.empty()) fail(node, where + ": must not be empty");
+    return value;
+  }
+
+  /// \brief Numbers larger than this in size are typing mistakes (and would overflow the float
+  /// coordinates of a cloud).
+  static constexpr double kLargestNumber = 1e9;
+
+  /// \brief A finite number as YAML writes it ("155", "1.5e2", "-.5"), at most kLargestNumber in
+  /// size.
+  /// \param what names the value in messages ("joint 1 'j1': field 'a'").
+  /// \throws mcws::Error "what must be a number" for a list, a map or no value, "what: 'v' is not
+  /// a number", "what: 'v' is not a finite number" or "what: v is out of range (at most 1e9 in
+  /// size)".
+  double finiteNumber(const YAML::Node& node, const std::string& what) const {
+    if (!node.IsScalar()) fail(node, what + " must be a number");
+    double value = 0.0;
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(node, what + ": '" + node.Scalar() + "' is not a number");
+    }
+    if (!std::isfinite(value))
+      fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
+    if (std::abs(value) > kLargestNumber) {
+      fail(node, what + ": " + node.Scalar() + " is out of range (at most 1e9 in size)");
+    }
     return value;
   }
 

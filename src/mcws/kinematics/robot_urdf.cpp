@@ -3,16 +3,13 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/core/text_file.h"
 
 namespace mcws {
 namespace {
@@ -219,18 +216,7 @@ Robot parseRobotUrdf(const std::string& text, const std::string& source,
 }
 
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
-  if (path.empty()) throw Error("robot file name is empty");
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw Error(path + ": robot file is not a regular file");
-  }
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open robot file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read robot file");
-  return parseRobotUrdf(text.str(), path, options);
+  return parseRobotUrdf(readTextFile(path, "robot file"), path, options);
 }
 
 }  // namespace mcws

@@ -2,28 +2,25 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/core/text_file.h"
+#include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_urdf.h"
 
 namespace mcws {
 namespace {
 
 constexpr double kDegree = M_PI / 180.0;
-/// Lengths and angles beyond this are typing mistakes, and would overflow the float coordinates.
-constexpr double kLargestValue = 1e9;
 
 /// Reads one document and turns every mistake into a message with file and line.
-class RobotYamlReader {
+class RobotYamlReader : YamlReader {
  public:
-  explicit RobotYamlReader(std::string source) : source_(std::move(source)) {}
+  explicit RobotYamlReader(std::string source) : YamlReader(std::move(source)) {}
 
   Robot read(const YAML::Node& root) {
     if (!root.IsMap()) fail(root, "the document must be a map of robot fields");
@@ -32,12 +29,12 @@ class RobotYamlReader {
                "collision"});  // collision: read by mcws::parseCollisionYaml
 
     Robot robot;
-    robot.source = source_;
-    robot.name = scalar(root, "name", "robot");
+    robot.source = source();
+    robot.name = field(root, "name", "robot");
     if (robot.name.empty()) fail(root["name"], "name: must not be empty");
     readUnits(require(root, "units", "robot"), robot);
 
-    const std::string convention = scalar(root, "convention", "robot");
+    const std::string convention = field(root, "convention", "robot");
     if (convention != "standard" && convention != "modified") {
       fail(root["convention"],
            "convention: '" + convention + "' is not a D-H convention (standard or modified)");
@@ -56,7 +53,7 @@ class RobotYamlReader {
       const std::string where = "joint " + std::to_string(i + 1);
       if (!row.IsMap()) fail(row, where + ": must be a map of D-H fields");
       Joint joint;
-      joint.name = scalar(row, "name", where);
+      joint.name = field(row, "name", where);
       if (joint.name.empty()) fail(row["name"], where + ": name must not be empty");
       if (joint.name.find_first_of("=, \t") != std::string::npos) {
         fail(row["name"], where + ": name '" + joint.name + "' contains '=', ',' or a space");
@@ -64,7 +61,7 @@ class RobotYamlReader {
       const std::string label = where + " '" + joint.name + "'";
       checkKeys(row, label, {"name", "type", "a", "alpha", "d", "theta", "limits"});
       if (!names.insert(joint.name).second) fail(row["name"], label + ": duplicate joint name");
-      const std::string type = scalar(row, "type", label);
+      const std::string type = field(row, "type", label);
       if (type == "revolute") {
         joint.type = JointType::kRevolute;
       } else if (type == "prismatic") {
@@ -97,67 +94,21 @@ class RobotYamlReader {
   }
 
  private:
-  [[noreturn]] void fail(const YAML::Node& node, const std::string& what) const {
-    std::ostringstream msg;
-    msg << source_;
-    if (node.IsDefined() && node.Mark().line >= 0) msg << ":" << node.Mark().line + 1;
-    msg << ": " << what;
-    throw Error(msg.str());
-  }
-
-  void checkKeys(const YAML::Node& map, const std::string& where,
-                 const std::set<std::string>& allowed) const {
-    std::set<std::string> seen;
-    for (const auto& item : map) {
-      if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
-      const std::string key = item.first.Scalar();
-      if (!seen.insert(key).second) fail(item.first, where + ": key '" + key + "' given twice");
-      if (!allowed.count(key)) {
-        std::string list;
-        for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
-        fail(item.first, where + ": unknown key '" + key + "' (allowed: " + list + ")");
-      }
-    }
-  }
-
-  YAML::Node require(const YAML::Node& map, const std::string& key,
-                     const std::string& where) const {
-    const YAML::Node node = map[key];
-    if (!node) fail(map, where + ": missing field '" + key + "'");
-    return node;
-  }
-
-  std::string scalar(const YAML::Node& map, const std::string& key,
-                     const std::string& where) const {
+  /// The single value of field `key` of `map`, possibly empty.
+  std::string field(const YAML::Node& map, const std::string& key, const std::string& where) const {
     const YAML::Node node = require(map, key, where);
     if (!node.IsScalar()) fail(node, where + ": field '" + key + "' must be a single value");
     return node.Scalar();
   }
 
-  double toNumber(const YAML::Node& node, const std::string& what) const {
-    if (!node.IsScalar()) fail(node, what + " must be a number");
-    double value = 0.0;
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(node, what + ": '" + node.Scalar() + "' is not a number");
-    }
-    if (!std::isfinite(value))
-      fail(node, what + ": '" + node.Scalar() + "' is not a finite number");
-    if (std::abs(value) > kLargestValue) {
-      fail(node, what + ": " + node.Scalar() + " is out of range (at most 1e9 in size)");
-    }
-    return value;
-  }
-
   double number(const YAML::Node& map, const std::string& key, const std::string& where) const {
-    return toNumber(require(map, key, where), where + ": field '" + key + "'");
+    return finiteNumber(require(map, key, where), where + ": field '" + key + "'");
   }
 
   void readUnits(const YAML::Node& units, Robot& robot) {
     if (!units.IsMap()) fail(units, "units: must be a map with 'length' and 'angle'");
     checkKeys(units, "units", {"length", "angle"});
-    const std::string length = scalar(units, "length", "units");
+    const std::string length = field(units, "length", "units");
     if (length == "m") {
       robot.length_unit = LengthUnit::kMetre;
     } else if (length == "cm") {
@@ -167,7 +118,7 @@ class RobotYamlReader {
     } else {
       fail(units["length"], "units: length unit '" + length + "' is not m, cm or mm");
     }
-    const std::string angle = scalar(units, "angle", "units");
+    const std::string angle = field(units, "angle", "units");
     if (angle == "deg") {
       angle_scale_ = kDegree;
     } else if (angle == "rad") {
@@ -184,7 +135,7 @@ class RobotYamlReader {
     if (!node.IsSequence() || node.size() != 3)
       fail(node, where + ": " + key + " must be [x, y, z]");
     Eigen::Vector3d v;
-    for (int k = 0; k < 3; ++k) v[k] = toNumber(node[k], where + ": " + key);
+    for (int k = 0; k < 3; ++k) v[k] = finiteNumber(node[k], where + ": " + key);
     return v;
   }
 
@@ -200,8 +151,8 @@ class RobotYamlReader {
       fail(limits, label + ": limits must be [min, max]");
     }
     const double scale = joint.type == JointType::kRevolute ? angle_scale_ : 1.0;
-    const double lower = toNumber(limits[0], label + ": limits min");
-    const double upper = toNumber(limits[1], label + ": limits max");
+    const double lower = finiteNumber(limits[0], label + ": limits min");
+    const double upper = finiteNumber(limits[1], label + ": limits max");
     if (lower > upper) {
       std::ostringstream msg;
       msg << label << ": limits min " << lower << " is greater than max " << upper;
@@ -211,7 +162,6 @@ class RobotYamlReader {
     joint.upper = upper * scale;
   }
 
-  std::string source_;
   double angle_scale_{kDegree};
 };
 
@@ -231,18 +181,8 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
 }
 
 Robot loadRobot(const std::string& path) {
-  if (path.empty()) throw Error("robot file name is empty");
   if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path);
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(path + ": robot file does not exist");
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error(path + ": robot file is not a regular file");
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open robot file: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": cannot read robot file");
-  return parseRobotYaml(text.str(), path);
+  return parseRobotYaml(readTextFile(path, "robot file"), path);
 }
 
 }  // namespace mcws

@@ -14,14 +14,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <type_traits>
 #include <vector>
 
 #include "mcws/core/error.h"
-#include "mcws/workspace/nearest_neighbours.h"
 #include "mcws/points/unique_positions.h"
+#include "mcws/workspace/nearest_neighbours.h"
 
 namespace mcws {
 namespace {
@@ -120,17 +122,99 @@ double boundingMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensi
   return dimensions == 2 ? extent[0] * extent[1] : extent.prod();
 }
 
+/// The types that differ between an area (D = 2: triangles, CGAL's faces) and a volume (D = 3:
+/// tetrahedra, CGAL's cells); the measuring below is written once over D. `Concurrency` chooses
+/// CGAL's parallel (CGAL::Parallel_tag, TBB) or sequential 3-D triangulation; the 2-D
+/// triangulation is always sequential. Vertex info: the point's index; simplex info: 1 for a kept
+/// simplex, 0 for a dropped one. `Local`: the small triangulation of one vertex's neighbours
+/// (LeaveOneOut::kStar).
+template <int D, typename Concurrency = CGAL::Sequential_tag>
+struct Simplices;
+
+template <typename Concurrency>
+struct Simplices<2, Concurrency> {
+  using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
+  using Delaunay = CGAL::Delaunay_triangulation_2<
+      K, CGAL::Triangulation_data_structure_2<VertexBase,
+                                              CGAL::Triangulation_face_base_with_info_2<char, K>>>;
+  using Local = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<VertexBase>>;
+};
+
+template <typename Concurrency>
+struct Simplices<3, Concurrency> {
+  using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
+  using Delaunay = CGAL::Delaunay_triangulation_3<
+      K, CGAL::Triangulation_data_structure_3<
+             VertexBase, CGAL::Triangulation_cell_base_with_info_3<char, K>, Concurrency>>;
+  using Local = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<VertexBase>>;
+};
+
+/// Every triangle (D = 2) or tetrahedron (D = 3) of `dt`, the infinite ones included.
+template <int D, typename Delaunay>
+auto allSimplices(const Delaunay& dt) {
+  if constexpr (D == 2) {
+    return dt.all_face_handles();
+  } else {
+    return dt.all_cell_handles();
+  }
+}
+
+/// The finite triangles (D = 2) or tetrahedra (D = 3) of `dt`.
+template <int D, typename Delaunay>
+auto finiteSimplices(const Delaunay& dt) {
+  if constexpr (D == 2) {
+    return dt.finite_face_handles();
+  } else {
+    return dt.finite_cell_handles();
+  }
+}
+
+/// The vertices that share an edge with v, the infinite one included. Read-only (in 3-D without
+/// CGAL's visit flags), so threads may call it at once.
+template <int D, typename Delaunay>
+void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+                      std::vector<typename Delaunay::Vertex_handle>& out) {
+  if constexpr (D == 2) {
+    auto u = dt.incident_vertices(v), done = u;
+    do {
+      out.push_back(u);
+    } while (++u != done);
+  } else {
+    dt.adjacent_vertices_threadsafe(v, std::back_inserter(out));
+  }
+}
+
+/// Inserts the points, each with its index, into `dt`. A parallel triangulation
+/// (`Concurrency` = CGAL::Parallel_tag) inserts spatially sorted points on TBB's threads, each
+/// locking the cells of a grid over the points' bounding box.
+template <typename Concurrency, typename Delaunay, typename Input>
+void insertPoints(Delaunay& dt, const Input& input) {
+  if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
+    CGAL::Bbox_3 box;
+    for (const auto& item : input) box += item.first.bbox();
+    typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
+    dt.set_lock_data_structure(&locks);
+    try {
+      dt.insert(input.begin(), input.end());
+    } catch (...) {
+      dt.set_lock_data_structure(nullptr);  // the locks end with this scope
+      throw;
+    }
+    dt.set_lock_data_structure(nullptr);  // what follows only reads
+  } else {
+    dt.insert(input.begin(), input.end());
+  }
+}
+
 /// The vertices between kept and dropped simplices (info 1 and 0; the infinite ones are dropped),
 /// in the triangulation's vertex order. A vertex has both kinds around it exactly when some facet
 /// through it separates a kept simplex from a dropped one (its star is connected through such
 /// facets), so one pass over the kept simplices' facets finds them all.
-template <int D, typename Delaunay, typename SimplexIterator>
+template <int D, typename Delaunay>
 std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& dt,
-                                                               SimplexIterator first,
-                                                               SimplexIterator last,
                                                                std::size_t points) {
   std::vector<char> on_boundary(points, 0);  // by vertex info, the point's index
-  for (auto s = first; s != last; ++s) {
+  for (const auto s : finiteSimplices<D>(dt)) {
     if (!s->info()) continue;
     for (int i = 0; i <= D; ++i) {
       if (s->neighbor(i)->info()) continue;
@@ -146,6 +230,16 @@ std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& d
   return boundary;
 }
 
+/// Whether `p` lies in the region of the points of `dt`: in a finite simplex within the alpha
+/// limit. Where the points span only a line (2-D) or a plane (3-D), no simplex holds p.
+template <int D, typename Delaunay>
+bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
+              const std::vector<double>& spacing, double alpha_factor) {
+  if (dt.dimension() < D) return false;
+  const auto s = dt.locate(p);
+  return !dt.is_infinite(s) && withinAlpha<D>(s, spacing, alpha_factor);
+}
+
 // Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
 // triangulation changes only its star: the hole is filled by the part of the Delaunay
 // triangulation of v's neighbours that lies in it (Devillers, "On deletion in Delaunay
@@ -157,214 +251,104 @@ std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& d
 // triangulation lists them in an order that depends on the thread count, and where v's point
 // lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
 // returns depends on how that triangulation was built.
-
-template <typename Delaunay>
-std::size_t outsideByStar2(const Delaunay& dt,
-                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                           const std::vector<double>& spacing, double alpha_factor, int threads) {
-  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
-  using Local = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
+template <int D, typename Delaunay>
+std::size_t outsideByStar(const Delaunay& dt,
+                          const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                          const std::vector<double>& spacing, double alpha_factor, int threads) {
+  using Local = typename Simplices<D>::Local;
   std::size_t outside = 0;
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
-    std::vector<std::pair<K::Point_2, std::uint32_t>> star;
-#pragma omp for schedule(dynamic, 256)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
-      const auto v = boundary[i];
-      star.clear();
-      bool on_hull = false;
-      auto u = dt.incident_vertices(v), done = u;
-      do {
-        if (dt.is_infinite(u)) {
-          on_hull = true;
-        } else {
-          star.emplace_back(u->point(), u->info());
-        }
-      } while (++u != done);
-      if (on_hull) {
-        ++outside;
-        continue;
-      }
-      std::sort(star.begin(), star.end(),
-                [](const auto& a, const auto& b) { return a.second < b.second; });
-      const Local local(star.begin(), star.end());
-      const auto f =
-          local.dimension() == 2 ? local.locate(v->point()) : typename Local::Face_handle();
-      const bool covered = f != typename Local::Face_handle() && !local.is_infinite(f) &&
-                           withinAlpha<2>(f, spacing, alpha_factor);
-      outside += !covered;
-    }
-  }
-  return outside;
-}
-
-template <typename Delaunay>
-std::size_t outsideByStar3(const Delaunay& dt,
-                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                           const std::vector<double>& spacing, double alpha_factor, int threads) {
-  using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
-  using Local = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb>>;
-  std::size_t outside = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : outside)
-  {
-    std::vector<std::pair<K::Point_3, std::uint32_t>> star;
     std::vector<typename Delaunay::Vertex_handle> neighbours;
+    std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
 #pragma omp for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
       const auto v = boundary[i];
       neighbours.clear();
-      dt.adjacent_vertices_threadsafe(v, std::back_inserter(neighbours));  // no visit flags
-      star.clear();
-      bool on_hull = false;
-      for (const auto& u : neighbours) {
-        if (dt.is_infinite(u)) {
-          on_hull = true;
-          break;
-        }
-        star.emplace_back(u->point(), u->info());
-      }
-      if (on_hull) {
-        ++outside;
+      adjacentVertices<D>(dt, v, neighbours);
+      if (std::any_of(neighbours.begin(), neighbours.end(),
+                      [&](const auto& u) { return dt.is_infinite(u); })) {
+        ++outside;  // on the convex hull
         continue;
       }
+      star.clear();
+      for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
       std::sort(star.begin(), star.end(),
                 [](const auto& a, const auto& b) { return a.second < b.second; });
       const Local local(star.begin(), star.end());
-      const auto c =
-          local.dimension() == 3 ? local.locate(v->point()) : typename Local::Cell_handle();
-      const bool covered = c != typename Local::Cell_handle() && !local.is_infinite(c) &&
-                           withinAlpha<3>(c, spacing, alpha_factor);
-      outside += !covered;
+      outside += !inRegion<D>(local, v->point(), spacing, alpha_factor);
     }
   }
   return outside;
 }
 
-RegionMeasure measure2d(const pcl::PointCloud<pcl::PointXYZ>& points,
-                        const std::vector<double>& spacing, const MeasureOptions& options) {
-  const double alpha_factor = options.alpha_factor;
-  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
-  using Fb = CGAL::Triangulation_face_base_with_info_2<char, K>;
-  using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
-  std::vector<std::pair<K::Point_2, std::uint32_t>> input;
-  input.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    input.emplace_back(K::Point_2(points[i].x, points[i].y), static_cast<std::uint32_t>(i));
-  }
-  if (options.phase) options.phase("triangulation");
-  Delaunay dt(input.begin(), input.end());
-  input = {};  // the triangulation holds the points now
-  if (dt.dimension() < 2) throw Error("the points lie on a line: no area");
-
-  if (options.phase) options.phase("alpha test");
-  RegionMeasure result;
-  OrderFreeSum kept(boundingMeasure(points, 2));
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = 0;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    if (withinAlpha<2>(f, spacing, alpha_factor)) {
-      f->info() = 1;
-      kept.add(simplexMeasure<2>(f));
-    }
-  }
-  result.uncorrected = kept.value();
-  const auto boundary =
-      boundaryVertices<2>(dt, dt.finite_faces_begin(), dt.finite_faces_end(), points.size());
-  result.points = dt.number_of_vertices();
-  result.boundary_vertices = boundary.size();
-  if (!options.edge_correction) return result;
-  if (options.phase) options.phase("edge correction");
-  if (options.leave_one_out == LeaveOneOut::kStar) {
-    result.outside = outsideByStar2(dt, boundary, spacing, alpha_factor, options.threads);
-    return result;
-  }
-  // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
+/// Leave one out by removal (LeaveOneOut::kRemoveAndReinsert): each boundary vertex is removed
+/// from the triangulation, its point located among the others, and put back (one thread).
+template <int D, typename Delaunay>
+std::size_t outsideByRemoval(Delaunay& dt,
+                             const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                             const std::vector<double>& spacing, double alpha_factor) {
+  std::size_t outside = 0;
   for (const auto v : boundary) {
-    const K::Point_2 p = v->point();
+    const typename Delaunay::Point p = v->point();
     const std::uint32_t index = v->info();
     dt.remove(v);
-    // Without v the others may span only a line: then p is outside their region.
-    const auto f = dt.dimension() == 2 ? dt.locate(p) : Delaunay::Face_handle();
-    const bool covered = f != Delaunay::Face_handle() && !dt.is_infinite(f) &&
-                         withinAlpha<2>(f, spacing, alpha_factor);
-    result.outside += !covered;
+    outside += !inRegion<D>(dt, p, spacing, alpha_factor);
     dt.insert(p)->info() = index;
   }
-  return result;
+  return outside;
 }
 
-/// The 3-D measure on a triangulation built on all threads (`Concurrency` = CGAL::Parallel_tag,
-/// TBB) or on one (CGAL::Sequential_tag, which the remove-and-reinsert leave-one-out needs).
-/// CGAL breaks ties between cospherical points by a symbolic perturbation, so the Delaunay
-/// triangulation is the same whatever the insertion order and thread count, degenerate input
-/// included; what is summed over it does not depend on the order its cells are listed in.
-template <typename Concurrency>
-RegionMeasure measure3d(const pcl::PointCloud<pcl::PointXYZ>& points,
-                        const std::vector<double>& spacing, const MeasureOptions& options) {
+/// The area (D = 2) or volume (D = 3) of the region, on a triangulation built on all threads
+/// (3-D with `Concurrency` = CGAL::Parallel_tag, TBB) or on one (CGAL::Sequential_tag, which the
+/// remove-and-reinsert leave-one-out needs). CGAL breaks ties between cospherical points by a
+/// symbolic perturbation, so the Delaunay triangulation is the same whatever the insertion order
+/// and thread count, degenerate input included; what is summed over it does not depend on the
+/// order its simplices are listed in.
+template <int D, typename Concurrency = CGAL::Sequential_tag>
+RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
+                            const std::vector<double>& spacing, const MeasureOptions& options) {
+  using Delaunay = typename Simplices<D, Concurrency>::Delaunay;
   const double alpha_factor = options.alpha_factor;
-  using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
-  using Cb = CGAL::Triangulation_cell_base_with_info_3<char, K>;
-  using Delaunay =
-      CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<Vb, Cb, Concurrency>>;
-  std::vector<std::pair<K::Point_3, std::uint32_t>> input;
+  std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> input;
   input.reserve(points.size());
-  CGAL::Bbox_3 box;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    input.emplace_back(K::Point_3(points[i].x, points[i].y, points[i].z),
-                       static_cast<std::uint32_t>(i));
-    box += input.back().first.bbox();
+    const pcl::PointXYZ& p = points[i];
+    if constexpr (D == 2) {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y), static_cast<std::uint32_t>(i));
+    } else {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y, p.z), static_cast<std::uint32_t>(i));
+    }
   }
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
-  if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
-    // Threads insert spatially sorted points, each locking the cells of a grid over the box.
-    typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
-    dt.set_lock_data_structure(&locks);
-    try {
-      dt.insert(input.begin(), input.end());
-    } catch (...) {
-      dt.set_lock_data_structure(nullptr);  // the locks end with this scope
-      throw;
-    }
-    dt.set_lock_data_structure(nullptr);  // what follows only reads
-  } else {
-    dt.insert(input.begin(), input.end());
-  }
+  insertPoints<Concurrency>(dt, input);
   input = {};  // the triangulation holds the points now
-  if (dt.dimension() < 3) throw Error("the points lie in a plane: no volume");
+  if (dt.dimension() < D) {
+    throw Error(D == 2 ? "the points lie on a line: no area"
+                       : "the points lie in a plane: no volume");
+  }
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
-  OrderFreeSum kept(boundingMeasure(points, 3));
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = 0;
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    if (withinAlpha<3>(c, spacing, alpha_factor)) {
-      c->info() = 1;
-      kept.add(simplexMeasure<3>(c));
+  OrderFreeSum kept(boundingMeasure(points, D));
+  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
+  for (const auto s : finiteSimplices<D>(dt)) {
+    if (withinAlpha<D>(s, spacing, alpha_factor)) {
+      s->info() = 1;
+      kept.add(simplexMeasure<D>(s));
     }
   }
   result.uncorrected = kept.value();
-  const auto boundary =
-      boundaryVertices<3>(dt, dt.finite_cells_begin(), dt.finite_cells_end(), points.size());
+  const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (!options.edge_correction) return result;
   if (options.phase) options.phase("edge correction");
-  if (options.leave_one_out == LeaveOneOut::kStar) {
-    result.outside = outsideByStar3(dt, boundary, spacing, alpha_factor, options.threads);
-    return result;
-  }
-  // Leave one out: a boundary vertex counts when its point lies outside the region of the others.
-  for (const auto v : boundary) {
-    const K::Point_3 p = v->point();
-    const std::uint32_t index = v->info();
-    dt.remove(v);
-    // Without v the others may span only a plane: then p is outside their region.
-    const auto c = dt.dimension() == 3 ? dt.locate(p) : typename Delaunay::Cell_handle();
-    const bool covered = c != typename Delaunay::Cell_handle() && !dt.is_infinite(c) &&
-                         withinAlpha<3>(c, spacing, alpha_factor);
-    result.outside += !covered;
-    dt.insert(p)->info() = index;
-  }
+  // A boundary vertex counts when its point lies outside the region of the others.
+  result.outside = options.leave_one_out == LeaveOneOut::kStar
+                       ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads)
+                       : outsideByRemoval<D>(dt, boundary, spacing, alpha_factor);
   return result;
 }
 
@@ -418,11 +402,11 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
                                         static_cast<std::size_t>(resolved.threads));
   RegionMeasure result;
   if (dimensions == 2) {
-    result = measure2d(*flat, spacing, resolved);
+    result = measureRegion<2>(*flat, spacing, resolved);
   } else if (resolved.threads > 1 && options.leave_one_out == LeaveOneOut::kStar) {
-    result = measure3d<CGAL::Parallel_tag>(*flat, spacing, resolved);
+    result = measureRegion<3, CGAL::Parallel_tag>(*flat, spacing, resolved);
   } else {
-    result = measure3d<CGAL::Sequential_tag>(*flat, spacing, resolved);
+    result = measureRegion<3, CGAL::Sequential_tag>(*flat, spacing, resolved);
   }
   result.alpha_factor = alpha_factor;
   if (!(result.uncorrected > 0.0)) {

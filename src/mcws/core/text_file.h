@@ -1,0 +1,39 @@
+#pragma once
+/// \file
+/// \brief The whole text of a configuration file (a robot file, YAML or URDF), with the checks
+/// and messages the readers share.
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+
+/// \brief Reads a whole text file.
+/// \param path the file.
+/// \param kind what the file is, for messages ("robot file").
+/// \return the file's text.
+/// \throws mcws::Error "kind name is empty", "path: kind does not exist", "path: kind is not a
+///   regular file", "path: cannot open kind: reason" or "path: cannot read kind".
+inline std::string readTextFile(const std::string& path, const std::string& kind) {
+  if (path.empty()) throw Error(kind + " name is empty");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": " + kind + " does not exist");
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw Error(path + ": " + kind + " is not a regular file");
+  }
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open " + kind + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(path + ": cannot read " + kind);
+  return text.str();
+}
+
+}  // namespace mcws
