@@ -6,35 +6,82 @@
 #include <nlohmann/json.hpp>
 
 #include "common/app.h"
+#include "common/flags.h"
 #include "mcws/collision/collision_checker.h"
-#include "mcws/kinematics/robot_yaml.h"
+
+namespace {
+
+using namespace mcws;
+
+constexpr char kUsage[] = R"(mcws_collide --robot FILE --q "q1 q2 ..." [options])";
+
+constexpr char kSummary[] =
+    R"(Checks one joint vector against the robot file's collision model: link-link pairs (label 1),
+the tool against the links it is not mounted on (2), links and tool against the environment (3).
+Prints the label (the lowest code of any colliding pair, 0 when free) and each colliding pair with
+its penetration depth, or, when free, the pair with the least clearance. Joint values in rad
+(revolute) and the robot's length unit (prismatic); distances in that length unit.)";
+
+void declareFlags(app::CommandLine& cli) {
+  cli.addValue("robot", "robot description (.yaml) with collision:");
+  cli.addValue("q", "joint values, separated by spaces or commas");
+  cli.addSwitch("all", "list every checked pair with its distance");
+  cli.addSwitch("ignore-limits", "accept joint values outside the joint limits");
+  cli.addSwitch("json", "print one JSON object on stdout");
+}
+
+nlohmann::json reportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
+                          const std::vector<PairReport>& shown) {
+  nlohmann::json out;
+  out["robot"] = robot.name;
+  out["unit"] = unitName(robot.length_unit);
+  out["label"] = label;
+  out["label_name"] = labelName(label);
+  out["pairs_checked"] = checked;
+  out["pairs"] = nlohmann::json::array();
+  for (const PairReport& pair : shown) {
+    nlohmann::json item{{"a", pair.body_a},
+                        {"b", pair.body_b},
+                        {"kind", labelName(pair.label)},
+                        {"colliding", pair.colliding}};
+    if (pair.depth_known) item["distance"] = pair.distance;
+    out["pairs"].push_back(item);
+  }
+  return out;
+}
+
+void printReport(const Robot& robot, std::uint32_t label, std::size_t checked,
+                 const std::vector<PairReport>& shown) {
+  std::cout << "label " << label << " (" << labelName(label) << "), " << checked
+            << " pairs checked\n";
+  for (const PairReport& pair : shown) {
+    std::cout << std::setw(12) << pair.body_a << " - " << std::setw(12) << std::left << pair.body_b
+              << std::right << " " << std::setw(11) << labelName(pair.label);
+    if (!pair.depth_known) {
+      std::cout << "  colliding (mesh contact: no depth)\n";
+    } else if (pair.colliding) {
+      std::cout << "  colliding, penetration " << -pair.distance << " "
+                << unitName(robot.length_unit) << "\n";
+    } else {
+      std::cout << "  clearance " << pair.distance << " " << unitName(robot.length_unit) << "\n";
+    }
+  }
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-  using namespace mcws;
   return app::run("mcws_collide", [&] {
-    app::CommandLine cli(
-        "mcws_collide --robot FILE --q \"q1 q2 ...\" [options]",
-        "Checks one joint vector against the robot file's collision model: link-link pairs\n"
-        "(label 1), the tool against the links it is not mounted on (2), links and tool against\n"
-        "the environment (3). Prints the label (the lowest code of any colliding pair, 0 when\n"
-        "free) and each colliding pair with its penetration depth, or, when free, the pair with\n"
-        "the least clearance. Joint values in rad (revolute) and the robot's length unit\n"
-        "(prismatic); distances in that length unit.");
-    cli.add()("robot", app::po::value<std::string>(), "robot description (.yaml) with collision:")(
-        "q", app::po::value<std::string>(), "joint values, separated by spaces or commas")(
-        "all", "list every checked pair with its distance")(
-        "ignore-limits", "accept joint values outside the joint limits")(
-        "json", "print one JSON object on stdout");
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string path = cli.required("robot");
     const Eigen::VectorXd q = app::parseNumberList(cli.required("q"), "q");
-    const Robot robot = loadRobot(path);
-    try {
-      robot.checkSize(q);
-      if (!cli.has("ignore-limits")) robot.checkJointVector(q);
-    } catch (const Error& e) {
-      throw app::UsageError(std::string("--q: ") + e.what());
-    }
+
+    const Robot robot = app::readRobot(cli);
+    app::checkJointValues(
+        robot, q, "q",
+        cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
     const CollisionModel model = loadCollisionModel(robot, path);
     if (!hasGeometry(model)) throw Error(path + ": has no collision geometry (collision: key)");
     const CollisionChecker checker(robot, model);
@@ -52,36 +99,9 @@ int main(int argc, char** argv) {
         shown.push_back(pair);
     }
     if (cli.has("json")) {
-      nlohmann::json out{{"robot", robot.name},
-                         {"unit", unitName(robot.length_unit)},
-                         {"label", label},
-                         {"label_name", labelName(label)},
-                         {"pairs_checked", pairs.size()},
-                         {"pairs", nlohmann::json::array()}};
-      for (const PairReport& pair : shown) {
-        nlohmann::json item{{"a", pair.body_a},
-                            {"b", pair.body_b},
-                            {"kind", labelName(pair.label)},
-                            {"colliding", pair.colliding}};
-        if (pair.depth_known) item["distance"] = pair.distance;
-        out["pairs"].push_back(item);
-      }
-      std::cout << out.dump() << "\n";
-      return app::kExitOk;
-    }
-    std::cout << "label " << label << " (" << labelName(label) << "), " << pairs.size()
-              << " pairs checked\n";
-    for (const PairReport& pair : shown) {
-      std::cout << std::setw(12) << pair.body_a << " - " << std::setw(12) << std::left
-                << pair.body_b << std::right << " " << std::setw(11) << labelName(pair.label);
-      if (!pair.depth_known) {
-        std::cout << "  colliding (mesh contact: no depth)\n";
-      } else if (pair.colliding) {
-        std::cout << "  colliding, penetration " << -pair.distance << " "
-                  << unitName(robot.length_unit) << "\n";
-      } else {
-        std::cout << "  clearance " << pair.distance << " " << unitName(robot.length_unit) << "\n";
-      }
+      std::cout << reportJson(robot, label, pairs.size(), shown).dump() << "\n";
+    } else {
+      printReport(robot, label, pairs.size(), shown);
     }
     return app::kExitOk;
   });

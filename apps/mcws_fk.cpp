@@ -4,41 +4,43 @@
 #include <nlohmann/json.hpp>
 
 #include "common/app.h"
+#include "common/flags.h"
 #include "mcws/kinematics/forward_kinematics.h"
-#include "mcws/kinematics/robot_yaml.h"
+
+namespace {
+
+constexpr char kUsage[] = R"(mcws_fk --robot FILE --q "q1 q2 ..." [options])";
+
+constexpr char kSummary[] =
+    R"(Prints the homogeneous 4x4 pose of the tool frame (or the flange) in the world frame for one
+joint vector. Joint values are in rad (revolute) and in the robot file's length unit (prismatic);
+the pose's translation is in that length unit.)";
+
+void declareFlags(mcws::app::CommandLine& cli) {
+  cli.addValue("robot", "robot description (.yaml)");
+  cli.addValue("q", "joint values, separated by spaces or commas");
+  cli.addValue("frame", "tool | flange (default tool)");
+  cli.addSwitch("ignore-limits", "accept joint values outside the joint limits");
+  cli.addSwitch("json", "print one JSON object on stdout");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace mcws;
   return app::run("mcws_fk", [&] {
-    app::CommandLine cli(
-        "mcws_fk --robot FILE --q \"q1 q2 ...\" [options]",
-        "Prints the homogeneous 4x4 pose of the tool frame (or the flange) in the world frame for\n"
-        "one joint vector. Joint values are in rad (revolute) and in the robot file's length unit\n"
-        "(prismatic); the pose's translation is in that length unit.");
-    cli.add()("robot", app::po::value<std::string>(), "robot description (.yaml)")(
-        "q", app::po::value<std::string>(), "joint values, separated by spaces or commas")(
-        "frame", app::po::value<std::string>(), "tool | flange (default tool)")(
-        "ignore-limits", "accept joint values outside the joint limits")(
-        "json", "print one JSON object on stdout");
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
-
     const std::string q_text = cli.required("q");
-    const std::string frame = cli.text("frame", "tool");
-    if (frame != "tool" && frame != "flange") {
-      throw app::UsageError("--frame: '" + frame + "' is not tool or flange");
-    }
+    const std::string frame =
+        app::parseChoice(cli.text("frame", "tool"), "frame", {"tool", "flange"});
     const Eigen::VectorXd q = app::parseNumberList(q_text, "q");
-    const Robot robot = loadRobot(cli.required("robot"));
-    try {
-      if (cli.has("ignore-limits")) {
-        robot.checkSize(q);
-      } else {
-        robot.checkJointVector(q);
-      }
-    } catch (const Error& e) {
-      throw app::UsageError(std::string("--q: ") + e.what());
-    }
 
+    const Robot robot = app::readRobot(cli);
+    app::checkJointValues(
+        robot, q, "q",
+        cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
     const ChainPoses poses = chainPoses(robot, q);
     const Eigen::Matrix4d T =
         (frame == "tool" ? poses.T_world_tool : poses.T_world_flange).matrix();

@@ -5,124 +5,142 @@
 
 #include "common/app.h"
 #include "common/cloud_io.h"
+#include "common/flags.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/workspace/measure.h"
 
 namespace {
+
+using namespace mcws;
+
 constexpr std::size_t kProgressPoints = 200000;  ///< larger inputs report their phases on stderr
+
+constexpr char kUsage[] =
+    "mcws_measure --input CLOUD.pcd [--plane xy|xz|yz] [--boundary B.pcd] [options]";
+
+constexpr char kSummary[] =
+    R"(Area (with --plane) or volume of the sampled region. Default method 'delaunay': the cloud's
+Delaunay triangulation (CGAL) restricted to simplices no wider than --alpha local spacings,
+corrected for the band the samples miss along the edge by leave-one-out (Efron's identity; it
+assumes the density near the edge is about that inside, as for uniform samples). A cloud from
+mcws_refine has samples on the edge itself (joint limits): measure it with --correction none
+(--alpha 5). Method 'column': seed 000's rectangles, eqs. (2)-(4), over --boundary points grouped
+into crossings per column. With --boundary the default also reports the column method as a
+cross-check.)";
+
+void declareFlags(app::CommandLine& cli) {
+  cli.addValue("input", "workspace cloud (PCD)");
+  cli.addValue("boundary", "its boundary points (from mcws_boundary)");
+  cli.addValue("plane", "xy | xz | yz: an area in that plane (default: volume)");
+  cli.addValue("method", "delaunay | column (default delaunay)");
+  cli.addValue(
+      "alpha",
+      "delaunay: simplex size limit, local spacings (default 3; 5 with --correction none)");
+  cli.addValue("correction", "delaunay: efron | none (default efron; none for refined clouds)");
+  cli.addValue(
+      "leave-one-out",
+      R"(efron: star (each vertex's star, all threads; default) | reinsert (remove, locate, reinsert each vertex: the same count, one thread, slower))");
+  cli.addValue(
+      "threads",
+      "delaunay: worker threads, 0 = all cores (default 0; the result is the same for any)");
+  cli.addValue("column-width", "column: L [length unit] (default automatic)");
+  cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
-int main(int argc, char** argv) {
-  using namespace mcws;
-  return app::run("mcws_measure", [&] {
-    app::CommandLine cli(
-        "mcws_measure --input CLOUD.pcd [--plane xy|xz|yz] [--boundary B.pcd] [options]",
-        "Area (with --plane) or volume of the sampled region. Default method 'delaunay': the\n"
-        "cloud's Delaunay triangulation (CGAL) restricted to simplices no wider than --alpha "
-        "local\n"
-        "spacings, corrected for the band the samples miss along the edge by leave-one-out "
-        "(Efron's\n"
-        "identity; it assumes the density near the edge is about that inside, as for uniform\n"
-        "samples). A cloud from mcws_refine has samples on the edge itself (joint limits):\n"
-        "measure it with --correction none (--alpha 5). Method 'column': seed 000's rectangles,\n"
-        "eqs. (2)-(4), over --boundary points\n"
-        "grouped into crossings per column. With --boundary the default also reports the column\n"
-        "method as a cross-check.");
-    cli.add()("input", app::po::value<std::string>(), "workspace cloud (PCD)")(
-        "boundary", app::po::value<std::string>(), "its boundary points (from mcws_boundary)")(
-        "plane", app::po::value<std::string>(),
-        "xy | xz | yz: an area in that plane (default: volume)")(
-        "method", app::po::value<std::string>(), "delaunay | column (default delaunay)")(
-        "alpha", app::po::value<std::string>(),
-        "delaunay: simplex size limit, local spacings (default 3; 5 with --correction none)")(
-        "correction", app::po::value<std::string>(),
-        "delaunay: efron | none (default efron; none for refined clouds)")(
-        "leave-one-out", app::po::value<std::string>(),
-        "efron: star (each vertex's star, all threads; default) | reinsert (remove, locate,\n"
-        "reinsert each vertex: the same count, one thread, slower)")(
-        "threads", app::po::value<std::string>(),
-        "delaunay: worker threads, 0 = all cores (default 0; the result is the same for any)")(
-        "column-width", app::po::value<std::string>(),
-        "column: L [length unit] (default automatic)")("json", "print a JSON summary on stdout");
-    if (!cli.parse(argc, argv)) return app::kExitOk;
+/// The command line, checked.
+struct Settings {
+  std::string input, method, correction;
+  BoundaryPlane plane{BoundaryPlane::k3D};
+  MeasureOptions delaunay;
+  double column_width{0.0};  ///< 0: automatic
+};
 
-    const std::string input = cli.required("input"), method = cli.text("method", "delaunay");
-    if (method != "delaunay" && method != "column") {
-      throw app::UsageError("--method: '" + method + "' is not delaunay or column");
-    }
-    BoundaryPlane plane = BoundaryPlane::k3D;
-    try {
-      if (cli.has("plane")) plane = parseBoundaryPlane(cli.required("plane"));
-    } catch (const Error& e) {
-      throw app::UsageError(std::string("--plane: ") + e.what());
-    }
-    if (method == "column" && (plane == BoundaryPlane::k3D || !cli.has("boundary"))) {
-      throw app::UsageError("--method column measures an area: give --plane and --boundary");
-    }
-    const std::string correction = cli.text("correction", "efron");
-    if (correction != "efron" && correction != "none")
-      throw app::UsageError("--correction: '" + correction + "' is not efron or none");
-    const std::string leave_one_out = cli.text("leave-one-out", "star");
-    if (leave_one_out != "star" && leave_one_out != "reinsert")
-      throw app::UsageError("--leave-one-out: '" + leave_one_out + "' is not star or reinsert");
-    // A refined cloud packs samples onto the joint-limit surfaces, where the k-th neighbour
-    // measures the surface's density and understates the spacing just inside: alpha 5 keeps the
-    // simplices there (de-icing arm, 10^6 samples: volume -0.19 % at 3, -0.02 % at 5).
-    const double alpha =
-        app::parseNumber(cli.text("alpha", correction == "none" ? "5" : "3"), "alpha");
-    if (!(alpha > 0.0))
-      throw app::UsageError("--alpha: must be positive, not " + cli.text("alpha", ""));
-    const int threads =
-        static_cast<int>(app::parseInteger(cli.text("threads", "0"), "threads", 0, 256));
-    const double width = app::parseNumber(cli.text("column-width", "0"), "column-width");
-    if (width < 0.0) throw app::UsageError("--column-width: must be positive");
+Settings readSettings(const app::CommandLine& cli) {
+  Settings s;
+  s.input = cli.required("input");
+  s.method = app::parseChoice(cli.text("method", "delaunay"), "method", {"delaunay", "column"});
+  s.plane = app::readPlane(cli);
+  if (s.method == "column" && (s.plane == BoundaryPlane::k3D || !cli.has("boundary")))
+    throw app::UsageError("--method column measures an area: give --plane and --boundary");
+  s.correction = app::parseChoice(cli.text("correction", "efron"), "correction", {"efron", "none"});
+  s.delaunay.edge_correction = s.correction == "efron";
+  s.delaunay.leave_one_out = app::parseChoice(cli.text("leave-one-out", "star"), "leave-one-out",
+                                              {"star", "reinsert"}) == "star"
+                                 ? LeaveOneOut::kStar
+                                 : LeaveOneOut::kRemoveAndReinsert;
+  // A refined cloud packs samples onto the joint-limit surfaces, where the k-th neighbour
+  // measures the surface's density and understates the spacing just inside: alpha 5 keeps the
+  // simplices there (de-icing arm, 10^6 samples: volume -0.19 % at 3, -0.02 % at 5).
+  s.delaunay.alpha_factor =
+      app::parsePositive(cli.text("alpha", s.correction == "none" ? "5" : "3"), "alpha");
+  s.delaunay.threads = app::readThreads(cli);
+  s.column_width = app::parseNonNegative(cli.text("column-width", "0"), "column-width");
+  return s;
+}
+
+/// The cloud at `path` projected onto the plane (3-D: as it is, and checked to span a volume).
+pcl::PointCloud<pcl::PointXYZ> loadProjected(const std::string& path, BoundaryPlane plane) {
+  const app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
+  if (plane == BoundaryPlane::k3D) app::requireVolume(*cloud, path);
+  pcl::PointCloud<pcl::PointXYZ> points;
+  pcl::Indices all(cloud->size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  projectToPlane(*cloud, all, plane, points, source);
+  return points;
+}
+
+nlohmann::json delaunayJson(const RegionMeasure& m, const Settings& s, const char* key) {
+  return {{key, m.measure},
+          {"correction", s.correction},
+          {"alpha", s.delaunay.alpha_factor},
+          {"points", m.points},
+          {"uncorrected", m.uncorrected},
+          {"boundary_vertices", m.boundary_vertices},
+          {"outside", m.outside}};
+}
+
+nlohmann::json columnJson(const ColumnArea& column, const char* key) {
+  return {{key, column.area},
+          {"column_width", column.width},
+          {"crossing_gap", column.gap},
+          {"columns", column.columns},
+          {"odd_columns", column.odd_columns}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run("mcws_measure", [&] {
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
+    if (!cli.parse(argc, argv)) return app::kExitOk;
+    Settings settings = readSettings(cli);
 
     app::Progress clock("mcws_measure", "points");
-    const int dimensions = boundaryDimensions(plane);
-    const char* key = dimensions == 2 ? "area" : "volume";
-    auto projected = [&](const std::string& path) {
-      const app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
-      if (dimensions == 3) app::requireVolume(*cloud, path);
-      pcl::PointCloud<pcl::PointXYZ> points;
-      pcl::Indices all(cloud->size()), source;
-      for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-      projectToPlane(*cloud, all, plane, points, source);
-      return points;
-    };
-    nlohmann::json out = {
-        {"input", input}, {"plane", boundaryPlaneName(plane)}, {"method", method}};
-    const pcl::PointCloud<pcl::PointXYZ> region = projected(input);  // validated for every method
+    const char* key = boundaryDimensions(settings.plane) == 2 ? "area" : "volume";
+    const pcl::PointCloud<pcl::PointXYZ> region = loadProjected(settings.input, settings.plane);
     std::optional<ColumnArea> column;
-    if (cli.has("boundary")) column = columnArea(projected(cli.required("boundary")), width);
-    if (method == "delaunay") {
-      MeasureOptions options;
-      options.alpha_factor = alpha;
-      options.edge_correction = correction == "efron";
-      options.threads = threads;
-      options.leave_one_out =
-          leave_one_out == "star" ? LeaveOneOut::kStar : LeaveOneOut::kRemoveAndReinsert;
+    if (cli.has("boundary")) {
+      column = columnArea(loadProjected(cli.required("boundary"), settings.plane),
+                          settings.column_width);
+    }
+    nlohmann::json out;
+    if (settings.method == "delaunay") {
       if (region.size() >= kProgressPoints) {  // minutes for a million points in 3-D
-        options.phase = [&](const std::string& phase) {
+        settings.delaunay.phase = [&](const std::string& phase) {
           std::cerr << "mcws_measure: " << phase << " (" << region.size() << " points, "
                     << static_cast<int>(clock.seconds()) << " s)\n";
         };
       }
-      const RegionMeasure m = delaunayMeasure(region, dimensions, options);
-      out[key] = m.measure;
-      out["correction"] = correction;
-      out["alpha"] = alpha;
-      out["points"] = m.points;
-      out["uncorrected"] = m.uncorrected;
-      out["boundary_vertices"] = m.boundary_vertices;
-      out["outside"] = m.outside;
+      const int dimensions = boundaryDimensions(settings.plane);
+      out = delaunayJson(delaunayMeasure(region, dimensions, settings.delaunay), settings, key);
       if (column) out["cross_check"] = {{"method", "column"}, {key, column->area}};
     } else {
-      out[key] = column->area;
-      out["column_width"] = column->width;
-      out["crossing_gap"] = column->gap;
-      out["columns"] = column->columns;
-      out["odd_columns"] = column->odd_columns;
+      out = columnJson(*column, key);
     }
+    out["input"] = settings.input;
+    out["plane"] = boundaryPlaneName(settings.plane);
+    out["method"] = settings.method;
     out["seconds"] = clock.seconds();
     if (cli.has("json")) {
       std::cout << out.dump() << "\n";

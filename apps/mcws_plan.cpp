@@ -7,58 +7,66 @@
 #include <optional>
 
 #include "common/app.h"
+#include "common/flags.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/planning/plan_report.h"
 
 namespace {
 
-void save(mcws::io::AtomicFile& file, const std::string& bytes) {
+using namespace mcws;
+
+constexpr char kUsage[] = "mcws_plan --scenario S.yaml --output path.csv [options]";
+
+constexpr char kSummary[] =
+    R"(Plans the arm of a robot whose base sways (seed 001): m candidate paths through a roadmap for
+the measured base pose, their segments checked exactly for n base poses drawn from the scenario's
+sway, the dominant path taken at every shared node; the base is shifted along the line while the
+best path's P is below the threshold. Writes the chosen path (CSV: D then one column per joint,
+units in the names) and prints a report. Exit 0 with a path, 1 when no path meets the threshold
+within the base range or start or goal collide or the roadmap cannot connect them, 2 for a bad
+command line.)";
+
+void declareFlags(app::CommandLine& cli) {
+  cli.addValue("scenario", "scenario file (.yaml), see scenarios/");
+  cli.addValue("output", "chosen path (CSV)");
+  cli.addSwitch("json", "print the report as one JSON object on stdout");
+  cli.addValue("plot", "PNG of the configuration space (two-joint robots), paths and shared nodes");
+  cli.addValue("plot-offsets",
+               "PNG of the best path's P against the base offset, every step within the range");
+  cli.addValue("cells", "cells per axis of --plot (default 120)");
+  cli.addValue("seed", "seed of the base poses and the roadmap");
+  cli.addValue("validation-poses",
+               "fresh base poses of the validation (default: the scenario's, 10000); 0 skips it");
+  cli.addValue("threads", "threads (default: all cores)");
+}
+
+void save(io::AtomicFile& file, const std::string& bytes) {
   file.write(bytes.data(), bytes.size());
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace mcws;
   return app::run("mcws_plan", [&] {
-    app::CommandLine cli(
-        "mcws_plan --scenario S.yaml --output path.csv [options]",
-        "Plans the arm of a robot whose base sways (seed 001): m candidate paths through a\n"
-        "roadmap for the measured base pose, their segments checked exactly for n base poses\n"
-        "drawn from the scenario's sway, the dominant path taken at every shared node; the base\n"
-        "is shifted along the line while the best path's P is below the threshold. Writes the\n"
-        "chosen path (CSV: D then one column per joint, units in the names) and prints a report.\n"
-        "Exit 0 with a path, 1 when no path meets the threshold within the base range or start\n"
-        "or goal collide or the roadmap cannot connect them, 2 for a bad command line.");
-    cli.add()("scenario", app::po::value<std::string>(), "scenario file (.yaml), see scenarios/")(
-        "output", app::po::value<std::string>(), "chosen path (CSV)")(
-        "json", "print the report as one JSON object on stdout")(
-        "plot", app::po::value<std::string>(),
-        "PNG of the configuration space (two-joint robots), paths and shared nodes")(
-        "plot-offsets", app::po::value<std::string>(),
-        "PNG of the best path's P against the base offset, every step within the range")(
-        "cells", app::po::value<std::string>(), "cells per axis of --plot (default 120)")(
-        "seed", app::po::value<std::string>(), "seed of the base poses and the roadmap")(
-        "validation-poses", app::po::value<std::string>(),
-        "fresh base poses of the validation (default: the scenario's, 10000); 0 skips it")(
-        "threads", app::po::value<std::string>(), "threads (default: all cores)");
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string output = cli.required("output");
     const std::string plot = cli.text("plot", ""), plot_offsets = cli.text("plot-offsets", "");
     const int cells =
         static_cast<int>(app::parseInteger(cli.text("cells", "120"), "cells", 4, 2000));
-    if (cli.has("threads"))
-      omp_set_num_threads(
-          static_cast<int>(app::parseInteger(cli.required("threads"), "threads", 1, 1024)));
-    std::optional<std::int64_t> seed, validation_poses;
-    if (cli.has("seed")) seed = app::parseInteger(cli.required("seed"), "seed", 0, INT64_MAX);
+    if (cli.has("threads")) omp_set_num_threads(app::readThreads(cli, 1));
+    std::optional<std::uint64_t> seed;
+    std::optional<std::int64_t> validation_poses;
+    if (cli.has("seed")) seed = app::readSeed(cli);
     if (cli.has("validation-poses"))
       validation_poses =
           app::parseInteger(cli.required("validation-poses"), "validation-poses", 0, 100000000);
+
     const std::string scenario_path = cli.required("scenario");
     Scenario scenario = loadScenario(scenario_path);
     SwayPlanningProblem& problem = scenario.problem;
-    if (seed) problem.seed = problem.roadmap.seed = static_cast<std::uint64_t>(*seed);
+    if (seed) problem.seed = problem.roadmap.seed = *seed;
     if (validation_poses && *validation_poses > 0) problem.validation_poses = *validation_poses;
     if (!plot.empty() && problem.robot.dof() != 2)
       throw app::UsageError("--plot: draws a two-joint configuration space; robot '" +
@@ -74,11 +82,8 @@ int main(int argc, char** argv) {
     };
     const SwayPlanningResult result =
         planner.plan(!validation_poses || *validation_poses > 0, progress);
-    if (cli.has("json")) {
-      std::cout << planJson(scenario, result).dump() << "\n";
-    } else {
-      std::cout << planReport(scenario, result);
-    }
+    std::cout << (cli.has("json") ? planJson(scenario, result).dump() + "\n"
+                                  : planReport(scenario, result));
     if (!result.accepted) {
       std::cerr << "mcws_plan: no path: " << noPathStatus(scenario, result)
                 << "; nothing written\n";

@@ -9,28 +9,45 @@
 #include "common/app.h"
 #include "common/cloud_io.h"
 
+namespace {
+
+constexpr char kUsage[] =
+    "mcws_select --input CLOUD.pcd --label L[,L...] --output OUT.pcd [--json]";
+
+constexpr char kSummary[] =
+    R"(Writes the points whose uint32 'label' field is one of the given values (mcws_sample
+--collision: 0 free, 1 link-link, 2 tool-link, 3 environment). PCL's own pcl_passthrough_filter
+cannot do this: it reads fields as float and the label of pcl::PointXYZL is a uint32.)";
+
+void declareFlags(mcws::app::CommandLine& cli) {
+  cli.addValue("input", "labelled cloud (PCD with a label field)");
+  cli.addValue("label", "labels to keep, e.g. 0 or 1,2,3");
+  cli.addValue("output", "output PCD file");
+  cli.addSwitch("json", "print a JSON summary on stdout");
+}
+
+/// --label: whole numbers >= 0 that fit a uint32.
+std::set<std::uint32_t> readLabels(const mcws::app::CommandLine& cli) {
+  std::set<std::uint32_t> labels;
+  for (double value : mcws::app::parseNumberList(cli.required("label"), "label")) {
+    if (!(value >= 0.0 && value <= 4294967295.0) || value != static_cast<std::uint32_t>(value))
+      throw mcws::app::UsageError("--label: " + cli.required("label") +
+                                  " is not a list of whole numbers >= 0");
+    labels.insert(static_cast<std::uint32_t>(value));
+  }
+  return labels;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace mcws;
   return app::run("mcws_select", [&] {
-    app::CommandLine cli(
-        "mcws_select --input CLOUD.pcd --label L[,L...] --output OUT.pcd [--json]",
-        "Writes the points whose uint32 'label' field is one of the given values (mcws_sample\n"
-        "--collision: 0 free, 1 link-link, 2 tool-link, 3 environment). PCL's own\n"
-        "pcl_passthrough_filter cannot do this: it reads fields as float and the label of\n"
-        "pcl::PointXYZL is a uint32.");
-    cli.add()("input", app::po::value<std::string>(), "labelled cloud (PCD with a label field)")(
-        "label", app::po::value<std::string>(), "labels to keep, e.g. 0 or 1,2,3")(
-        "output", app::po::value<std::string>(), "output PCD file")(
-        "json", "print a JSON summary on stdout");
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string input = cli.required("input"), output = cli.required("output");
-    std::set<std::uint32_t> labels;
-    for (double value : app::parseNumberList(cli.required("label"), "label")) {
-      if (!(value >= 0.0 && value <= 4294967295.0) || value != static_cast<std::uint32_t>(value))
-        throw app::UsageError("--label: " + cli.required("label") +
-                              " is not a list of whole numbers >= 0");
-      labels.insert(static_cast<std::uint32_t>(value));
-    }
+    const std::set<std::uint32_t> labels = readLabels(cli);
 
     app::Progress clock("mcws_select", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);

@@ -31,6 +31,18 @@ CommandLine::CommandLine(std::string usage, std::string summary)
   options_.add_options()("help", "print this help and exit");
 }
 
+void CommandLine::addValue(const char* flag, const char* help) {
+  options_.add_options()(flag, po::value<std::string>(), help);
+}
+
+void CommandLine::addValues(const char* flag, const char* help) {
+  options_.add_options()(flag, po::value<std::vector<std::string>>(), help);
+}
+
+void CommandLine::addSwitch(const char* flag, const char* help) {
+  options_.add_options()(flag, help);
+}
+
 bool CommandLine::parse(int argc, char** argv) {
   const auto style = po::command_line_style::allow_long |
                      po::command_line_style::long_allow_adjacent |

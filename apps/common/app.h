@@ -39,7 +39,14 @@ class CommandLine {
   /// \param usage first help line, e.g. "mcws_fk --robot FILE --q \"q1 q2 ...\" [options]".
   /// \param summary what the tool does, one paragraph.
   CommandLine(std::string usage, std::string summary);
-  /// \brief Where flags are declared.
+  /// \brief Declares a flag that takes a value, read with required(), text() or has().
+  void addValue(const char* flag, const char* help);
+  /// \brief Declares a flag that may be given several times, read with all().
+  void addValues(const char* flag, const char* help);
+  /// \brief Declares a flag without a value, read with has().
+  void addSwitch(const char* flag, const char* help);
+  /// \brief Where flags are declared, Boost's way (prefer addValue() and its siblings: one flag
+  /// a line).
   po::options_description_easy_init add() { return options_.add_options(); }
   /// \brief Parses argv. \return false when --help was given (help printed to stdout).
   /// \throws UsageError for unknown flags, stray arguments, missing values (a value that starts

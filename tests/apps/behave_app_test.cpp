@@ -174,7 +174,7 @@ TEST(BehaveApp, BadCommandLinesAndFilesAreOneLineErrors) {
   test::expectToolFailure(kBehave, "--insulators 3" + log, 2, "model", out);
   test::expectToolFailure(kBehave,
                           "--model " + kModel + " --insulators 3 --timeline-period 0" + log, 2,
-                          "timeline-period", out);
+                          "--timeline-period: 0 s is not a positive number", out);
   test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 3 --log " + kModel, 2,
                           "log", out);
   // A bad fault file names its file and line.

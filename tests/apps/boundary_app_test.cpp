@@ -62,13 +62,12 @@ TEST_F(BoundaryApp, HelpExitsZero) {
 TEST_F(BoundaryApp, BadFlags) {
   const std::string io = "--input " + disk_ + " --output " + out();
   expectFailure(io + " --plane xw", 2, "--plane: unknown plane 'xw' (known: xy, xz, yz)");
-  expectFailure(io + " --plane xy --radius 0", 2, "--radius: must be positive, not 0");
-  expectFailure(io + " --plane xy --radius=-0.1", 2, "--radius: must be positive, not -0.1");
+  expectFailure(io + " --plane xy --radius 0", 2, "--radius: 0 is not a positive number");
+  expectFailure(io + " --plane xy --radius=-0.1", 2, "--radius: -0.1 is not a positive number");
   expectFailure(io + " --plane xy --radius 0.1x", 2, "--radius: '0.1x' is not a finite number");
   expectFailure(io + " --plane xy --radius 0.1 --adaptive 8", 2, "give at most one of");
-  expectFailure(io + " --plane xy --min-gap 45", 2, "--min-gap: must be in [90, 180)");
-  expectFailure(io + " --plane xy --hull-depth=-1", 2,
-                "--hull-depth: must be 0 (off) or positive, not -1");
+  expectFailure(io + " --plane xy --min-gap 45", 2, "--min-gap: 45 is not in [90, 180) deg");
+  expectFailure(io + " --plane xy --hull-depth=-1", 2, "--hull-depth: -1 is less than 0");
   expectFailure(io + " --plane xy --hull-depth nan", 2,
                 "--hull-depth: 'nan' is not a finite number");
   expectFailure("--input " + ball_ + " --output " + out() + " --hull-depth 1", 2,
@@ -150,10 +149,9 @@ TEST_F(BoundaryApp, BallIn3D) {
 
 TEST_F(BoundaryApp, BaselineMethodFlags) {
   const std::string io = "--input " + disk_ + " --plane xy --output " + out();
-  expectFailure(io + " --method hull", 2,
-                "--method: unknown method 'hull' (known: orthant, grid, extremum)");
-  expectFailure(io + " --method grid --cell 0", 2, "--cell: must be positive, not 0");
-  expectFailure(io + " --method extremum --cell=-0.5", 2, "--cell: must be positive, not -0.5");
+  expectFailure(io + " --method hull", 2, "--method: 'hull' is not orthant, grid or extremum");
+  expectFailure(io + " --method grid --cell 0", 2, "--cell: 0 is not a positive number");
+  expectFailure(io + " --method extremum --cell=-0.5", 2, "--cell: -0.5 is not a positive number");
   expectFailure(io + " --method extremum --gap 0.1x", 2, "--gap: '0.1x' is not a finite number");
   expectFailure(io + " --method grid --radius 0.1", 2, "--radius does not apply to --method grid");
   expectFailure(io + " --method grid --gap 0.1", 2, "--gap does not apply to --method grid");

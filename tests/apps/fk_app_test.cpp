@@ -63,7 +63,10 @@ TEST(FkApp, BadJointVectors) {
        "180] deg)"},
       {kInspection + " --q 0 0 0 0 0 0", 2, "too many positional options"},
       {kInspection, 2, "missing --q"},
-      {" --robot /nonexistent.yaml --q 0", 1, "/nonexistent.yaml: robot file does not exist"},
+      {" --robot /nonexistent.yaml --q 0", 1,
+       "--robot: /nonexistent.yaml: robot file does not exist"},
+      {kInspection + " --q '0 0 0 0 0 0' --frame elbow", 2,
+       "--frame: 'elbow' is not tool or flange"},
   };
   for (const Case& c : cases) {
     const test::RunResult r = test::run(kFk + c.args);

@@ -82,7 +82,18 @@ TEST_F(MeasureApp, BadInput) {
   expectFailure("--input " + disk_ + " --plane xy --method column", 2,
                 "--method column measures an area: give --plane and --boundary");
   expectFailure("--input " + disk_ + " --plane xq", 2, "--plane: unknown plane 'xq'");
-  expectFailure("--input " + disk_ + " --plane xy --alpha 0", 2, "--alpha: must be positive");
+  expectFailure("--input " + disk_ + " --plane xy --alpha 0", 2,
+                "--alpha: 0 is not a positive number");
+  expectFailure("--input " + disk_ + " --plane xy --alpha=-1", 2,
+                "--alpha: -1 is not a positive number");
+  expectFailure("--input " + disk_ + " --plane xy --threads 257", 2,
+                "--threads: 257 is more than 256");
+  expectFailure("--input " + disk_ + " --plane xy --boundary " + rim_ + " --column-width=-1", 2,
+                "--column-width: -1 is less than 0");
+  expectFailure("--input " + disk_ + " --plane xy --correction some", 2,
+                "--correction: 'some' is not efron or none");
+  expectFailure("--input " + disk_ + " --plane xy --leave-one-out exact", 2,
+                "--leave-one-out: 'exact' is not star or reinsert");
   expectFailure("--input " + disk_, 1, "the cloud is flat (z extent 0)");
   expectFailure("--input " + dir_.file("none.pcd"), 1, "cloud file does not exist");
   expectFailure(

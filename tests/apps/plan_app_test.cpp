@@ -224,6 +224,10 @@ TEST_F(McwsPlan, BadCommandLinesExitTwo) {
   test::expectToolFailure(kPlan, scenario, 2, "missing --output", outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --threads 0", 2,
                           "--threads: 0 is less than 1", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --threads 257", 2,
+                          "--threads: 257 is more than 256", outputs_);
+  test::expectToolFailure(kPlan, scenario + output + " --seed=-1", 2, "--seed: -1 is less than 0",
+                          outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --seed x", 2,
                           "--seed: 'x' is not a whole number", outputs_);
   test::expectToolFailure(kPlan, scenario + output + " --cells 3", 2, "--cells: 3 is less than 4",

@@ -74,7 +74,11 @@ TEST_F(RefineApp, RejectsBadInput) {
   expectFailure(args(out, "--samples 10 --spread 0"), 2, "--spread");
   expectFailure(args(out, "--samples 10 --spread 1.5"), 2, "--spread");
   expectFailure(args(out, "--samples 10 --spread x"), 2, "--spread");
-  expectFailure(args(out, "--samples 10 --point elbow"), 2, "--point");
+  expectFailure(args(out, "--samples 10 --point elbow"), 2,
+                "--point: 'elbow' is not tool or flange");
+  expectFailure(args(out, "--samples 10 --spread 2"), 2, "--spread: 2 is not in (0, 1]");
+  expectFailure(args(out, "--samples 10 --seed=-3"), 2, "--seed: -3 is less than 0");
+  expectFailure(args(out, "--samples 10 --threads 300"), 2, "--threads: 300 is more than 256");
   // A cloud without joint values (a shape): a2 = 0 lies outside its limits [25, 70] cm.
   const std::string disk = dir_.file("disk.pcd");
   ASSERT_EQ(test::run(std::string(MCWS_SAMPLE_EXE) + " --shape disk --samples 100 --output " + disk)
@@ -85,7 +89,7 @@ TEST_F(RefineApp, RejectsBadInput) {
                 1, "outside joint 'a2' limits");
   expectFailure(
       "--robot " + test::robotPath("nosuch") + " --input " + rim_ + " --samples 10 --output " + out,
-      1, "nosuch");
+      1, "--robot: " + test::robotPath("nosuch") + ": robot file does not exist");
   expectFailure("--robot " + test::robotPath("deicing") + " --input " + dir_.file("missing.pcd") +
                     " --samples 10 --output " + out,
                 1, "missing.pcd");

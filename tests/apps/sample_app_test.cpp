@@ -40,7 +40,7 @@ TEST_F(SampleApp, HelpExitsZeroAndDescribesTheFlags) {
 
 TEST_F(SampleApp, MissingOrUnreadableRobotFile) {
   expectFailure("--robot /nonexistent.yaml --output " + out(), 1,
-                "/nonexistent.yaml: robot file does not exist");
+                "--robot: /nonexistent.yaml: robot file does not exist");
   expectFailure("--robot " + dir_.file("") + " --output " + out(), 1, "is not a regular file");
 }
 
@@ -65,6 +65,9 @@ TEST_F(SampleApp, BadSampleCounts) {
   expectFailure(base + " --samples 1e3", 2, "--samples: '1e3' is not a whole number");
   expectFailure(base + " --threads two", 2, "--threads: 'two' is not a whole number");
   expectFailure(base + " --threads 100000", 2, "--threads: 100000 is more than 256");
+  expectFailure(base + " --threads=-1", 2, "--threads: -1 is less than 0");
+  expectFailure(base + " --seed=-1", 2, "--seed: -1 is less than 0");
+  expectFailure(base + " --seed 1x", 2, "--seed: '1x' is not a whole number");
   expectFailure(base + " --samples 3000000000", 2, "--samples: 3000000000 is more than 2147483647");
 }
 
@@ -88,6 +91,8 @@ TEST_F(SampleApp, BadShapeAndFlagCombinations) {
   expectFailure("--shape disk", 2, "missing --output");
   expectFailure("--shape disk --output " + out() + " --point elbow", 2,
                 "--point: 'elbow' is not tool or flange");
+  expectFailure("--robot " + deicing() + " --output " + out() + " --point Tool", 2,
+                "--point: 'Tool' is not tool or flange");
   expectFailure("--shape disk --output " + out() + " --colour red", 2, "unrecognised option");
   expectFailure("--shape disk stray --output " + out(), 2, "too many positional options");
   expectFailure("--shape disk --output --json", 2, "--output has no value (next comes '--json')");

@@ -288,7 +288,7 @@ TEST(TrajApp, BadInput) {
       {kInspection + " --to '0 0 0 0 0 0'" + timing, 2, "missing --from"},
       {kInspection + move + " --duration 10", 2, "missing --rate"},
       {" --robot /nonexistent.yaml" + move + timing, 1,
-       "/nonexistent.yaml: robot file does not exist"},
+       "--robot: /nonexistent.yaml: robot file does not exist"},
       {kInspection + move + timing + " --root link1", 2, "--root and --tip need a .urdf robot"},
       {" --robot " + kInspectionUrdf + " --root link3 --tip link1 --from 0 --to 0" + timing, 1,
        "inspection6.urdf: tip link 'link1' is not below root link 'link3'"},

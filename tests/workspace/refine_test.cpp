@@ -74,6 +74,18 @@ TEST(RefineSampler, SameOutputForAnyThreadCount) {
   }
 }
 
+TEST(RefineSampler, JointValuesAreThoseOfTheSamples) {
+  const Robot robot = loadRobot(test::robotPath("ta1400"));
+  const RefineSampler sampler(robot, parentsOf(robot, 7), {});
+  const auto samples = sampleCloud(sampler, 100, 1);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    double q[kMaxJoints];
+    sampler.jointValues(i, q);
+    for (int j = 0; j < robot.dof(); ++j)
+      ASSERT_EQ(samples[i].q[j], static_cast<float>(q[j])) << i << " " << j;
+  }
+}
+
 TEST(RefineSampler, KeepsJointsThatArePinnedInEveryParent) {
   const Robot robot = loadRobot(test::robotPath("deicing"));
   RobotSamplerOptions plane;

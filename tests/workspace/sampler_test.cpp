@@ -225,6 +225,48 @@ TEST(ShapeSampler, NamesAndMeasures) {
   }
 }
 
+TEST(GenerateInChunks, EqualsTheCloudInMemoryAndReportsEachChunk) {
+  const ShapeSampler sampler(Shape::kBall, 5);
+  constexpr std::size_t n = (1u << 18) + 4099;  // one whole chunk and a part, not a block multiple
+  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> out(n);
+  std::vector<std::pair<std::size_t, std::size_t>> reports;
+  generateInChunks(sampler, n, out.data(), 2,
+                   [&](std::size_t done, std::size_t total) { reports.emplace_back(done, total); });
+  const auto cloud = sampleCloud(sampler, n, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(std::memcmp(out[i].data, cloud[i].data, 3 * sizeof(float)), 0) << i;
+  }
+  using Report = std::pair<std::size_t, std::size_t>;
+  EXPECT_EQ(reports, (std::vector<Report>{{1u << 18, n}, {n, n}}));
+}
+
+TEST(GenerateFromJointValues, PadsAPartialBatchWithoutChangingItsSamples) {
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  const PointKinematics kinematics = samplePointKinematics(robot, SamplePoint::kTool);
+  // Joint values from the index alone; every count from 1 to 2 batches, started anywhere.
+  const auto draw = [&](std::uint64_t index, double* q) {
+    for (int j = 0; j < robot.dof(); ++j) q[j] = 0.01 * static_cast<double>(index) - 0.1 * j;
+  };
+  constexpr int kLanes = PointKinematics::kLanes;
+  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> whole(2 * kLanes + 3);
+  generateFromJointValues(kinematics, 0, whole.size(), whole.data(), draw);
+  for (std::size_t first = 0; first < 3; ++first) {
+    for (std::size_t count = 1; count + first <= whole.size(); ++count) {
+      std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> part(count);
+      generateFromJointValues(kinematics, first, count, part.data(), draw);
+      for (std::size_t k = 0; k < count; ++k) {
+        ASSERT_EQ(std::memcmp(part[k].data, whole[first + k].data, 3 * sizeof(float)), 0);
+        ASSERT_EQ(std::memcmp(part[k].q, whole[first + k].q, sizeof part[k].q), 0);
+        ASSERT_EQ(part[k].label, 0u);
+      }
+    }
+  }
+  double q[kMaxJoints];
+  draw(5, q);
+  EXPECT_FLOAT_EQ(whole[5].q[2], static_cast<float>(q[2]));
+  EXPECT_EQ(whole[5].q[robot.dof()], 0.0f);  // joints the robot lacks stay zero
+}
+
 TEST(WriteSamples, StreamedFileEqualsTheCloudInMemory) {
   test::TempDir dir;
   const Robot robot = loadRobot(test::robotPath("inspection6"));

@@ -47,6 +47,9 @@ class RefineSampler : public PointGenerator {
                 const RefineOptions& options);
 
   void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override;
+  /// \brief The joint values of sample `index`, exactly as generate() draws them, into
+  /// q[0 .. dof) [rad | length unit].
+  void jointValues(std::uint64_t index, double* q) const;
 
   /// \brief Names of the joints kept at the parents' common value.
   const std::vector<std::string>& pinnedJoints() const { return pinned_names_; }

@@ -14,24 +14,25 @@ namespace mcws {
 namespace {
 
 constexpr std::size_t kBlock = 4096;      ///< samples per parallel work item
-constexpr std::size_t kChunk = 1u << 18;  ///< samples per write in writeSamples()
-
-Eigen::Vector3d samplePointInFlange(const Robot& robot, SamplePoint point) {
-  return point == SamplePoint::kTool ? Eigen::Vector3d(robot.T_flange_tool.translation())
-                                     : Eigen::Vector3d::Zero();
-}
+constexpr std::size_t kChunk = 1u << 18;  ///< samples per chunk (one write in writeSamples())
 
 }  // namespace
 
-RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& options)
-    : rng_(options.seed),
-      kinematics_(robot, samplePointInFlange(robot, options.point)),
-      lower_(robot.lowerLimits()),
-      range_(robot.upperLimits() - robot.lowerLimits()) {
+PointKinematics samplePointKinematics(const Robot& robot, SamplePoint point) {
   if (robot.dof() > kMaxJoints) {
     throw Error("robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
                 " joints; a workspace point records at most " + std::to_string(kMaxJoints));
   }
+  return PointKinematics(robot, point == SamplePoint::kTool
+                                    ? Eigen::Vector3d(robot.T_flange_tool.translation())
+                                    : Eigen::Vector3d::Zero());
+}
+
+RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& options)
+    : rng_(options.seed),
+      kinematics_(samplePointKinematics(robot, options.point)),
+      lower_(robot.lowerLimits()),
+      range_(robot.upperLimits() - robot.lowerLimits()) {
   std::vector<bool> pinned(robot.dof(), false);
   for (const auto& [name, value] : options.fixed) {
     const int i = robot.jointIndex(name);
@@ -51,30 +52,8 @@ RobotSampler::RobotSampler(const Robot& robot, const RobotSamplerOptions& option
 }
 
 void RobotSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const {
-  // kLanes samples at a time through the vectorised kernel; a last, partial batch is padded so
-  // that every sample takes the same code path whatever the batch boundaries.
-  constexpr int kLanes = PointKinematics::kLanes;
-  const int n = kinematics_.dof();
-  double q[kMaxJoints * kLanes], x[kLanes], y[kLanes], z[kLanes];
-  for (std::size_t begin = 0; begin < count; begin += kLanes) {
-    const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, count - begin));
-    for (int j = 0; j < n; ++j) {
-      for (int k = 0; k < kLanes; ++k) {
-        const std::uint64_t index =
-            first + begin + static_cast<std::uint64_t>(std::min(k, lanes - 1));
-        q[j * kLanes + k] = lower_[j] + range_[j] * rng_.uniform(index, j);
-      }
-    }
-    kinematics_.positions(q, x, y, z);
-    for (int k = 0; k < lanes; ++k) {
-      WorkspacePoint& point = out[begin + k];
-      point = WorkspacePoint();
-      point.x = static_cast<float>(x[k]);
-      point.y = static_cast<float>(y[k]);
-      point.z = static_cast<float>(z[k]);
-      for (int j = 0; j < n; ++j) point.q[j] = static_cast<float>(q[j * kLanes + k]);
-    }
-  }
+  generateFromJointValues(kinematics_, first, count, out,
+                          [this](std::uint64_t index, double* q) { jointValues(index, q); });
 }
 
 void RobotSampler::jointValues(std::uint64_t index, double* q) const {
@@ -169,6 +148,15 @@ void generateParallel(const PointGenerator& generator, std::uint64_t first, std:
   for (std::int64_t b = 0; b < blocks; ++b) {
     const std::size_t begin = static_cast<std::size_t>(b) * kBlock;
     generator.generate(first + begin, std::min(kBlock, count - begin), out + begin);
+  }
+}
+
+void generateInChunks(const PointGenerator& generator, std::size_t n, WorkspacePoint* out,
+                      int threads, const std::function<void(std::size_t, std::size_t)>& progress) {
+  for (std::size_t begin = 0; begin < n; begin += kChunk) {
+    const std::size_t count = std::min(kChunk, n - begin);
+    generateParallel(generator, begin, count, out + begin, threads);
+    if (progress) progress(begin + count, n);
   }
 }
 

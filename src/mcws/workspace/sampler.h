@@ -6,6 +6,7 @@
 #include <pcl/point_cloud.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -31,6 +32,43 @@ class PointGenerator {
 
 /// \brief Which point of the robot a sample records (seed 002's P and T clouds).
 enum class SamplePoint { kTool, kFlange };
+
+/// \brief The kinematics that map a sample's joint values to its recorded point: the tool point
+/// (the tool frame's origin) or the flange origin.
+/// \throws mcws::Error for a robot with more than kMaxJoints joints (a WorkspacePoint cannot
+///   record their values).
+PointKinematics samplePointKinematics(const Robot& robot, SamplePoint point);
+
+/// \brief The batch loop of the joint-space samplers: samples first .. first+count-1 mapped
+/// through the vectorised kernel PointKinematics::kLanes at a time and written to
+/// out[0 .. count) as x y z [length unit], q1..qn and label 0. A last, partial batch is padded
+/// with copies of its last sample, so every sample takes the same code path whatever the batch
+/// boundaries (and the output does not depend on how the samples were split).
+/// \param draw `draw(index, q)` writes sample `index`'s joint values to q[0 .. dof)
+///   [rad | length unit]; it must depend on the index only.
+template <typename Draw>
+void generateFromJointValues(const PointKinematics& kinematics, std::uint64_t first,
+                             std::size_t count, WorkspacePoint* out, const Draw& draw) {
+  constexpr int kLanes = PointKinematics::kLanes;
+  const int n = kinematics.dof();
+  double sample_q[kMaxJoints], q[kMaxJoints * kLanes], x[kLanes], y[kLanes], z[kLanes];
+  for (std::size_t begin = 0; begin < count; begin += kLanes) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(kLanes, count - begin));
+    for (int k = 0; k < kLanes; ++k) {
+      draw(first + begin + static_cast<std::uint64_t>(std::min(k, lanes - 1)), sample_q);
+      for (int j = 0; j < n; ++j) q[j * kLanes + k] = sample_q[j];
+    }
+    kinematics.positions(q, x, y, z);
+    for (int k = 0; k < lanes; ++k) {
+      WorkspacePoint& point = out[begin + k];
+      point = WorkspacePoint();
+      point.x = static_cast<float>(x[k]);
+      point.y = static_cast<float>(y[k]);
+      point.z = static_cast<float>(z[k]);
+      for (int j = 0; j < n; ++j) point.q[j] = static_cast<float>(q[j * kLanes + k]);
+    }
+  }
+}
 
 /// \brief Options of RobotSampler.
 struct RobotSamplerOptions {
@@ -93,6 +131,13 @@ class ShapeSampler : public PointGenerator {
 /// (0: all cores). The result does not depend on `threads`.
 void generateParallel(const PointGenerator& generator, std::uint64_t first, std::size_t count,
                       WorkspacePoint* out, int threads);
+
+/// \brief Samples 0 .. n-1 into out[0 .. n), chunk by chunk (the chunks of writeSamples()), each
+/// chunk split across `threads` threads (0: all cores). The result does not depend on `threads`.
+/// \param progress called after each chunk with (points done, n); may be empty.
+void generateInChunks(const PointGenerator& generator, std::size_t n, WorkspacePoint* out,
+                      int threads,
+                      const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 /// \brief Samples 0 .. n-1 as a cloud in memory.
 pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std::size_t n,

@@ -1,0 +1,90 @@
+#include "common/flags.h"
+
+#include <filesystem>
+#include <limits>
+
+#include "mcws/kinematics/robot_urdf.h"
+#include "mcws/kinematics/robot_yaml.h"
+
+namespace mcws::app {
+
+double parsePositive(const std::string& text, const std::string& flag, const std::string& unit) {
+  const double value = parseNumber(text, flag);
+  if (!(value > 0.0)) {
+    throw UsageError("--" + flag + ": " + text + (unit.empty() ? "" : " " + unit) +
+                     " is not a positive number");
+  }
+  return value;
+}
+
+double parseNonNegative(const std::string& text, const std::string& flag) {
+  const double value = parseNumber(text, flag);
+  if (value < 0.0) throw UsageError("--" + flag + ": " + text + " is less than 0");
+  return value;
+}
+
+std::string parseChoice(const std::string& text, const std::string& flag,
+                        std::initializer_list<const char*> choices) {
+  std::string wanted;
+  std::size_t k = 0;
+  for (const char* choice : choices) {
+    if (text == choice) return text;
+    wanted += (k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + std::string(choice);
+    ++k;
+  }
+  throw UsageError("--" + flag + ": '" + text + "' is not " + wanted);
+}
+
+std::uint64_t readSeed(const CommandLine& cli, std::uint64_t fallback) {
+  return static_cast<std::uint64_t>(parseInteger(cli.text("seed", std::to_string(fallback)), "seed",
+                                                 0, std::numeric_limits<std::int64_t>::max()));
+}
+
+int readThreads(const CommandLine& cli, int minimum) {
+  return static_cast<int>(parseInteger(cli.text("threads", "0"), "threads", minimum, kMaxThreads));
+}
+
+SamplePoint readPoint(const CommandLine& cli) {
+  return parseChoice(cli.text("point", "tool"), "point", {"tool", "flange"}) == "tool"
+             ? SamplePoint::kTool
+             : SamplePoint::kFlange;
+}
+
+BoundaryPlane readPlane(const CommandLine& cli) {
+  if (!cli.has("plane")) return BoundaryPlane::k3D;
+  return asUsageError("plane", [&] { return parseBoundaryPlane(cli.required("plane")); });
+}
+
+Robot readRobot(const CommandLine& cli) {
+  const std::string path = cli.required("robot");
+  const bool chain = cli.has("root") || cli.has("tip");
+  if (chain && std::filesystem::path(path).extension() != ".urdf") {
+    throw UsageError("--root and --tip need a .urdf robot");
+  }
+  try {
+    return chain ? loadRobotUrdf(path, {cli.text("root", ""), cli.text("tip", "")})
+                 : loadRobot(path);
+  } catch (const Error& e) {
+    throw Error(std::string("--robot: ") + e.what());
+  }
+}
+
+void checkJointValues(const Robot& robot, const Eigen::VectorXd& q, const std::string& flag,
+                      JointLimits limits) {
+  asUsageError(flag, [&] {
+    if (limits == JointLimits::kCheck) {
+      robot.checkJointVector(q);
+    } else {
+      robot.checkSize(q);
+    }
+  });
+}
+
+Eigen::VectorXd parseJointValues(const Robot& robot, const std::string& text,
+                                 const std::string& flag, JointLimits limits) {
+  const Eigen::VectorXd q = parseNumberList(text, flag);
+  checkJointValues(robot, q, flag, limits);
+  return q;
+}
+
+}  // namespace mcws::app

@@ -1,0 +1,82 @@
+#pragma once
+/// \file
+/// \brief The flags several stage tools share, read and checked in one place with one message
+/// style: "--flag: <the bad value> is not <what was wanted>", a UsageError (exit code 2).
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <initializer_list>
+#include <string>
+
+#include "common/app.h"
+#include "mcws/filters/boundary_geometry.h"
+#include "mcws/kinematics/robot.h"
+#include "mcws/workspace/sampler.h"
+
+namespace mcws::app {
+
+/// \brief Most worker threads a --threads flag accepts: more is a typing mistake, not a machine.
+constexpr int kMaxThreads = 256;
+
+/// \brief Runs `parse`, turning an mcws::Error it throws (a bad value found by a library
+/// function: an unknown shape or joint, a count it cannot sample) into a UsageError
+/// "--flag: message". A UsageError passes unchanged.
+template <typename Parse>
+auto asUsageError(const std::string& flag, Parse&& parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError("--" + flag + ": " + e.what());
+  }
+}
+
+/// \brief A real number > 0. \param unit appended to the value in the message ("0 s is not a
+/// positive number"); may be empty.
+/// \throws UsageError naming the flag and the text.
+double parsePositive(const std::string& text, const std::string& flag,
+                     const std::string& unit = "");
+
+/// \brief A real number >= 0 (0 usually meaning "off" or "automatic").
+/// \throws UsageError naming the flag and the text.
+double parseNonNegative(const std::string& text, const std::string& flag);
+
+/// \brief One of `choices`. \throws UsageError "--flag: 'x' is not a, b or c".
+std::string parseChoice(const std::string& text, const std::string& flag,
+                        std::initializer_list<const char*> choices);
+
+/// \brief --seed: a whole number >= 0, or `fallback` when the flag is absent.
+std::uint64_t readSeed(const CommandLine& cli, std::uint64_t fallback = 1);
+
+/// \brief --threads: a whole number in [minimum, kMaxThreads], 0 (the default) meaning all
+/// cores; tools that cannot take 0 pass minimum 1 and read the flag only when given.
+int readThreads(const CommandLine& cli, int minimum = 0);
+
+/// \brief --point: tool (default) | flange, the point a sample records.
+SamplePoint readPoint(const CommandLine& cli);
+
+/// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
+BoundaryPlane readPlane(const CommandLine& cli);
+
+/// \brief Loads --robot (.yaml or .urdf); for tools that declare --root and --tip, the URDF chain
+/// between those links.
+/// \throws UsageError for a missing --robot, or --root/--tip with a robot that is not .urdf;
+///   mcws::Error "--robot: <the loader's message, naming the file>" (exit code 1) for a file that
+///   cannot be loaded.
+Robot readRobot(const CommandLine& cli);
+
+/// \brief Whether a joint vector flag must lie within the joint limits.
+enum class JointLimits { kCheck, kIgnore };
+
+/// \brief Checks a joint vector given by `flag` (already parsed with parseNumberList()): one value
+/// per joint and, with JointLimits::kCheck, each finite and within its joint's limits.
+/// \throws UsageError "--flag: <the robot's message naming the joint and value>".
+void checkJointValues(const Robot& robot, const Eigen::VectorXd& q, const std::string& flag,
+                      JointLimits limits = JointLimits::kCheck);
+
+/// \brief parseNumberList() then checkJointValues().
+Eigen::VectorXd parseJointValues(const Robot& robot, const std::string& text,
+                                 const std::string& flag, JointLimits limits = JointLimits::kCheck);
+
+}  // namespace mcws::app
