@@ -116,8 +116,8 @@ TEST(RefineSampler, RejectsBadParentsAndSpreads) {
   EXPECT_THROW(RefineSampler(robot, pcl::PointCloud<WorkspacePoint>(), {}), Error);
 }
 
-/// The refined pipeline: n plain samples, their boundary (mcws_boundary's adaptive radius for
-/// the plane), then m samples refined from it (the default spread).
+/// The refined pipeline: n plain samples, their boundary (the filter's recommended settings, as
+/// mcws_boundary uses them), then m samples refined from it (the default spread).
 pcl::PointCloud<WorkspacePoint> plainThenRefined(const Robot& robot, std::size_t n, std::size_t m,
                                                  BoundaryPlane plane,
                                                  const RobotSamplerOptions& options = {}) {
@@ -125,7 +125,6 @@ pcl::PointCloud<WorkspacePoint> plainThenRefined(const Robot& robot, std::size_t
   OrthantBoundary<WorkspacePoint> boundary;
   boundary.setInputCloud(cloud);
   boundary.setPlane(plane);
-  boundary.setAdaptiveRadius(plane == BoundaryPlane::k3D ? 16 : 24, 2.0);
   pcl::PointCloud<WorkspacePoint> rim;
   boundary.filter(rim);
   *cloud += sampleCloud(RefineSampler(robot, rim, {}), m, 0);
