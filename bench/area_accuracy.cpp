@@ -1,8 +1,8 @@
 // Area / volume accuracy on the validation shapes, mean absolute error over seeds 1..S, for
-// mcws_measure's default (delaunay), or seed 000's column method (section 5, eqs. (2) to (4))
-// over the boundary points of mcws_boundary's default (column), of the grid method (grid: the
-// cell means, seed 000's boundary points, automatic cell size) or of the extremum method
-// (extremum: its own columns, automatic width and gap threshold; planar shapes only).
+// mcws_measure's default (delaunay), or the column method of Yin, Wang & Yu 2010 (section 5,
+// eqs. (2) to (4)) over the boundary points of mcws_boundary's default (column), of the grid method
+// (grid: the cell means, the paper's boundary points, automatic cell size) or of the extremum
+// method (extremum: its own columns, automatic width and gap threshold; planar shapes only).
 // Usage: area_accuracy SHAPE N SEEDS [delaunay|column|grid|extremum]
 #include <chrono>
 #include <cmath>

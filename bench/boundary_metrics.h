@@ -1,6 +1,7 @@
 #pragma once
 // What the boundary benchmarks share: precision and recall of reported boundary points on a
-// validation shape, and seed 000's column area on the extremum method's own columns.
+// validation shape, and the column area of Yin, Wang & Yu 2010 on the extremum method's own
+// columns.
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -46,8 +47,8 @@ BoundaryQuality boundaryQuality(Shape shape, const pcl::PointCloud<PointT>& clou
   return quality;
 }
 
-/// Seed 000's eqs. (2) to (4) on the extremum method's own columns (width L along x, the first
-/// at the cloud's smallest x): in each column the kept points sorted by y pair up as
+/// Eqs. (2) to (4) of Yin, Wang & Yu 2010 on the extremum method's own columns (width L along x,
+/// the first at the cloud's smallest x): in each column the kept points sorted by y pair up as
 /// (lowest, next), (next, next) ..., S = L sum (y_2j - y_2j-1); an unpaired last point adds
 /// nothing.
 template <typename PointT>

@@ -62,8 +62,8 @@ struct Context {
   int threads;
 };
 
-// A straightforward quadrant (2-D) or octant (3-D) test in the axis frame: seed 000's rule with
-// one fixed radius, a kd-tree and nothing else.
+// A straightforward quadrant (2-D) or octant (3-D) test in the axis frame: the rule of
+// Yin, Wang & Yu 2010 with one fixed radius, a kd-tree and nothing else.
 Outcome axisOrthants(const Context& c, double radius) {
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
   tree.setInputCloud(c.cloud);

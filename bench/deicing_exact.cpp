@@ -1,6 +1,6 @@
-// The de-icing arm (seed 000): exact X-Z area and 3-D volume (closed-form membership integrated
-// on grids of decreasing step), then the pipeline's measures from joint-space samples and their
-// errors. Usage: deicing_exact [N ...]
+// The de-icing arm (Yin, Wang & Yu 2010): exact X-Z area and 3-D volume (closed-form membership
+// integrated on grids of decreasing step), then the pipeline's measures from joint-space samples
+// and their errors. Usage: deicing_exact [N ...]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

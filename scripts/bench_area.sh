@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Seed 000's Tables 1 and 2 rerun: area of the unit disk from N uniform samples, mean absolute
-# error over 10 seeds, for mcws_measure's default (delaunay) and for seed 000's column method over
-# the boundary points of mcws_boundary's default (column), of the grid method (grid) and of the
-# extremum method (extremum); plus the annulus, ball and cube. Prints markdown rows.
+# Tables 1 and 2 of Yin, Wang & Yu 2010 rerun: area of the unit disk from N uniform samples, mean
+# absolute error over 10 seeds, for mcws_measure's default (delaunay) and for the paper's column
+# method over the boundary points of mcws_boundary's default (column), of the grid method (grid) and
+# of the extremum method (extremum); plus the annulus, ball and cube. Prints markdown rows.
 # Usage: scripts/bench_area.sh [BUILD_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

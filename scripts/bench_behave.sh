@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 004 behaviour-run benchmark for BENCHMARKS.md: a 28-disc XWP2-160 string (a 220 kV
+# Behaviour-run benchmark (Wang et al. 2018) for BENCHMARKS.md: a 28-disc XWP2-160 string (a 220 kV
 # suspension string) cleaned by mcws_behave on the shipped model, as whole-process runs:
 # (1) the run and its summary only; (2) with the event log and the 0.1 s timeline written;
 # (3) also the Figure-10 PNG (gnuplot). Medians of RUNS (default 5) runs of wall time and peak

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 001 planning benchmarks for BENCHMARKS.md, on the shipped maintenance4 scenario:
+# Planning benchmarks for BENCHMARKS.md (the maintenance-arm patent), on the maintenance4 scenario:
 # (1) the full evaluation (roadmap, m candidates, free states for n base poses, shared-node merge)
 # as a whole run of mcws_plan without validation; (2) the whole run with the 10000-pose
 # validation of the chosen, shortest and padded paths. Medians of RUNS (default 5) whole-process

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The main job, from a fresh Debian 12 machine: install the dependencies, build the tools it runs,
-# sample the de-icing arm of seed 000 (its X-Z plane workspace, Fig. 5, and its 3-D workspace,
-# Fig. 6; 6000 samples each), extract the X-Z boundary from 100000 samples (Fig. 13), measure the
-# workspace's area and volume (printed with their relative errors against the closed form), and
-# write the clouds and their pictures; then plan seed 001's maintenance arm under base sway
-# (chosen path, report, validation) and draw the two-joint configuration space; then rehearse
-# seed 004's cleaning job on a 28-disc string (clean, and with one of every fault).
+# sample the de-icing arm of Yin, Wang & Yu 2010 (its X-Z plane workspace, Fig. 5, and its 3-D
+# workspace, Fig. 6; 6000 samples each), extract the X-Z boundary from 100000 samples (Fig. 13),
+# measure the workspace's area and volume (printed with their relative errors against the closed
+# form), and write the clouds and their pictures; then plan the arm of the maintenance-arm patent
+# under base sway (chosen path, report, validation) and draw the two-joint configuration space;
+# then rehearse the cleaning job of Wang et al. 2018 on a 28-disc string (clean, and with one of
+# every fault).
 # Usage: scripts/run_main.sh [OUTPUT_DIR]   (default: out/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -33,7 +34,7 @@ mv "$out/.deicing_3d.json.tmp" "$out/deicing_3d.json"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_3d.pcd" --output "$out/deicing_3d.png" \
   --view 3d --unit cm --title "De-icing arm: 3-D workspace (6000 samples)"
 
-# Seed 000 Fig. 13: the X-Z boundary from 100000 samples.
+# Fig. 13 of Yin, Wang & Yu 2010: the X-Z boundary from 100000 samples.
 "$bin/mcws_sample" --robot "$robot" --samples 100000 --seed 1 --fix theta3=0 \
   --output "$out/deicing_xz_100k.pcd"
 "$bin/mcws_boundary" --input "$out/deicing_xz_100k.pcd" --plane xz --output "$out/deicing_xz_boundary.pcd"
@@ -58,8 +59,8 @@ volume=$(refined_measure deicing_3d_50k "" "")
   --output "$out/deicing_3d_boundary.png" --view 3d --unit cm \
   --title "De-icing arm: boundary of the 3-D workspace (50000 samples)"
 
-# Seed 001: the maintenance arm's path robust to base sway, validated on 10000 fresh base poses,
-# and the two-joint picture of the patent's Figures 2 and 3 with P against the base offset.
+# The maintenance-arm patent: the arm's path robust to base sway, validated on 10000 fresh base
+# poses, and the two-joint picture of the patent's Figures 2 and 3 with P against the base offset.
 "$bin/mcws_plan" --scenario "$root/scenarios/maintenance4.yaml" --output "$out/maintenance4_path.csv" \
   >"$out/.maintenance4_plan.txt.tmp"
 mv "$out/.maintenance4_plan.txt.tmp" "$out/maintenance4_plan.txt"
@@ -88,11 +89,11 @@ echo "  X-Z plane area ${area} cm^2, $(relative_error "$area" 16352.5) from the 
 echo "  3-D volume ${volume} cm^3, $(relative_error "$volume" 2098290) from the closed form" \
   "2098290 cm^3"
 echo "  (50000 samples + 50000 refined each; closed forms in BENCHMARKS.md)"
-echo "mcws: seed 001 planning under base sway written to $out:"
+echo "mcws: planning under base sway (the maintenance-arm patent) written to $out:"
 for f in maintenance4_path.csv maintenance4_plan.txt planar2_path.csv planar2_cspace.png \
   planar2_offsets.png; do echo "  $out/$f"; done
 sed -n '/^validation/,$p' "$out/maintenance4_plan.txt"
-echo "mcws: seed 004 cleaning rehearsals written to $out:"
+echo "mcws: cleaning rehearsals (Wang et al. 2018) written to $out:"
 for f in cleaning_28.txt cleaning_28.jsonl cleaning_28.csv cleaning_28.png behaviors/ rehearsal_3.txt \
   rehearsal_3.jsonl rehearsal_3.png; do echo "  $out/$f"; done
 sed -n '1,3p' "$out/cleaning_28.txt"

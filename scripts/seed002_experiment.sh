@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 002's experiment (Fu, Hu, Chen, Pan 2016, section 3): the Panasonic TA1400 with its welding
+# The experiment of Fu, Hu, Chen & Pan 2016 (section 3): the Panasonic TA1400 with its welding
 # torch, 500000 Monte Carlo samples checked for collisions (robots/ta1400.yaml: capsule links,
 # flange housing and torch). Writes, under OUTPUT_DIR:
 #   fig3_p_free.png   P points (flange, frame 6 origin) of the collision-free samples (Fig. 3)
@@ -77,7 +77,7 @@ cat >"$out/seed002_summary.json" <<JSON
  "volume_without_collision_check_mm3":$v_all,"volume_collision_free_mm3":$v_free,
  "volume_torch_arm_region_mm3":$v_torch,"volume_all_collision_region_mm3":$v_collisions}
 JSON
-echo "seed 002 experiment: TA1400 with torch, $samples samples (seed $seed), written to $out"
+echo "Fu, Hu, Chen & Pan 2016 experiment: TA1400 with torch, $samples samples (seed $seed), written to $out"
 echo "  collision-free:                 $free"
 echo "  link-link collision (label 1):  $link_link"
 echo "  torch-arm only (label 2):       $torch_only_label"

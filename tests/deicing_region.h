@@ -1,6 +1,6 @@
 #pragma once
-// The de-icing arm's planar workspace (seed 000 eq. (1), theta3 = 0) in closed form, as an
-// independent oracle for the sampler, boundary and measure stages.
+// The de-icing arm's planar workspace (Yin, Wang & Yu 2010, eq. (1), theta3 = 0) in closed form, as
+// an independent oracle for the sampler, boundary and measure stages.
 //
 // A point P = (x, z) is reached when some shoulder angle theta1 in [-45, 45] deg puts the elbow
 // E = a1 (cos theta1, sin theta1) so that the forearm P - E has length a2 in [25, 70] and makes an

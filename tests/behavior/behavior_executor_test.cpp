@@ -1,6 +1,6 @@
-// Seed 004 sections 2.2-2.4 and 3.2: the executor runs the task plan on the simulated robot.
-// Expectations are the seed's CB1 table, the model file's CB2 and CB3, and times worked by hand
-// from the simulator's closed-form motions.
+// Wang et al. 2018, sections 2.2-2.4 and 3.2: the executor runs the task plan on the simulated
+// robot. Expectations are the paper's CB1 table, the model file's CB2 and CB3, and times worked by
+// hand from the simulator's closed-form motions.
 #include "mcws/behavior/behavior_executor.h"
 
 #include <gtest/gtest.h>
@@ -93,9 +93,10 @@ InjectedFault fault(FaultKind kind, double at) {
   return f;
 }
 
-TEST(Executor, Cb1FollowsTheSeedsTableSixBehavioursOnePitchDown) {
+TEST(Executor, Cb1FollowsThePapersTableSixBehavioursOnePitchDown) {
   const Recorded rec = runJob(model(), 1);
-  // The seed's section 3.2 walk-through, with the corrected q6 -> q1 (the moving clamp closes).
+  // The section 3.2 walk-through of Wang et al. 2018, with the corrected q6 -> q1 (the moving clamp
+  // closes).
   const std::vector<Fired> expected = {
       {"q1", "q2", "BB_UG_Release", "zero_switch"}, {"q2", "q3", "BB_MP_Extend", "encoder_reached"},
       {"q3", "q4", "BB_UG_Clamp", "current_held"},  {"q4", "q5", "BB_LG_Release", "zero_switch"},
@@ -193,7 +194,7 @@ TEST(Executor, ThreeDiscsRunThePlanInOrderAndEndWhereMounted) {
   EXPECT_EQ(rec.summary.faults.size(), 0u);
 }
 
-TEST(Executor, TheSeedsLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
+TEST(Executor, ThePapersLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
   // Read literally, q6 -> q1 closes the fixed clamp (already closed) and leaves the moving clamp
   // open; the robot cleans disc 1 holding by one clamp and the second CB1's first step (the
   // fixed clamp releases) would open both. The run must stop there, before the command.
@@ -422,8 +423,8 @@ TEST(Executor, LowBatteryRaisesTheAlarmAndFinishesTheDiscBeforeReturning) {
   EXPECT_LT(disc_in_hand, 10);
   EXPECT_NEAR(w.last.fixed_platform_position, 0.0, 1e-9);
   EXPECT_EQ(w.unsafe, 0);
-  // Policy alarm_only (the seed's rule alone): the same alarm; the job goes on down the string
-  // and the battery runs empty before the robot is back.
+  // Policy alarm_only (the paper's rule alone): the same alarm; the job goes on down the string and
+  // the battery runs empty before the robot is back.
   const BatteryWatch on = watchBattery(10, 0.5, 0.0, LowBatteryPolicy::kAlarmOnly);
   EXPECT_EQ(on.first_low, w.first_low);
   EXPECT_EQ(on.summary.status, RunStatus::kBatteryEmpty);
@@ -644,7 +645,7 @@ TEST(Executor, SameInputsSameLog) {
   EXPECT_TRUE(a.steps.back() == b.steps.back());
 }
 
-TEST(Executor, TheTaskMachineHasTheSeedsSuperstates) {
+TEST(Executor, TheTaskMachineHasThePapersSuperstates) {
   StateMachine task = taskMachine();
   for (const char* s : {"CB1", "CB2", "CB3", "FAULT", "MANUAL"}) EXPECT_TRUE(task.hasState(s)) << s;
   EXPECT_EQ(task.current(), "idle");

@@ -1,4 +1,4 @@
-// Seed 004's behaviour model (mcws::loadBehaviorModel, validateBehaviorModel,
+// The behaviour model of Wang et al. 2018 (mcws::loadBehaviorModel, validateBehaviorModel,
 // checkPoseConsistency): the shipped model's tables and counts worked out by hand, the corrected
 // robot file, and every malformed model rejected with one line naming the file line and item.
 #include "mcws/behavior/behavior_model.h"
@@ -118,7 +118,7 @@ BehaviorModel* ShippedModel::model_ = nullptr;
 
 TEST_F(ShippedModel, ValidatesWithTheHandCountedSizes) {
   const ValidationReport r = validateBehaviorModel(model());
-  // 2 * 2 * 2 * 3 * 2 * 2 (the seed's "96 possible states").
+  // 2 * 2 * 2 * 3 * 2 * 2 (the paper's "96 possible states").
   EXPECT_EQ(r.combinations, 96u);
   // Both clamps closed, J3 home: 3 * 2 * 2 = 12; J3 extended: 1 (parked); one clamp open (two
   // ways) with J3 home or extended, parked: 4. 12 + 1 + 4 = 17.
@@ -182,7 +182,7 @@ TEST_F(ShippedModel, Cb2VisitsQ7ToQ13CleansBothShedsAndReturnsToQ1) {
             "fixed_clamp=closed moving_clamp=closed j3=home j4=upper_shed j5=turned brush=on");
   EXPECT_EQ(pose("q12"),
             "fixed_clamp=closed moving_clamp=closed j3=home j4=lower_shed j5=home brush=on");
-  // Phase II moves only J4, J5 and J6 (the seed's Figure 10).
+  // Phase II moves only J4, J5 and J6 (Figure 10 of Wang et al. 2018).
   std::set<std::string> actuators;
   for (const Transition& t : cb2.transitions) {
     actuators.insert(model().behavior(t.behavior)->body.actuator);
@@ -230,7 +230,7 @@ TEST_F(ShippedModel, NineBasicBehavioursInPortAutomatonForm) {
     EXPECT_THAT(b.body.changes, ElementsAre(expected.at(b.name).second)) << b.name;
     EXPECT_TRUE(b.timeout_s.has_value()) << b.name;
   }
-  // The seed's Figure 4: BB_UG_Clamp reads the motor current Ir, servoes to I and holds.
+  // Figure 4 of Wang et al. 2018: BB_UG_Clamp reads the motor current Ir, servoes to I and holds.
   const BasicBehavior& clamp = *model().behavior("BB_UG_Clamp");
   ASSERT_EQ(clamp.input_ports.size(), 1u);
   EXPECT_EQ(clamp.input_ports[0].name, "Ir");
@@ -582,7 +582,7 @@ TEST(BehaviorModelParsing, OtherReaderErrorsNameTheLine) {
             "model.yaml:1: YAML syntax: end of sequence flow not found");
 }
 
-// ---- the seed's literal CB1
+// ---- the literal CB1 of Wang et al. 2018
 // ----------------------------------------------------------------------
 
 TEST(LiteralModel, IsTheShippedModelWithTheFixedClampClosingAtQ6) {
@@ -597,7 +597,7 @@ TEST(LiteralModel, IsTheShippedModelWithTheFixedClampClosingAtQ6) {
   EXPECT_THAT(differing,
               ElementsAre(HasSubstr("LITERAL"), "robot: ../../../robots/insulator_cleaner.yaml",
                           "      - {from: q6, to: q1, run: BB_UG_Clamp, event: current_held}  # "
-                          "the seed's literal text"));
+                          "the paper's literal text"));
 }
 
 TEST(LiteralModel, ValidatesStructurallyAndOnlyThePoseCheckFlagsIt) {

@@ -1,5 +1,5 @@
 // What mcws_behave writes about a run: JSON log lines, the summary, the timeline CSV, the joint
-// speed picture (seed 004, Figure 10) and the state machines as Graphviz DOT.
+// speed picture (Wang et al. 2018, Figure 10) and the state machines as Graphviz DOT.
 #include "mcws/behavior/behavior_report.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-// The generic state-machine engine (mcws::StateMachine) on seed 004's CB1 and on small machines
-// built by hand: firing, wrong events, entry counts, determinism, DOT text, nesting.
+// The generic state-machine engine (mcws::StateMachine) on the CB1 of Wang et al. 2018 and on small
+// machines built by hand: firing, wrong events, entry counts, determinism, DOT text, nesting.
 #include "mcws/behavior/fsm.h"
 
 #include <gmock/gmock.h>

@@ -1,5 +1,6 @@
-// Seed 004: the time-stepped simulator of the insulator-cleaning robot (clamps, J3..J6, string,
-// battery, faults). Expected values are closed forms of the documented model or hand-worked.
+// Wang et al. 2018: the time-stepped simulator of the insulator-cleaning robot (clamps, J3..J6,
+// string, battery, faults). Expected values are closed forms of the documented model or
+// hand-worked.
 #include "mcws/behavior/robot_simulator.h"
 
 #include <gtest/gtest.h>
@@ -33,8 +34,8 @@ bool runUntil(RobotSimulator& sim, const std::function<bool(const SimSnapshot&)>
   return false;
 }
 
-/// The seed's "current at the set value for the set time": true once `clamp`'s current has been
-/// at least `current` [A] for `hold` [s].
+/// The paper's "current at the set value for the set time": true once `clamp`'s current has been at
+/// least `current` [A] for `hold` [s].
 std::function<bool(const SimSnapshot&)> currentHeld(J clamp, double current, double hold) {
   auto since = std::make_shared<double>(-1.0);
   return [=](const SimSnapshot& s) {
@@ -165,8 +166,9 @@ TEST(Clamp, CloseOffADiscNeverRaisesTheCurrent) {
   EXPECT_GT(sim.time() - t_command, c.end_stop_angle / c.jaw_speed);
 }
 
-/// Seed 004 section 3.2's CB1 (with the corrected last step: the moving clamp closes), driven
-/// by hand with the behaviours' ending conditions. Returns false if a step timed out.
+/// The CB1 of Wang et al. 2018, section 3.2 (with the corrected last step: the moving clamp
+/// closes), driven by hand with the behaviours' ending conditions. Returns false if a step timed
+/// out.
 bool runCb1(RobotSimulator& sim, std::int64_t* max_j3_count) {
   const auto invariant = [&](const SimSnapshot& s) {
     EXPECT_FALSE(s.falling) << s.time;

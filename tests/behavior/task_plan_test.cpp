@@ -1,4 +1,4 @@
-// Seed 004 section 2.3: the cleaning job as a sequence of sub-tasks.
+// Wang et al. 2018, section 2.3: the cleaning job as a sequence of sub-tasks.
 #include "mcws/behavior/task_plan.h"
 
 #include <gtest/gtest.h>

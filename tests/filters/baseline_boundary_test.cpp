@@ -1,4 +1,4 @@
-// Seed 000's baselines: the grid method (GridBoundary) and the extremum method
+// The baselines of Yin, Wang & Yu 2010: the grid method (GridBoundary) and the extremum method
 // (ExtremumBoundary), on grids with known answers and on the validation shapes.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -178,9 +178,9 @@ TEST(GridBoundary, AutomaticCellsFindBothCirclesOfTheAnnulusAndNothingBetween) {
   EXPECT_EQ(grid.cellMeans().size(), kept.size());
 }
 
-TEST(GridBoundary, TheColumnAreaOfItsMeansIsBelowTheDiskAsTheSeedSays) {
-  // Seed 000, section 5: grid boundary points lie inside the region (its Fig. 8), so the area
-  // computed from them by its column method is a little low (its Table 2: 0.7 % to 7 %).
+TEST(GridBoundary, TheColumnAreaOfItsMeansIsBelowTheDiskAsThePaperSays) {
+  // Yin, Wang & Yu 2010, section 5: grid boundary points lie inside the region (its Fig. 8), so the
+  // area computed from them by its column method is a little low (its Table 2: 0.7 % to 7 %).
   const auto cloud = shapeCloud<pcl::PointXYZ>(Shape::kDisk, 100000, 1);
   GridBoundary<pcl::PointXYZ> grid;
   boundaryOf(grid, cloud);
@@ -286,7 +286,8 @@ TEST(ExtremumBoundary, FindsTheHoleOfTheAnnulusWithAutomaticParameters) {
 }
 
 TEST(ExtremumBoundary, ColumnsRunAlongTheFirstAxisOfThePlane) {
-  // A 3 x 10 block in the x-z plane: columns along x, extremes along z (seed 000's Fig. 9).
+  // A 3 x 10 block in the x-z plane: columns along x, extremes along z (Fig. 9 of
+  // Yin, Wang & Yu 2010).
   auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   for (int x = 0; x < 3; ++x) {
     for (int z = 0; z < 10; ++z) cloud->push_back(pcl::PointXYZ(x, 5.0f, z));

@@ -32,9 +32,9 @@ double reach(const Robot& robot) {  // a length scale for tolerances
   return sum;
 }
 
-// ---- seed 000, eq. (1) ------------------------------------------------------------------------
+// ---- Yin, Wang & Yu 2010, eq. (1) ---------------------------------------------------------------
 
-TEST(ForwardKinematics, DeicingChainEqualsSeedEquationOne) {
+TEST(ForwardKinematics, DeicingChainEqualsThePapersEquationOne) {
   const Robot robot = loadRobot(test::robotPath("deicing"));
   std::mt19937_64 rng(7);
   const double a1 = 50.0;
@@ -49,9 +49,9 @@ TEST(ForwardKinematics, DeicingChainEqualsSeedEquationOne) {
   }
 }
 
-// ---- seed 003, the pose matrix of section 1.1 -------------------------------------------------
+// ---- Liu, Han, Xu & Li 2021, the pose matrix of section 1.1 ------------------------------------
 
-TEST(ForwardKinematics, InspectionArmReproducesSeedPoseMatrix) {
+TEST(ForwardKinematics, InspectionArmReproducesThePapersPoseMatrix) {
   const Robot robot = loadRobot(test::robotPath("inspection6"));
   Eigen::VectorXd q(6);
   q << M_PI / 3, M_PI / 6, M_PI / 2, M_PI / 4, M_PI / 3, M_PI / 6;

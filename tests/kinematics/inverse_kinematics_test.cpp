@@ -26,13 +26,13 @@ constexpr double kTolerance = 1e-6;
 
 using test::randomJoints;
 
-Eigen::VectorXd seed003Angles() {
+Eigen::VectorXd inspectionExampleAngles() {
   Eigen::VectorXd q(6);
   q << M_PI / 3, M_PI / 6, M_PI / 2, M_PI / 4, M_PI / 3, M_PI / 6;
   return q;
 }
 
-Eigen::VectorXd seed003Start() {
+Eigen::VectorXd inspectionExampleStart() {
   Eigen::VectorXd q(6);
   q << 1, 0.5, 1.5, 0.8, 1, 0.5;
   return q;
@@ -45,16 +45,16 @@ void expectWithinLimits(const Robot& robot, const Eigen::VectorXd& q) {
   }
 }
 
-// ---- seed 003, section 1.2 ----------------------------------------------------------------------
+// ---- Liu, Han, Xu & Li 2021, section 1.2 --------------------------------------------------------
 
-TEST(NewtonSeed003, ReproducesThePapersExample) {
+TEST(NewtonPoseEntries, ReproducesThePapersExample) {
   // From q0 = [1, 0.5, 1.5, 0.8, 1, 0.5] to the pose at [pi/3, pi/6, pi/2, pi/4, pi/3, pi/6]
   // with the paper's tolerance 0.001: the paper needs 5 iterations and prints
   // q5 = [1.048, 0.524, 1.571, 0.786, 1.048, 0.523] (3 decimals).
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  const Eigen::VectorXd expected = seed003Angles();
+  const Eigen::VectorXd expected = inspectionExampleAngles();
   const IkResult result =
-      solveIkNewtonSeed003(robot, toolPose(robot, expected), seed003Start(), 0.001);
+      solveIkNewtonPoseEntries(robot, toolPose(robot, expected), inspectionExampleStart(), 0.001);
   ASSERT_TRUE(result.converged()) << ikStatusName(result.status);
   EXPECT_LE(result.iterations, 5);
   EXPECT_LT((result.q - expected).cwiseAbs().maxCoeff(), 2e-3);
@@ -67,26 +67,27 @@ TEST(NewtonSeed003, ReproducesThePapersExample) {
               (T.translation() - toolPose(robot, expected).translation()).norm(), 1e-9);
 }
 
-TEST(NewtonSeed003, StopsOnTheStepNotTheResidual) {
-  // One iteration from the seed's start is not enough: the budget runs out.
+TEST(NewtonPoseEntries, StopsOnTheStepNotTheResidual) {
+  // One iteration from the paper's start is not enough: the budget runs out.
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  const IkResult result =
-      solveIkNewtonSeed003(robot, toolPose(robot, seed003Angles()), seed003Start(), 0.001, 1);
+  const IkResult result = solveIkNewtonPoseEntries(
+      robot, toolPose(robot, inspectionExampleAngles()), inspectionExampleStart(), 0.001, 1);
   EXPECT_EQ(result.status, IkStatus::kMaxIterations);
   EXPECT_EQ(result.iterations, 1);
   EXPECT_GT(result.position_error, 0.1);  // [mm]
 }
 
-TEST(NewtonSeed003, NeedsSixJoints) {
+TEST(NewtonPoseEntries, NeedsSixJoints) {
   const Robot robot = loadRobot(test::robotPath("deicing"));
-  EXPECT_THROW(solveIkNewtonSeed003(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(4)),
-               Error);
+  EXPECT_THROW(
+      solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd::Zero(4)),
+      Error);
 }
 
-TEST(InverseKinematics, SolvesTheSeed003ExampleExactly) {
+TEST(InverseKinematics, SolvesTheInspectionArmExampleExactly) {
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  const Eigen::VectorXd expected = seed003Angles();
-  const IkResult result = solveIk(robot, toolPose(robot, expected), seed003Start());
+  const Eigen::VectorXd expected = inspectionExampleAngles();
+  const IkResult result = solveIk(robot, toolPose(robot, expected), inspectionExampleStart());
   ASSERT_TRUE(result.converged());
   EXPECT_EQ(result.attempts, 1);
   EXPECT_LT((result.q - expected).cwiseAbs().maxCoeff(), 1e-6);
@@ -142,8 +143,8 @@ TEST(InverseKinematics, RoundTripInsulatorCleanerWithPrismaticJoints) {
 TEST(InverseKinematics, PositionOnlyDeicingArm) { expectRoundTrips("deicing", true); }
 TEST(InverseKinematics, PositionOnlyMaintenanceArm) { expectRoundTrips("maintenance4", true); }
 
-TEST(InverseKinematics, PositionOnlyDeicingArmMeetsSeed000EquationOne) {
-  // Seed 000, eq. (1), an independent closed form of the arm's end point.
+TEST(InverseKinematics, PositionOnlyDeicingArmMeetsTheClosedFormEndPoint) {
+  // Yin, Wang & Yu 2010, eq. (1), an independent closed form of the arm's end point.
   const Robot robot = loadRobot(test::robotPath("deicing"));
   const Eigen::Vector3d target(60.0, 25.0, 20.0);  // [cm], inside the reach 50 + 25..70
   Eigen::Isometry3d T_target = Eigen::Isometry3d::Identity();
@@ -172,12 +173,12 @@ TEST(InverseKinematics, FirstGuessOutsideTheLimitsIsProjectedIntoThem) {
 }
 
 TEST(InverseKinematics, AJointLimitRulesOutTheFirstGuessesBranch) {
-  // A first guess with the seed example's wrist flipped (q4 + pi, -q5, q6 - pi) leads to a
-  // solution with q5 < 0 (the wrist offsets make it differ from the flip in q2 .. q4). Limit
-  // joint 5 to [0.2, 1.5] rad and that branch is out: the solver must find another solution
-  // within the limits.
+  // A first guess with the paper example's wrist flipped (q4 + pi, -q5, q6 - pi) leads to a
+  // solution with q5 < 0 (the wrist offsets make it differ from the flip in q2 .. q4). Limit joint
+  // 5 to [0.2, 1.5] rad and that branch is out: the solver must find another solution within the
+  // limits.
   Robot robot = loadRobot(test::robotPath("inspection6"));
-  const Eigen::VectorXd q_target = seed003Angles();  // q5 = pi/3
+  const Eigen::VectorXd q_target = inspectionExampleAngles();  // q5 = pi/3
   Eigen::VectorXd q_flipped = q_target;
   q_flipped[3] += M_PI;
   q_flipped[4] = -q_flipped[4];
@@ -229,7 +230,7 @@ TEST(InverseKinematics, TooSmallBudgetSaysMaxIterations) {
   options.max_iterations = 2;
   options.restarts = 0;
   const IkResult result =
-      solveIk(robot, toolPose(robot, seed003Angles()), Eigen::VectorXd::Zero(6), options);
+      solveIk(robot, toolPose(robot, inspectionExampleAngles()), Eigen::VectorXd::Zero(6), options);
   EXPECT_EQ(result.status, IkStatus::kMaxIterations);
   EXPECT_EQ(result.iterations, 2);
 }
@@ -320,8 +321,19 @@ TEST(InverseKinematics, MisuseThrowsNamingTheProblem) {
   options.restarts = -1;
   EXPECT_EQ(errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q0, options); }),
             "IK restarts -1 is negative");
-  EXPECT_EQ(errorOf([&] { solveIkNewtonSeed003(robot, nan_target, q0); }),
-            "solveIkNewtonSeed003: target pose entry (0, 3) is nan, not a finite number");
+  EXPECT_EQ(errorOf([&] { solveIkNewtonPoseEntries(robot, nan_target, q0); }),
+            "solveIkNewtonPoseEntries: target pose entry (0, 3) is nan, not a finite number");
+  const Robot deicing = loadRobot(test::robotPath("deicing"));
+  EXPECT_EQ(errorOf([&] {
+              solveIkNewtonPoseEntries(deicing, Eigen::Isometry3d::Identity(),
+                                       Eigen::VectorXd::Zero(4));
+            }),
+            "solveIkNewtonPoseEntries: robot 'deicing' has 4 joints, not 6");
+  EXPECT_EQ(errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 0); }),
+            "solveIkNewtonPoseEntries: step tolerance 0 is not a positive number");
+  EXPECT_EQ(
+      errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 1e-3, 0); }),
+      "solveIkNewtonPoseEntries: max_iterations 0 is not at least 1");
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ collision:
   }
 };
 
-/// Seed 001's maintenance arm in its scene.
+/// The arm of the maintenance-arm patent in its scene.
 struct MaintenanceArm {
   Robot robot = loadRobot(test::robotPath("maintenance4"));
   CollisionChecker checker{robot, loadCollisionModel(robot, test::robotPath("maintenance4"))};

@@ -82,8 +82,8 @@ std::string errorOf(const std::function<void()>& f) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Figure 3 of seed 001: a solid path (candidate 0) and a dashed path (candidate 1) cross at X1,
-// then at X2, and meet again at the goal.
+// Figure 3 of the maintenance-arm patent: a solid path (candidate 0) and a dashed path
+// (candidate 1) cross at X1, then at X2, and meet again at the goal.
 //
 //   solid  S -a- X1 -b- X2 -c- G
 //   dashed S -d- X1 -e- X2 -f- G

@@ -1,6 +1,6 @@
-// Scenario files of seed 001 (mcws::parseScenario, loadScenario) and quantities with units
-// (mcws::parseQuantity): every value converted by hand, every mistake one line naming the file,
-// the line, the field and the bad value.
+// Scenario files of the maintenance-arm patent (mcws::parseScenario, loadScenario) and quantities
+// with units (mcws::parseQuantity): every value converted by hand, every mistake one line naming
+// the file, the line, the field and the bad value.
 #include "mcws/planning/scenario.h"
 
 #include <gmock/gmock.h>

@@ -1,4 +1,5 @@
-// Seed 001's planner: free-state probabilities, base adjustment, statuses, validation.
+// The planner of the maintenance-arm patent: free-state probabilities, base adjustment, statuses,
+// validation.
 #include "mcws/planning/sway_planner.h"
 
 #include <gtest/gtest.h>

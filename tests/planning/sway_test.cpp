@@ -1,4 +1,5 @@
-// Seed 001 step s20: base poses from a truncated Gaussian; chi-square and Wilson intervals.
+// The maintenance-arm patent, step s20: base poses from a truncated Gaussian; chi-square and Wilson
+// intervals.
 #include "mcws/planning/sway.h"
 
 #include <gtest/gtest.h>

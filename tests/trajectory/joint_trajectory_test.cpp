@@ -54,7 +54,8 @@ Eigen::VectorXd vec(std::initializer_list<double> values) {
   return v;
 }
 
-TEST(Blend, QuinticIsSeedEquationTen) {
+// Liu, Han, Xu & Li 2021, eq. (10).
+TEST(Blend, QuinticIsThePapersEquationTen) {
   for (double u : {0.0, 0.1, 0.25, 0.5, 0.8, 1.0}) {
     const Blend b = blend(TimeProfile::kQuintic, u);
     EXPECT_NEAR(b.s, 10 * std::pow(u, 3) - 15 * std::pow(u, 4) + 6 * std::pow(u, 5), kExact);

@@ -1,10 +1,10 @@
 #pragma once
 /// \file
-/// \brief Runs a cleaning job on the simulated robot: seed 004's task decomposition (section 2.3),
-/// combined behaviours (2.2), basic behaviours (2.1) and exception handling (2.4), driven by a
-/// behaviour model (behavior_model.h) over RobotSimulator (robot_simulator.h).
+/// \brief Runs a cleaning job on the simulated robot: the task decomposition of Wang et al. 2018
+/// (section 2.3), combined behaviours (2.2), basic behaviours (2.1) and exception handling (2.4),
+/// driven by a behaviour model (behavior_model.h) over RobotSimulator (robot_simulator.h).
 ///
-/// Three levels, as the seed's Stateflow model ("three key states, each with sub-states"):
+/// Three levels, as the paper's Stateflow model ("three key states, each with sub-states"):
 /// - the task machine (taskMachine()): superstates CB1, CB2, CB3, FAULT and MANUAL between
 ///   `idle` and `done`; it moves on the plan's sub-tasks (planCleaningTask()) and on exceptions;
 /// - the combined behaviour of the current sub-task: its FSM (stateMachineOf()); in each state

@@ -1,15 +1,14 @@
 #pragma once
 /// \file
-/// \brief Seed 004's behaviour model as data: basic behaviours, combined behaviours as finite
-/// state machines, and the robot's state vector (Wang et al. 2018, "Behavior planning of a
-/// suspension insulator cleaning robot for power transmission lines", sections 1.4, 2.1, 2.2).
+/// \brief The behaviour model of Wang et al. 2018 as data: basic behaviours, combined behaviours as
+/// finite state machines, and the robot's state vector (sections 1.4, 2.1, 2.2).
 ///
 /// The file format is documented, item by item, in robots/insulator_cleaner_behaviors.yaml.
 /// In short:
-/// - `state_vector`: the components of the robot's pose (the seed's Table 1), each with its
-///   values; a component driven to positions lists them (`{home: 0 mm, extended: 155 mm}`).
-///   `pose_rules` forbid poses (the seed's Table 2): a pose breaks a rule when it matches every
-///   `when` entry and misses a `require` entry.
+/// - `state_vector`: the components of the robot's pose (Table 1 of Wang et al. 2018), each with
+///   its values; a component driven to positions lists them (`{home: 0 mm, extended: 155 mm}`).
+///   `pose_rules` forbid poses (its Table 2): a pose breaks a rule when it matches every `when`
+///   entry and misses a `require` entry.
 /// - `basic_behaviors`: eq. (1), [name, (input ports), (output ports), (parameters), body];
 ///   `timeout` optional. The body names the actuator, the one component it changes and, for
 ///   each value it can set, the command and the ending event.
@@ -106,7 +105,7 @@ struct CombinedBehavior {
   const Transition* transitionFrom(const std::string& state) const;
 };
 
-/// \brief One component of the state vector (the seed's Table 1).
+/// \brief One component of the state vector (Table 1 of Wang et al. 2018).
 struct StateComponent {
   std::string name;      ///< fixed_clamp, moving_clamp, j3, j4, j5, brush
   std::string actuator;  ///< the joint that drives it
@@ -139,7 +138,8 @@ struct PoseRule {
   bool brokenBy(const Pose& pose) const;
 };
 
-/// \brief The state vector: components and the rules that forbid poses (the seed's Tables 1-2).
+/// \brief The state vector: components and the rules that forbid poses (Tables 1-2 of
+/// Wang et al. 2018).
 struct StateVectorSpec {
   std::vector<StateComponent> components;
   std::vector<PoseRule> rules;
@@ -262,10 +262,10 @@ struct PoseFinding {
 /// every transition, applies the behaviour's one change to the source state's pose and compares
 /// with the target state's pose.
 ///
-/// The shipped model has no findings. The seed's literal CB1 (the fixed clamp closes at
-/// q6 -> q1) has one: BB_UG_Clamp leaves the moving clamp open, so the robot reaches "q1" with
-/// one clamp closed and the next CB1 step (fixed clamp releases) opens both. The literal model
-/// is structurally valid; at run time the executor's safety invariant rejects it.
+/// The shipped model has no findings. The literal CB1 of Wang et al. 2018 (the fixed clamp closes
+/// at q6 -> q1) has one: BB_UG_Clamp leaves the moving clamp open, so the robot reaches "q1" with
+/// one clamp closed and the next CB1 step (fixed clamp releases) opens both. The literal model is
+/// structurally valid; at run time the executor's safety invariant rejects it.
 /// \throws mcws::Error as resolveRun() for a model that does not validate.
 std::vector<PoseFinding> checkPoseConsistency(const BehaviorModel& model);
 

@@ -2,7 +2,7 @@
 /// \file
 /// \brief What `mcws_behave` writes about a simulated cleaning run: the event log as JSON lines,
 /// the timeline of joints, currents, switches and battery as CSV, a picture of the joint speeds
-/// like the seed's Figure 10, the summary as JSON, and the state machines as Graphviz DOT.
+/// like Figure 10 of Wang et al. 2018, the summary as JSON, and the state machines as Graphviz DOT.
 ///
 /// Units: time [s]; J1, J2, J5 positions [deg] and speeds [deg/s]; J3, J4 [mm] and [mm/s]; J6
 /// angle [deg] and speed [rpm]; currents [A]; battery [V] and [A h]. CSV headers and JSON keys
@@ -90,10 +90,10 @@ class TimelineRecorder {
 /// then one line per row; booleans 0/1; numbers with up to 9 significant digits.
 void writeTimelineCsv(std::ostream& out, const std::vector<TimelineRow>& rows);
 
-/// \brief A PNG like the seed's Figure 10: two panels over simulated time, (I) the joint speeds
-/// of the moving mechanism J1, J2 [deg/s] and J3 [mm/s]; (II) those of the cleaning mechanism J4
-/// [mm/s], J5 [deg/s] and J6 [rpm, on a second axis]; phases shaded by the combined behaviour
-/// (CB1/CB3 = phase I, CB2 = phase II).
+/// \brief A PNG like Figure 10 of Wang et al. 2018: two panels over simulated time, (I) the joint
+/// speeds of the moving mechanism J1, J2 [deg/s] and J3 [mm/s]; (II) those of the cleaning
+/// mechanism J4 [mm/s], J5 [deg/s] and J6 [rpm, on a second axis]; phases shaded by the combined
+/// behaviour (CB1/CB3 = phase I, CB2 = phase II).
 /// \param rows the timeline; only rows with from_s <= t <= to_s are drawn.
 /// \param title drawn above the panels.
 /// \return the PNG file's bytes.

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// \brief A rehearsal's faults and the operator's responses, read from a YAML file: what
-/// `mcws_behave --faults F.yaml` injects into a simulated cleaning run (seed 004, section 2.4).
+/// `mcws_behave --faults F.yaml` injects into a simulated cleaning run
+/// (Wang et al. 2018, section 2.4).
 ///
 /// File format (every time and quantity carries its unit). Every section is optional, and so are
 /// `policy`'s keys and a link_down's `duration`; every other key shown is required for its type:
@@ -73,9 +74,9 @@ struct OperatorResponse {
   int line{0};
 };
 
-/// \brief What the robot does beyond the seed's alarm when the battery runs low.
+/// \brief What the robot does beyond the alarm of Wang et al. 2018 when the battery runs low.
 enum class LowBatteryPolicy {
-  kAlarmOnly,            ///< the alarm only (the seed's rule); the job goes on
+  kAlarmOnly,            ///< the alarm only (the paper's rule); the job goes on
   kFinishDiscAndReturn,  ///< finish the disc in hand (its CB1 and CB2), then return to the start
 };
 /// \brief "alarm_only", "finish_disc_and_return".

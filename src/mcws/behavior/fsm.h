@@ -2,10 +2,10 @@
 /// \file
 /// \brief A small, data-driven finite state machine M = {Q, Sigma, delta, q0, F}.
 ///
-/// The engine of seed 004's combined behaviours (Wang et al. 2018, section 2.2, eq. (3)), with
-/// no robot knowledge: states and events are names, delta(q, sigma) = q' is a table, and the
-/// caller feeds events. Built from a combined behaviour by mcws::stateMachineOf()
-/// (behavior_model.h), or by hand:
+/// The engine of the combined behaviours of Wang et al. 2018 (section 2.2, eq. (3)), with no
+/// robot knowledge: states and events are names, delta(q, sigma) = q' is a table, and the caller
+/// feeds events. Built from a combined behaviour by mcws::stateMachineOf() (behavior_model.h), or
+/// by hand:
 /// \code
 /// mcws::StateMachine m("door");
 /// m.addState("closed");

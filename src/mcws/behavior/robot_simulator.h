@@ -1,8 +1,8 @@
 #pragma once
 /// \file
-/// \brief A time-stepped simulator of seed 004's suspension-insulator cleaning robot (sections
-/// 1.2 and 3.1): six joints with speed and acceleration limits, clamp motor currents that rise
-/// on contact, zero switches, incremental encoders, the insulator string, a battery and the
+/// \brief A time-stepped simulator of the suspension-insulator cleaning robot of Wang et al. 2018
+/// (sections 1.2 and 3.1): six joints with speed and acceleration limits, clamp motor currents that
+/// rise on contact, zero switches, incremental encoders, the insulator string, a battery and the
 /// radio link. It knows nothing of behaviours or state machines: a caller sends joint commands,
 /// calls step() and reads the sensor snapshot.
 ///
@@ -30,7 +30,7 @@
 
 namespace mcws {
 
-/// \brief The robot's six joints (seed 004, section 1.2 and Figure 2).
+/// \brief The robot's six joints (Wang et al. 2018, section 1.2 and Figure 2).
 enum class SimJoint {
   kJ1 = 0,  ///< fixed platform's clamp (revolute jaw) [deg]
   kJ2,      ///< moving platform's clamp (revolute jaw) [deg]
@@ -90,7 +90,7 @@ struct SimCommand {
 /// mm/s", "J6 spin 300 rpm".
 std::string describe(const SimCommand& command);
 
-/// \brief Injected faults (seed 004, section 2.4: sensor faults and a draining battery).
+/// \brief Injected faults (Wang et al. 2018, section 2.4: sensor faults and a draining battery).
 enum class SimFault {
   kFixedZeroSwitchNeverPressed,    ///< J1's zero switch reads "not pressed" whatever the jaw
   kFixedZeroSwitchAlwaysPressed,   ///< J1's zero switch reads "pressed" whatever the jaw
@@ -251,14 +251,14 @@ inline bool operator!=(const SimSnapshot& a, const SimSnapshot& b) { return !(a 
 
 /// \brief The robot on its string, advanced in fixed time steps.
 ///
-/// Which body moves when J3 moves: the robot hangs on the string by whichever clamps grip.
-/// The moving platform sits `home_gap` - J3 below (towards the conductor) the fixed platform.
-/// With only the fixed clamp gripping, J3 moves the moving platform along the string; with only
-/// the moving clamp gripping, J3 moves the fixed platform (the robot body); with both
-/// gripping, J3 cannot move (`j3_stalled`, its current at j3_stall_current); with neither the
-/// robot falls (`falling`, latched: no clamp grips again). A stalled move resumes, planned
-/// afresh from rest, as soon as one clamp lets go. So seed 004's CB1 (release J1, J3 to one pitch,
-/// close J1, release J2, J3 home, close J2) moves the robot one pitch down the string.
+/// Which body moves when J3 moves: the robot hangs on the string by whichever clamps grip. The
+/// moving platform sits `home_gap` - J3 below (towards the conductor) the fixed platform. With only
+/// the fixed clamp gripping, J3 moves the moving platform along the string; with only the moving
+/// clamp gripping, J3 moves the fixed platform (the robot body); with both gripping, J3 cannot move
+/// (`j3_stalled`, its current at j3_stall_current); with neither the robot falls (`falling`,
+/// latched: no clamp grips again). A stalled move resumes, planned afresh from rest, as soon as one
+/// clamp lets go. So the CB1 of Wang et al. 2018 (release J1, J3 to one pitch, close J1, release
+/// J2, J3 home, close J2) moves the robot one pitch down the string.
 ///
 /// Determinism: the clock is step * dt; every motion is evaluated in closed form from the time
 /// of its command, so the same commands at the same steps give the same snapshots bit for bit.
@@ -275,9 +275,10 @@ class RobotSimulator {
 
   /// \brief Why `command` must not be sent, or nothing when it may.
   ///
-  /// Reasons: a kind the joint does not take (close on J3, spin on J1, ...), an unknown joint,
-  /// a non-finite value, a move_to target outside the joint's limits, a spin above the brush's
-  /// max_speed. The executor calls this before every motion (seed 004 section 2.4, item 4).
+  /// Reasons: a kind the joint does not take (close on J3, spin on J1, ...), an unknown joint, a
+  /// non-finite value, a move_to target outside the joint's limits, a spin above the brush's
+  /// max_speed. The executor calls this before every motion (Wang et al. 2018, section 2.4,
+  /// item 4).
   std::optional<std::string> refuse(const SimCommand& command) const;
 
   /// \brief Starts `command` at the present time(); it acts over the following steps and

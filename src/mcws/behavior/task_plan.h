@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Seed 004 section 2.3 (Figure 8): the cleaning job decomposed into sub-tasks, each run by
-/// one combined behaviour.
+/// \brief The cleaning job decomposed into sub-tasks, each run by one combined behaviour
+/// (Wang et al. 2018, section 2.3, Figure 8).
 
 #include <string>
 #include <vector>
@@ -15,8 +15,8 @@ struct Subtask {
   int disc{0};           ///< the disc the robot works at after the sub-task (1 = tower end)
 };
 
-/// \brief The seed's sequence for a string of `discs` discs: from the tower end down to the
-/// conductor end, (CB1, CB2) per disc, then CB3 per disc back to the start.
+/// \brief The sequence of Wang et al. 2018 for a string of `discs` discs: from the tower end down
+/// to the conductor end, (CB1, CB2) per disc, then CB3 per disc back to the start.
 ///
 /// The worker mounts the robot at the tower end: the fixed (upper) clamp on the string's
 /// tower-end fitting (position 0 of RobotSimulator's string), the moving clamp two pitches

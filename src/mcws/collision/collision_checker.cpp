@@ -24,8 +24,9 @@ namespace mcws {
 struct CollisionChecker::Shape {
   ShapeType type{ShapeType::kSphere};
   bool swept{false};  ///< capsule or sphere: tested by segment distance
-  /// p_from, p_to and radius bound the shape (a line-swept sphere, seed 002's LSS): the shape
-  /// itself when swept, a bounding capsule of a mesh's vertices otherwise.
+  /// p_from, p_to and radius bound the shape (a line-swept sphere, the LSS of
+  /// Fu, Hu, Chen & Pan 2016): the shape itself when swept, a bounding capsule of a mesh's vertices
+  /// otherwise.
   bool lss{false};
   Eigen::Vector3d p_from{Eigen::Vector3d::Zero()}, p_to{Eigen::Vector3d::Zero()};
   double radius{0.0};

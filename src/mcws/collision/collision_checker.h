@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Self-collision, tool-vs-arm and environment checks of one joint vector (seed 002
-/// section 2), with FCL (the Flexible Collision Library) underneath.
+/// \brief Self-collision, tool-vs-arm and environment checks of one joint vector
+/// (Fu, Hu, Chen & Pan 2016, section 2), with FCL (the Flexible Collision Library) underneath.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -59,10 +59,10 @@ struct CollisionCheckerOptions {
 ///    base does not move, so it is not checked against the environment).
 /// Bodies without shapes take part in no pair. Capsule and sphere pairs are tested with an exact
 /// segment-segment distance (Ericson 2005); every other pair goes to fcl::collide, whose
-/// `fcl::BVHModel<fcl::OBBRSSd>` meshes are the OBB/RSS (swept-sphere) hierarchy of seed 002.
-/// A broad phase first rejects body and shape pairs whose bounding spheres are apart, and mesh
-/// pairs whose bounding capsules (line-swept spheres on the mesh's principal axis, the top level
-/// of the seed's hierarchy) are apart.
+/// `fcl::BVHModel<fcl::OBBRSSd>` meshes are the OBB/RSS (swept-sphere) hierarchy of
+/// Fu, Hu, Chen & Pan 2016. A broad phase first rejects body and shape pairs whose bounding spheres
+/// are apart, and mesh pairs whose bounding capsules (line-swept spheres on the mesh's principal
+/// axis, the top level of the paper's hierarchy) are apart.
 ///
 /// The checker is immutable after construction and may be shared between threads; each thread
 /// passes its own Scratch (poses and FCL request/result objects), so no lock is taken. The FCL
@@ -93,7 +93,8 @@ class CollisionChecker {
   /// \brief label() with a scratch of its own (slower: for single checks).
   std::uint32_t label(const Eigen::VectorXd& q) const;
   /// \brief label() with the robot's base at T_world_base instead of the model's base pose:
-  /// every robot body moves with the base, the environment stays (seed 001's swaying base).
+  /// every robot body moves with the base, the environment stays (the swaying base of the
+  /// maintenance-arm patent).
   std::uint32_t label(const double* q, const Eigen::Isometry3d& T_world_base,
                       Scratch& scratch) const;
 

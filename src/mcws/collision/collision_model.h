@@ -29,8 +29,8 @@ const char* shapeTypeName(ShapeType type);
 /// \brief One collision shape, placed in the frame of the body that carries it. Lengths are in
 /// the robot's length unit.
 ///
-/// - capsule: the points within `radius` of the segment [p_from, p_to] (seed 002's line-swept
-///   sphere, LSS);
+/// - capsule: the points within `radius` of the segment [p_from, p_to] (the line-swept sphere, LSS,
+///   of Fu, Hu, Chen & Pan 2016);
 /// - sphere: the points within `radius` of p_from;
 /// - box: edges `size`, centred at the origin of T_body_shape;
 /// - cylinder: `radius`, `length` along z of T_body_shape, centred at its origin;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Monte Carlo workspace samples labelled by collision (seed 002 section 2).
+/// \brief Monte Carlo workspace samples labelled by collision (Fu, Hu, Chen & Pan 2016, section 2).
 
 #include "mcws/collision/collision_checker.h"
 #include "mcws/workspace/sampler.h"

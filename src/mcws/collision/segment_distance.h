@@ -9,8 +9,9 @@ namespace mcws {
 /// \brief Squared distance between segments [p1, q1] and [p2, q2] (any length unit, squared).
 ///
 /// The clamped closest-point computation of Ericson, "Real-Time Collision Detection" (2005),
-/// section 5.1.9, including degenerate (point) segments. Two capsules (line-swept spheres,
-/// seed 002's LSS volumes) of radii r1 and r2 overlap exactly when this is below (r1 + r2)^2.
+/// section 5.1.9, including degenerate (point) segments. Two capsules (line-swept spheres, the LSS
+/// volumes of Fu, Hu, Chen & Pan 2016) of radii r1 and r2 overlap exactly when this is below
+/// (r1 + r2)^2.
 double segmentDistanceSquared(const Eigen::Vector3d& p1, const Eigen::Vector3d& q1,
                               const Eigen::Vector3d& p2, const Eigen::Vector3d& q2);
 

@@ -27,11 +27,11 @@ Eigen::Isometry3d jointMotion(const Joint& joint, double q);
 /// \throws mcws::Error when q has the wrong size.
 ChainPoses chainPoses(const Robot& robot, const Eigen::VectorXd& q);
 
-/// \brief Flange pose T_world_flange(q) (seed 002's point P).
+/// \brief Flange pose T_world_flange(q) (point P of Fu, Hu, Chen & Pan 2016).
 /// \throws mcws::Error when q has the wrong size.
 Eigen::Isometry3d flangePose(const Robot& robot, const Eigen::VectorXd& q);
 
-/// \brief Tool pose T_world_tool(q) (seed 002's point T).
+/// \brief Tool pose T_world_tool(q) (point T of Fu, Hu, Chen & Pan 2016).
 /// \throws mcws::Error when q has the wrong size.
 Eigen::Isometry3d toolPose(const Robot& robot, const Eigen::VectorXd& q);
 

@@ -399,22 +399,29 @@ IkResult solveIk(const Robot& robot, const Eigen::Isometry3d& T_world_tool_targe
   return IkSolver(robot).solve(T_world_tool_target, q_seed, options);
 }
 
-IkResult solveIkNewtonSeed003(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
-                              const Eigen::VectorXd& q_seed, double step_tolerance,
-                              int max_iterations) {
-  checkTarget(T_world_tool_target, "solveIkNewtonSeed003");
+IkResult solveIkNewtonPoseEntries(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
+                                  const Eigen::VectorXd& q_seed, double step_tolerance,
+                                  int max_iterations) {
+  checkTarget(T_world_tool_target, "solveIkNewtonPoseEntries");
   checkSeed(robot, q_seed);
   if (robot.dof() != 6) {
-    throw Error("seed 003's Newton IK needs 6 joints; robot '" + robot.name + "' has " +
-                std::to_string(robot.dof()));
+    throw Error("solveIkNewtonPoseEntries: robot '" + robot.name + "' has " +
+                std::to_string(robot.dof()) + " joints, not 6");
   }
   if (!(step_tolerance > 0.0) || max_iterations < 1) {
-    throw Error("seed 003's Newton IK needs a positive step tolerance and iteration budget");
+    std::ostringstream msg;
+    msg << "solveIkNewtonPoseEntries: ";
+    if (!(step_tolerance > 0.0)) {
+      msg << "step tolerance " << step_tolerance << " is not a positive number";
+    } else {
+      msg << "max_iterations " << max_iterations << " is not at least 1";
+    }
+    throw Error(msg.str());
   }
   const KinematicChain chain(robot);
   const Eigen::Matrix3d& R_target = T_world_tool_target.linear();
   // H = (r11, r22, r33, px, py, pz): entries 1, 6, 11, 13, 14, 15 of the pose (column-major,
-  // seed 003 eq. (3)).
+  // Liu, Han, Xu & Li 2021, eq. (3)).
   auto entries = [](const Eigen::Matrix3d& R, const Eigen::Vector3d& p) {
     Eigen::Matrix<double, 6, 1> H;
     H << R(0, 0), R(1, 1), R(2, 2), p;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Inverse kinematics of a serial chain: the robust damped-least-squares solver with joint
-/// limits and seeded restarts, and seed 003's Newton iteration.
+/// limits and seeded restarts, and the Newton iteration of Liu, Han, Xu & Li 2021.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -71,8 +71,8 @@ struct IkResult {
 IkResult solveIk(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
                  const Eigen::VectorXd& q_seed, const IkOptions& options = {});
 
-/// \brief solveIk() for many poses of one robot: the chain is prepared once (the joint axes
-/// turned onto z, limits and scales read), which saves about 2 us per solve.
+/// \brief solveIk() for many poses of one robot: the chain is prepared once (the joint axes turned
+/// onto z, limits and scales read), not once per solve.
 class IkSolver {
  public:
   /// \param robot the chain (copied).
@@ -88,7 +88,7 @@ class IkSolver {
   std::shared_ptr<const Prepared> prepared_;
 };
 
-/// \brief Seed 003's inverse kinematics (Liu, Han, Xu, Li 2021, section 1.2): Newton iteration
+/// \brief The inverse kinematics of Liu, Han, Xu & Li 2021 (section 1.2): Newton iteration
 /// q_{k+1} = q_k + J_H^-1 (H* - H(q_k)) on the six entries H = (r11, r22, r33, px, py, pz) of
 /// the tool pose, J_H = dH/dq (analytic), stopping when |q_{k+1} - q_k| <= step_tolerance.
 ///
@@ -98,9 +98,10 @@ class IkSolver {
 /// \param step_tolerance the paper's 0.001 [rad | length unit].
 /// \return kConverged when the step fell below step_tolerance, kMaxIterations when the budget
 ///   ran out, kNoSolution when J_H became singular or the iteration diverged.
-/// \throws mcws::Error when the robot does not have six joints, or as solveIk().
-IkResult solveIkNewtonSeed003(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
-                              const Eigen::VectorXd& q_seed, double step_tolerance = 1e-3,
-                              int max_iterations = 100);
+/// \throws mcws::Error when the robot does not have six joints, for a step_tolerance that is not
+///   positive or a max_iterations below 1, or as solveIk() for the target and q_seed.
+IkResult solveIkNewtonPoseEntries(const Robot& robot, const Eigen::Isometry3d& T_world_tool_target,
+                                  const Eigen::VectorXd& q_seed, double step_tolerance = 1e-3,
+                                  int max_iterations = 100);
 
 }  // namespace mcws

@@ -39,7 +39,8 @@ struct Joint {
 ///
 /// T_world_tool(q) = T_world_base * prod_i (T_parent_joint_i * M_i(q_i)) * T_last_flange *
 /// T_flange_tool, where M_i is the motion of joint i. The flange is the end of the bare arm
-/// (seed 002's point P); the tool point is seed 002's point T. Every length is in `length_unit`.
+/// (point P of Fu, Hu, Chen & Pan 2016); the tool point is its point T. Every length is in
+/// `length_unit`.
 struct Robot {
   std::string name;
   std::string source;  ///< file the robot was read from, for messages

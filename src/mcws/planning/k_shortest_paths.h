@@ -1,8 +1,8 @@
 #pragma once
 /// \file
-/// \brief Loop-free shortest paths through a roadmap: Yen's k shortest paths, and a set of
-/// diverse candidate paths for seed 001's step s30 (paths that split and re-merge, as in the
-/// patent's Figure 3).
+/// \brief Loop-free shortest paths through a roadmap: Yen's k shortest paths, and a set of diverse
+/// candidate paths for step s30 of the maintenance-arm patent (paths that split and re-merge, as in
+/// its Figure 3).
 
 #include <boost/graph/adjacency_list.hpp>
 #include <cstddef>

@@ -1,8 +1,8 @@
 #pragma once
 /// \file
-/// \brief Seed 001's evaluation of candidate paths at shared nodes (steps s41 to s47): node
-/// values D and P along each path, the dominant path at each node that several paths pass
-/// through, the splice of its prefix into the others.
+/// \brief The maintenance-arm patent's evaluation of candidate paths at shared nodes (steps s41 to
+/// s47): node values D and P along each path, the dominant path at each node that several paths
+/// pass through, the splice of its prefix into the others.
 
 #include <cstddef>
 #include <functional>
@@ -22,7 +22,7 @@ struct EdgeValues {
 /// \brief Values of the edge between two roadmap vertices (the same in either direction).
 using EdgeValuesFn = std::function<EdgeValues(std::size_t u, std::size_t v)>;
 
-/// \brief Seed 001's values at one node of a path.
+/// \brief The values of the maintenance-arm patent at one node of a path.
 struct NodeValues {
   /// D (step s41): path length from the start along the path [scaled joint distance].
   double distance{0.0};

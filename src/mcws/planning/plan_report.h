@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// \brief What mcws_plan writes: the chosen path as CSV, the report as text and JSON, the
-/// configuration-space picture (seed 001's Figures 2 and 3) and P against the base offset.
+/// configuration-space picture (Figures 2 and 3 of the maintenance-arm patent) and P against the
+/// base offset.
 
 #include <nlohmann/json.hpp>
 #include <string>
@@ -34,9 +35,9 @@ std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner);
 /// base offset. \throws mcws::Error when gnuplot fails.
 std::string renderOffsetsPng(const Scenario& scenario, const std::vector<PlanningRound>& rounds);
 
-/// \brief PNG of a two-joint configuration space (seed 001's Figure 2b generalised): each cell
-/// coloured by the fraction of the n base poses for which it collides, with the candidate
-/// paths, the chosen path, the shared nodes and the decision taken at each.
+/// \brief PNG of a two-joint configuration space (Figure 2b of the maintenance-arm patent,
+/// generalised): each cell coloured by the fraction of the n base poses for which it collides, with
+/// the candidate paths, the chosen path, the shared nodes and the decision taken at each.
 /// \param cells cells per joint axis.
 /// \throws mcws::Error for a robot without exactly two joints, or when gnuplot fails.
 std::string renderConfigurationSpacePng(const Scenario& scenario, const SwayPlanner& planner,

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// \brief A probabilistic roadmap of collision-free configurations for the measured base pose
-/// (seed 001 step s30), grown with OMPL's PRM and copied into a plain Boost graph.
+/// (the maintenance-arm patent, step s30), grown with OMPL's PRM and copied into a plain Boost
+/// graph.
 
 #include <Eigen/Geometry>
 #include <cstddef>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Planning scenarios for seed 001 (`scenarios/*.yaml`): the robot and its obstacles, the
-/// start and goal, how the base sways, the planner's settings.
+/// \brief Planning scenarios for the maintenance-arm patent's planner (`scenarios/*.yaml`): the
+/// robot and its obstacles, the start and goal, how the base sways, the planner's settings.
 
 #include <string>
 

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
-/// \brief Seed 001 step s20: base poses of a robot that sways on the line it hangs from, drawn
-/// from a Gaussian centred on the measured pose and kept inside a confidence region.
+/// \brief The maintenance-arm patent, step s20: base poses of a robot that sways on the line it
+/// hangs from, drawn from a Gaussian centred on the measured pose and kept inside a confidence
+/// region.
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -53,7 +54,7 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials,
 
 /// \brief Draws sway vectors from N(0, covariance) truncated to its confidence ellipsoid.
 ///
-/// Seed 001 step s20:
+/// The maintenance-arm patent, step s20:
 /// "将第一静态位姿作为高斯概率分布函数的均值，采用高斯概率分布函数生成n组第二静态位姿 数据 ...
 /// n在高斯概率分布函数的一定置信区间取值" (the first static pose is the mean of a Gaussian that
 /// gives n second static poses, taken within a confidence interval of it).

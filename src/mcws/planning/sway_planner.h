@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Seed 001 (a patent on power-line maintenance robots): motion planning of an arm whose
-/// base sways, steps s10 to s70, and the validation of the chosen path on fresh base poses.
+/// \brief Motion planning of an arm whose base sways, after the maintenance-arm patent (steps s10
+/// to s70), and the validation of the chosen path on fresh base poses.
 
 #include <Eigen/Geometry>
 #include <cstddef>
@@ -20,7 +20,8 @@
 
 namespace mcws {
 
-/// \brief Everything seed 001's method takes (step s10 and the readings mcws makes of it).
+/// \brief Everything the method of the maintenance-arm patent takes (step s10 and the readings mcws
+/// makes of it).
 struct SwayPlanningProblem {
   Robot robot;                  ///< its T_world_base is the measured ("first static") pose
   CollisionModel collision;     ///< arm, tool and the obstacles around it
@@ -99,7 +100,7 @@ struct SwayPlanningResult {
 /// \brief Stages a long run reports (stage name, done, total).
 using PlanningProgress = std::function<void(const std::string&, std::size_t, std::size_t)>;
 
-/// \brief Seed 001's planner.
+/// \brief The planner of the maintenance-arm patent.
 class SwayPlanner {
  public:
   /// \throws mcws::Error for a bad problem: the messages name the field and value.
@@ -134,8 +135,8 @@ class SwayPlanner {
   std::vector<std::uint8_t> motionFreeStates(const Eigen::VectorXd& qa, const Eigen::VectorXd& qb,
                                              double offset) const;
 
-  /// \brief Fraction of the n base poses for which configuration q collides (seed 001's
-  /// Figure 2b generalised), at base offset 0.
+  /// \brief Fraction of the n base poses for which configuration q collides (Figure 2b of
+  /// the maintenance-arm patent, generalised), at base offset 0.
   double collisionFraction(const Eigen::VectorXd& q) const;
 
   const SwayPlanningProblem& problem() const { return problem_; }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Straight-line tool motion in Cartesian space through inverse kinematics (the camera
-/// sweeps of seed 003).
+/// sweeps of Liu, Han, Xu & Li 2021).
 
 #include <Eigen/Geometry>
 #include <functional>

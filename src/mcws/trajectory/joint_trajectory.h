@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Joint-space trajectories: point-to-point blends (seed 003's quintic, the cubic) and
-/// cubic splines through via points, sampling at a rate, and limit checks.
+/// \brief Joint-space trajectories: point-to-point blends (the quintic of Liu, Han, Xu & Li 2021,
+/// the cubic) and cubic splines through via points, sampling at a rate, and limit checks.
 ///
 /// Units: time [s]; joint values [rad] for revolute joints and the robot's length unit for
 /// prismatic joints; velocities and accelerations in those units per [s] and [s^2].
@@ -18,8 +18,8 @@ namespace mcws {
 enum class TimeProfile {
   /// s(u) = 3u^2 - 2u^3: zero velocity at both ends, peak velocity 1.5 D/T.
   kCubic,
-  /// s(u) = 10u^3 - 15u^4 + 6u^5 (seed 003, eq. 10): zero velocity and acceleration at both
-  /// ends, peak velocity 1.875 D/T.
+  /// s(u) = 10u^3 - 15u^4 + 6u^5 (Liu, Han, Xu & Li 2021, eq. (10)): zero velocity and acceleration
+  /// at both ends, peak velocity 1.875 D/T.
   kQuintic,
 };
 

@@ -23,7 +23,8 @@ Eigen::MatrixXd toolPositions(const Robot& robot, const SampledTrajectory& traje
 std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& trajectory);
 
 /// \brief Renders the trajectory as a PNG with gnuplot: joint positions, velocities and
-/// accelerations over time (as seed 003's Fig. 5) and the tool path in 3-D (as its Fig. 6).
+/// accelerations over time (as Fig. 5 of Liu, Han, Xu & Li 2021) and the tool path in 3-D (as its
+/// Fig. 6).
 /// \param title first line of the picture.
 /// \return the PNG file's bytes.
 /// \throws mcws::Error when gnuplot is missing or fails (its first message line).

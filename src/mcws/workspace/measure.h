@@ -88,9 +88,9 @@ struct ColumnArea {
   std::size_t odd_columns{0};  ///< columns whose crossings had to be completed (see below)
 };
 
-/// \brief Seed 000's rectangle method (section 5, eqs. (2) to (4)): the plane is cut into columns
-/// of width L along x; in column i the boundary crossings y_i1 < y_i2 < ... pair up and
-/// S = L sum_i sum_j (y_i,2j - y_i,2j-1).
+/// \brief The rectangle method of Yin, Wang & Yu 2010 (section 5, eqs. (2) to (4)): the plane is
+/// cut into columns of width L along x; in column i the boundary crossings y_i1 < y_i2 < ... pair
+/// up and S = L sum_i sum_j (y_i,2j - y_i,2j-1).
 ///
 /// Taken literally, every boundary point is a "crossing" and pairing neighbours measures the
 /// thickness of the boundary band, not the region. Here the boundary points of a column are first

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Boundary points by seed 000's extremum method (Yin, Wang, Yu 2010, section 4.2), a
-/// baseline for OrthantBoundary.
+/// \brief Boundary points by the extremum method of Yin, Wang & Yu 2010 (section 4.2), a baseline
+/// for OrthantBoundary.
 
 #include <pcl/filters/filter_indices.h>
 
@@ -14,13 +14,13 @@ namespace mcws {
 /// \brief Keeps the extreme points of each column of a planar cloud, and the points on either
 /// side of a wide gap inside a column (negative mode: every other point).
 ///
-/// **Rule (seed 000, section 4.2, its Fig. 9).** In the chosen plane (a, b) (xy: a = x, b = y;
-/// xz: a = x, b = z as in the paper; yz: a = y, b = z) the points are cut into columns of width
-/// dL along a, the first column starting at the smallest a of the finite points. In each column
-/// the points are sorted by b: the lowest and the highest are the column's outer boundary points
-/// (the paper's a and d); where two consecutive points are more than the gap threshold t apart
-/// along b, both are inner boundary points (the paper's b and c), which finds the hole of an
-/// annulus. A column holding one point keeps it. The method needs a plane: it has no 3-D form.
+/// **Rule (Yin, Wang & Yu 2010, section 4.2, Fig. 9).** In the chosen plane (a, b) (xy: a = x, b =
+/// y; xz: a = x, b = z as in the paper; yz: a = y, b = z) the points are cut into columns of width
+/// dL along a, the first column starting at the smallest a of the finite points. In each column the
+/// points are sorted by b: the lowest and the highest are the column's outer boundary points (the
+/// paper's a and d); where two consecutive points are more than the gap threshold t apart along b,
+/// both are inner boundary points (the paper's b and c), which finds the hole of an annulus. A
+/// column holding one point keeps it. The method needs a plane: it has no 3-D form.
 ///
 /// **Column width.** setColumnWidth(dL) fixes it [length unit]; by default it is the grid
 /// method's automatic cell size (baselineCellSize(): dL = h sqrt(m), m = ln(2 n / m), h the mean

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Boundary points by seed 000's grid method (Yin, Wang, Yu 2010, section 4.1), a baseline
-/// for OrthantBoundary.
+/// \brief Boundary points by the grid method of Yin, Wang & Yu 2010 (section 4.1), a baseline for
+/// OrthantBoundary.
 
 #include <pcl/filters/filter_indices.h>
 
@@ -14,11 +14,11 @@ namespace mcws {
 /// \brief Keeps one point per boundary cell of a grid laid over the cloud (negative mode: every
 /// other point).
 ///
-/// **Rule (seed 000, section 4.1).** The plane (or, for BoundaryPlane::k3D, space) is cut into
-/// square (cubic) cells of side dL, the first cell starting at the smallest coordinate of the
-/// finite input points. A cell is occupied when it holds a point. An occupied cell is a boundary
-/// cell when at least one of its 8 neighbours (26 in 3-D) is empty; cells outside the points'
-/// extent are empty.
+/// **Rule (Yin, Wang & Yu 2010, section 4.1).** The plane (or, for BoundaryPlane::k3D, space) is
+/// cut into square (cubic) cells of side dL, the first cell starting at the smallest coordinate of
+/// the finite input points. A cell is occupied when it holds a point. An occupied cell is a
+/// boundary cell when at least one of its 8 neighbours (26 in 3-D) is empty; cells outside the
+/// points' extent are empty.
 ///
 /// **The boundary point.** The paper represents a boundary cell by the mean of its points. A
 /// FilterIndices filter returns input indices, so the filter keeps the cell's point nearest to
@@ -78,9 +78,9 @@ class GridBoundary : public pcl::FilterIndices<PointT> {
   std::size_t occupiedCells() const { return occupied_cells_; }
   std::size_t boundaryCells() const { return cell_means_.size(); }
 
-  /// \brief The mean of each boundary cell's points (seed 000's boundary points) in the input's
-  /// coordinates [length unit], one per boundary cell, from the last filter() call. Independent
-  /// of negative mode.
+  /// \brief The mean of each boundary cell's points (the boundary points of Yin, Wang & Yu 2010) in
+  /// the input's coordinates [length unit], one per boundary cell, from the last filter() call.
+  /// Independent of negative mode.
   const pcl::PointCloud<pcl::PointXYZ>& cellMeans() const { return cell_means_; }
 
  protected:

@@ -67,9 +67,8 @@ inline bool isBoundaryPoint(const std::vector<Neighbour>& neighbours, const Poin
   return hasEmptyOrthant(neighbours, test.dimensions, test.frames);
 }
 
-/// \brief A first search at this fraction of the radius: with k random directions a spurious
-/// 90-degree gap has probability about k (3/4)^(k-1), 0.4 % for k = 32, so almost every interior
-/// point is decided by the small search. Exact when the test is monotone.
+/// \brief A first search at this fraction of the radius, which decides almost every interior point
+/// (why: filters/README.md, "A subset decides"). Exact when the test is monotone.
 constexpr double kPrefilterRadius = 0.65;
 
 /// \brief Decides point i with `search`; nothing when the search declined a query (ask another
