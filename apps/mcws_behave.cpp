@@ -1,7 +1,7 @@
-// mcws_behave: seed 004's behaviour planning rehearsed on a simulated insulator-cleaning robot:
-// the task plan for N discs run by the task machine, the combined behaviours' state machines and
-// the basic behaviours on a time-stepped robot, with faults injected and the safety invariant
-// checked at every step.
+// mcws_behave: the behaviour planning of Wang et al. 2018 rehearsed on a simulated
+// insulator-cleaning robot: the task plan for N discs run by the task machine, the combined
+// behaviours' state machines and the basic behaviours on a time-stepped robot, with faults injected
+// and the safety invariant checked at every step.
 #include <algorithm>
 #include <iostream>
 #include <optional>
@@ -19,7 +19,7 @@ using namespace mcws;
 constexpr char kUsage[] = "mcws_behave --model M.yaml (--check | --insulators N) [options]";
 
 constexpr char kSummary[] =
-    R"(Rehearses seed 004's cleaning job on a simulated insulator-cleaning robot: the plan for N
+    R"(Rehearses the cleaning job of Wang et al. 2018 on a simulated insulator-cleaning robot: the plan for N
 discs ((CB1, CB2) per disc down the string, then CB3 per disc back up) is echoed on stderr, then
 run by the task machine (CB1, CB2, CB3, FAULT, MANUAL), each combined behaviour's state machine
 and each basic behaviour on a time-stepped robot (dt 0.01 s), with the faults of --faults
@@ -43,7 +43,8 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("timeline",
                "joints, speeds, currents, switches, battery over time (.csv, units in the header)");
   cli.addValue("timeline-period", "time between timeline rows [s] (default 0.1; the step is 0.01)");
-  cli.addValue("plot", "PNG of the joint speeds like the seed's Figure 10 (first disc's cycle)");
+  cli.addValue("plot",
+               "PNG of the joint speeds like Figure 10 of Wang et al. 2018 (first disc's cycle)");
   cli.addSwitch("plot-all", "draw the whole run in --plot, not the first disc's cycle");
   cli.addValue(
       "dot",

@@ -1,5 +1,5 @@
-// mcws_collide: checks one joint vector of a robot against its collision model (seed 002
-// section 2) and names the colliding pairs with their penetration, or the nearest pair.
+// mcws_collide: checks one joint vector of a robot against its collision model (Fu, Hu, Chen & Pan
+// 2016 section 2) and names the colliding pairs with their penetration, or the nearest pair.
 #include <algorithm>
 #include <iomanip>
 #include <iostream>

@@ -24,7 +24,7 @@ Delaunay triangulation (CGAL) restricted to simplices no wider than --alpha loca
 corrected for the band the samples miss along the edge by leave-one-out (Efron's identity; it
 assumes the density near the edge is about that inside, as for uniform samples). A cloud from
 mcws_refine has samples on the edge itself (joint limits): measure it with --correction none
-(--alpha 5). Method 'column': seed 000's rectangles, eqs. (2)-(4), over --boundary points grouped
+(--alpha 5). Method 'column': the rectangles of Yin, Wang & Yu 2010, eqs. (2)-(4), over --boundary points grouped
 into crossings per column. With --boundary the default also reports the column method as a
 cross-check.)";
 

@@ -1,5 +1,6 @@
-// mcws_plan: seed 001's arm planning for a robot whose base sways on the line (steps s10-s70),
-// with the chosen path validated on fresh base poses against the shortest and padded paths.
+// mcws_plan: the maintenance-arm patent's arm planning for a robot whose base sways on the line
+// (steps s10-s70), with the chosen path validated on fresh base poses against the shortest and
+// padded paths.
 #include <omp.h>
 
 #include <iostream>
@@ -18,7 +19,7 @@ using namespace mcws;
 constexpr char kUsage[] = "mcws_plan --scenario S.yaml --output path.csv [options]";
 
 constexpr char kSummary[] =
-    R"(Plans the arm of a robot whose base sways (seed 001): m candidate paths through a roadmap for
+    R"(Plans the arm of a robot whose base sways (the maintenance-arm patent): m candidate paths through a roadmap for
 the measured base pose, their segments checked exactly for n base poses drawn from the scenario's
 sway, the dominant path taken at every shared node; the base is shifted along the line while the
 best path's P is below the threshold. Writes the chosen path (CSV: D then one column per joint,

@@ -1,4 +1,4 @@
-// mcws_refine: boundary refinement (Liu et al. 2013, seed 002's reference [8]): new samples in
+// mcws_refine: boundary refinement (Liu et al. 2013): new samples in
 // small joint-space neighbourhoods of the configurations that produced boundary points.
 #include <iostream>
 #include <limits>

@@ -1,5 +1,6 @@
-// mcws_sample: Monte Carlo workspace sampling of a robot (seed 000 section 3, seed 002 eq. (5)),
-// or of a validation shape with known area or volume. Writes a PCD cloud of mcws::WorkspacePoint.
+// mcws_sample: Monte Carlo workspace sampling of a robot (Yin, Wang & Yu 2010, section 3; Fu, Hu,
+// Chen & Pan 2016, eq. (5)), or of a validation shape with known area or volume. Writes a PCD cloud
+// of mcws::WorkspacePoint.
 #include <iostream>
 #include <limits>
 #include <memory>

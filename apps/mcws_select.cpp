@@ -1,5 +1,6 @@
 // mcws_select: keeps the points of a labelled workspace cloud whose label is in a list (splits
-// mcws_sample --collision output into seed 002's clouds: free, link-link, tool-link, ...).
+// mcws_sample --collision output into the clouds of Fu, Hu, Chen & Pan 2016: free, link-link,
+// tool-link, ...).
 #include <pcl/io/pcd_io.h>
 
 #include <iostream>

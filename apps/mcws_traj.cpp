@@ -1,5 +1,5 @@
-// mcws_traj: a joint-space trajectory (seed 003's quintic blend, the cubic, or a cubic spline
-// through via points), sampled at a rate and written as CSV, with an optional PNG.
+// mcws_traj: a joint-space trajectory (the quintic blend of Liu, Han, Xu & Li 2021, the cubic, or a
+// cubic spline through via points), sampled at a rate and written as CSV, with an optional PNG.
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -21,7 +21,7 @@ constexpr char kUsage[] =
     R"(mcws_traj --robot FILE --from "q..." --to "q..." --duration S --rate HZ --output CSV [options])";
 
 constexpr char kSummary[] =
-    R"(Plans a joint-space move from --from to --to: seed 003's quintic blend (zero velocity and
+    R"(Plans a joint-space move from --from to --to: the quintic blend of Liu, Han, Xu & Li 2021 (zero velocity and
 acceleration at both ends) or the cubic (zero end velocity); with --via, a cubic spline through
 the via points, reached at equal intervals, at rest at both ends. Writes CSV: t, joint positions,
 velocities (_vel), accelerations (_acc), tool x y z. Joint values in rad and the robot's length

@@ -9,8 +9,8 @@
 namespace mcws::app {
 
 /// \brief Largest |R^T R - I| entry accepted from a typed matrix: a matrix printed with 4
-/// decimals (as seed 003's) passes, a wrong entry does not. Accepted rotations are replaced by
-/// the nearest rotation matrix.
+/// decimals (as Liu, Han, Xu & Li 2021 print theirs) passes, a wrong entry does not. Accepted
+/// rotations are replaced by the nearest rotation matrix.
 constexpr double kTypedRotationTolerance = 1e-3;
 
 /// \brief "x y z roll pitch yaw": translation [length unit] and fixed-axis angles [rad],

@@ -48,7 +48,7 @@ TEST(BehaveApp, CheckPrintsTheCountsOfTheShippedModel) {
   EXPECT_EQ(report["combined_behaviors"][1]["transitions"], 8);
 }
 
-TEST(BehaveApp, CheckFlagsTheSeedsLiteralCb1) {
+TEST(BehaveApp, CheckFlagsThePapersLiteralCb1) {
   const test::RunResult r = test::run(kBehave + " --model " + kLiteral + " --check");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("q6 -> q1"));

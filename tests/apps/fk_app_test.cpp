@@ -1,4 +1,4 @@
-// mcws_fk through its command line, checked against seed 003's printed pose matrix.
+// mcws_fk through its command line, checked against the pose matrix Liu, Han, Xu & Li 2021 print.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ using ::testing::HasSubstr;
 
 const std::string kFk = MCWS_FK_EXE;
 const std::string kInspection = " --robot " + test::robotPath("inspection6");
-// pi/3 pi/6 pi/2 pi/4 pi/3 pi/6, seed 003 section 1.1
+// pi/3 pi/6 pi/2 pi/4 pi/3 pi/6, Liu, Han, Xu & Li 2021, section 1.1
 const std::string kSeedQ =
     " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 "
     "0.7853981633974483 1.0471975511965976 0.5235987755982988'";
@@ -25,7 +25,7 @@ TEST(FkApp, HelpExitsZero) {
   EXPECT_THAT(r.out, HasSubstr("--q"));
 }
 
-TEST(FkApp, JsonPoseMatchesSeedMatrix) {
+TEST(FkApp, JsonPoseMatchesThePapersMatrix) {
   const test::RunResult r = test::run(kFk + kInspection + kSeedQ + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
@@ -41,7 +41,7 @@ TEST(FkApp, NegativeValuesAndCommasParse) {
       test::run(kFk + " --robot " + test::robotPath("deicing") + " --q '-0.5,0.2,-1,30' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
-  // eq. (1) of seed 000 with t3 = -0.5, t1 = 0.2, t2 = -1, a2 = 30
+  // eq. (1) of Yin, Wang & Yu 2010 with t3 = -0.5, t1 = 0.2, t2 = -1, a2 = 30
   const double radial = 50 * std::cos(0.2) + 30 * std::cos(-0.8);
   EXPECT_NEAR(json["position"][0].get<double>(), std::cos(-0.5) * radial, 1e-9);
   EXPECT_NEAR(json["position"][2].get<double>(), 50 * std::sin(0.2) + 30 * std::sin(-0.8), 1e-9);

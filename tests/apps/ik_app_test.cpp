@@ -1,5 +1,5 @@
-// mcws_ik through its command line: seed 003's pose, position-only arms, unreachable poses and
-// bad input.
+// mcws_ik through its command line: the pose of Liu, Han, Xu & Li 2021, position-only arms,
+// unreachable poses and bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@ using ::testing::HasSubstr;
 
 const std::string kIk = MCWS_IK_EXE;
 const std::string kInspection = " --robot " + test::robotPath("inspection6");
-// Seed 003's pose matrix as printed (section 1.1, 4 decimals), at
+// The pose matrix of Liu, Han, Xu & Li 2021 as printed (section 1.1, 4 decimals), at
 // q = [pi/3, pi/6, pi/2, pi/4, pi/3, pi/6].
-const std::string kSeedMatrix =
+const std::string kPapersMatrix =
     " --matrix '-0.9234 0.3837 -0.0148 -39.3043  -0.0993 -0.2015 0.9744 731.9230  "
     "0.3709 0.9012 0.2241 -569.2371  0 0 0 1'";
 
-Eigen::VectorXd seedAngles() {
+Eigen::VectorXd papersAngles() {
   Eigen::VectorXd q(6);
   q << M_PI / 3, M_PI / 6, M_PI / 2, M_PI / 4, M_PI / 3, M_PI / 6;
   return q;
@@ -43,16 +43,16 @@ TEST(IkApp, HelpExitsZeroAndStatesUnits) {
   }
 }
 
-TEST(IkApp, SeedPrintedMatrixGivesTheSeedAngles) {
+TEST(IkApp, ThePapersPrintedMatrixGivesItsAngles) {
   const test::RunResult r =
-      test::run(kIk + kInspection + kSeedMatrix + " --q0 '1 0.5 1.5 0.8 1 0.5' --json");
+      test::run(kIk + kInspection + kPapersMatrix + " --q0 '1 0.5 1.5 0.8 1 0.5' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["status"], "converged");
   EXPECT_EQ(json["q"].size(), 6u);
   // The printed matrix is the pose at the seed angles rounded to 4 decimals (0.5e-4 mm in the
   // translation, 0.5e-4 in each rotation entry): the angles come back to about 1e-4.
-  EXPECT_LT((jsonQ(json) - seedAngles()).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LT((jsonQ(json) - papersAngles()).cwiseAbs().maxCoeff(), 1e-3);
   EXPECT_LE(json["position_error"].get<double>(), 1e-6);
   EXPECT_LE(json["orientation_error"].get<double>(), 1e-6);
   EXPECT_GE(json["iterations"].get<int>(), 1);
@@ -78,7 +78,7 @@ TEST(IkApp, PoseFlagRoundTrip) {
 }
 
 TEST(IkApp, TextOutputNamesUnits) {
-  const test::RunResult r = test::run(kIk + kInspection + kSeedMatrix);
+  const test::RunResult r = test::run(kIk + kInspection + kPapersMatrix);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("q: ", 0), 0u) << r.out;
   EXPECT_THAT(r.out, HasSubstr("iterations: "));
@@ -86,7 +86,7 @@ TEST(IkApp, TextOutputNamesUnits) {
   EXPECT_THAT(r.out, HasSubstr("orientation error: "));
 }
 
-TEST(IkApp, PositionOnlyDeicingArmMeetsSeed000EquationOne) {
+TEST(IkApp, PositionOnlyDeicingArmMeetsTheClosedFormEndPoint) {
   const test::RunResult r = test::run(kIk + " --robot " + test::robotPath("deicing") +
                                       " --pose '60 25 20 0 0 0' --position-only --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -20,8 +20,8 @@ const std::string kTraj = MCWS_TRAJ_EXE;
 const std::string kFk = MCWS_FK_EXE;
 const std::string kInspection = " --robot " + test::robotPath("inspection6");
 const std::string kInspectionUrdf = std::string(MCWS_ROBOTS_DIR) + "/inspection6.urdf";
-// Seed 003, section 1.4: the end joint vector of its 10 s move (the start is not legible in the
-// paper; the arm's zero pose here).
+// Liu, Han, Xu & Li 2021, section 1.4: the end joint vector of its 10 s move (the start is not
+// legible in the paper; the arm's zero pose here).
 const std::string kSeedMove =
     " --from '0 0 0 0 0 0' --to '-0.267 0.268 -0.769 -0.151 0.329 0.594' --duration 10 --rate 100";
 const double kSeedGoal[6] = {-0.267, 0.268, -0.769, -0.151, 0.329, 0.594};
@@ -72,7 +72,7 @@ TEST(TrajApp, HelpExitsZero) {
   }
 }
 
-TEST(TrajApp, SeedQuinticMoveHasClosedFormEndsAndPeaks) {
+TEST(TrajApp, ThePapersQuinticMoveHasClosedFormEndsAndPeaks) {
   test::TempDir dir;
   const std::string out = dir.file("traj.csv");
   const test::RunResult r = test::run(kTraj + kInspection + kSeedMove + " --output " + out);
@@ -188,8 +188,9 @@ TEST(TrajApp, RootAndTipPickAUrdfSubChain) {
   EXPECT_EQ(json["joints"], nlohmann::json({"j2", "j3"}));
 }
 
-TEST(FkApp, UrdfRobotReproducesSeedMatrixInMetres) {
-  // Seed 003, section 1.1: the pose at q = [pi/3, pi/6, pi/2, pi/4, pi/3, pi/6], printed in mm.
+TEST(FkApp, UrdfRobotReproducesThePapersMatrixInMetres) {
+  // Liu, Han, Xu & Li 2021, section 1.1: the pose at q = [pi/3, pi/6, pi/2, pi/4, pi/3, pi/6],
+  // printed in mm.
   const test::RunResult r =
       test::run(kFk + " --robot " + kInspectionUrdf +
                 " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 0.7853981633974483 "

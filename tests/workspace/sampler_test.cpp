@@ -109,7 +109,7 @@ TEST(RobotSampler, FixedJointStaysAtItsValue) {
   const auto cloud = sampleCloud(RobotSampler(robot, options), 5000, 2);
   for (const WorkspacePoint& p : cloud) {
     ASSERT_EQ(p.q1, 0.0f);
-    ASSERT_NEAR(p.y, 0.0f, 1e-5);  // seed 000's X-Z plane
+    ASSERT_NEAR(p.y, 0.0f, 1e-5);  // the X-Z plane of Yin, Wang & Yu 2010
   }
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Boundary refinement: more samples near the configurations that produced boundary
-/// points (the improved Monte Carlo method of Liu et al. 2013, seed 002's reference [8]).
+/// points (the improved Monte Carlo method of Liu et al. 2013).
 
 #include <pcl/point_cloud.h>
 
@@ -19,9 +19,8 @@ namespace mcws {
 struct RefineOptions {
   std::uint64_t seed{1};
   SamplePoint point{SamplePoint::kTool};
-  /// Half-width of each joint's neighbourhood, as a fraction of its range (0, 1]. 0.1 measured
-  /// best for the de-icing arm's volume (BENCHMARKS.md: 0.05 -0.41 %, 0.1 and 0.2 -0.19 % with
-  /// alpha 3; two rounds gain little more).
+  /// Half-width of each joint's neighbourhood, as a fraction of its range (0, 1]; the default
+  /// is the de-icing arm's best (BENCHMARKS.md, "The de-icing arm's pipeline, tighter").
   double spread{0.1};
 };
 
@@ -34,9 +33,7 @@ struct RefineOptions {
 /// RobotSampler's, and depend only on the seed and their index.
 ///
 /// Joint-space sampling leaves the Cartesian edge of a workspace sparse where the forward map
-/// stretches (near the tips of the region); refinement puts samples there at the cost of a few
-/// boundary configurations, so a boundary and area computed from the refined cloud converge
-/// faster than from plain sampling of the same total size (BENCHMARKS.md, de-icing arm).
+/// stretches (near the tips of the region); refinement puts samples there.
 class RefineSampler : public PointGenerator {
  public:
   /// \param parents the boundary points; their q fields are the configurations to refine.

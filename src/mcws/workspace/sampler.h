@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Monte Carlo workspace sampling (seed 000 section 3, seed 002 eq. (5)) and validation
-/// shapes of known area or volume.
+/// \brief Monte Carlo workspace sampling (Yin, Wang & Yu 2010, section 3; Fu, Hu, Chen & Pan 2016,
+/// eq. (5)) and validation shapes of known area or volume.
 
 #include <pcl/point_cloud.h>
 
@@ -30,7 +30,8 @@ class PointGenerator {
   virtual void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const = 0;
 };
 
-/// \brief Which point of the robot a sample records (seed 002's P and T clouds).
+/// \brief Which point of the robot a sample records (the P and T clouds of Fu, Hu, Chen & Pan
+/// 2016).
 enum class SamplePoint { kTool, kFlange };
 
 /// \brief The kinematics that map a sample's joint values to its recorded point: the tool point
@@ -78,7 +79,7 @@ struct RobotSamplerOptions {
   std::vector<std::pair<std::string, double>> fixed;
 };
 
-/// \brief Joint values uniform within their limits (seed 002 eq. (5):
+/// \brief Joint values uniform within their limits (Fu, Hu, Chen & Pan 2016, eq. (5):
 /// q_i = q_i,min + (q_i,max - q_i,min) t_i, t_i uniform in [0, 1)), mapped through forward
 /// kinematics. The point carries x y z [length unit], q1..qn and label 0.
 class RobotSampler : public PointGenerator {
