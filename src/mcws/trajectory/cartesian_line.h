@@ -20,7 +20,7 @@ namespace mcws {
 /// IkFunction ik = [&](const Eigen::Isometry3d& T, const Eigen::VectorXd& seed)
 ///     -> std::optional<Eigen::VectorXd> {
 ///   const IkResult r = solveIk(robot, T, seed);
-///   if (!r.converged) return std::nullopt;
+///   if (!r.converged()) return std::nullopt;
 ///   return r.q;
 /// };
 /// \endcode
