@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Configures and builds mcws.
-# Usage: scripts/build.sh [BUILD_DIR] [extra cmake args...] [--target NAME...]
+# Usage: scripts/build.sh [BUILD_DIR (default build/)] [extra cmake args...] [--target NAME...]
 # Without --target every target is built (tools, tests, benchmarks, examples, as the MCWS_BUILD_*
 # options say); with it only the named targets and what they link. The cache is not changed by
 # --target, so a later full build in the same directory still builds everything.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-build=${1:-$root/build}
-shift || true
+build=$root/build
+if [[ $# -gt 0 && $1 != -* ]]; then
+  build=$1
+  shift
+fi
 cmake_args=() targets=()
 while (($#)); do
   if [[ $1 == --target ]]; then

@@ -41,7 +41,8 @@ commands=$(cat <<'EOF'
 @B@/mcws_measure --input @O@/xz.pcd --plane xz --json
 @B@/mcws_measure --input @O@/xz.pcd --plane xz
 @B@/mcws_measure --input @O@/d3.pcd --threads 1 --json
-@B@/mcws_measure --input @O@/d3.pcd --leave-one-out exact --json
+@B@/mcws_measure --input @O@/d3.pcd --leave-one-out reinsert --json
+@B@/mcws_measure --input @O@/xz.pcd --plane xz --leave-one-out reinsert --threads 1 --json
 @B@/mcws_measure --input @O@/xz.pcd --plane xz --method column --json
 @B@/mcws_select --input @O@/tac.pcd --label 0 --output @O@/tac_free.pcd --json
 @B@/mcws_fk --robot @R@/robots/ta1400.yaml --q "0.1 0.2 0.3 0.4 0.5 0.6"

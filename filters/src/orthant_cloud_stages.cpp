@@ -56,7 +56,8 @@ void keepShallowPoints(GridThenTreeSearch& search, const PointTestSettings& test
                        int threads, CloudDecisions& decisions) {
   const std::size_t n = search.size();
   // Candidates: the points found and those within a quarter of their radius (the points the test
-  // misses lie about a spacing from one it finds). One thread: a few thousand searches.
+  // misses lie about a spacing from one it finds). One thread, as the task marks other points:
+  // a few thousand searches.
   std::vector<pcl::index_t> found;
   for (std::size_t i = 0; i < n; ++i) {
     if (decisions.boundary[i]) found.push_back(static_cast<pcl::index_t>(i));

@@ -606,6 +606,8 @@ TEST(OrthantBoundary, RejectsBadParameters) {
                 f.setOuterRadius(1.0);
               }),
               HasSubstr("outer radius 1 is smaller than radius 2"));
+  EXPECT_THAT(message([](auto& f) { f.setAutoRadius(-2.0); }),
+              HasSubstr("radius factor -2 must be 0 (automatic) or a positive number"));
   EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(0, 2.0); }),
               HasSubstr("adaptive k must be at least 1"));
   EXPECT_THAT(message([](auto& f) { f.setAdaptiveRadius(8, -2.0); }),

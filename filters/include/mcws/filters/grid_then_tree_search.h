@@ -48,8 +48,9 @@ class GridThenTreeSearch {
 
   /// \brief Runs `task(search, i, scratch)` for every i in `points` on `threads` threads, each
   /// with its own `Scratch`. The task returns false when `search` declined one of its queries;
-  /// such points, and those the grid does not serve, run again with the tree. A task must write
-  /// only what belongs to its point i.
+  /// such points, and those the grid does not serve, run again with the tree. With more than one
+  /// thread a task must write only what belongs to its point i; a task that writes elsewhere
+  /// runs on one thread.
   template <typename Scratch, typename Task>
   void forEachPoint(const std::vector<pcl::index_t>& points, int threads, Task task) {
     std::vector<char> declined(points.size(), 0);

@@ -67,8 +67,9 @@ void OrthantBoundary<PointT>::checkSettings(int dimensions) const {
   if (radius_mode_ == RadiusMode::kFixed && !(radius_ > 0.0 && std::isfinite(radius_))) {
     fail("radius ", radius_, " must be a positive number");
   }
-  if (radius_mode_ == RadiusMode::kAutomatic && !std::isfinite(auto_factor_)) {
-    fail("bad radius factor");
+  if (radius_mode_ == RadiusMode::kAutomatic &&
+      !(auto_factor_ >= 0.0 && std::isfinite(auto_factor_))) {
+    fail("radius factor ", auto_factor_, " must be 0 (automatic) or a positive number");
   }
   if (outer_radius_ < 0.0 || !std::isfinite(outer_radius_)) {
     fail("outer radius must be 0 (off) or positive");
