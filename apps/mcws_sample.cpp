@@ -9,6 +9,7 @@
 #include "common/app.h"
 #include "common/flags.h"
 #include "mcws/collision/collision_sampler.h"
+#include "mcws/reach/quality_sampler.h"
 #include "mcws/workspace/sampler.h"
 
 namespace {
@@ -27,7 +28,13 @@ on the command line are in rad (revolute) and in the robot file's length unit (p
 volume. With --collision, each sample's label is its collision status under the robot file's
 collision: model: 0 free, 1 link-link, 2 tool-link (the tool against a link it is not mounted
 on), 3 environment; where several hold, the lowest non-zero code (see mcws_collide,
-mcws_select).)";
+mcws_select). With --quality, each sample also carries the arm's quality there (fields
+manipulability, inverse_condition; pcl_viewer colours by them): Yoshikawa's manipulability, the
+product of the singular values of the Jacobian at the recorded point, and sigma_min / sigma_max.
+--quality-task position measures the point's velocity only (manipulability in length unit^n; a
+planar 2R arm's is l1 l2 |sin q2|); full measures the whole twist with the velocity rows divided
+by --length L (dimensionless). The default is full with L = the chain's length (the sum of its
+offsets) for arms with six or more joints, position for fewer.)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("robot", "robot description (.yaml)");
@@ -39,6 +46,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("point", "tool | flange: which point to record (default tool)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
   cli.addSwitch("collision", "label each sample by collision (needs --robot with collision:)");
+  cli.addSwitch("quality", "add fields manipulability and inverse_condition (needs --robot)");
+  cli.addValue("quality-task", "position | full: Jacobian rows --quality measures (see above)");
+  cli.addValue("length", "characteristic length L of --quality-task full [robot length unit]");
   cli.addSwitch("ascii", "write ASCII PCD instead of binary");
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -47,7 +57,8 @@ void declareFlags(app::CommandLine& cli) {
 struct Source {
   std::unique_ptr<CollisionChecker> checker;
   std::unique_ptr<PointGenerator> generator;
-  nlohmann::json summary;  ///< what the source adds to --json
+  std::unique_ptr<QualitySampler> quality;  ///< --quality: generator's points with the quality
+  nlohmann::json summary;                   ///< what the source adds to --json
 };
 
 Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint point) {
@@ -73,6 +84,24 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
   source.summary = {{"robot", robot.name},
                     {"unit", unitName(robot.length_unit)},
                     {"point", point == SamplePoint::kTool ? "tool" : "flange"}};
+  if (cli.has("quality")) {
+    QualityOptions quality = defaultQualityOptions(robot);
+    if (cli.has("quality-task")) {
+      quality.task = parseQualityTask(
+          app::parseChoice(cli.required("quality-task"), "quality-task", {"position", "full"}));
+    }
+    if (cli.has("length")) {
+      quality.characteristic_length = app::parsePositive(cli.required("length"), "length");
+    }
+    source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
+    source.summary["quality"] = {
+        {"task", qualityTaskName(quality.task)},
+        {"characteristic_length", quality.characteristic_length},
+        {"manipulability_unit", quality.task == QualityTask::kFull
+                                    ? std::string("1")
+                                    : std::string(unitName(robot.length_unit)) + "^" +
+                                          std::to_string(std::min(robot.dof(), 3))}};
+  }
   return source;
 }
 
@@ -114,15 +143,19 @@ int main(int argc, char** argv) {
     const SamplePoint point = app::readPoint(cli);
     if (cli.has("robot") == cli.has("shape"))
       throw app::UsageError("give one of --robot and --shape");
-    if (cli.has("shape") && (cli.has("fix") || cli.has("point") || cli.has("collision")))
-      throw app::UsageError("--fix, --point and --collision need --robot");
+    if (cli.has("shape") &&
+        (cli.has("fix") || cli.has("point") || cli.has("collision") || cli.has("quality")))
+      throw app::UsageError("--fix, --point, --collision and --quality need --robot");
+    if (!cli.has("quality") && (cli.has("quality-task") || cli.has("length")))
+      throw app::UsageError("--quality-task and --length need --quality");
 
     const Source source = cli.has("robot") ? robotSource(cli, seed, point) : shapeSource(cli, seed);
     app::Progress progress("mcws_sample", "samples");
+    const auto format = cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary;
+    const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
     const SampleSummary result =
-        writeSamples(*source.generator, samples, output,
-                     cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary, threads,
-                     [&](std::size_t done, std::size_t total) { progress.update(done, total); });
+        source.quality ? writeSamples(*source.quality, samples, output, format, threads, report)
+                       : writeSamples(*source.generator, samples, output, format, threads, report);
 
     nlohmann::json summary = source.summary;
     summary["output"] = output;

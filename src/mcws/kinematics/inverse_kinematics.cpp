@@ -90,19 +90,6 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& R) {
   return aa.angle() * aa.axis();
 }
 
-/// Length scale of a chain [length unit]: the sum of its fixed offsets and prismatic strokes.
-double reachOf(const Robot& robot) {
-  double reach =
-      robot.T_last_flange.translation().norm() + robot.T_flange_tool.translation().norm();
-  for (const Joint& joint : robot.joints) {
-    reach += joint.T_parent_joint.translation().norm();
-    if (joint.type == JointType::kPrismatic) {
-      reach += std::max(std::abs(joint.lower), std::abs(joint.upper));
-    }
-  }
-  return reach > 0.0 && std::isfinite(reach) ? reach : 1.0;
-}
-
 std::vector<JointRange> jointRanges(const Robot& robot, double reach) {
   std::vector<JointRange> ranges;
   for (const Joint& joint : robot.joints) {
@@ -370,7 +357,7 @@ const char* ikStatusName(IkStatus status) {
 
 IkSolver::IkSolver(const Robot& robot) : robot_(robot) {
   auto prepared = std::make_shared<Prepared>(Prepared{KinematicChain(robot), {}, 1.0, {}});
-  const double reach = reachOf(robot);
+  const double reach = chainLengthScale(robot);
   prepared->ranges = jointRanges(robot, reach);
   prepared->inverse_reach = 1.0 / reach;
   for (const Joint& joint : robot.joints) {

@@ -1,5 +1,6 @@
 #include "mcws/kinematics/robot.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -120,6 +121,18 @@ Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector
                 Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
                    .toRotationMatrix();
   return T;
+}
+
+double chainLengthScale(const Robot& robot) {
+  double reach =
+      robot.T_last_flange.translation().norm() + robot.T_flange_tool.translation().norm();
+  for (const Joint& joint : robot.joints) {
+    reach += joint.T_parent_joint.translation().norm();
+    if (joint.type == JointType::kPrismatic) {
+      reach += std::max(std::abs(joint.lower), std::abs(joint.upper));
+    }
+  }
+  return reach > 0.0 && std::isfinite(reach) ? reach : 1.0;
 }
 
 }  // namespace mcws

@@ -80,4 +80,10 @@ Eigen::Isometry3d dhModified(double a, double alpha, double d, double theta);
 /// R = Rz(yaw) * Ry(pitch) * Rx(roll). Angles [rad].
 Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 
+/// \brief Length scale of a chain [length unit]: the sum of its fixed offsets (base to flange,
+/// flange to tool) and prismatic strokes, an upper bound on the tool point's distance from the
+/// first joint. 1 when that sum is 0 or not finite. Used to make position and orientation errors
+/// or Jacobian rows comparable.
+double chainLengthScale(const Robot& robot);
+
 }  // namespace mcws

@@ -140,8 +140,9 @@ void ShapeSampler::generate(std::uint64_t first, std::size_t count, WorkspacePoi
   }
 }
 
-void generateParallel(const PointGenerator& generator, std::uint64_t first, std::size_t count,
-                      WorkspacePoint* out, int threads) {
+template <typename PointT>
+void generateParallel(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
+                      std::size_t count, PointT* out, int threads) {
   const int n_threads = threads > 0 ? threads : omp_get_num_procs();
   const std::int64_t blocks = static_cast<std::int64_t>((count + kBlock - 1) / kBlock);
 #pragma omp parallel for schedule(static) num_threads(n_threads)
@@ -171,16 +172,17 @@ pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std
   return cloud;
 }
 
-SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const std::string& path,
-                           io::PcdFormat format, int threads,
+template <typename PointT>
+SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::size_t n,
+                           const std::string& path, io::PcdFormat format, int threads,
                            const std::function<void(std::size_t, std::size_t)>& progress) {
-  io::PcdStreamWriter<WorkspacePoint> writer(path, n, format);
+  io::PcdStreamWriter<PointT> writer(path, n, format);
   SampleSummary summary;
   summary.min.setConstant(std::numeric_limits<double>::infinity());
   summary.max.setConstant(-std::numeric_limits<double>::infinity());
 
   // Two buffers: the next chunk is computed while the previous one is being written.
-  std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> buffers[2];
+  std::vector<PointT, Eigen::aligned_allocator<PointT>> buffers[2];
   std::future<void> pending;
   for (std::size_t begin = 0, chunk = 0; begin < n; begin += kChunk, ++chunk) {
     const std::size_t count = std::min(kChunk, n - begin);
@@ -188,7 +190,7 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
     buffer.resize(count);
     generateParallel(generator, begin, count, buffer.data(), threads);
     std::size_t small_labels[4] = {0, 0, 0, 0};  // the collision codes, counted without the map
-    for (const WorkspacePoint& p : buffer) {
+    for (const PointT& p : buffer) {
       const Eigen::Vector3d v(p.x, p.y, p.z);
       summary.min = summary.min.cwiseMin(v);
       summary.max = summary.max.cwiseMax(v);
@@ -212,5 +214,16 @@ SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const
   if (n == 0) summary.min = summary.max = Eigen::Vector3d::Zero();
   return summary;
 }
+
+template void generateParallel(const BasicPointGenerator<WorkspacePoint>&, std::uint64_t,
+                               std::size_t, WorkspacePoint*, int);
+template void generateParallel(const BasicPointGenerator<QualityPoint>&, std::uint64_t, std::size_t,
+                               QualityPoint*, int);
+template SampleSummary writeSamples(const BasicPointGenerator<WorkspacePoint>&, std::size_t,
+                                    const std::string&, io::PcdFormat, int,
+                                    const std::function<void(std::size_t, std::size_t)>&);
+template SampleSummary writeSamples(const BasicPointGenerator<QualityPoint>&, std::size_t,
+                                    const std::string&, io::PcdFormat, int,
+                                    const std::function<void(std::size_t, std::size_t)>&);
 
 }  // namespace mcws

@@ -22,13 +22,18 @@
 
 namespace mcws {
 
-/// \brief Anything that turns sample indices into workspace points, deterministically.
-class PointGenerator {
+/// \brief Anything that turns sample indices into points of type PointT, deterministically.
+template <typename PointT>
+class BasicPointGenerator {
  public:
-  virtual ~PointGenerator() = default;
+  using Point = PointT;
+  virtual ~BasicPointGenerator() = default;
   /// \brief Writes samples first .. first+count-1 to out[0 .. count).
-  virtual void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const = 0;
+  virtual void generate(std::uint64_t first, std::size_t count, PointT* out) const = 0;
 };
+
+/// \brief Anything that turns sample indices into workspace points, deterministically.
+using PointGenerator = BasicPointGenerator<WorkspacePoint>;
 
 /// \brief Which point of the robot a sample records (the P and T clouds of Fu, Hu, Chen & Pan
 /// 2016).
@@ -129,9 +134,11 @@ class ShapeSampler : public PointGenerator {
 };
 
 /// \brief generator.generate() over [first, first+count) split across `threads` threads
-/// (0: all cores). The result does not depend on `threads`.
-void generateParallel(const PointGenerator& generator, std::uint64_t first, std::size_t count,
-                      WorkspacePoint* out, int threads);
+/// (0: all cores). The result does not depend on `threads`. PointT: WorkspacePoint or
+/// QualityPoint.
+template <typename PointT>
+void generateParallel(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
+                      std::size_t count, PointT* out, int threads);
 
 /// \brief Samples 0 .. n-1 into out[0 .. n), chunk by chunk (the chunks of writeSamples()), each
 /// chunk split across `threads` threads (0: all cores). The result does not depend on `threads`.
@@ -155,9 +162,11 @@ struct SampleSummary {
 /// \brief Streams samples 0 .. n-1 into a PCD file chunk by chunk (memory: two chunks), so
 /// clouds larger than memory can be written; the file appears only when complete.
 /// \param progress called after each chunk with (points done, n); may be empty.
+/// PointT: WorkspacePoint or QualityPoint.
 /// \throws mcws::Error when the file cannot be written.
-SampleSummary writeSamples(const PointGenerator& generator, std::size_t n, const std::string& path,
-                           io::PcdFormat format, int threads,
+template <typename PointT>
+SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::size_t n,
+                           const std::string& path, io::PcdFormat format, int threads,
                            const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace mcws

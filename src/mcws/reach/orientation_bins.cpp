@@ -1,0 +1,188 @@
+#include "mcws/reach/orientation_bins.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "mcws/core/error.h"
+
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__FAST_MATH__)
+// glibc's libmvec vector atan2 (glibc 2.35 and later), declared as point_kinematics.cpp declares
+// sin and cos (see there); this file is compiled with -fopenmp-simd -fno-math-errno.
+extern "C" {
+__attribute__((__simd__("notinbranch"))) double atan2(double, double) noexcept;
+}
+#endif
+
+namespace mcws {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+/// Longitude in [0, 2 pi).
+double longitude(const Eigen::Vector3d& v) {
+  const double phi = std::atan2(v.y(), v.x());
+  return phi < 0.0 ? phi + kTwoPi : phi;
+}
+
+/// Index of `angle` (in [0, 2 pi)) among `count` equal sectors, clamped against rounding.
+int sectorOf(double angle, int count) {
+  return std::min(count - 1, static_cast<int>(angle * count / kTwoPi));
+}
+
+}  // namespace
+
+SpherePartition::SpherePartition(int regions) : regions_(regions) {
+  if (regions < 1)
+    throw Error("sphere partition: need at least 1 region, not " + std::to_string(regions));
+  zone_first_.push_back(0);
+  if (regions == 1) {
+    zone_first_.push_back(1);
+  } else if (regions == 2) {
+    zone_first_.insert(zone_first_.end(), {1, 2});
+  } else {
+    // Leopardi 2006, eq_caps for S^2: caps of one region's area, collars of the fitting angle.
+    const double n = regions;
+    const double area = 4.0 * M_PI / n;
+    const double cap = std::acos(1.0 - 2.0 / n);  // colatitude of the north cap's edge
+    const double ideal_angle = std::sqrt(area);
+    const int collars =
+        std::max(1, static_cast<int>(std::lround((M_PI - 2.0 * cap) / ideal_angle)));
+    const double fitting_angle = (M_PI - 2.0 * cap) / collars;
+    const auto capArea = [](double colatitude) { return kTwoPi * (1.0 - std::cos(colatitude)); };
+    zone_first_.push_back(1);
+    double carry = 0.0;
+    for (int i = 1; i <= collars; ++i) {
+      const double ideal =
+          (capArea(cap + i * fitting_angle) - capArea(cap + (i - 1) * fitting_angle)) / area;
+      const int count = static_cast<int>(std::lround(ideal + carry));
+      carry += ideal - count;
+      zone_first_.push_back(zone_first_.back() + count);
+    }
+    zone_first_.push_back(zone_first_.back() + 1);  // the south cap
+    if (zone_first_.back() != regions) {
+      throw Error("sphere partition: collars hold " + std::to_string(zone_first_.back()) +
+                  " regions, not " + std::to_string(regions));  // Leopardi's rounding prevents it
+    }
+  }
+  // Each zone ends where the cap above it holds zone_first_[j + 1] regions' area.
+  for (std::size_t j = 0; j + 1 < zone_first_.size(); ++j) {
+    zone_top_z_.push_back(1.0 - 2.0 * zone_first_[j] / static_cast<double>(regions));
+  }
+  zone_top_z_.push_back(-1.0);
+}
+
+int SpherePartition::zoneOfZ(double z) const {
+  // Area above the direction in units of one region: the zone is found by its region counts.
+  const double above = 0.5 * regions_ * (1.0 - z);
+  int zone = 0;
+  while (zone + 1 < zones() && above >= zone_first_[zone + 1]) ++zone;
+  return zone;
+}
+
+void SpherePartition::regions(const double* d, int lanes, int* out) const {
+  double x[8], y[8], phi[8];
+  for (int k = 0; k < 8; ++k) {
+    x[k] = d[k < lanes ? k : 0];
+    y[k] = d[lanes + (k < lanes ? k : 0)];
+  }
+#pragma omp simd
+  for (int k = 0; k < 8; ++k) phi[k] = std::atan2(y[k], x[k]);
+  for (int k = 0; k < lanes; ++k) {
+    const int zone = zoneOfZ(d[2 * lanes + k]);
+    const int count = zone_first_[zone + 1] - zone_first_[zone];
+    const double angle = phi[k] < 0.0 ? phi[k] + kTwoPi : phi[k];
+    out[k] = zone_first_[zone] + (count == 1 ? 0 : sectorOf(angle, count));
+  }
+}
+
+int SpherePartition::region(const Eigen::Vector3d& direction) const {
+  const int zone = zoneOfZ(direction.z() / direction.norm());
+  const int count = zone_first_[zone + 1] - zone_first_[zone];
+  return zone_first_[zone] + (count == 1 ? 0 : sectorOf(longitude(direction), count));
+}
+
+int SpherePartition::zoneOf(int region) const {
+  if (region < 0 || region >= regions_) {
+    throw Error("sphere partition: no region " + std::to_string(region) + " of " +
+                std::to_string(regions_));
+  }
+  int zone = 0;
+  while (region >= zone_first_[zone + 1]) ++zone;
+  return zone;
+}
+
+void SpherePartition::bounds(int region, double& colatitude_min, double& colatitude_max,
+                             double& longitude_min, double& longitude_max) const {
+  const int zone = zoneOf(region);
+  colatitude_min = std::acos(zone_top_z_[zone]);
+  colatitude_max = std::acos(zone_top_z_[zone + 1]);
+  const int count = zone_first_[zone + 1] - zone_first_[zone];
+  const int sector = region - zone_first_[zone];
+  longitude_min = kTwoPi * sector / count;
+  longitude_max = kTwoPi * (sector + 1) / count;
+}
+
+Eigen::Vector3d SpherePartition::centre(int region) const {
+  double theta0, theta1, phi0, phi1;
+  bounds(region, theta0, theta1, phi0, phi1);
+  if (theta0 == 0.0 && regions_ > 1) return Eigen::Vector3d::UnitZ();    // north cap
+  if (theta1 == M_PI && regions_ > 1) return -Eigen::Vector3d::UnitZ();  // south cap
+  if (regions_ == 1) return Eigen::Vector3d::UnitZ();
+  const double theta = 0.5 * (theta0 + theta1), phi = 0.5 * (phi0 + phi1);
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+OrientationBins::OrientationBins(int directions, int rolls) : sphere_(directions), rolls_(rolls) {
+  if (rolls < 1)
+    throw Error("orientation bins: need at least 1 roll bin, not " + std::to_string(rolls));
+}
+
+Eigen::Vector3d OrientationBins::rollReference(const Eigen::Vector3d& approach) {
+  const Eigen::Vector3d axis = std::abs(approach.x()) > std::cos(M_PI / 6.0)
+                                   ? Eigen::Vector3d::UnitY()
+                                   : Eigen::Vector3d::UnitX();
+  return (axis - axis.dot(approach) * approach).normalized();
+}
+
+int OrientationBins::rollSector(const Eigen::Vector3d& approach,
+                                const Eigen::Vector3d& x_axis) const {
+  if (rolls_ == 1) return 0;
+  const Eigen::Vector3d reference = rollReference(approach);
+  double roll = std::atan2(reference.cross(x_axis).dot(approach), reference.dot(x_axis));
+  if (roll < 0.0) roll += kTwoPi;
+  return sectorOf(roll, rolls_);
+}
+
+int OrientationBins::bin(const Eigen::Vector3d& approach, const Eigen::Vector3d& x_axis) const {
+  return sphere_.region(approach) * rolls_ + rollSector(approach, x_axis);
+}
+
+void OrientationBins::bins(const double* approach, const double* x_axis, int lanes,
+                           int* out) const {
+  sphere_.regions(approach, lanes, out);
+  if (rolls_ == 1) return;
+  for (int k = 0; k < lanes; ++k) {
+    const Eigen::Vector3d a(approach[k], approach[lanes + k], approach[2 * lanes + k]);
+    const Eigen::Vector3d x(x_axis[k], x_axis[lanes + k], x_axis[2 * lanes + k]);
+    out[k] = out[k] * rolls_ + rollSector(a, x);
+  }
+}
+
+Eigen::Matrix3d OrientationBins::centre(int bin) const {
+  if (bin < 0 || bin >= size()) {
+    throw Error("orientation bins: no bin " + std::to_string(bin) + " of " +
+                std::to_string(size()));
+  }
+  const Eigen::Vector3d approach = sphere_.centre(bin / rolls_);
+  const Eigen::Vector3d reference = rollReference(approach);
+  const double roll = kTwoPi * (bin % rolls_ + 0.5) / rolls_;
+  const Eigen::Vector3d x = std::cos(roll) * reference + std::sin(roll) * approach.cross(reference);
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = approach.cross(x);
+  R.col(2) = approach;
+  return R;
+}
+
+}  // namespace mcws

@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// \brief Tool poses and Jacobians of eight joint vectors at once: the kernel of the
+/// reachability map.
+
+#include <Eigen/Geometry>
+#include <array>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+#include "mcws/reach/quality.h"
+
+namespace mcws {
+
+/// \brief Forward kinematics of the whole tool frame, and optionally the Jacobian's
+/// manipulability, for kLanes joint vectors at once (vectorised across them, as
+/// PointKinematics is for a point).
+///
+/// The tool frame is carried from the flange back to the world through the fixed transforms
+/// (each joint axis turned onto z once, at construction). On the way, at joint i, the tool point
+/// p and axes R are known in joint i's frame, whose z axis is the joint axis through its origin,
+/// so the Jacobian's column i in the tool frame is (R^T (z x p), R^T z) for a revolute joint and
+/// (R^T z, 0) for a prismatic one; a rotation of all columns leaves the singular values, and so
+/// manipulability(), unchanged.
+class PoseBatch {
+ public:
+  static constexpr int kLanes = 8;
+
+  /// \throws mcws::Error for a robot with more than 8 joints.
+  explicit PoseBatch(const Robot& robot);
+  int dof() const { return static_cast<int>(revolute_.size()); }
+
+  /// \brief Tool poses of kLanes joint vectors.
+  /// \param q q[j * kLanes + k] = joint j of sample k [rad | length unit].
+  /// \param p p[a * kLanes + k] = coordinate a of sample k's tool point [length unit].
+  /// \param approach the tool's z axis, x_axis its x axis, laid out as p.
+  /// \param quality when not null, also writes manipulability[k] as mcws::manipulability() of
+  ///   the sample's Jacobian would, with these options.
+  /// \param manipulability kLanes values (used only with quality).
+  void poses(const double* q, double* p, double* approach, double* x_axis,
+             const QualityOptions* quality, double* manipulability) const;
+
+ private:
+  std::vector<std::array<double, 12>> fixed_;  ///< row-major 3x4 transform before joint i
+  std::vector<char> revolute_;
+  Eigen::Matrix3d R_last_;  ///< the tool's axes in the frame after the last joint's motion
+  Eigen::Vector3d p_last_;  ///< the tool point there
+};
+
+}  // namespace mcws

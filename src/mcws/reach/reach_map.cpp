@@ -1,0 +1,381 @@
+#include "mcws/reach/reach_map.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <istream>
+#include <limits>
+#include <numeric>
+#include <ostream>
+
+#include "mcws/collision/collision_checker.h"
+#include "mcws/core/error.h"
+#include "mcws/kinematics/jacobian.h"
+#include "mcws/reach/pose_batch.h"
+#include "mcws/workspace/sampler.h"
+
+namespace mcws {
+namespace {
+
+constexpr char kMagic[] = "MCWS-REACH-MAP 1";
+constexpr int kMaxBins = 65536;
+constexpr std::uint64_t kIndexBits = 21;
+constexpr std::uint64_t kIndexMask = (std::uint64_t{1} << kIndexBits) - 1;
+
+/// Fibonacci hashing of a packed voxel index onto a table of 2^bits slots.
+std::size_t hashSlot(std::uint64_t key, int bits) {
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+}
+
+template <typename T>
+void writeRaw(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+template <typename T>
+void readRaw(std::istream& in, T& value, const std::string& source) {
+  if (!in.read(reinterpret_cast<char*>(&value), sizeof value)) {
+    throw Error(source + ": the reachability map ends early");
+  }
+}
+
+}  // namespace
+
+void ReachGrid::check() const {
+  if (!(resolution > 0.0) || !std::isfinite(resolution)) {
+    throw Error("reachability map: the resolution must be positive and finite, not " +
+                std::to_string(resolution));
+  }
+  if (directions < 1) {
+    throw Error("reachability map: need at least 1 orientation, not " + std::to_string(directions));
+  }
+  if (rolls < 1)
+    throw Error("reachability map: need at least 1 roll bin, not " + std::to_string(rolls));
+  if (static_cast<long>(directions) * rolls > kMaxBins) {
+    throw Error("reachability map: " + std::to_string(static_cast<long>(directions) * rolls) +
+                " orientation bins, more than " + std::to_string(kMaxBins));
+  }
+}
+
+ReachMap::ReachMap(const ReachGrid& grid) : grid_(grid) {
+  grid_.check();
+  bins_ = OrientationBins(grid.directions, grid.rolls);
+  words_ = (bins_.size() + 63) / 64;
+  stride_ = 2 + words_;
+  inverse_resolution_ = 1.0 / grid.resolution;
+}
+
+std::uint64_t ReachMap::samples() const {
+  std::uint64_t total = 0;
+  for (std::size_t v = 0; v < size(); ++v) total += count(v);
+  return total;
+}
+
+float ReachMap::bestManipulability(std::size_t v) const {
+  float best;
+  std::memcpy(&best, &records_[v * stride_ + 1], sizeof best);
+  return best;
+}
+
+Eigen::Vector3i ReachMap::voxelOf(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i index;
+  for (int a = 0; a < 3; ++a) {
+    const double i = std::floor(p[a] * inverse_resolution_);
+    if (!(i >= -kIndexLimit && i < kIndexLimit)) {
+      throw Error("reachability map: a tool point at " + std::to_string(p[a]) +
+                  " is beyond the grid's range at resolution " + std::to_string(grid_.resolution));
+    }
+    index[a] = static_cast<int>(i);
+  }
+  return index;
+}
+
+Eigen::Vector3d ReachMap::voxelCentre(const Eigen::Vector3i& index) const {
+  return (index.cast<double>().array() + 0.5) * grid_.resolution;
+}
+
+std::uint64_t ReachMap::keyOf(const Eigen::Vector3i& index) {
+  std::uint64_t key = 0;
+  for (int a = 0; a < 3; ++a) {
+    key = (key << kIndexBits) | static_cast<std::uint64_t>(index[a] + kIndexLimit);
+  }
+  return key;
+}
+
+std::uint64_t ReachMap::keyOf(const Eigen::Vector3d& p) const { return keyOf(voxelOf(p)); }
+
+Eigen::Vector3i ReachMap::voxel(std::size_t v) const {
+  const std::uint64_t key = keys_[v];
+  return {static_cast<int>((key >> (2 * kIndexBits)) & kIndexMask) - static_cast<int>(kIndexLimit),
+          static_cast<int>((key >> kIndexBits) & kIndexMask) - static_cast<int>(kIndexLimit),
+          static_cast<int>(key & kIndexMask) - static_cast<int>(kIndexLimit)};
+}
+
+long ReachMap::lookup(std::uint64_t key) const {
+  if (table_.empty()) return -1;
+  for (std::size_t s = hashSlot(key, index_bits_);; s = (s + 1) & (table_.size() - 1)) {
+    if (table_[s].key_plus_one == 0) return -1;
+    if (table_[s].key_plus_one == key + 1) return static_cast<long>(table_[s].voxel);
+  }
+}
+
+void ReachMap::rebuildIndex() {
+  std::size_t capacity = 1024;
+  while (capacity < 2 * keys_.size()) capacity *= 2;  // load at most one half
+  table_.assign(capacity, Entry{0, 0});
+  index_bits_ = __builtin_ctzll(capacity);
+  for (std::size_t v = 0; v < keys_.size(); ++v) {
+    std::size_t s = hashSlot(keys_[v], index_bits_);
+    while (table_[s].key_plus_one != 0) s = (s + 1) & (capacity - 1);
+    table_[s] = Entry{keys_[v] + 1, v};
+  }
+}
+
+std::size_t ReachMap::slotFor(std::uint64_t key) {
+  if (2 * (keys_.size() + 1) > table_.size()) rebuildIndex();
+  std::size_t s = hashSlot(key, index_bits_);
+  for (;; s = (s + 1) & (table_.size() - 1)) {
+    if (table_[s].key_plus_one == key + 1) return table_[s].voxel;
+    if (table_[s].key_plus_one == 0) break;
+  }
+  table_[s] = Entry{key + 1, keys_.size()};
+  keys_.push_back(key);
+  records_.resize(records_.size() + stride_, 0);
+  return keys_.size() - 1;
+}
+
+void ReachMap::record(std::size_t v, int bin, float manipulability) {
+  std::uint64_t* r = records_.data() + v * stride_;
+  ++r[0];
+  float best;
+  std::memcpy(&best, &r[1], sizeof best);
+  if (manipulability > best) std::memcpy(&r[1], &manipulability, sizeof manipulability);
+  r[2 + bin / 64] |= std::uint64_t{1} << (bin % 64);
+}
+
+void ReachMap::add(const Eigen::Vector3d& p, int bin, float manipulability) {
+  record(slotFor(keyOf(p)), bin, manipulability);
+}
+
+void ReachMap::add(const double* p, const int* bins, const double* manipulability,
+                   const bool* counted, int lanes) {
+  std::uint64_t keys[8];
+  if (2 * (keys_.size() + lanes) > table_.size()) rebuildIndex();
+  for (int k = 0; k < lanes; ++k) {
+    if (!counted[k]) continue;
+    keys[k] = keyOf(Eigen::Vector3d(p[k], p[lanes + k], p[2 * lanes + k]));
+    __builtin_prefetch(&table_[hashSlot(keys[k], index_bits_)]);
+  }
+  for (int k = 0; k < lanes; ++k) {
+    if (counted[k]) record(slotFor(keys[k]), bins[k], static_cast<float>(manipulability[k]));
+  }
+}
+
+void ReachMap::merge(const ReachMap& other) {
+  if (other.grid_.resolution != grid_.resolution || other.grid_.directions != grid_.directions ||
+      other.grid_.rolls != grid_.rolls) {
+    throw Error("reachability map: cannot merge maps of different grids");
+  }
+  for (std::size_t w = 0; w < other.keys_.size(); ++w) {
+    const std::size_t v = slotFor(other.keys_[w]);
+    std::uint64_t* r = records_.data() + v * stride_;
+    r[0] += other.count(w);
+    const float best = std::max(bestManipulability(v), other.bestManipulability(w));
+    std::memcpy(&r[1], &best, sizeof best);
+    for (int k = 0; k < words_; ++k) r[2 + k] |= other.bitsOf(w)[k];
+  }
+}
+
+void ReachMap::sort() {
+  std::vector<std::size_t> order(keys_.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return keys_[a] < keys_[b]; });
+  std::vector<std::uint64_t> keys(keys_.size()), records(records_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    keys[i] = keys_[order[i]];
+    std::copy_n(records_.begin() + order[i] * stride_, stride_, records.begin() + i * stride_);
+  }
+  keys_.swap(keys);
+  records_.swap(records);
+  rebuildIndex();
+}
+
+int ReachMap::reachedBins(std::size_t v) const {
+  int reached = 0;
+  for (int k = 0; k < words_; ++k) reached += __builtin_popcountll(bitsOf(v)[k]);
+  return reached;
+}
+
+bool ReachMap::reached(std::size_t v, int bin) const {
+  return (bitsOf(v)[bin / 64] >> (bin % 64)) & 1u;
+}
+
+long ReachMap::find(const Eigen::Vector3d& p) const { return lookup(keyOf(p)); }
+
+bool ReachMap::reached(const Eigen::Vector3d& p, const Eigen::Matrix3d& R) const {
+  const long v = find(p);
+  return v >= 0 && reached(static_cast<std::size_t>(v), bins_.bin(R.col(2), R.col(0)));
+}
+
+void ReachMap::write(std::ostream& out, const std::string& header) const {
+  std::string members = header;
+  while (!members.empty() && members.back() != '}') members.pop_back();
+  if (members.size() < 2 || members.front() != '{') throw Error("reachability map: bad header");
+  members = members.substr(1, members.size() - 2);
+  char grid[256];
+  std::snprintf(grid, sizeof grid,
+                "\"resolution\":%.17g,\"directions\":%d,\"rolls\":%d,\"voxels\":%zu,\"words\":%d",
+                grid_.resolution, grid_.directions, grid_.rolls, keys_.size(), words_);
+  out << kMagic << "\n{" << grid << (members.empty() ? "" : ",") << members << "}\n";
+  for (std::size_t v = 0; v < keys_.size(); ++v) {
+    const Eigen::Vector3i index = voxel(v);
+    for (int a = 0; a < 3; ++a) writeRaw(out, static_cast<std::int32_t>(index[a]));
+    writeRaw(out, count(v));
+    writeRaw(out, bestManipulability(v));
+    for (int k = 0; k < words_; ++k) writeRaw(out, bitsOf(v)[k]);
+  }
+  if (!out) throw Error("reachability map: write error");
+}
+
+ReachMap ReachMap::read(std::istream& in, const std::string& source, std::string* header) {
+  std::string magic, json;
+  if (!std::getline(in, magic) || magic != kMagic) {
+    throw Error(source + ": not a reachability map (the first line is not '" + kMagic + "')");
+  }
+  if (!std::getline(in, json)) throw Error(source + ": the reachability map has no header");
+  const auto number = [&](const char* name) {
+    const std::string tag = std::string("\"") + name + "\":";
+    const std::size_t at = json.find(tag);
+    if (at == std::string::npos) throw Error(source + ": header has no '" + name + "'");
+    char* end = nullptr;
+    const double value = std::strtod(json.c_str() + at + tag.size(), &end);
+    if (end == json.c_str() + at + tag.size() || !std::isfinite(value)) {
+      throw Error(source + ": header field '" + name + "' is not a number");
+    }
+    return value;
+  };
+  ReachGrid grid;
+  grid.resolution = number("resolution");
+  const double directions = number("directions"), rolls = number("rolls"),
+               voxels = number("voxels");
+  if (directions < 1 || directions > kMaxBins || rolls < 1 || rolls > kMaxBins || voxels < 0 ||
+      voxels > 4e9) {
+    throw Error(source + ": header has an impossible grid or voxel count");
+  }
+  grid.directions = static_cast<int>(directions);
+  grid.rolls = static_cast<int>(rolls);
+  ReachMap map = [&] {
+    try {
+      return ReachMap(grid);
+    } catch (const Error& e) {
+      throw Error(source + ": " + e.what());
+    }
+  }();
+  if (number("words") != map.words_)
+    throw Error(source + ": header 'words' does not match its bins");
+  const auto count = static_cast<std::size_t>(voxels);
+  for (std::size_t v = 0; v < count; ++v) {
+    Eigen::Vector3i index;
+    for (int a = 0; a < 3; ++a) {
+      std::int32_t i;
+      readRaw(in, i, source);
+      if (i < -kIndexLimit || i >= kIndexLimit) throw Error(source + ": voxel index out of range");
+      index[a] = i;
+    }
+    const std::size_t slot = map.slotFor(keyOf(index));
+    if (slot != v) throw Error(source + ": a voxel appears twice");
+    std::uint64_t* r = map.records_.data() + v * map.stride_;
+    float best;
+    readRaw(in, r[0], source);
+    readRaw(in, best, source);
+    std::memcpy(&r[1], &best, sizeof best);
+    for (int k = 0; k < map.words_; ++k) readRaw(in, r[2 + k], source);
+  }
+  if (in.peek() != std::char_traits<char>::eof())
+    throw Error(source + ": data after the last voxel");
+  if (header) *header = json;
+  return map;
+}
+
+ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  const ReachMap empty(grid);
+  RobotSamplerOptions options;
+  options.seed = sampling.seed;
+  const RobotSampler sampler(robot, options);
+  const int n = robot.dof();
+
+  const PoseBatch batch(robot);
+  constexpr int kLanes = PoseBatch::kLanes;
+  const QualityOptions* quality = sampling.manipulability ? &sampling.quality : nullptr;
+  if (quality) jacobianQuality(Jacobian::Zero(6, 1), *quality);  // checks the options
+
+  const int threads = sampling.threads > 0 ? sampling.threads : omp_get_num_procs();
+  std::vector<ReachMap> partial(threads, empty);
+  constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22;
+  std::vector<std::string> errors(threads);
+  for (std::uint64_t begin = 0; begin < sampling.samples; begin += kChunk) {
+    const std::uint64_t end = std::min(sampling.samples, begin + kChunk);
+    const auto blocks = static_cast<std::int64_t>((end - begin + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+    for (std::int64_t b = 0; b < blocks; ++b) {
+      const int t = omp_get_thread_num();
+      if (!errors[t].empty()) continue;
+      try {
+        ReachMap& map = partial[t];
+        CollisionChecker::Scratch scratch;
+        double sample_q[kMaxJoints], q[kMaxJoints * kLanes], p[3 * kLanes], a[3 * kLanes],
+            x[3 * kLanes], w[kLanes] = {};
+        bool counted[kLanes];
+        int bins[kLanes];
+        const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * kBlock;
+        const std::uint64_t last = std::min(end, first + kBlock);
+        for (std::uint64_t i = first; i < last; i += kLanes) {
+          // A last, partial batch repeats its last sample in the unused lanes (not counted).
+          const int lanes = static_cast<int>(std::min<std::uint64_t>(kLanes, last - i));
+          for (int k = 0; k < kLanes; ++k) {
+            sampler.jointValues(i + static_cast<std::uint64_t>(std::min(k, lanes - 1)), sample_q);
+            for (int j = 0; j < n; ++j) q[j * kLanes + k] = sample_q[j];
+            counted[k] = k < lanes && (!sampling.collision ||
+                                       sampling.collision->label(sample_q, scratch) == kLabelFree);
+          }
+          batch.poses(q, p, a, x, quality, w);
+          map.bins().bins(a, x, kLanes, bins);
+          map.add(p, bins, w, counted, kLanes);
+        }
+      } catch (const std::exception& e) {
+        errors[t] = e.what();
+      }
+    }
+    for (const std::string& error : errors) {
+      if (!error.empty()) throw Error(error);
+    }
+    if (progress) progress(end, sampling.samples);
+  }
+  ReachMap map = std::move(partial[0]);
+  for (int t = 1; t < threads; ++t) {
+    map.merge(partial[t]);
+    partial[t] = ReachMap();
+  }
+  map.sort();
+  return map;
+}
+
+std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const ReachMap& map) {
+  std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> points(map.size());
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    const Eigen::Vector3d c = map.voxelCentre(map.voxel(v));
+    points[v].x = static_cast<float>(c.x());
+    points[v].y = static_cast<float>(c.y());
+    points[v].z = static_cast<float>(c.z());
+    points[v].reachability = static_cast<float>(map.reachability(v));
+    points[v].manipulability = map.bestManipulability(v);
+    points[v].count = static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(map.count(v), std::numeric_limits<std::uint32_t>::max()));
+  }
+  return points;
+}
+
+}  // namespace mcws

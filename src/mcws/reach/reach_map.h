@@ -1,0 +1,174 @@
+#pragma once
+/// \file
+/// \brief Reachability maps: which tool orientations the arm reaches in each voxel of space,
+/// estimated by Monte Carlo sampling of the joint space through forward kinematics only
+/// (Zacharias, Borst & Hirzinger 2007; ROS Reuleaux; Simox's WorkspaceRepresentation).
+
+#include <pcl/point_types.h>
+#include <pcl/register_point_struct.h>
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+#include "mcws/reach/orientation_bins.h"
+#include "mcws/reach/quality.h"
+
+namespace mcws {
+
+class CollisionChecker;
+
+/// \brief The grid of a reachability map.
+struct ReachGrid {
+  double resolution{0.0};  ///< voxel edge [length unit]; voxel (i, j, k) spans [i, i+1) * edge
+  int directions{200};     ///< approach-direction regions on the sphere (SpherePartition)
+  int rolls{1};            ///< roll bins about the approach
+  /// \throws mcws::Error naming the bad value (resolution not positive and finite, directions
+  ///   or rolls < 1, or more than 65536 bins).
+  void check() const;
+};
+
+/// \brief A sparse 6-D reachability map: position voxels x orientation bins.
+///
+/// Only voxels some sample reached are stored (memory grows with the occupied voxels, about
+/// 40 + bins / 8 bytes each plus the index, not with the samples). Per voxel: the orientation bins
+/// reached (a bit set), the samples that fell in it and the best manipulability among them.
+/// Merging two maps adds counts, unites bit sets and keeps the larger manipulability, so a map
+/// filled from blocks of samples in any order is the same map.
+class ReachMap {
+ public:
+  /// Voxel indices below -2^20 or at or above 2^20 cannot be stored (x / resolution beyond about
+  /// one million).
+  static constexpr std::int64_t kIndexLimit = 1 << 20;
+
+  ReachMap() = default;
+  explicit ReachMap(const ReachGrid& grid);
+
+  const ReachGrid& grid() const { return grid_; }
+  const OrientationBins& bins() const { return bins_; }
+  /// \brief Occupied voxels.
+  std::size_t size() const { return keys_.size(); }
+  /// \brief Samples added, over all voxels.
+  std::uint64_t samples() const;
+
+  /// \brief The voxel index of a position [length unit] (floor(x / resolution), ...).
+  /// \throws mcws::Error when it is outside +-kIndexLimit.
+  Eigen::Vector3i voxelOf(const Eigen::Vector3d& p) const;
+  /// \brief Centre of a voxel [length unit].
+  Eigen::Vector3d voxelCentre(const Eigen::Vector3i& index) const;
+
+  /// \brief Records one sample: tool point p [length unit], orientation bin, manipulability.
+  void add(const Eigen::Vector3d& p, int bin, float manipulability);
+  /// \brief add() for up to 8 samples, their memory fetched together: p laid out
+  /// p[a * lanes + k]; samples whose `counted` is false are skipped.
+  void add(const double* p, const int* bins, const double* manipulability, const bool* counted,
+           int lanes);
+  /// \brief Adds another map of the same grid (counts add, bins unite, manipulability max).
+  /// \throws mcws::Error when the grids differ.
+  void merge(const ReachMap& other);
+  /// \brief Orders the voxels by index (z fastest, then y, then x), the order of every output.
+  void sort();
+
+  /// \brief Voxel v's index (v < size()).
+  Eigen::Vector3i voxel(std::size_t v) const;
+  std::uint64_t count(std::size_t v) const { return records_[v * stride_]; }
+  float bestManipulability(std::size_t v) const;
+  /// \brief Orientation bins reached in voxel v.
+  int reachedBins(std::size_t v) const;
+  /// \brief The reachability index D of voxel v: reached bins / all bins, in (0, 1].
+  double reachability(std::size_t v) const {
+    return static_cast<double>(reachedBins(v)) / bins_.size();
+  }
+  /// \brief Whether a bin of voxel v was reached.
+  bool reached(std::size_t v, int bin) const;
+  /// \brief The stored voxel holding p, or -1.
+  long find(const Eigen::Vector3d& p) const;
+  /// \brief Whether the map holds a sample with tool point in p's voxel and orientation in R's
+  /// bin (R: the tool's rotation).
+  bool reached(const Eigen::Vector3d& p, const Eigen::Matrix3d& R) const;
+
+  /// \brief Writes the map in the binary format of docs/reach_map.md.
+  /// \param header extra JSON members for the header (robot, unit, samples, seed), as a JSON
+  ///   object's text, or "{}".
+  void write(std::ostream& out, const std::string& header) const;
+  /// \brief Reads what write() wrote; \p header receives the header's JSON text.
+  /// \throws mcws::Error naming `source` and what is wrong.
+  static ReachMap read(std::istream& in, const std::string& source, std::string* header = nullptr);
+
+ private:
+  /// One slot of the open-addressing index: a packed voxel index + 1 (0: empty) and its voxel.
+  struct Entry {
+    std::uint64_t key_plus_one;
+    std::uint64_t voxel;
+  };
+  std::size_t slotFor(std::uint64_t key);
+  long lookup(std::uint64_t key) const;
+  void rebuildIndex();
+  void record(std::size_t v, int bin, float manipulability);
+  std::uint64_t* bitsOf(std::size_t v) { return records_.data() + v * stride_ + 2; }
+  const std::uint64_t* bitsOf(std::size_t v) const { return records_.data() + v * stride_ + 2; }
+  std::uint64_t keyOf(const Eigen::Vector3d& p) const;
+  static std::uint64_t keyOf(const Eigen::Vector3i& index);
+
+  ReachGrid grid_;
+  OrientationBins bins_{1, 1};
+  int words_{1};       ///< 64-bit words of one voxel's bit set
+  int stride_{3};      ///< words of one voxel's record: count, best manipulability, bits
+  int index_bits_{0};  ///< log2 of the index's size
+  double inverse_resolution_{0.0};
+  std::vector<std::uint64_t> keys_;     ///< packed voxel indices
+  std::vector<std::uint64_t> records_;  ///< per voxel: count, float bits of the best, bit set
+  std::vector<Entry> table_;
+};
+
+/// \brief How a map is filled.
+struct ReachSampling {
+  std::uint64_t samples{0};
+  std::uint64_t seed{1};
+  int threads{0};             ///< 0: all cores; the map does not depend on it
+  bool manipulability{true};  ///< compute the Jacobian and keep the best per voxel
+  QualityOptions quality;     ///< how manipulability is measured
+  /// Only collision-free samples count (nullptr: all). Must outlive the call.
+  const CollisionChecker* collision{nullptr};
+};
+
+/// \brief Fills a map with joint samples 0 .. samples-1: joint values uniform within the limits,
+/// drawn exactly as mcws::RobotSampler draws them (same seed, same joint values as
+/// mcws_sample), mapped to the tool pose by forward kinematics.
+/// \param progress called now and then with (samples done, samples); may be empty.
+/// \throws mcws::Error for a robot with more than kMaxJoints joints or a tool point outside the
+///   map's index range.
+ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress = {});
+
+/// \brief A voxel of a reachability map as a point: its centre, D, best manipulability, count.
+///
+/// PCD fields: `x y z` [length unit] (float), `reachability` [1] (float, the share of orientation
+/// bins reached), `manipulability` (float, the best of the voxel's samples; the unit of
+/// Quality::manipulability), `count` (uint32, samples in the voxel, saturating).
+struct EIGEN_ALIGN16 ReachPoint {
+  PCL_ADD_POINT4D;
+  float reachability;
+  float manipulability;
+  std::uint32_t count;
+  ReachPoint() : data{0.f, 0.f, 0.f, 1.f}, reachability(0.f), manipulability(0.f), count(0) {}
+  PCL_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+/// \brief The map's voxels as points, in the map's order.
+std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const ReachMap& map);
+
+}  // namespace mcws
+
+// clang-format off
+POINT_CLOUD_REGISTER_POINT_STRUCT(mcws::ReachPoint,
+    (float, x, x) (float, y, y) (float, z, z)
+    (float, reachability, reachability) (float, manipulability, manipulability)
+    (std::uint32_t, count, count))
+// clang-format on
