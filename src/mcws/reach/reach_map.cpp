@@ -331,12 +331,14 @@ ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSam
         bool counted[kLanes];
         int bins[kLanes];
         const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * kBlock;
+        const std::uint64_t offset = sampling.first;
         const std::uint64_t last = std::min(end, first + kBlock);
         for (std::uint64_t i = first; i < last; i += kLanes) {
           // A last, partial batch repeats its last sample in the unused lanes (not counted).
           const int lanes = static_cast<int>(std::min<std::uint64_t>(kLanes, last - i));
           for (int k = 0; k < kLanes; ++k) {
-            sampler.jointValues(i + static_cast<std::uint64_t>(std::min(k, lanes - 1)), sample_q);
+            sampler.jointValues(offset + i + static_cast<std::uint64_t>(std::min(k, lanes - 1)),
+                                sample_q);
             for (int j = 0; j < n; ++j) q[j * kLanes + k] = sample_q[j];
             counted[k] = k < lanes && (!sampling.collision ||
                                        sampling.collision->label(sample_q, scratch) == kLabelFree);

@@ -129,6 +129,8 @@ class ReachMap {
 
 /// \brief How a map is filled.
 struct ReachSampling {
+  std::uint64_t first{0};  ///< index of the first sample (a map of samples [0, 2N) is the merge
+                           ///< of the maps of [0, N) and [N, 2N))
   std::uint64_t samples{0};
   std::uint64_t seed{1};
   int threads{0};             ///< 0: all cores; the map does not depend on it
@@ -138,8 +140,8 @@ struct ReachSampling {
   const CollisionChecker* collision{nullptr};
 };
 
-/// \brief Fills a map with joint samples 0 .. samples-1: joint values uniform within the limits,
-/// drawn exactly as mcws::RobotSampler draws them (same seed, same joint values as
+/// \brief Fills a map with joint samples first .. first+samples-1: joint values uniform within the
+/// limits, drawn exactly as mcws::RobotSampler draws them (same seed, same joint values as
 /// mcws_sample), mapped to the tool pose by forward kinematics.
 /// \param progress called now and then with (samples done, samples); may be empty.
 /// \throws mcws::Error for a robot with more than kMaxJoints joints or a tool point outside the
