@@ -160,7 +160,10 @@ void ReachMap::add(const Eigen::Vector3d& p, int bin, float manipulability) {
 
 void ReachMap::add(const double* p, const int* bins, const double* manipulability,
                    const bool* counted, int lanes) {
+  // Three passes, so the lanes' cache misses overlap: fetch their index slots, find (or make)
+  // their voxels and fetch those records, then update the records.
   std::uint64_t keys[8];
+  std::size_t voxels[8];
   if (2 * (keys_.size() + lanes) > table_.size()) rebuildIndex();
   for (int k = 0; k < lanes; ++k) {
     if (!counted[k]) continue;
@@ -168,7 +171,12 @@ void ReachMap::add(const double* p, const int* bins, const double* manipulabilit
     __builtin_prefetch(&table_[hashSlot(keys[k], index_bits_)]);
   }
   for (int k = 0; k < lanes; ++k) {
-    if (counted[k]) record(slotFor(keys[k]), bins[k], static_cast<float>(manipulability[k]));
+    if (!counted[k]) continue;
+    voxels[k] = slotFor(keys[k]);
+    __builtin_prefetch(records_.data() + voxels[k] * stride_, 1);
+  }
+  for (int k = 0; k < lanes; ++k) {
+    if (counted[k]) record(voxels[k], bins[k], static_cast<float>(manipulability[k]));
   }
 }
 
