@@ -120,7 +120,7 @@ void SpherePartition::bounds(int region, double& colatitude_min, double& colatit
   const int count = zone_first_[zone + 1] - zone_first_[zone];
   const int sector = region - zone_first_[zone];
   longitude_min = kTwoPi * sector / count;
-  longitude_max = kTwoPi * (sector + 1) / count;
+  longitude_max = sector + 1 == count ? kTwoPi : kTwoPi * (sector + 1) / count;
 }
 
 Eigen::Vector3d SpherePartition::centre(int region) const {

@@ -15,8 +15,8 @@ namespace mcws {
 /// Two polar caps of area 4 pi / N and, between them, collars of latitude, each cut into equal
 /// longitude sectors; the collar boundaries are placed so that every region has area exactly
 /// 4 pi / N, and their number keeps the regions close to square (diameter about
-/// 3.5 / sqrt(N) rad). Finding a direction's region costs one pass over the collars (about
-/// sqrt(N) / 1.8 of them: 9 for N = 200), no search.
+/// 3.5 / sqrt(N) rad). Finding a direction's region costs one pass over the zones (about
+/// 0.89 sqrt(N) collars and the two caps: 13 zones for N = 200), no search.
 class SpherePartition {
  public:
   /// \param regions N >= 1. \throws mcws::Error for N < 1.

@@ -60,6 +60,7 @@ Quality jacobianQuality(const Jacobian& J, const QualityOptions& options) {
 }
 
 double manipulability(const double* J, int n, const QualityOptions& options) {
+  checkLength(options);
   const SmallMatrix A = measuredRows(J, n, options);
   const SmallMatrix gram =
       n <= A.rows() ? SmallMatrix(A.transpose() * A) : SmallMatrix(A * A.transpose());

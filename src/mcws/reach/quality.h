@@ -55,9 +55,12 @@ struct Quality {
 Quality jacobianQuality(const Jacobian& J, const QualityOptions& options);
 
 /// \brief Yoshikawa's manipulability alone, as jacobianQuality(J, options).manipulability but from
-/// the Cholesky factor of the k x k Gram matrix (about ten times cheaper than the SVD; agrees
-/// with it to about 1e-12 relative away from singularities, and is 0 where the factorisation
-/// finds the Gram matrix singular).
+/// the Cholesky factor of the k x k Gram matrix (about ten times cheaper than the SVD). The Gram
+/// matrix squares the condition number, so the two agree to about 1e-12 relative where the
+/// inverse condition is 1e-2 or more, and to about 64 eps / inverse_condition^2 nearer a
+/// singularity; at a singularity the result is 0 where the factorisation fails and otherwise a
+/// tiny value (about 1e-8 sigma_max^k), not exactly 0.
+/// \throws mcws::Error as jacobianQuality() for a bad characteristic length.
 /// \param J column-major 6 x n (a Jacobian's data()), 1 <= n <= 8.
 double manipulability(const double* J, int n, const QualityOptions& options);
 

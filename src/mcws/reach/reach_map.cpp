@@ -78,15 +78,21 @@ float ReachMap::bestManipulability(std::size_t v) const {
   return best;
 }
 
-Eigen::Vector3i ReachMap::voxelOf(const Eigen::Vector3d& p) const {
-  Eigen::Vector3i index;
+bool ReachMap::inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const {
   for (int a = 0; a < 3; ++a) {
     const double i = std::floor(p[a] * inverse_resolution_);
-    if (!(i >= -kIndexLimit && i < kIndexLimit)) {
-      throw Error("reachability map: a tool point at " + std::to_string(p[a]) +
-                  " is beyond the grid's range at resolution " + std::to_string(grid_.resolution));
-    }
+    if (!(i >= -kIndexLimit && i < kIndexLimit)) return false;  // NaN too
     index[a] = static_cast<int>(i);
+  }
+  return true;
+}
+
+Eigen::Vector3i ReachMap::voxelOf(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i index;
+  if (!inGrid(p, index)) {
+    throw Error("reachability map: a tool point at (" + std::to_string(p.x()) + ", " +
+                std::to_string(p.y()) + ", " + std::to_string(p.z()) +
+                ") is beyond the grid's range at resolution " + std::to_string(grid_.resolution));
   }
   return index;
 }
@@ -120,9 +126,9 @@ long ReachMap::lookup(std::uint64_t key) const {
   }
 }
 
-void ReachMap::rebuildIndex() {
+void ReachMap::rebuildIndex(std::size_t voxels) {
   std::size_t capacity = 1024;
-  while (capacity < 2 * keys_.size()) capacity *= 2;  // load at most one half
+  while (capacity < 2 * voxels) capacity *= 2;  // load at most one half
   table_.assign(capacity, Entry{0, 0});
   index_bits_ = __builtin_ctzll(capacity);
   for (std::size_t v = 0; v < keys_.size(); ++v) {
@@ -133,7 +139,7 @@ void ReachMap::rebuildIndex() {
 }
 
 std::size_t ReachMap::slotFor(std::uint64_t key) {
-  if (2 * (keys_.size() + 1) > table_.size()) rebuildIndex();
+  if (2 * (keys_.size() + 1) > table_.size()) rebuildIndex(keys_.size() + 1);
   std::size_t s = hashSlot(key, index_bits_);
   for (;; s = (s + 1) & (table_.size() - 1)) {
     if (table_[s].key_plus_one == key + 1) return table_[s].voxel;
@@ -154,7 +160,15 @@ void ReachMap::record(std::size_t v, int bin, float manipulability) {
   r[2 + bin / 64] |= std::uint64_t{1} << (bin % 64);
 }
 
+void ReachMap::checkBin(int bin) const {
+  if (bin < 0 || bin >= bins_.size()) {
+    throw Error("reachability map: no orientation bin " + std::to_string(bin) + " of " +
+                std::to_string(bins_.size()));
+  }
+}
+
 void ReachMap::add(const Eigen::Vector3d& p, int bin, float manipulability) {
+  checkBin(bin);
   record(slotFor(keyOf(p)), bin, manipulability);
 }
 
@@ -164,9 +178,10 @@ void ReachMap::add(const double* p, const int* bins, const double* manipulabilit
   // their voxels and fetch those records, then update the records.
   std::uint64_t keys[8];
   std::size_t voxels[8];
-  if (2 * (keys_.size() + lanes) > table_.size()) rebuildIndex();
+  if (2 * (keys_.size() + lanes) > table_.size()) rebuildIndex(keys_.size() + lanes);
   for (int k = 0; k < lanes; ++k) {
     if (!counted[k]) continue;
+    checkBin(bins[k]);
     keys[k] = keyOf(Eigen::Vector3d(p[k], p[lanes + k], p[2 * lanes + k]));
     __builtin_prefetch(&table_[hashSlot(keys[k], index_bits_)]);
   }
@@ -207,7 +222,7 @@ void ReachMap::sort() {
   }
   keys_.swap(keys);
   records_.swap(records);
-  rebuildIndex();
+  rebuildIndex(keys_.size());
 }
 
 int ReachMap::reachedBins(std::size_t v) const {
@@ -217,10 +232,14 @@ int ReachMap::reachedBins(std::size_t v) const {
 }
 
 bool ReachMap::reached(std::size_t v, int bin) const {
+  checkBin(bin);
   return (bitsOf(v)[bin / 64] >> (bin % 64)) & 1u;
 }
 
-long ReachMap::find(const Eigen::Vector3d& p) const { return lookup(keyOf(p)); }
+long ReachMap::find(const Eigen::Vector3d& p) const {
+  Eigen::Vector3i index;
+  return inGrid(p, index) ? lookup(keyOf(index)) : -1;
+}
 
 bool ReachMap::reached(const Eigen::Vector3d& p, const Eigen::Matrix3d& R) const {
   const long v = find(p);
@@ -228,10 +247,14 @@ bool ReachMap::reached(const Eigen::Vector3d& p, const Eigen::Matrix3d& R) const
 }
 
 void ReachMap::write(std::ostream& out, const std::string& header) const {
-  std::string members = header;
-  while (!members.empty() && members.back() != '}') members.pop_back();
-  if (members.size() < 2 || members.front() != '{') throw Error("reachability map: bad header");
-  members = members.substr(1, members.size() - 2);
+  // The header's members join the grid's on one line: a compact JSON object is required.
+  const std::size_t open = header.find_first_not_of(" \t"), close = header.find_last_not_of(" \t");
+  if (open == std::string::npos || header[open] != '{' || header[close] != '}' ||
+      header.find_first_of("\r\n") != std::string::npos) {
+    throw Error("reachability map: the header must be a JSON object on one line, not '" + header +
+                "'");
+  }
+  const std::string members = header.substr(open + 1, close - open - 1);
   char grid[256];
   std::snprintf(grid, sizeof grid,
                 "\"resolution\":%.17g,\"directions\":%d,\"rolls\":%d,\"voxels\":%zu,\"words\":%d",
@@ -269,7 +292,8 @@ ReachMap ReachMap::read(std::istream& in, const std::string& source, std::string
   const double directions = number("directions"), rolls = number("rolls"),
                voxels = number("voxels");
   if (directions < 1 || directions > kMaxBins || rolls < 1 || rolls > kMaxBins || voxels < 0 ||
-      voxels > 4e9) {
+      voxels > 4e9 || directions != std::floor(directions) || rolls != std::floor(rolls) ||
+      voxels != std::floor(voxels)) {
     throw Error(source + ": header has an impossible grid or voxel count");
   }
   grid.directions = static_cast<int>(directions);

@@ -64,6 +64,7 @@ class ReachMap {
   Eigen::Vector3d voxelCentre(const Eigen::Vector3i& index) const;
 
   /// \brief Records one sample: tool point p [length unit], orientation bin, manipulability.
+  /// \throws mcws::Error for a bin outside [0, bins().size()) or p outside the grid's range.
   void add(const Eigen::Vector3d& p, int bin, float manipulability);
   /// \brief add() for up to 8 samples, their memory fetched together: p laid out
   /// p[a * lanes + k]; samples whose `counted` is false are skipped.
@@ -85,17 +86,17 @@ class ReachMap {
   double reachability(std::size_t v) const {
     return static_cast<double>(reachedBins(v)) / bins_.size();
   }
-  /// \brief Whether a bin of voxel v was reached.
+  /// \brief Whether a bin of voxel v was reached. \throws mcws::Error for a bin out of range.
   bool reached(std::size_t v, int bin) const;
-  /// \brief The stored voxel holding p, or -1.
+  /// \brief The stored voxel holding p, or -1 (also for p beyond the grid's range or NaN).
   long find(const Eigen::Vector3d& p) const;
   /// \brief Whether the map holds a sample with tool point in p's voxel and orientation in R's
   /// bin (R: the tool's rotation).
   bool reached(const Eigen::Vector3d& p, const Eigen::Matrix3d& R) const;
 
   /// \brief Writes the map in the binary format of docs/reach_map.md.
-  /// \param header extra JSON members for the header (robot, unit, samples, seed), as a JSON
-  ///   object's text, or "{}".
+  /// \param header extra JSON members for the header (robot, unit, samples, seed), as a compact
+  ///   JSON object on one line, or "{}". \throws mcws::Error for anything else.
   void write(std::ostream& out, const std::string& header) const;
   /// \brief Reads what write() wrote; \p header receives the header's JSON text.
   /// \throws mcws::Error naming `source` and what is wrong.
@@ -109,7 +110,9 @@ class ReachMap {
   };
   std::size_t slotFor(std::uint64_t key);
   long lookup(std::uint64_t key) const;
-  void rebuildIndex();
+  void rebuildIndex(std::size_t voxels);  ///< an index for `voxels` at load one half at most
+  void checkBin(int bin) const;
+  bool inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const;
   void record(std::size_t v, int bin, float manipulability);
   std::uint64_t* bitsOf(std::size_t v) { return records_.data() + v * stride_ + 2; }
   const std::uint64_t* bitsOf(std::size_t v) const { return records_.data() + v * stride_ + 2; }
