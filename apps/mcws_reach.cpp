@@ -38,7 +38,10 @@ pcl_viewer colours by them), --map the whole map for queries (binary, docs/reach
 --halfcut a picture of the slab through the base (y = 0) coloured by D, --histogram the
 histogram of D. With --collision only collision-free samples count. A map from samples misses
 orientation bins that inverse kinematics would find: BENCHMARKS.md tabulates its agreement with
-IK against the sample count.)";
+IK against the sample count. The default 5e8 samples (about a minute on 2 cores) is where, for
+the inspection arm at 10 cm and 200 directions, every IK-reachable voxel-bin pair of the check
+is marked and the mean of D moves by less than 1 % when the samples are doubled; 1e7 gives a
+first look.)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("robot", "robot description (.yaml or .urdf)");
@@ -46,7 +49,7 @@ void declareFlags(app::CommandLine& cli) {
                "voxel edge: a length with unit (2cm, 0.02m, 20mm) or a number in the robot's unit");
   cli.addValue("orientations", "approach-direction bins on the sphere (default 200)");
   cli.addValue("rolls", "roll bins about the approach (default 1: any roll)");
-  cli.addValue("samples", "joint samples (default 10000000)");
+  cli.addValue("samples", "joint samples (default 500000000; see below)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
   cli.addValue("output", "voxel centres with reachability, manipulability, count (PCD)");
@@ -105,7 +108,7 @@ int main(int argc, char** argv) {
     if (!cli.parse(argc, argv)) return app::kExitOk;
 
     const std::uint64_t samples = static_cast<std::uint64_t>(app::parseInteger(
-        cli.text("samples", "10000000"), "samples", 1, std::numeric_limits<std::int64_t>::max()));
+        cli.text("samples", "500000000"), "samples", 1, std::numeric_limits<std::int64_t>::max()));
     const std::string output = cli.required("output");
     for (const char* flag : {"output", "map", "halfcut", "histogram"}) {
       if (cli.has(flag)) io::checkOutputPath(cli.required(flag));

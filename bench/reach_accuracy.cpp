@@ -2,9 +2,10 @@
 // against inverse kinematics on voxel-centre x orientation-bin pairs, and how the mean
 // reachability index converges as the sample count doubles.
 // Usage: reach_accuracy [--resolution MM (100)] [--pairs P (2000)] [--from N (1000000)]
-//                       [--to N (256000000)] [--threads T (0)]
-// A pair is IK-reachable when solveIk (20 restarts) reaches the voxel centre with the approach
-// (tool z) along the bin's centre direction at one of 8 rolls; the map marks it reachable when a
+//                       [--to N (256000000)] [--threads T (0)] [--ik-rolls R (8)]
+//                       [--ik-restarts K (20)]
+// A pair is IK-reachable when solveIk reaches the voxel centre with the approach (tool z) along
+// the bin's centre direction at one of the rolls tried; the map marks it reachable when a
 // sample fell in that voxel with its approach in that bin. Agreement = share of the IK-reachable
 // pairs the map marks; false positives = share of the pairs the map marks that IK does not reach
 // at the centre (the voxel or bin is only partly reachable).
@@ -39,7 +40,7 @@ double meanReachability(const mcws::ReachMap& map) {
 
 int main(int argc, char** argv) {
   double resolution = 100.0;
-  int pairs = 2000, threads = 0;
+  int pairs = 2000, threads = 0, rolls = 8, restarts = 20;
   std::uint64_t from = 1000000, to = 256000000;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string flag = argv[k];
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
       to = std::strtoull(value, nullptr, 10);
     else if (flag == "--threads")
       threads = std::atoi(value);
+    else if (flag == "--ik-rolls")
+      rolls = std::atoi(value);
+    else if (flag == "--ik-restarts")
+      restarts = std::atoi(value);
     else {
       std::fprintf(stderr, "reach_accuracy: unknown flag %s\n", flag.c_str());
       return 2;
@@ -88,14 +93,15 @@ int main(int argc, char** argv) {
   for (int i = 0; i < pairs; ++i) {
     Pair& pair = reference[i];
     const Eigen::Matrix3d R0 = shape.bins().centre(pair.bin);
-    for (int roll = 0; roll < 8 && !pair.ik_reachable; ++roll) {
+    for (int roll = 0; roll < rolls && !pair.ik_reachable; ++roll) {
       Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-      T.linear() = R0 * Eigen::AngleAxisd(roll * M_PI / 4.0, Eigen::Vector3d::UnitZ());
+      T.linear() = R0 * Eigen::AngleAxisd(roll * 2.0 * M_PI / rolls, Eigen::Vector3d::UnitZ());
       T.translation() = pair.centre;
       mcws::IkOptions options;
       options.position_tolerance = 1e-3;  // mm
       options.orientation_tolerance = 1e-5;
-      options.seed = static_cast<std::uint64_t>(i) * 8 + roll + 1;
+      options.restarts = restarts;
+      options.seed = static_cast<std::uint64_t>(i) * rolls + roll + 1;
       pair.ik_reachable = solver.solve(T, Eigen::VectorXd::Zero(robot.dof()), options).converged();
     }
     ik_reachable += pair.ik_reachable;
@@ -104,8 +110,8 @@ int main(int argc, char** argv) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - ik_start).count();
   std::printf(
       "inspection6, resolution %.0f mm, %d directions x 1 roll, %d pairs: %d IK-reachable "
-      "(IK %.1f s)\n\n",
-      resolution, grid.directions, pairs, ik_reachable, ik_seconds);
+      "(IK at %d rolls, %d restarts each: %.1f s)\n\n",
+      resolution, grid.directions, pairs, ik_reachable, rolls, restarts, ik_seconds);
   std::printf(
       "| samples N | voxels | mean D | mean D change from N/2 | agreement (IK-reachable "
       "pairs marked) | false positives (marked, not IK-reachable at the centre) | map s |\n");

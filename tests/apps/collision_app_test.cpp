@@ -114,7 +114,7 @@ TEST_F(CollisionApps, BadInput) {
                               " --collision --output " + dir_.file("x.pcd"),
                           1, "has no collision geometry (collision: key)", dir_);
   test::expectToolFailure(kSample, "--shape disk --collision --output " + dir_.file("x.pcd"), 2,
-                          "--fix, --point and --collision need --robot", dir_);
+                          "--fix, --point, --collision and --quality need --robot", dir_);
   // A missing mesh: one line naming the file and the shape.
   test::TempDir robots;
   const std::string broken = robots.file("broken.yaml");

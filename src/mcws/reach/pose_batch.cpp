@@ -45,34 +45,40 @@ inline void turn(const double* c, const double* s, double* v) {
 }
 
 /// Product of the diagonal of the Cholesky factor of the m x m Gram matrices G (G[(a*m+b)*L+k]),
-/// lane-wise; 0 for a lane whose matrix is not positive definite.
+/// lane-wise; 0 for a lane whose matrix is not positive definite. Every loop runs over the lanes
+/// innermost, so each vectorises.
 void choleskyDiagonalProduct(double* G, int m, double* out) {
-  double product[L];
-  bool singular[L];
-  for (int k = 0; k < L; ++k) product[k] = 1.0, singular[k] = false;
+  double product[L], singular[L];
+  for (int k = 0; k < L; ++k) product[k] = 1.0, singular[k] = 0.0;
   for (int j = 0; j < m; ++j) {
-    double inverse[L];
+    double d[L], inverse[L];
+    for (int k = 0; k < L; ++k) d[k] = G[(j * m + j) * L + k];
+    for (int r = 0; r < j; ++r) {
+      const double* g = G + (j * m + r) * L;
+#pragma omp simd
+      for (int k = 0; k < L; ++k) d[k] -= g[k] * g[k];
+    }
+#pragma omp simd
     for (int k = 0; k < L; ++k) {
-      double d = G[(j * m + j) * L + k];
-      for (int r = 0; r < j; ++r) d -= G[(j * m + r) * L + k] * G[(j * m + r) * L + k];
-      if (!(d > 0.0)) {
-        singular[k] = true;
-        d = 1.0;
-      }
-      const double root = std::sqrt(d);
+      const bool positive = d[k] > 0.0;
+      singular[k] = positive ? singular[k] : 1.0;
+      const double root = std::sqrt(positive ? d[k] : 1.0);
       product[k] *= root;
       inverse[k] = 1.0 / root;
     }
     for (int i = j + 1; i < m; ++i) {
+      double v[L];
+      for (int k = 0; k < L; ++k) v[k] = G[(i * m + j) * L + k];
+      for (int r = 0; r < j; ++r) {
+        const double *gi = G + (i * m + r) * L, *gj = G + (j * m + r) * L;
 #pragma omp simd
-      for (int k = 0; k < L; ++k) {
-        double v = G[(i * m + j) * L + k];
-        for (int r = 0; r < j; ++r) v -= G[(i * m + r) * L + k] * G[(j * m + r) * L + k];
-        G[(i * m + j) * L + k] = v * inverse[k];
+        for (int k = 0; k < L; ++k) v[k] -= gi[k] * gj[k];
       }
+#pragma omp simd
+      for (int k = 0; k < L; ++k) G[(i * m + j) * L + k] = v[k] * inverse[k];
     }
   }
-  for (int k = 0; k < L; ++k) out[k] = singular[k] ? 0.0 : product[k];
+  for (int k = 0; k < L; ++k) out[k] = singular[k] != 0.0 ? 0.0 : product[k];
 }
 
 }  // namespace
