@@ -10,6 +10,7 @@
 
 #include "kinematics/kdl_chain.h"
 #include "kinematics/random_joints.h"
+#include "kinematics/test_chains.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -18,10 +19,12 @@
 namespace mcws {
 namespace {
 
+using test::differenceJacobian;
+using test::tiltedAxesRobot;
+
 constexpr int kRandomVectors = 1000;
 /// Central differences with step h: truncation error ~ h^2 |q'''| ~ 1e-10 reach, rounding error
 /// ~ 1e-16 reach / h ~ 1e-11 reach; 1e-8 of the reach leaves a margin of 100.
-constexpr double kDifferenceStep = 1e-5;
 constexpr double kDifferenceTolerance = 1e-8;
 /// KDL builds the same columns in another order of operations: rounding only.
 constexpr double kKdlTolerance = 1e-12;
@@ -51,22 +54,6 @@ double reach(const Robot& robot) {
         (joint.type == JointType::kPrismatic ? std::abs(joint.upper) + std::abs(joint.lower) : 0.0);
   }
   return sum;
-}
-
-/// The Jacobian by central differences of toolPose(): linear rows from the tool point, angular
-/// rows from log(R(q + h) R(q - h)^T) / 2h (the world-frame angular velocity).
-Jacobian differenceJacobian(const Robot& robot, const Eigen::VectorXd& q) {
-  Jacobian J(6, robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    Eigen::VectorXd plus = q, minus = q;
-    plus[i] += kDifferenceStep;
-    minus[i] -= kDifferenceStep;
-    const Eigen::Isometry3d Tp = toolPose(robot, plus), Tm = toolPose(robot, minus);
-    J.col(i).head<3>() = (Tp.translation() - Tm.translation()) / (2 * kDifferenceStep);
-    const Eigen::AngleAxisd turn(Tp.linear() * Tm.linear().transpose());
-    J.col(i).tail<3>() = turn.angle() * turn.axis() / (2 * kDifferenceStep);
-  }
-  return J;
 }
 
 /// Largest difference, linear rows divided by `length`.
@@ -114,28 +101,6 @@ TEST(Jacobian, MatchesKdlChainJntToJacSolverOnEveryShippedRobot) {
           << "q = " << q.transpose();
     }
   }
-}
-
-/// A chain with tilted joint axes, a base and a tool offset, one prismatic joint: the shipped
-/// robots all move about or along z, URDF chains need not.
-Robot tiltedAxesRobot() {
-  Robot robot;
-  robot.name = "tilted";
-  robot.T_world_base = poseFromXyzRpy({0.1, -0.2, 0.3}, {0.2, -0.1, 0.5});
-  const Eigen::Vector3d axes[] = {{0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {0, 0, -1}, {0.3, -0.5, 0.8}};
-  for (int i = 0; i < 5; ++i) {
-    Joint joint;
-    joint.name = "j" + std::to_string(i + 1);
-    joint.type = i == 3 ? JointType::kPrismatic : JointType::kRevolute;
-    joint.axis = axes[i].normalized();
-    joint.T_parent_joint = poseFromXyzRpy({0.05 * i, 0.3, 0.1}, {0.3 * i, -0.2, 0.1 * i});
-    joint.lower = -2.0;
-    joint.upper = 2.0;
-    robot.joints.push_back(joint);
-  }
-  robot.T_last_flange = poseFromXyzRpy({0, 0, 0.2}, {0, 0.4, 0});
-  robot.T_flange_tool = poseFromXyzRpy({0.1, 0, 0.15}, {0.1, 0, 0});
-  return robot;
 }
 
 TEST(Jacobian, TiltedAxesMatchCentralDifferences) {

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "kinematics/random_joints.h"
+#include "kinematics/test_chains.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
@@ -19,6 +20,8 @@
 
 namespace mcws {
 namespace {
+
+using test::differenceJacobian;
 
 constexpr double kDeg = M_PI / 180.0;
 /// robots/planar2.yaml: upper arm and forearm [cm].
@@ -44,7 +47,6 @@ double fastPathTolerance(double w, double ic) {
 /// rounding ~ 1e-16 * 1.7e3 mm / h ~ 2e-8 mm in the linear rows, about 1e-11 after division by
 /// L = 1655 mm; the singular values move by at most that (Weyl), so the quality by about
 /// 1e-11 / sigma_min relative. 1e-6 allows sigma_min down to 1e-5.
-constexpr double kDifferenceStep = 1e-5;
 constexpr double kDifferenceRelative = 1e-6;
 constexpr int kRandomVectors = 500;
 
@@ -80,23 +82,6 @@ Eigen::Vector2d singularValues2x2(const Eigen::Matrix2d& M) {
   const double root = std::sqrt(std::max(0.0, T * T - 4.0 * D * D));
   const double big = std::sqrt(0.5 * (T + root));
   return {big, big > 0.0 ? std::abs(D) / big : 0.0};  // s1 s2 = |D|, no cancellation
-}
-
-/// The geometric Jacobian by central differences of toolPose() (forward_kinematics.h, not the
-/// KinematicChain that builds the analytic one): linear rows from the tool point, angular rows
-/// from the rotation vector of R(q + h) R(q - h)^T over 2h.
-Jacobian differenceJacobian(const Robot& robot, const Eigen::VectorXd& q) {
-  Jacobian J(6, robot.dof());
-  for (int i = 0; i < robot.dof(); ++i) {
-    Eigen::VectorXd plus = q, minus = q;
-    plus[i] += kDifferenceStep;
-    minus[i] -= kDifferenceStep;
-    const Eigen::Isometry3d T_plus = toolPose(robot, plus), T_minus = toolPose(robot, minus);
-    J.col(i).head<3>() = (T_plus.translation() - T_minus.translation()) / (2 * kDifferenceStep);
-    const Eigen::AngleAxisd turn(T_plus.linear() * T_minus.linear().transpose());
-    J.col(i).tail<3>() = turn.angle() * turn.axis() / (2 * kDifferenceStep);
-  }
-  return J;
 }
 
 /// J_s = [J_v / L; J_w], square for a 6-joint arm.

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "kinematics/random_joints.h"
+#include "kinematics/test_chains.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/core/error.h"
@@ -34,6 +35,8 @@
 
 namespace mcws {
 namespace {
+
+using test::tiltedAxesRobot;
 
 constexpr double kTwoPi = 2.0 * M_PI;
 /// robots/planar2.yaml: upper arm, forearm [cm] and the elbow limit [rad].
@@ -811,28 +814,6 @@ std::vector<std::string> shippedRobotFiles() {
     if (entry.path().extension() == ".yaml" && !behaviors) files.insert(entry.path().string());
   }
   return {files.begin(), files.end()};
-}
-
-/// Tilted joint axes, a prismatic joint, base and tool offsets (the shipped robots all turn about
-/// z in D-H frames).
-Robot tiltedAxesRobot() {
-  Robot robot;
-  robot.name = "tilted";
-  robot.T_world_base = poseFromXyzRpy({0.1, -0.2, 0.3}, {0.2, -0.1, 0.5});
-  const Eigen::Vector3d axes[] = {{0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {0, 0, -1}, {0.3, -0.5, 0.8}};
-  for (int i = 0; i < 5; ++i) {
-    Joint joint;
-    joint.name = "j" + std::to_string(i + 1);
-    joint.type = i == 3 ? JointType::kPrismatic : JointType::kRevolute;
-    joint.axis = axes[i].normalized();
-    joint.T_parent_joint = poseFromXyzRpy({0.05 * i, 0.3, 0.1}, {0.3 * i, -0.2, 0.1 * i});
-    joint.lower = -2.0;
-    joint.upper = 2.0;
-    robot.joints.push_back(joint);
-  }
-  robot.T_last_flange = poseFromXyzRpy({0, 0, 0.2}, {0, 0.4, 0});
-  robot.T_flange_tool = poseFromXyzRpy({0.1, 0, 0.15}, {0.1, 0, 0});
-  return robot;
 }
 
 TEST(PoseBatch, PosesAndManipulabilityMatchTheKinematicsLibrary) {
