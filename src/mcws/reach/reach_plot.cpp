@@ -15,6 +15,8 @@ std::string renderHalfCutPng(const ReachMap& map, double y_cut, const std::strin
                              const std::string& unit) {
   io::ScratchDir dir;
   const std::string data = dir.file("slab.dat"), png = dir.file("halfcut.png");
+  std::ostringstream cut;
+  cut << y_cut;  // "0", "12.5": no trailing zeros
   const int slab = map.voxelOf({0.0, y_cut, 0.0}).y();
   std::size_t voxels = 0;
   {
@@ -28,15 +30,14 @@ std::string renderHalfCutPng(const ReachMap& map, double y_cut, const std::strin
       ++voxels;
     }
   }
-  if (voxels == 0)
-    throw Error("half-cut view: no voxel of the map at y = " + std::to_string(y_cut));
+  if (voxels == 0) throw Error("half-cut view: no voxel of the map at y = " + cut.str());
   const double half = 0.5 * map.grid().resolution;
   std::ostringstream gp;
   gp << "set terminal pngcairo noenhanced size 1100,900 font 'Sans,11'\n"
      << "set output " << gnuplotQuoted(png) << "\n"
      << "set title "
-     << gnuplotQuoted(title + ": reachability index D, the slab through y = " +
-                      std::to_string(y_cut) + " " + unit + " seen along y")
+     << gnuplotQuoted(title + ": reachability index D, the slab through y = " + cut.str() + " " +
+                      unit + " seen along y")
      << "\nset xlabel " << gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "
      << gnuplotQuoted("z [" + unit + "]") << "\nset size ratio -1\nset grid\n"
      << "set cbrange [0:1]\nset cblabel 'D: share of orientation bins reached [1]'\n"
