@@ -1,6 +1,7 @@
 // mcws_sample: Monte Carlo workspace sampling of a robot (Yin, Wang & Yu 2010, section 3; Fu, Hu,
 // Chen & Pan 2016, eq. (5)), or of a validation shape with known area or volume. Writes a PCD cloud
 // of mcws::WorkspacePoint.
+#include <algorithm>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -94,13 +95,20 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
       quality.characteristic_length = app::parsePositive(cli.required("length"), "length");
     }
     source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
+    // Position task: each of the k = min(n, 3) singular values is a length per rad; a prismatic
+    // joint's column has no length, so the unit is then a mixture the JSON says it is.
+    const bool prismatic =
+        std::any_of(robot.joints.begin(), robot.joints.end(),
+                    [](const Joint& joint) { return joint.type == JointType::kPrismatic; });
+    const std::string unit = unitName(robot.length_unit);
     source.summary["quality"] = {
         {"task", qualityTaskName(quality.task)},
         {"characteristic_length", quality.characteristic_length},
-        {"manipulability_unit", quality.task == QualityTask::kFull
-                                    ? std::string("1")
-                                    : std::string(unitName(robot.length_unit)) + "^" +
-                                          std::to_string(std::min(robot.dof(), 3))}};
+        {"characteristic_length_unit", unit},
+        {"manipulability_unit",
+         quality.task == QualityTask::kFull ? std::string("1")
+         : prismatic ? "mixed: " + unit + " per rad for each revolute joint, 1 for each prismatic"
+                     : unit + "^" + std::to_string(std::min(robot.dof(), 3))}};
   }
   return source;
 }

@@ -191,6 +191,14 @@ TEST(SampleQuality, PlanarArmMatchesTheClosedForm) {
     const double sigma_max = std::sqrt((S + root) / 2), sigma_min = std::sqrt((S - root) / 2);
     EXPECT_NEAR(p.inverse_condition, sigma_min / sigma_max, 1e-4);
   }
+  // An arm with a prismatic joint (the de-icing arm's telescope) says its unit is mixed.
+  const test::RunResult deicing =
+      test::run(kSample + " --robot " + test::robotPath("deicing") +
+                " --samples 10 --quality --json --output " + dir.file("d.pcd"));
+  ASSERT_EQ(deicing.exit_code, 0) << deicing.err;
+  EXPECT_THAT(
+      nlohmann::json::parse(deicing.out)["quality"]["manipulability_unit"].get<std::string>(),
+      ::testing::StartsWith("mixed"));
   // Other tools read the file as plain workspace points.
   pcl::PointCloud<WorkspacePoint> plain;
   ASSERT_EQ(pcl::io::loadPCDFile(cloud_path, plain), 0);
