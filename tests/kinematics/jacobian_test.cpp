@@ -20,6 +20,7 @@ namespace mcws {
 namespace {
 
 using test::differenceJacobian;
+using test::shippedRobotFiles;
 using test::tiltedAxesRobot;
 
 constexpr int kRandomVectors = 1000;
@@ -28,19 +29,6 @@ constexpr int kRandomVectors = 1000;
 constexpr double kDifferenceTolerance = 1e-8;
 /// KDL builds the same columns in another order of operations: rounding only.
 constexpr double kKdlTolerance = 1e-12;
-
-/// Every robots/*.yaml, so a newly shipped robot is covered without editing the test
-/// (behaviour models, *_behaviors.yaml, are not robots).
-std::vector<std::string> shippedRobotFiles() {
-  std::set<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(MCWS_ROBOTS_DIR)) {
-    const std::string name = entry.path().filename().string();
-    const bool behaviors =
-        name.size() > 15 && name.compare(name.size() - 15, 15, "_behaviors.yaml") == 0;
-    if (entry.path().extension() == ".yaml" && !behaviors) files.insert(entry.path().string());
-  }
-  return {files.begin(), files.end()};
-}
 
 using test::randomJoints;
 

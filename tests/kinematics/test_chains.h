@@ -3,13 +3,29 @@
 // robots, and the Jacobian by central differences of forward kinematics.
 
 #include <Eigen/Geometry>
+#include <filesystem>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/kinematics/robot.h"
 
 namespace mcws::test {
+
+/// Every robots/*.yaml, so a newly shipped robot is covered without editing a test (behaviour
+/// models, *_behaviors.yaml, are not robots).
+inline std::vector<std::string> shippedRobotFiles() {
+  std::set<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(MCWS_ROBOTS_DIR)) {
+    const std::string name = entry.path().filename().string();
+    const bool behaviors =
+        name.size() > 15 && name.compare(name.size() - 15, 15, "_behaviors.yaml") == 0;
+    if (entry.path().extension() == ".yaml" && !behaviors) files.insert(entry.path().string());
+  }
+  return {files.begin(), files.end()};
+}
 
 /// Step of differenceJacobian() [rad | length unit].
 constexpr double kDifferenceStep = 1e-5;

@@ -36,6 +36,7 @@
 namespace mcws {
 namespace {
 
+using test::shippedRobotFiles;
 using test::tiltedAxesRobot;
 
 constexpr double kTwoPi = 2.0 * M_PI;
@@ -802,18 +803,6 @@ double gramTolerance(const Jacobian& J, const QualityOptions& options) {
   const double singular = 1e-6 * std::pow(sigma_max, static_cast<double>(sigma.size()));
   if (ic < 1e-7) return singular;
   return 64.0 * std::numeric_limits<double>::epsilon() / (ic * ic) * w + singular;
-}
-
-/// Every robots/*.yaml robot (behaviour models excluded), as tests/kinematics does.
-std::vector<std::string> shippedRobotFiles() {
-  std::set<std::string> files;
-  for (const auto& entry : std::filesystem::directory_iterator(MCWS_ROBOTS_DIR)) {
-    const std::string name = entry.path().filename().string();
-    const bool behaviors =
-        name.size() > 15 && name.compare(name.size() - 15, 15, "_behaviors.yaml") == 0;
-    if (entry.path().extension() == ".yaml" && !behaviors) files.insert(entry.path().string());
-  }
-  return {files.begin(), files.end()};
 }
 
 TEST(PoseBatch, PosesAndManipulabilityMatchTheKinematicsLibrary) {

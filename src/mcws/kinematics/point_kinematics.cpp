@@ -1,14 +1,6 @@
 #include "mcws/kinematics/point_kinematics.h"
 
-#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__FAST_MATH__)
-// glibc's libmvec has vector sin and cos; <bits/math-vector.h> declares them only under
-// -ffast-math. Declared here as glibc does, so `#pragma omp simd` loops call them while the rest
-// of the arithmetic keeps IEEE semantics (this file is compiled with -fno-math-errno).
-extern "C" {
-__attribute__((__simd__("notinbranch"))) double sin(double) noexcept;
-__attribute__((__simd__("notinbranch"))) double cos(double) noexcept;
-}
-#endif
+#include "mcws/core/libmvec.h"  // vector sin, cos, atan2 for the simd loops
 
 namespace mcws {
 namespace {

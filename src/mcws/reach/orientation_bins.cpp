@@ -5,14 +5,7 @@
 #include <string>
 
 #include "mcws/core/error.h"
-
-#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__FAST_MATH__)
-// glibc's libmvec vector atan2 (glibc 2.35 and later), declared as point_kinematics.cpp declares
-// sin and cos (see there); this file is compiled with -fopenmp-simd -fno-math-errno.
-extern "C" {
-__attribute__((__simd__("notinbranch"))) double atan2(double, double) noexcept;
-}
-#endif
+#include "mcws/core/libmvec.h"  // vector sin, cos, atan2 for the simd loops
 
 namespace mcws {
 namespace {

@@ -4,14 +4,7 @@
 #include <cmath>
 
 #include "mcws/core/error.h"
-
-#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__FAST_MATH__)
-// glibc's libmvec vector sin and cos, declared as point_kinematics.cpp does (see there).
-extern "C" {
-__attribute__((__simd__("notinbranch"))) double sin(double) noexcept;
-__attribute__((__simd__("notinbranch"))) double cos(double) noexcept;
-}
-#endif
+#include "mcws/core/libmvec.h"  // vector sin, cos, atan2 for the simd loops
 
 namespace mcws {
 namespace {
