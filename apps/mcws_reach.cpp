@@ -49,7 +49,7 @@ void declareFlags(app::CommandLine& cli) {
                "voxel edge: a length with unit (2cm, 0.02m, 20mm) or a number in the robot's unit");
   cli.addValue("orientations", "approach-direction bins on the sphere (default 200)");
   cli.addValue("rolls", "roll bins about the approach (default 1: any roll)");
-  cli.addValue("samples", "joint samples (default 500000000; see below)");
+  cli.addValue("samples", "joint samples (default 500000000; see above)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
   cli.addValue("output", "voxel centres with reachability, manipulability, count (PCD)");

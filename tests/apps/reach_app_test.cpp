@@ -153,6 +153,27 @@ TEST_F(ReachApp, SameBytesForAnyThreadCountAndTheMapReadsBack) {
   }
 }
 
+/// The inspection arm from its URDF (metres) and its YAML (millimetres), resolution given with a
+/// unit: the same voxels, counts and reachability, the centres 1000 times apart.
+TEST_F(ReachApp, UrdfInMetresAndYamlInMillimetresGiveTheSameMap) {
+  for (const char* format : {"urdf", "yaml"}) {
+    const test::RunResult r = test::run(
+        kReach + " --robot " + std::string(MCWS_ROBOTS_DIR) + "/inspection6." + format +
+        " --resolution 20cm --samples 200000 --output " + out(std::string(format) + ".pcd"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  pcl::PointCloud<ReachPoint> urdf, yaml;
+  ASSERT_EQ(pcl::io::loadPCDFile(out("urdf.pcd"), urdf), 0);
+  ASSERT_EQ(pcl::io::loadPCDFile(out("yaml.pcd"), yaml), 0);
+  ASSERT_EQ(urdf.size(), yaml.size());
+  for (std::size_t v = 0; v < urdf.size(); ++v) {
+    EXPECT_EQ(urdf[v].count, yaml[v].count);
+    EXPECT_EQ(urdf[v].reachability, yaml[v].reachability);
+    EXPECT_NEAR(urdf[v].x * 1000.0, yaml[v].x, 1e-3);
+    EXPECT_NEAR(urdf[v].z * 1000.0, yaml[v].z, 1e-3);
+  }
+}
+
 TEST_F(ReachApp, PicturesArePngs) {
   const test::RunResult r =
       test::run(kReach + " --robot " + test::robotPath("inspection6") +
