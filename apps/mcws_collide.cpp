@@ -82,9 +82,7 @@ int main(int argc, char** argv) {
     app::checkJointValues(
         robot, q, "q",
         cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
-    const CollisionModel model = loadCollisionModel(robot, path);
-    if (!hasGeometry(model)) throw Error(path + ": has no collision geometry (collision: key)");
-    const CollisionChecker checker(robot, model);
+    const CollisionChecker checker(robot, loadRequiredCollisionModel(robot, path));
 
     std::vector<PairReport> pairs = checker.report(q);
     std::sort(pairs.begin(), pairs.end(),

@@ -57,32 +57,17 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("halfcut", "PNG: the slab through y = 0 coloured by D");
   cli.addValue("histogram", "PNG: histogram of D");
   cli.addValue("quality-task", "position | full: how manipulability is measured (mcws_sample)");
-  cli.addValue("length", "characteristic length of --quality-task full [robot length unit]");
+  cli.addValue("length",
+               "characteristic length of --quality-task full: a length with unit or a number in "
+               "the robot's unit");
   cli.addSwitch("no-manipulability", "skip the Jacobian (faster; the field is 0)");
   cli.addSwitch("collision", "count only collision-free samples (needs collision: geometry)");
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
-/// A length flag: a number with an optional unit (m, cm, mm) converted to the robot's unit.
-double parseLength(const std::string& text, const std::string& flag, LengthUnit unit) {
-  std::size_t end = text.size();
-  double scale = 1.0;
-  for (const auto& [suffix, metres] : {std::pair{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}}) {
-    const std::string s = suffix;
-    if (text.size() > s.size() && text.compare(text.size() - s.size(), s.size(), s) == 0) {
-      end = text.size() - s.size();
-      scale = metres / unitInMetres(unit);
-      break;
-    }
-  }
-  const double value = app::parsePositive(text.substr(0, end), flag) * scale;
-  if (!std::isfinite(value)) throw app::UsageError("--" + flag + ": " + text + " is too large");
-  return value;
-}
-
 ReachGrid gridFromFlags(const app::CommandLine& cli, const Robot& robot) {
   ReachGrid grid;
-  grid.resolution = parseLength(cli.required("resolution"), "resolution", robot.length_unit);
+  grid.resolution = app::parseLength(cli.required("resolution"), "resolution", robot.length_unit);
   grid.directions = static_cast<int>(
       app::parseInteger(cli.text("orientations", "200"), "orientations", 1, 65536));
   grid.rolls = static_cast<int>(app::parseInteger(cli.text("rolls", "1"), "rolls", 1, 65536));
@@ -121,21 +106,11 @@ int main(int argc, char** argv) {
     sampling.seed = app::readSeed(cli);
     sampling.threads = app::readThreads(cli);
     sampling.manipulability = !cli.has("no-manipulability");
-    sampling.quality = defaultQualityOptions(robot);
-    if (cli.has("quality-task")) {
-      sampling.quality.task = parseQualityTask(
-          app::parseChoice(cli.required("quality-task"), "quality-task", {"position", "full"}));
-    }
-    if (cli.has("length")) {
-      sampling.quality.characteristic_length =
-          parseLength(cli.required("length"), "length", robot.length_unit);
-    }
+    sampling.quality = app::readQualityOptions(cli, robot);
     std::unique_ptr<CollisionChecker> checker;
     if (cli.has("collision")) {
-      const CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
-      if (!hasGeometry(model))
-        throw Error(cli.required("robot") + ": has no collision geometry (collision: key)");
-      checker = std::make_unique<CollisionChecker>(robot, model);
+      checker = std::make_unique<CollisionChecker>(
+          robot, loadRequiredCollisionModel(robot, cli.required("robot")));
       sampling.collision = checker.get();
     }
 
@@ -148,8 +123,6 @@ int main(int argc, char** argv) {
 
     const std::string unit = unitName(robot.length_unit);
     const double voxel_volume = std::pow(grid.resolution, 3);
-    double d_sum = 0.0;
-    for (std::size_t v = 0; v < map.size(); ++v) d_sum += map.reachability(v);
     nlohmann::json summary = {
         {"robot", robot.name},
         {"length_unit", unit},
@@ -164,7 +137,7 @@ int main(int argc, char** argv) {
         {"voxels", map.size()},
         {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
         {"occupied_volume_unit", unit + "^3"},
-        {"mean_reachability", d_sum / static_cast<double>(map.size())},
+        {"mean_reachability", map.meanReachability()},
         {"manipulability",
          sampling.manipulability
              ? nlohmann::json{{"task", qualityTaskName(sampling.quality.task)},

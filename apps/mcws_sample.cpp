@@ -49,7 +49,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("collision", "label each sample by collision (needs --robot with collision:)");
   cli.addSwitch("quality", "add fields manipulability and inverse_condition (needs --robot)");
   cli.addValue("quality-task", "position | full: Jacobian rows --quality measures (see above)");
-  cli.addValue("length", "characteristic length L of --quality-task full [robot length unit]");
+  cli.addValue("length",
+               "characteristic length L of --quality-task full: a length with unit (50cm) or a "
+               "number in the robot's unit");
   cli.addSwitch("ascii", "write ASCII PCD instead of binary");
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -72,10 +74,8 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
     for (const auto& pinned : app::parseAssignments(fix, "fix")) options.fixed.push_back(pinned);
   }
   if (cli.has("collision")) {
-    const CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
-    if (!hasGeometry(model))
-      throw Error(cli.required("robot") + ": has no collision geometry (collision: key)");
-    source.checker = std::make_unique<CollisionChecker>(robot, model);
+    source.checker = std::make_unique<CollisionChecker>(
+        robot, loadRequiredCollisionModel(robot, cli.required("robot")));
   }
   source.generator = app::asUsageError("fix", [&]() -> std::unique_ptr<PointGenerator> {
     if (source.checker)
@@ -86,14 +86,7 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
                     {"unit", unitName(robot.length_unit)},
                     {"point", point == SamplePoint::kTool ? "tool" : "flange"}};
   if (cli.has("quality")) {
-    QualityOptions quality = defaultQualityOptions(robot);
-    if (cli.has("quality-task")) {
-      quality.task = parseQualityTask(
-          app::parseChoice(cli.required("quality-task"), "quality-task", {"position", "full"}));
-    }
-    if (cli.has("length")) {
-      quality.characteristic_length = app::parsePositive(cli.required("length"), "length");
-    }
+    const QualityOptions quality = app::readQualityOptions(cli, robot);
     source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
     // Position task: each of the k = min(n, 3) singular values is a length per rad; a prismatic
     // joint's column has no length, so the unit is then a mixture the JSON says it is.

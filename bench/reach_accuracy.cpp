@@ -30,12 +30,6 @@ struct Pair {
   bool ik_reachable;
 };
 
-double meanReachability(const mcws::ReachMap& map) {
-  double sum = 0.0;
-  for (std::size_t v = 0; v < map.size(); ++v) sum += map.reachability(v);
-  return map.size() ? sum / static_cast<double>(map.size()) : 0.0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -139,7 +133,7 @@ int main(int argc, char** argv) {
       marked_reachable += on && pair.ik_reachable;
       marked_unreachable += on && !pair.ik_reachable;
     }
-    const double mean = meanReachability(map);
+    const double mean = map.meanReachability();
     char change[32] = "-";
     if (previous_mean > 0.0)
       std::snprintf(change, sizeof change, "%+.2f %%", 100.0 * (mean / previous_mean - 1.0));

@@ -1,7 +1,9 @@
 #include "common/flags.h"
 
+#include <cmath>
 #include <filesystem>
 #include <limits>
+#include <utility>
 
 #include "mcws/kinematics/robot_urdf.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -48,6 +50,35 @@ SamplePoint readPoint(const CommandLine& cli) {
   return parseChoice(cli.text("point", "tool"), "point", {"tool", "flange"}) == "tool"
              ? SamplePoint::kTool
              : SamplePoint::kFlange;
+}
+
+double parseLength(const std::string& text, const std::string& flag, LengthUnit unit) {
+  std::size_t end = text.size();
+  double scale = 1.0;
+  for (const auto& [suffix, metres] : {std::pair{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}}) {
+    const std::string s = suffix;
+    if (text.size() > s.size() && text.compare(text.size() - s.size(), s.size(), s) == 0) {
+      end = text.size() - s.size();
+      scale = metres / unitInMetres(unit);
+      break;
+    }
+  }
+  const double value = parsePositive(text.substr(0, end), flag) * scale;
+  if (!std::isfinite(value)) throw UsageError("--" + flag + ": " + text + " is too large");
+  return value;
+}
+
+QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot) {
+  QualityOptions quality = defaultQualityOptions(robot);
+  if (cli.has("quality-task")) {
+    quality.task = parseQualityTask(
+        parseChoice(cli.required("quality-task"), "quality-task", {"position", "full"}));
+  }
+  if (cli.has("length")) {
+    quality.characteristic_length =
+        parseLength(cli.required("length"), "length", robot.length_unit);
+  }
+  return quality;
 }
 
 BoundaryPlane readPlane(const CommandLine& cli) {

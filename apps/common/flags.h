@@ -11,6 +11,7 @@
 #include "common/app.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/kinematics/robot.h"
+#include "mcws/reach/quality.h"
 #include "mcws/workspace/sampler.h"
 
 namespace mcws::app {
@@ -55,6 +56,15 @@ int readThreads(const CommandLine& cli, int minimum = 0);
 
 /// \brief --point: tool (default) | flange, the point a sample records.
 SamplePoint readPoint(const CommandLine& cli);
+
+/// \brief A length flag: a number with an optional unit suffix (m, cm, mm: "2cm", "0.02m"),
+/// converted to `unit`; a bare number is already in `unit`.
+/// \throws UsageError naming the flag for a value that is not a positive finite length.
+double parseLength(const std::string& text, const std::string& flag, LengthUnit unit);
+
+/// \brief --quality-task (position | full) and --length (parseLength()) over the robot's
+/// defaults (defaultQualityOptions()).
+QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);
 
 /// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
 BoundaryPlane readPlane(const CommandLine& cli);

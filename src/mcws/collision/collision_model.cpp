@@ -244,6 +244,12 @@ bool hasGeometry(const CollisionModel& model) {
   return any;
 }
 
+CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path) {
+  CollisionModel model = loadCollisionModel(robot, path);
+  if (!hasGeometry(model)) throw Error(path + ": has no collision geometry (collision: key)");
+  return model;
+}
+
 TriangleMesh loadMesh(const std::string& path, double scale) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))

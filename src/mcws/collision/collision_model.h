@@ -100,6 +100,11 @@ CollisionModel loadCollisionModel(const Robot& robot, const std::string& path);
 /// \brief True when the model has at least one shape.
 bool hasGeometry(const CollisionModel& model);
 
+/// \brief loadCollisionModel() for a run that needs collision geometry (labelled sampling,
+/// collision checks). \throws mcws::Error "<path>: has no collision geometry (collision: key)"
+/// when the model has no shape.
+CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path);
+
 /// \brief Reads a triangle mesh (STL or OBJ, by extension) with PCL's VTK-based
 /// pcl::io::loadPolygonFile; polygons with more than three corners are fanned into triangles.
 /// \param scale factor applied to the vertices (e.g. 1000 for a file in metres and a robot in mm).

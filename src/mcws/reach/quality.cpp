@@ -12,13 +12,6 @@ namespace {
 /// At most 8 joints and 6 rows: fixed-capacity matrices, no heap allocation per sample.
 using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 8, 8>;
 
-void checkLength(const QualityOptions& options) {
-  if (!(options.characteristic_length > 0.0) || !std::isfinite(options.characteristic_length)) {
-    throw Error("quality: the characteristic length must be positive and finite, not " +
-                std::to_string(options.characteristic_length));
-  }
-}
-
 /// The rows of J that the task measures, velocity rows scaled by 1 / L for the full twist.
 SmallMatrix measuredRows(const double* J, int n, const QualityOptions& options) {
   const Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>> full(J, 6, n);
@@ -29,6 +22,13 @@ SmallMatrix measuredRows(const double* J, int n, const QualityOptions& options) 
 }
 
 }  // namespace
+
+void QualityOptions::check() const {
+  if (!(characteristic_length > 0.0) || !std::isfinite(characteristic_length)) {
+    throw Error("quality: the characteristic length must be positive and finite, not " +
+                std::to_string(characteristic_length));
+  }
+}
 
 const char* qualityTaskName(QualityTask task) {
   return task == QualityTask::kPosition ? "position" : "full";
@@ -48,7 +48,7 @@ QualityOptions defaultQualityOptions(const Robot& robot) {
 }
 
 Quality jacobianQuality(const Jacobian& J, const QualityOptions& options) {
-  checkLength(options);
+  options.check();
   if (J.cols() < 1 || J.cols() > 8) throw Error("quality: a Jacobian needs 1 to 8 columns");
   const SmallMatrix A = measuredRows(J.data(), static_cast<int>(J.cols()), options);
   const Eigen::JacobiSVD<SmallMatrix> svd(A);
@@ -60,7 +60,7 @@ Quality jacobianQuality(const Jacobian& J, const QualityOptions& options) {
 }
 
 double manipulability(const double* J, int n, const QualityOptions& options) {
-  checkLength(options);
+  options.check();
   const SmallMatrix A = measuredRows(J, n, options);
   const SmallMatrix gram =
       n <= A.rows() ? SmallMatrix(A.transpose() * A) : SmallMatrix(A * A.transpose());

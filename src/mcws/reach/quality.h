@@ -30,6 +30,8 @@ struct QualityOptions {
   QualityTask task{QualityTask::kFull};
   /// L of QualityTask::kFull [length unit]; must be positive and finite.
   double characteristic_length{1.0};
+  /// \throws mcws::Error for a characteristic length that is not positive and finite.
+  void check() const;
 };
 
 /// \brief What an engineer expects for this robot: the full twist with L = the chain's length

@@ -19,7 +19,7 @@ QualitySampler::QualitySampler(const Robot& robot, const RobotSamplerOptions& op
       chain_(recordedChain(robot, options.point)),
       points_(points),
       quality_(quality) {
-  jacobianQuality(Jacobian::Zero(6, 1), quality);  // checks the options
+  quality.check();
 }
 
 void QualitySampler::generate(std::uint64_t first, std::size_t count, QualityPoint* out) const {

@@ -231,6 +231,12 @@ int ReachMap::reachedBins(std::size_t v) const {
   return reached;
 }
 
+double ReachMap::meanReachability() const {
+  double sum = 0.0;
+  for (std::size_t v = 0; v < size(); ++v) sum += reachability(v);
+  return size() ? sum / static_cast<double>(size()) : 0.0;
+}
+
 bool ReachMap::reached(std::size_t v, int bin) const {
   checkBin(bin);
   return (bitsOf(v)[bin / 64] >> (bin % 64)) & 1u;
@@ -342,7 +348,7 @@ ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSam
   const PoseBatch batch(robot);
   constexpr int kLanes = PoseBatch::kLanes;
   const QualityOptions* quality = sampling.manipulability ? &sampling.quality : nullptr;
-  if (quality) jacobianQuality(Jacobian::Zero(6, 1), *quality);  // checks the options
+  if (quality) quality->check();
 
   const int threads = sampling.threads > 0 ? sampling.threads : omp_get_num_procs();
   std::vector<ReachMap> partial(threads, empty);

@@ -86,6 +86,8 @@ class ReachMap {
   double reachability(std::size_t v) const {
     return static_cast<double>(reachedBins(v)) / bins_.size();
   }
+  /// \brief Mean of the reachability index over the occupied voxels (0 for an empty map).
+  double meanReachability() const;
   /// \brief Whether a bin of voxel v was reached. \throws mcws::Error for a bin out of range.
   bool reached(std::size_t v, int bin) const;
   /// \brief The stored voxel holding p, or -1 (also for p beyond the grid's range or NaN).
