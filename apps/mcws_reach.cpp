@@ -10,19 +10,22 @@
 
 #include "common/app.h"
 #include "common/flags.h"
+#include "common/reach_args.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_plot.h"
+#include "mcws/reach/reach_study.h"
 
 namespace {
 
 using namespace mcws;
 
 constexpr char kUsage[] =
-    "mcws_reach --robot FILE --resolution LENGTH --output MAP.pcd [--map MAP.bin] [options]";
+    "mcws_reach --robot FILE --resolution LENGTH --output MAP.pcd [--map MAP.bin] [options]\n"
+    "       mcws_reach --robot FILE --targets TARGETS.pcd|.csv --output HEAT.pcd [options]";
 
 constexpr char kSummary[] =
     R"(Builds the reachability map of a robot: joint values drawn uniformly within their limits
@@ -41,38 +44,32 @@ orientation bins that inverse kinematics would find: BENCHMARKS.md tabulates its
 IK against the sample count. The default 5e8 samples (about a minute on 2 cores) is where, for
 the inspection arm at 10 cm and 200 directions, every IK-reachable voxel-bin pair of the check
 is marked and the mean of D moves by less than 1 % when the samples are doubled; 1e7 gives a
-first look.)";
+first look.
+
+With --targets, a reach study instead (as ROS-Industrial REACH): each target (a point and a
+surface normal from a pcl::PointNormal PCD, or a CSV: see --targets) is solved by inverse
+kinematics from --ik-starts starting joint vectors, and the best solution kept: collision-free
+first (the robot's collision model is used when its file has one), then the highest
+manipulability. A point-and-normal target wants the tool point on the point and the tool's z
+axis against the normal, its roll free; an arm with fewer joints than the target has
+conditions (the 4-joint maintenance arm, whose tool always points horizontally) meets the
+point exactly and the approach within --approach-tolerance. --output writes the heat map: the
+targets with fields reached, score (the manipulability where reached, else 0),
+manipulability, clearance (the smallest distance between any checked pair of bodies, -1 where
+not measured), orientation_error and the joint values q1..q8.)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("robot", "robot description (.yaml or .urdf)");
-  cli.addValue("resolution",
-               "voxel edge: a length with unit (2cm, 0.02m, 20mm) or a number in the robot's unit");
-  cli.addValue("orientations", "approach-direction bins on the sphere (default 200)");
-  cli.addValue("rolls", "roll bins about the approach (default 1: any roll)");
-  cli.addValue("samples", "joint samples (default 500000000; see above)");
-  cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
-  cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
-  cli.addValue("output", "voxel centres with reachability, manipulability, count (PCD)");
+  app::declareMapFlags(
+      cli, "voxel edge: a length with unit (2cm, 0.02m, 20mm) or a number in the robot's unit");
+  app::declareSharedFlags(cli);
+  cli.addValue("output", "the map's voxel centres, or with --targets the heat map (PCD)");
   cli.addValue("map", "the whole map, binary (docs/reach_map.md)");
   cli.addValue("halfcut", "PNG: the slab through y = 0 coloured by D");
   cli.addValue("histogram", "PNG: histogram of D");
-  cli.addValue("quality-task", "position | full: how manipulability is measured (mcws_sample)");
-  cli.addValue("length",
-               "characteristic length of --quality-task full: a length with unit or a number in "
-               "the robot's unit");
-  cli.addSwitch("no-manipulability", "skip the Jacobian (faster; the field is 0)");
   cli.addSwitch("collision", "count only collision-free samples (needs collision: geometry)");
+  app::declareStudyFlags(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
-}
-
-ReachGrid gridFromFlags(const app::CommandLine& cli, const Robot& robot) {
-  ReachGrid grid;
-  grid.resolution = app::parseLength(cli.required("resolution"), "resolution", robot.length_unit);
-  grid.directions = static_cast<int>(
-      app::parseInteger(cli.text("orientations", "200"), "orientations", 1, 65536));
-  grid.rolls = static_cast<int>(app::parseInteger(cli.text("rolls", "1"), "rolls", 1, 65536));
-  app::asUsageError("orientations", [&] { grid.check(); });
-  return grid;
 }
 
 /// One output written under a temporary name, renamed when every output is ready.
@@ -84,6 +81,149 @@ struct PendingFile {
   }
 };
 
+/// The reachability map: samples through forward kinematics into voxels x orientation bins.
+void runMap(const app::CommandLine& cli, const Robot& robot) {
+  const std::string output = cli.required("output");
+  for (const char* flag : {"output", "map", "halfcut", "histogram"}) {
+    if (cli.has(flag)) io::checkOutputPath(cli.required(flag));
+  }
+  const ReachGrid grid = app::readReachGrid(cli, robot);
+  ReachSampling sampling = app::readReachSampling(cli, robot);
+  const std::uint64_t samples = sampling.samples;
+  std::unique_ptr<CollisionChecker> checker;
+  if (cli.has("collision")) {
+    checker = std::make_unique<CollisionChecker>(
+        robot, loadRequiredCollisionModel(robot, cli.required("robot")));
+    sampling.collision = checker.get();
+  }
+
+  app::Progress progress("mcws_reach", "samples");
+  const ReachMap map =
+      buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
+        progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
+      });
+  if (map.size() == 0) throw Error("no sample counted: every sample collides");
+
+  const std::string unit = unitName(robot.length_unit);
+  const double voxel_volume = std::pow(grid.resolution, 3);
+  nlohmann::json summary = {
+      {"robot", robot.name},
+      {"length_unit", unit},
+      {"resolution", grid.resolution},
+      {"orientations", grid.directions},
+      {"rolls", grid.rolls},
+      {"orientation_bins", map.bins().size()},
+      {"direction_partition", "EQ (Leopardi 2006), approach = tool z axis"},
+      {"samples", samples},
+      {"samples_counted", map.samples()},
+      {"seed", sampling.seed},
+      {"voxels", map.size()},
+      {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
+      {"occupied_volume_unit", unit + "^3"},
+      {"mean_reachability", map.meanReachability()},
+      {"manipulability", sampling.manipulability ? app::qualitySummary(sampling.quality, robot)
+                                                 : nlohmann::json(nullptr)},
+      {"collision", cli.has("collision")},
+      {"output", output}};
+
+  // Every output is rendered and written under a temporary name before any is renamed.
+  PendingFile halfcut, histogram, map_file;
+  if (cli.has("halfcut"))
+    halfcut.write(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
+  if (cli.has("histogram"))
+    histogram.write(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
+  if (cli.has("map")) {
+    std::ostringstream bytes;
+    map.write(bytes, nlohmann::json{{"robot", robot.name},
+                                    {"length_unit", unit},
+                                    {"samples", samples},
+                                    {"seed", sampling.seed},
+                                    {"collision", cli.has("collision")}}
+                         .dump());
+    map_file.write(cli.required("map"), bytes.str());
+  }
+  const auto points = reachPoints(map);
+  io::PcdStreamWriter<ReachPoint> cloud(output, points.size());
+  cloud.write(points.data(), points.size());
+  cloud.commit();
+  for (PendingFile* file : {&halfcut, &histogram, &map_file}) {
+    if (file->file) file->file->commit();
+  }
+  summary["seconds"] = progress.seconds();
+  if (cli.has("json")) {
+    std::cout << summary.dump() << "\n";
+  } else {
+    std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << map.size()
+              << " voxels, mean D " << summary["mean_reachability"].get<double>() << "] -> "
+              << output << "\n";
+  }
+}
+
+/// The reach study: IK per target, the heat map and its summary.
+void runStudy(const app::CommandLine& cli, const Robot& robot) {
+  const std::string output = cli.required("output");
+  io::checkOutputPath(output);
+  for (const char* flag : {"resolution", "map", "halfcut", "histogram", "samples", "collision"}) {
+    if (cli.has(flag))
+      throw app::UsageError(std::string("--") + flag + " is for maps, not --targets");
+  }
+  const ReachStudyOptions options = app::readReachStudyOptions(cli, robot);
+  const std::vector<ReachTarget> targets = app::readTargets(cli, robot);
+  const std::unique_ptr<CollisionChecker> checker = app::studyChecker(cli, robot);
+  app::Progress progress("mcws_reach", "targets");
+  const ReachStudy study(robot, checker.get(), options);
+  const std::vector<TargetReach> results =
+      study.evaluate(targets, Eigen::Isometry3d::Identity(),
+                     [&](std::size_t done, std::size_t all) { progress.update(done, all); });
+
+  pcl::PointCloud<ReachTargetPoint> heat;
+  nlohmann::json unreached = nlohmann::json::array();
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    heat.push_back(reachTargetPoint(targets[i], results[i]));
+    if (!results[i].reached) {
+      unreached.push_back({{"target", i},
+                           {"solved", results[i].solved},
+                           {"label", labelName(results[i].label)},
+                           {"position_error", results[i].position_error},
+                           {"orientation_error_deg", results[i].orientation_error * 180.0 / M_PI}});
+    }
+  }
+  io::PcdStreamWriter<ReachTargetPoint> cloud(output, heat.size());
+  cloud.write(heat.data(), heat.size());
+  cloud.commit();
+
+  const ReachSummary summary = summarize(results);
+  const std::string unit = unitName(robot.length_unit);
+  const auto finiteOrNull = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
+  const nlohmann::json json = {
+      {"robot", robot.name},
+      {"length_unit", unit},
+      {"targets", summary.targets},
+      {"reached", summary.reached},
+      {"solved", summary.solved},
+      {"share_reached", summary.share_reached},
+      {"mean_score", summary.mean_score},
+      {"score", "manipulability where reached, 0 elsewhere"},
+      {"mean_manipulability_reached", summary.mean_manipulability_reached},
+      {"manipulability", app::qualitySummary(options.quality, robot)},
+      {"min_clearance_reached", finiteOrNull(summary.min_clearance_reached)},
+      {"clearance_unit", unit},
+      {"collision", checker != nullptr},
+      {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
+      {"ik_starts", options.starts},
+      {"seed", options.ik.seed},
+      {"unreached", unreached},
+      {"seconds", progress.seconds()},
+      {"output", output}};
+  if (cli.has("json")) {
+    std::cout << json.dump() << "\n";
+  } else {
+    std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000)
+              << " ms : " << summary.reached << " of " << summary.targets << " targets reached] -> "
+              << output << "\n";
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,91 +231,14 @@ int main(int argc, char** argv) {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
-
-    const std::uint64_t samples = static_cast<std::uint64_t>(app::parseInteger(
-        cli.text("samples", "500000000"), "samples", 1, std::numeric_limits<std::int64_t>::max()));
-    const std::string output = cli.required("output");
-    for (const char* flag : {"output", "map", "halfcut", "histogram"}) {
-      if (cli.has(flag)) io::checkOutputPath(cli.required(flag));
-    }
     const Robot robot = app::readRobot(cli);
-    const ReachGrid grid = gridFromFlags(cli, robot);
-
-    ReachSampling sampling;
-    sampling.samples = samples;
-    sampling.seed = app::readSeed(cli);
-    sampling.threads = app::readThreads(cli);
-    sampling.manipulability = !cli.has("no-manipulability");
-    sampling.quality = app::readQualityOptions(cli, robot);
-    std::unique_ptr<CollisionChecker> checker;
-    if (cli.has("collision")) {
-      checker = std::make_unique<CollisionChecker>(
-          robot, loadRequiredCollisionModel(robot, cli.required("robot")));
-      sampling.collision = checker.get();
-    }
-
-    app::Progress progress("mcws_reach", "samples");
-    const ReachMap map =
-        buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
-          progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
-        });
-    if (map.size() == 0) throw Error("no sample counted: every sample collides");
-
-    const std::string unit = unitName(robot.length_unit);
-    const double voxel_volume = std::pow(grid.resolution, 3);
-    nlohmann::json summary = {
-        {"robot", robot.name},
-        {"length_unit", unit},
-        {"resolution", grid.resolution},
-        {"orientations", grid.directions},
-        {"rolls", grid.rolls},
-        {"orientation_bins", map.bins().size()},
-        {"direction_partition", "EQ (Leopardi 2006), approach = tool z axis"},
-        {"samples", samples},
-        {"samples_counted", map.samples()},
-        {"seed", sampling.seed},
-        {"voxels", map.size()},
-        {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
-        {"occupied_volume_unit", unit + "^3"},
-        {"mean_reachability", map.meanReachability()},
-        {"manipulability",
-         sampling.manipulability
-             ? nlohmann::json{{"task", qualityTaskName(sampling.quality.task)},
-                              {"characteristic_length", sampling.quality.characteristic_length}}
-             : nlohmann::json(nullptr)},
-        {"collision", cli.has("collision")},
-        {"output", output}};
-
-    // Every output is rendered and written under a temporary name before any is renamed.
-    PendingFile halfcut, histogram, map_file;
-    if (cli.has("halfcut"))
-      halfcut.write(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
-    if (cli.has("histogram"))
-      histogram.write(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
-    if (cli.has("map")) {
-      std::ostringstream bytes;
-      map.write(bytes, nlohmann::json{{"robot", robot.name},
-                                      {"length_unit", unit},
-                                      {"samples", samples},
-                                      {"seed", sampling.seed},
-                                      {"collision", cli.has("collision")}}
-                           .dump());
-      map_file.write(cli.required("map"), bytes.str());
-    }
-    const auto points = reachPoints(map);
-    io::PcdStreamWriter<ReachPoint> cloud(output, points.size());
-    cloud.write(points.data(), points.size());
-    cloud.commit();
-    for (PendingFile* file : {&halfcut, &histogram, &map_file}) {
-      if (file->file) file->file->commit();
-    }
-    summary["seconds"] = progress.seconds();
-    if (cli.has("json")) {
-      std::cout << summary.dump() << "\n";
+    if (cli.has("targets")) {
+      runStudy(cli, robot);
     } else {
-      std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000)
-                << " ms : " << map.size() << " voxels, mean D "
-                << summary["mean_reachability"].get<double>() << "] -> " << output << "\n";
+      for (const char* flag : {"approach-tolerance", "ik-starts", "no-collision", "standoff"}) {
+        if (cli.has(flag)) throw app::UsageError(std::string("--") + flag + " needs --targets");
+      }
+      runMap(cli, robot);
     }
     return app::kExitOk;
   });

@@ -88,20 +88,7 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
   if (cli.has("quality")) {
     const QualityOptions quality = app::readQualityOptions(cli, robot);
     source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
-    // Position task: each of the k = min(n, 3) singular values is a length per rad; a prismatic
-    // joint's column has no length, so the unit is then a mixture the JSON says it is.
-    const bool prismatic =
-        std::any_of(robot.joints.begin(), robot.joints.end(),
-                    [](const Joint& joint) { return joint.type == JointType::kPrismatic; });
-    const std::string unit = unitName(robot.length_unit);
-    source.summary["quality"] = {
-        {"task", qualityTaskName(quality.task)},
-        {"characteristic_length", quality.characteristic_length},
-        {"characteristic_length_unit", unit},
-        {"manipulability_unit",
-         quality.task == QualityTask::kFull ? std::string("1")
-         : prismatic ? "mixed: " + unit + " per rad for each revolute joint, 1 for each prismatic"
-                     : unit + "^" + std::to_string(std::min(robot.dof(), 3))}};
+    source.summary["quality"] = app::qualitySummary(quality, robot);
   }
   return source;
 }

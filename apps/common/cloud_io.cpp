@@ -39,7 +39,7 @@ long pcdPointCount(const std::string& path) {
 
 }  // namespace
 
-WorkspaceCloud::Ptr loadCloud(const std::string& path) {
+pcl::PCLPointCloud2 loadPcd(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw Error(
@@ -61,7 +61,14 @@ WorkspaceCloud::Ptr loadCloud(const std::string& path) {
       throw Error(path + ": has no field '" + axis + "'");
     }
   }
+  if (blob.width * blob.height == 0) throw Error(path + ": the cloud has no points");
+  return blob;
+}
+
+WorkspaceCloud::Ptr loadCloud(const std::string& path) {
+  const pcl::PCLPointCloud2 blob = loadPcd(path);
   auto cloud = std::make_shared<WorkspaceCloud>();
+  const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // missing q/label fields are fine
   pcl::fromPCLPointCloud2(blob, *cloud);
   pcl::console::setVerbosityLevel(level);

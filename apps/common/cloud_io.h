@@ -13,6 +13,12 @@ namespace mcws::app {
 
 using WorkspaceCloud = pcl::PointCloud<WorkspacePoint>;
 
+/// \brief Reads a PCD file whose header has been checked (PCL's reader crashes on some files that
+/// are not PCD) and which has fields x, y, z and at least one point.
+/// \throws mcws::Error naming the file when it is missing, unreadable, not PCD, has no x y z, or
+///   holds no points.
+pcl::PCLPointCloud2 loadPcd(const std::string& path);
+
 /// \brief Loads a PCD file into WorkspacePoint (fields the file lacks are zero, so pcl::PointXYZ
 /// and pcl::PointXYZL files load too).
 /// \throws mcws::Error naming the file when it is missing, unreadable, not PCD, has no x y z, or

@@ -1,5 +1,6 @@
 #include "common/flags.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -68,6 +69,17 @@ double parseLength(const std::string& text, const std::string& flag, LengthUnit 
   return value;
 }
 
+double parseAngle(const std::string& text, const std::string& flag) {
+  for (const auto& [suffix, radians] : {std::pair{"deg", M_PI / 180.0}, {"rad", 1.0}}) {
+    const std::string s = suffix;
+    if (text.size() > s.size() && text.compare(text.size() - s.size(), s.size(), s) == 0) {
+      return parseNonNegative(text.substr(0, text.size() - s.size()), flag) * radians;
+    }
+  }
+  if (parseNonNegative(text, flag) == 0.0) return 0.0;
+  throw UsageError("--" + flag + ": " + text + " has no unit (write 5deg or 0.087rad)");
+}
+
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot) {
   QualityOptions quality = defaultQualityOptions(robot);
   if (cli.has("quality-task")) {
@@ -79,6 +91,22 @@ QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot) {
         parseLength(cli.required("length"), "length", robot.length_unit);
   }
   return quality;
+}
+
+nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot) {
+  // Position task: each of the k = min(n, 3) singular values is a length per rad; a prismatic
+  // joint's column has no length, so the unit is then a mixture the JSON says it is.
+  const bool prismatic =
+      std::any_of(robot.joints.begin(), robot.joints.end(),
+                  [](const Joint& joint) { return joint.type == JointType::kPrismatic; });
+  const std::string unit = unitName(robot.length_unit);
+  return {{"task", qualityTaskName(quality.task)},
+          {"characteristic_length", quality.characteristic_length},
+          {"characteristic_length_unit", unit},
+          {"manipulability_unit",
+           quality.task == QualityTask::kFull ? std::string("1")
+           : prismatic ? "mixed: " + unit + " per rad for each revolute joint, 1 for each prismatic"
+                       : unit + "^" + std::to_string(std::min(robot.dof(), 3))}};
 }
 
 BoundaryPlane readPlane(const CommandLine& cli) {

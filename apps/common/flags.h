@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <initializer_list>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "common/app.h"
@@ -62,9 +63,18 @@ SamplePoint readPoint(const CommandLine& cli);
 /// \throws UsageError naming the flag for a value that is not a positive finite length.
 double parseLength(const std::string& text, const std::string& flag, LengthUnit unit);
 
+/// \brief An angle flag >= 0 with its unit: "5deg", "0.087rad"; a bare 0 is accepted.
+/// \returns [rad]. \throws UsageError naming the flag for a negative or non-numeric value or a
+///   non-zero value without a unit.
+double parseAngle(const std::string& text, const std::string& flag);
+
 /// \brief --quality-task (position | full) and --length (parseLength()) over the robot's
 /// defaults (defaultQualityOptions()).
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);
+
+/// \brief The JSON of how manipulability is measured: task, characteristic length and the unit of
+/// the manipulability values (1 for the full task; length^k for the position task).
+nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot);
 
 /// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
 BoundaryPlane readPlane(const CommandLine& cli);

@@ -127,6 +127,19 @@ struct Problem {
   IkOptions options;
 };
 
+/// Rotation vector of the shortest rotation taking the unit vector `from` onto the unit vector
+/// `to` (axis from x to, angle between them; any axis normal to `from` when they are opposite).
+Eigen::Vector3d axisAlignment(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  const Eigen::Vector3d axis = from.cross(to);
+  const double s = axis.norm();
+  const double c = from.dot(to);
+  if (s > 1e-12) return axis * (std::atan2(s, c) / s);
+  if (c > 0.0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d other =
+      std::abs(from.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  return from.cross(other).normalized() * M_PI;
+}
+
 /// Levenberg-Marquardt schedule of lambda^2: times kDampingDown after a step that lowered the
 /// error, times kDampingUp after one that did not (tuned on bench_ik's poses: mean iterations
 /// within 10 % over 0.1 .. 0.5 and 4 .. 10).
@@ -202,8 +215,9 @@ class DlsSolver {
   struct State {
     VectorQ q;
     MatrixJ J;
-    VectorE e;         ///< weighted error
-    double cost{0.0};  ///< |e|^2
+    VectorE e;          ///< weighted error
+    double cost{0.0};   ///< |e|^2
+    Eigen::Vector3d z;  ///< the tool's z axis (free roll)
     double position_error{0.0}, orientation_error{0.0};
   };
 
@@ -224,7 +238,10 @@ class DlsSolver {
     s.position_error = e_p.norm();
     s.e.template head<3>() = e_p * problem_.chain.inverse_reach;
     if constexpr (Rows == 6) {
-      const Eigen::Vector3d e_o = rotationVector(problem_.R_target * R.transpose());
+      s.z = R.col(2);
+      const Eigen::Vector3d e_o = problem_.options.free_roll
+                                      ? axisAlignment(s.z, problem_.R_target.col(2))
+                                      : rotationVector(problem_.R_target * R.transpose());
       s.orientation_error = e_o.norm();
       s.e.template tail<3>() = e_o;
     } else {
@@ -245,6 +262,12 @@ class DlsSolver {
   bool step(const State& s, double lambda2) {
     Jw_ = s.J.template topRows<Rows>();
     Jw_.template topRows<3>() *= problem_.chain.inverse_reach;
+    if constexpr (Rows == 6) {
+      if (problem_.options.free_roll) {  // turning about z does not move z
+        const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - s.z * s.z.transpose();
+        Jw_.template bottomRows<3>() = across * s.J.template bottomRows<3>();
+      }
+    }
     if (!solveStep(s.e, lambda2)) return false;
     bool locked = false;
     for (int i = 0; i < n_; ++i) {

@@ -28,7 +28,12 @@ struct IkOptions {
   int max_iterations{100};             ///< iterations per attempt (seed or restart)
   int restarts{20};                    ///< random restarts after the attempt from the seed
   bool position_only{false};           ///< match the tool point only (arms with < 6 joints)
-  std::uint64_t seed{1};               ///< seed of the restarts' random joint vectors
+  /// Match the tool point and the direction of the tool's z axis only; the rotation about that
+  /// axis is free (a target given as a point and an approach direction: nozzles, brushes, drills,
+  /// the point-and-normal targets of a reach study). orientation_error is then the angle between
+  /// the tool's z axis and the target's [rad]. Ignored when position_only is set.
+  bool free_roll{false};
+  std::uint64_t seed{1};  ///< seed of the restarts' random joint vectors
   /// Damping lambda^2 of the first step of each attempt, dimensionless (position rows are
   /// divided by the chain's reach); it then adapts, Levenberg-Marquardt style.
   double damping{1e-2};
@@ -58,7 +63,10 @@ struct IkResult {
 /// are wrapped instead); a joint held by its limit drops out of the step, which the others then
 /// make up for; no joint moves more than 1 rad per step. An attempt that stalls ends early; the
 /// next one starts from a random joint vector drawn from `options.seed` and the attempt number, so
-/// equal inputs give equal results. In position-only mode e and J keep their first three rows.
+/// equal inputs give equal results. In position-only mode e and J keep their first three rows; in
+/// free-roll mode the rotation error is the rotation vector taking the tool's z axis z onto the
+/// target's z* (axis z x z*, angle between them) and J's rotation rows lose their part along z,
+/// which does not move z.
 ///
 /// \param robot the chain.
 /// \param T_world_tool_target the wanted tool pose [length unit]; its rotation must be

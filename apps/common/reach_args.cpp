@@ -1,0 +1,107 @@
+#include "common/reach_args.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "common/flags.h"
+#include "common/targets_io.h"
+#include "mcws/collision/collision_model.h"
+
+namespace mcws::app {
+
+void declareMapFlags(CommandLine& cli, const char* resolution_help) {
+  cli.addValue("resolution", resolution_help);
+  cli.addValue("orientations", "approach-direction bins on the sphere (default 200)");
+  cli.addValue("rolls", "roll bins about the approach (default 1: any roll)");
+  cli.addValue("samples", "joint samples of the map (default 500000000)");
+  cli.addSwitch("no-manipulability", "skip the Jacobian (faster; the field is 0)");
+}
+
+void declareSharedFlags(CommandLine& cli) {
+  cli.addValue("quality-task", "position | full: how manipulability is measured (mcws_sample)");
+  cli.addValue("length",
+               "characteristic length of --quality-task full: a length with unit or a number in "
+               "the robot's unit");
+  cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
+  cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
+}
+
+void declareStudyFlags(CommandLine& cli) {
+  cli.addValue("targets",
+               "targets as PCD with normals (pcl::PointNormal) or CSV with the header "
+               "x,y,z,normal_x,normal_y,normal_z or x,y,z,roll,pitch,yaw (rad)");
+  cli.addValue("standoff",
+               "distance of the tool point from each target's surface, along the normal: a length "
+               "with unit or a number in the robot's unit (default 0)");
+  cli.addValue("approach-tolerance",
+               "largest accepted approach (or orientation) error of a target, with unit: 5deg, "
+               "0.1rad (default 0: exact)");
+  cli.addValue("ik-starts", "IK starting joint vectors per target (default 4)");
+  cli.addSwitch("no-collision", "ignore the robot's collision model when solving targets");
+}
+
+ReachGrid readReachGrid(const CommandLine& cli, const Robot& robot) {
+  ReachGrid grid;
+  grid.resolution = parseLength(cli.required("resolution"), "resolution", robot.length_unit);
+  grid.directions =
+      static_cast<int>(parseInteger(cli.text("orientations", "200"), "orientations", 1, 65536));
+  grid.rolls = static_cast<int>(parseInteger(cli.text("rolls", "1"), "rolls", 1, 65536));
+  asUsageError("orientations", [&] { grid.check(); });
+  return grid;
+}
+
+ReachSampling readReachSampling(const CommandLine& cli, const Robot& robot) {
+  ReachSampling sampling;
+  sampling.samples = static_cast<std::uint64_t>(parseInteger(
+      cli.text("samples", "500000000"), "samples", 1, std::numeric_limits<std::int64_t>::max()));
+  sampling.seed = readSeed(cli);
+  sampling.threads = readThreads(cli);
+  sampling.manipulability = !cli.has("no-manipulability");
+  sampling.quality = readQualityOptions(cli, robot);
+  return sampling;
+}
+
+ReachStudyOptions readReachStudyOptions(const CommandLine& cli, const Robot& robot) {
+  ReachStudyOptions options;
+  options.approach_tolerance =
+      parseAngle(cli.text("approach-tolerance", "0"), "approach-tolerance");
+  options.starts = static_cast<int>(parseInteger(cli.text("ik-starts", "4"), "ik-starts", 1, 1000));
+  options.ik.seed = readSeed(cli);
+  options.threads = readThreads(cli);
+  options.quality = readQualityOptions(cli, robot);
+  return options;
+}
+
+std::vector<ReachTarget> readTargets(const CommandLine& cli, const Robot& robot) {
+  std::vector<ReachTarget> targets = loadTargets(cli.required("targets"));
+  if (cli.has("standoff") && cli.required("standoff") != "0") {
+    const double standoff = parseLength(cli.required("standoff"), "standoff", robot.length_unit);
+    for (ReachTarget& target : targets) {
+      target.pose.translation() -= standoff * target.pose.linear().col(2);
+    }
+  }
+  return targets;
+}
+
+std::unique_ptr<CollisionChecker> studyChecker(const CommandLine& cli, const Robot& robot,
+                                               bool environment) {
+  if (cli.has("no-collision")) return nullptr;
+  CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
+  if (!environment) {
+    auto inEnvironment = [&](const std::string& name) {
+      return std::any_of(model.environment.begin(), model.environment.end(),
+                         [&](const BodySpec& body) { return body.name == name; });
+    };
+    model.allowed.erase(std::remove_if(model.allowed.begin(), model.allowed.end(),
+                                       [&](const auto& pair) {
+                                         return inEnvironment(pair.first) ||
+                                                inEnvironment(pair.second);
+                                       }),
+                        model.allowed.end());
+    model.environment.clear();
+  }
+  if (!hasGeometry(model)) return nullptr;
+  return std::make_unique<CollisionChecker>(robot, model);
+}
+
+}  // namespace mcws::app

@@ -1,0 +1,110 @@
+#include "common/targets_io.h"
+
+#include <pcl/conversions.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/cloud_io.h"
+#include "mcws/core/error.h"
+#include "mcws/core/text_file.h"
+#include "mcws/kinematics/robot.h"
+
+namespace mcws::app {
+
+namespace {
+
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::vector<ReachTarget> targetsFromPcd(const std::string& path) {
+  const pcl::PCLPointCloud2 blob = loadPcd(path);
+  for (const char* field : {"normal_x", "normal_y", "normal_z"}) {
+    if (pcl::getFieldIndex(blob, field) < 0) {
+      throw Error(path + ": has no field '" + field +
+                  "': a target is a point and its surface normal (pcl::PointNormal)");
+    }
+  }
+  pcl::PointCloud<pcl::PointNormal> cloud;
+  pcl::fromPCLPointCloud2(blob, cloud);
+  std::vector<ReachTarget> targets;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const pcl::PointNormal& p = cloud[i];
+    try {
+      targets.push_back(targetFromNormal(p.getVector3fMap().cast<double>(),
+                                         p.getNormalVector3fMap().cast<double>()));
+    } catch (const Error& e) {
+      throw Error(path + ": point " + std::to_string(i) + ": " + e.what());
+    }
+  }
+  return targets;
+}
+
+std::vector<ReachTarget> targetsFromCsv(const std::string& path) {
+  std::istringstream text(readTextFile(path, "targets file"));
+  std::string line, header;
+  int number = 0;
+  std::vector<ReachTarget> targets;
+  while (std::getline(text, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    if (header.empty()) {
+      header = line;
+      header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
+      if (header != "x,y,z,normal_x,normal_y,normal_z" && header != "x,y,z,roll,pitch,yaw") {
+        throw Error(where + "header '" + line +
+                    "' is neither x,y,z,normal_x,normal_y,normal_z nor x,y,z,roll,pitch,yaw");
+      }
+      continue;
+    }
+    double v[6];
+    std::istringstream fields(line);
+    std::string field;
+    int count = 0;
+    while (std::getline(fields, field, ',')) {
+      if (count == 6) throw Error(where + "more than 6 values");
+      char* end = nullptr;
+      v[count] = std::strtod(field.c_str(), &end);
+      if (end == field.c_str() ||
+          field.find_first_not_of(" \t", end - field.c_str()) != std::string::npos ||
+          !std::isfinite(v[count])) {
+        throw Error(where + "value " + std::to_string(count + 1) + " '" + field +
+                    "' is not a finite number");
+      }
+      ++count;
+    }
+    if (count != 6) throw Error(where + std::to_string(count) + " values, 6 wanted");
+    const Eigen::Vector3d point(v[0], v[1], v[2]), rest(v[3], v[4], v[5]);
+    try {
+      if (header == "x,y,z,roll,pitch,yaw") {
+        ReachTarget target;
+        target.pose = poseFromXyzRpy(point, rest);
+        target.free_roll = false;
+        targets.push_back(target);
+      } else {
+        targets.push_back(targetFromNormal(point, rest));
+      }
+    } catch (const Error& e) {
+      throw Error(where + e.what());
+    }
+  }
+  if (header.empty()) throw Error(path + ": no header line (x,y,z,normal_x,... or x,y,z,roll,...)");
+  return targets;
+}
+
+}  // namespace
+
+std::vector<ReachTarget> loadTargets(const std::string& path) {
+  std::vector<ReachTarget> targets =
+      endsWith(path, ".csv") ? targetsFromCsv(path) : targetsFromPcd(path);
+  if (targets.empty()) throw Error(path + ": no targets");
+  return targets;
+}
+
+}  // namespace mcws::app

@@ -1,0 +1,242 @@
+// mcws_place: where to put the robot's base (stop the line robot) so its arm reaches a set of
+// targets: candidate base positions scored from the reachability map, the best confirmed by IK.
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "common/app.h"
+#include "common/flags.h"
+#include "common/reach_args.h"
+#include "mcws/io/atomic_file.h"
+#include "mcws/io/pcd_stream_writer.h"
+#include "mcws/reach/base_placement.h"
+
+namespace {
+
+using namespace mcws;
+
+constexpr char kUsage[] =
+    R"(mcws_place --robot FILE --targets TARGETS.pcd|.csv --along "X0 X1 STEP" (--map MAP.bin | --resolution LENGTH) --output BASES.pcd [options])";
+
+constexpr char kSummary[] =
+    R"(Finds where to put the robot's base so its arm reaches the targets: the whole robot (base,
+links, tool) is moved by every offset of the grid --along (x) x --across (y) x --up (z), each
+"first last step" in the robot's length unit, while the environment of its collision model
+stays where it is (the power-line robot stopping at points of its conductor). Each position is
+scored from the reachability map (--map from mcws_reach, or one built here from --resolution
+and --samples; the map built here counts samples free of self-collision, the environment being
+left to IK): the share of the targets whose voxel and approach-direction bin the map marks
+reached, and their mean best manipulability. The map is an estimate (a voxel partly inside the
+reach counts), so the best --confirm positions by the map (default 5; all: every position) are
+solved by inverse kinematics with the collision model, as mcws_reach --targets does; the best
+position is the confirmed one with the most targets reached, then the best mean score.
+--output writes the candidate bases (where the base frame lands) with fields map_share,
+map_score, ik_share and ik_score (-1: not confirmed); --plot the share reached against the
+offset along x.)";
+
+void declareFlags(app::CommandLine& cli) {
+  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  cli.addValue("along", "\"first last step\": base offsets along x [robot length unit]");
+  cli.addValue("across", "\"first last step\": base offsets along y (default 0 only)");
+  cli.addValue("up", "\"first last step\": base offsets along z (default 0 only)");
+  cli.addValue("map", "the robot's reachability map (mcws_reach --map)");
+  app::declareMapFlags(cli,
+                       "voxel edge of a map built here (without --map): a length with unit "
+                       "(2cm, 0.02m, 20mm) or a number in the robot's unit");
+  app::declareSharedFlags(cli);
+  app::declareStudyFlags(cli);
+  cli.addValue("confirm", "positions confirmed by IK: a number (default 5) or all");
+  cli.addValue("output", "candidate bases with map_share, map_score, ik_share, ik_score (PCD)");
+  cli.addValue("plot", "PNG: targets reached against the offset along x");
+  cli.addSwitch("json", "print a JSON summary on stdout");
+}
+
+/// The values of "first last step" (one value, first, when the flag is absent).
+std::vector<double> steps(const app::CommandLine& cli, const std::string& flag) {
+  if (!cli.has(flag)) return {0.0};
+  const Eigen::VectorXd v = app::parseNumberList(cli.required(flag), flag);
+  if (v.size() != 3) {
+    throw app::UsageError("--" + flag + ": " + std::to_string(v.size()) +
+                          " values given, 3 wanted (first last step)");
+  }
+  if (!(v[2] > 0.0) || v[1] < v[0]) {
+    std::ostringstream msg;
+    msg << "--" << flag << ": step " << v[2] << " is not positive or last " << v[1]
+        << " is below first " << v[0];
+    throw app::UsageError(msg.str());
+  }
+  const double count = std::floor((v[1] - v[0]) / v[2] + 1e-9) + 1.0;
+  if (count > 1e5) {
+    throw app::UsageError("--" + flag + ": " + std::to_string(static_cast<long>(count)) +
+                          " positions, at most 100000");
+  }
+  std::vector<double> values;
+  for (int k = 0; k < static_cast<int>(count); ++k) values.push_back(v[0] + k * v[2]);
+  return values;
+}
+
+std::vector<Eigen::Vector3d> offsets(const app::CommandLine& cli) {
+  const std::vector<double> xs = steps(cli, "along"), ys = steps(cli, "across"),
+                            zs = steps(cli, "up");
+  if (xs.size() * ys.size() * zs.size() > 1000000) {
+    throw app::UsageError("--along x --across x --up: more than 1000000 base positions");
+  }
+  std::vector<Eigen::Vector3d> all;
+  for (double x : xs) {
+    for (double y : ys) {
+      for (double z : zs) all.emplace_back(x, y, z);
+    }
+  }
+  return all;
+}
+
+/// The map from --map (checked against the robot) or built from the map flags.
+ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about) {
+  const std::string unit = unitName(robot.length_unit);
+  if (cli.has("map")) {
+    for (const char* flag : {"resolution", "orientations", "rolls", "samples"}) {
+      if (cli.has(flag))
+        throw app::UsageError(std::string("--") + flag +
+                              " is for a map built here, not with --map");
+    }
+    const std::string path = cli.required("map");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open the reachability map");
+    std::string header;
+    ReachMap map = ReachMap::read(in, path, &header);
+    const nlohmann::json h = nlohmann::json::parse(header, nullptr, false);
+    if (!h.is_object() || h.value("robot", "") != robot.name ||
+        h.value("length_unit", "") != unit) {
+      throw Error(path + ": the map is of robot '" + (h.is_object() ? h.value("robot", "?") : "?") +
+                  "' in " + (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
+                  robot.name + "' in " + unit);
+    }
+    about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
+    return map;
+  }
+  if (!cli.has("resolution")) throw app::UsageError("missing --map or --resolution");
+  const ReachGrid grid = app::readReachGrid(cli, robot);
+  ReachSampling sampling = app::readReachSampling(cli, robot);
+  const std::unique_ptr<CollisionChecker> self = app::studyChecker(cli, robot, false);
+  sampling.collision = self.get();
+  app::Progress progress("mcws_place", "map samples");
+  ReachMap map = buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
+    progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
+  });
+  about = {{"source", "built"}, {"samples", sampling.samples}, {"self_collision", self != nullptr}};
+  return map;
+}
+
+nlohmann::json candidateJson(const BaseCandidate& c) {
+  nlohmann::json j = {{"offset", {c.offset.x(), c.offset.y(), c.offset.z()}},
+                      {"map_share", c.map_share},
+                      {"map_score", c.map_score}};
+  j["ik_share"] = c.confirmed ? nlohmann::json(c.ik.share_reached) : nullptr;
+  j["ik_score"] = c.confirmed ? nlohmann::json(c.ik.mean_score) : nullptr;
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return app::run("mcws_place", [&] {
+    app::CommandLine cli(kUsage, kSummary);
+    declareFlags(cli);
+    if (!cli.parse(argc, argv)) return app::kExitOk;
+    const std::string output = cli.required("output");
+    io::checkOutputPath(output);
+    if (cli.has("plot")) io::checkOutputPath(cli.required("plot"));
+    if (!cli.has("along")) throw app::UsageError("missing --along");
+    const std::vector<Eigen::Vector3d> moves = offsets(cli);
+    PlacementOptions placement;
+    const std::string confirm = cli.text("confirm", "5");
+    placement.confirm =
+        confirm == "all" ? -1 : static_cast<int>(app::parseInteger(confirm, "confirm", 0, 1000000));
+    const Robot robot = app::readRobot(cli);
+    const ReachStudyOptions options = app::readReachStudyOptions(cli, robot);
+    placement.approach_tolerance = options.approach_tolerance;
+    const std::vector<ReachTarget> targets = app::readTargets(cli, robot);
+
+    nlohmann::json map_about;
+    const ReachMap map = loadOrBuildMap(cli, robot, map_about);
+    const std::unique_ptr<CollisionChecker> checker = app::studyChecker(cli, robot);
+    const ReachStudy study(robot, checker.get(), options);
+    app::Progress progress("mcws_place", "positions confirmed");
+    const std::vector<BaseCandidate> candidates =
+        placeBase(map, study, targets, moves, placement,
+                  [&](std::size_t done, std::size_t all) { progress.update(done, all); });
+    const int best = bestCandidate(candidates);
+
+    const std::string unit = unitName(robot.length_unit);
+    std::unique_ptr<io::AtomicFile> plot;
+    if (cli.has("plot")) {
+      const std::string png = renderPlacementPng(candidates, robot.name, unit);
+      plot = std::make_unique<io::AtomicFile>(cli.required("plot"));
+      plot->write(png.data(), png.size());
+    }
+    std::vector<BasePoint> points;
+    for (const BaseCandidate& c : candidates) {
+      BasePoint p;
+      p.getVector3fMap() = (robot.T_world_base.translation() + c.offset).cast<float>();
+      p.map_share = static_cast<float>(c.map_share);
+      p.map_score = static_cast<float>(c.map_score);
+      if (c.confirmed) {
+        p.ik_share = static_cast<float>(c.ik.share_reached);
+        p.ik_score = static_cast<float>(c.ik.mean_score);
+      }
+      points.push_back(p);
+    }
+    io::PcdStreamWriter<BasePoint> cloud(output, points.size());
+    cloud.write(points.data(), points.size());
+    cloud.commit();
+    if (plot) plot->commit();
+
+    nlohmann::json table = nlohmann::json::array();
+    for (const BaseCandidate& c : candidates) table.push_back(candidateJson(c));
+    nlohmann::json best_json = nullptr;
+    if (best >= 0) {
+      const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
+      best_json = candidateJson(b);
+      best_json["reached"] = b.ik.reached;
+      const Eigen::Vector3d base = robot.T_world_base.translation() + b.offset;
+      best_json["base_position"] = {base.x(), base.y(), base.z()};
+    }
+    const nlohmann::json json = {
+        {"robot", robot.name},
+        {"length_unit", unit},
+        {"targets", targets.size()},
+        {"positions", candidates.size()},
+        {"map",
+         {{"resolution", map.grid().resolution},
+          {"orientations", map.grid().directions},
+          {"rolls", map.grid().rolls},
+          {"about", map_about}}},
+        {"score", "manipulability where reached, 0 elsewhere"},
+        {"manipulability", app::qualitySummary(options.quality, robot)},
+        {"collision", checker != nullptr},
+        {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
+        {"best", best_json},
+        {"candidates", table},
+        {"seconds", progress.seconds()},
+        {"output", output}};
+    if (cli.has("json")) {
+      std::cout << json.dump() << "\n";
+    } else {
+      std::cerr << "offset x y z [" << unit << "]   map share   IK share\n";
+      for (const BaseCandidate& c : candidates) {
+        std::cerr << std::setw(8) << c.offset.x() << ' ' << std::setw(8) << c.offset.y() << ' '
+                  << std::setw(8) << c.offset.z() << "   " << std::setw(9) << c.map_share << "   "
+                  << (c.confirmed ? std::to_string(c.ik.share_reached) : std::string("-")) << "\n";
+      }
+      if (best >= 0) {
+        const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
+        std::cerr << "best: move the base by (" << b.offset.transpose() << ") " << unit << ": "
+                  << b.ik.reached << " of " << targets.size() << " targets reached\n";
+      }
+    }
+    return app::kExitOk;
+  });
+}

@@ -1,0 +1,167 @@
+#include "mcws/reach/base_placement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+#include "mcws/core/error.h"
+#include "mcws/io/gnuplot.h"
+
+namespace mcws {
+
+namespace {
+
+/// Directions probed around an approach within a tolerance: 8 at half of it, 8 at all of it.
+constexpr int kProbesPerRing = 8;
+
+/// Whether any roll bin of direction region `region` is reached in voxel v.
+bool regionReached(const ReachMap& map, std::size_t v, int region) {
+  const int rolls = map.bins().rolls();
+  for (int k = 0; k < rolls; ++k) {
+    if (map.reached(v, region * rolls + k)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vector3d& offset,
+                double approach_tolerance, float* manipulability) {
+  const long found = map.find(target.pose.translation() - offset);
+  if (found < 0) return false;
+  const auto v = static_cast<std::size_t>(found);
+  const Eigen::Matrix3d& R = target.pose.linear();
+  bool reached = false;
+  if (!target.free_roll) {
+    reached = map.reached(v, map.bins().bin(R.col(2), R.col(0)));
+  } else {
+    const SpherePartition& sphere = map.bins().sphere();
+    reached = regionReached(map, v, sphere.region(R.col(2)));
+    for (int ring = 1; ring <= 2 && !reached && approach_tolerance > 0.0; ++ring) {
+      const double tilt = 0.5 * ring * approach_tolerance;
+      for (int k = 0; k < kProbesPerRing && !reached; ++k) {
+        const double turn = 2.0 * M_PI * k / kProbesPerRing;
+        const Eigen::Vector3d d =
+            std::cos(tilt) * R.col(2) +
+            std::sin(tilt) * (std::cos(turn) * R.col(0) + std::sin(turn) * R.col(1));
+        reached = regionReached(map, v, sphere.region(d));
+      }
+    }
+  }
+  if (reached && manipulability) *manipulability = map.bestManipulability(v);
+  return reached;
+}
+
+std::vector<BaseCandidate> placeBase(
+    const ReachMap& map, const ReachStudy& study, const std::vector<ReachTarget>& targets,
+    const std::vector<Eigen::Vector3d>& offsets, const PlacementOptions& options,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (targets.empty()) throw Error("base placement: no targets");
+  if (offsets.empty()) throw Error("base placement: no base positions");
+  std::vector<BaseCandidate> candidates(offsets.size());
+  const double n = static_cast<double>(targets.size());
+  for (std::size_t c = 0; c < offsets.size(); ++c) {
+    BaseCandidate& candidate = candidates[c];
+    candidate.offset = offsets[c];
+    std::size_t reached = 0;
+    double score = 0.0;
+    for (const ReachTarget& target : targets) {
+      float best = 0.f;
+      if (mapReaches(map, target, offsets[c], options.approach_tolerance, &best)) {
+        ++reached;
+        score += best;
+      }
+    }
+    candidate.map_share = static_cast<double>(reached) / n;
+    candidate.map_score = score / n;
+  }
+  // The best by the map first (share, then score, then order) are confirmed by IK.
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const BaseCandidate &x = candidates[a], &y = candidates[b];
+    if (x.map_share != y.map_share) return x.map_share > y.map_share;
+    return x.map_score > y.map_score;
+  });
+  const std::size_t confirm =
+      options.confirm < 0 ? order.size()
+                          : std::min(order.size(), static_cast<std::size_t>(options.confirm));
+  for (std::size_t k = 0; k < confirm; ++k) {
+    BaseCandidate& candidate = candidates[order[k]];
+    Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
+    move.translation() = candidate.offset;
+    candidate.ik = summarize(study.evaluate(targets, move));
+    candidate.confirmed = true;
+    if (progress) progress(k + 1, confirm);
+  }
+  return candidates;
+}
+
+int bestCandidate(const std::vector<BaseCandidate>& candidates) {
+  int best = -1;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const BaseCandidate& x = candidates[c];
+    if (!x.confirmed) continue;
+    if (best < 0) {
+      best = static_cast<int>(c);
+      continue;
+    }
+    const ReachSummary& b = candidates[static_cast<std::size_t>(best)].ik;
+    if (x.ik.share_reached > b.share_reached ||
+        (x.ik.share_reached == b.share_reached && x.ik.mean_score > b.mean_score)) {
+      best = static_cast<int>(c);
+    }
+  }
+  return best;
+}
+
+std::string renderPlacementPng(const std::vector<BaseCandidate>& candidates,
+                               const std::string& title, const std::string& unit) {
+  io::ScratchDir dir;
+  const std::string map_data = dir.file("map.dat"), ik_data = dir.file("ik.dat"),
+                    png = dir.file("placement.png");
+  std::size_t confirmed = 0;
+  {
+    // Several candidates at one x (a grid): the best of them.
+    std::vector<std::pair<double, double>> map_best, ik_best;
+    auto keep = [](std::vector<std::pair<double, double>>& best, double x, double share) {
+      for (auto& [bx, bs] : best) {
+        if (bx == x) {
+          bs = std::max(bs, share);
+          return;
+        }
+      }
+      best.emplace_back(x, share);
+    };
+    for (const BaseCandidate& c : candidates) {
+      keep(map_best, c.offset.x(), 100.0 * c.map_share);
+      if (c.confirmed) keep(ik_best, c.offset.x(), 100.0 * c.ik.share_reached);
+    }
+    std::sort(map_best.begin(), map_best.end());
+    std::sort(ik_best.begin(), ik_best.end());
+    std::ofstream map_out(map_data), ik_out(ik_data);
+    for (const auto& [x, s] : map_best) map_out << x << ' ' << s << '\n';
+    for (const auto& [x, s] : ik_best) ik_out << x << ' ' << s << '\n';
+    confirmed = ik_best.size();
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1000,600 font 'Sans,11'\n"
+     << "set output " << io::gnuplotQuoted(png) << "\n"
+     << "set title " << io::gnuplotQuoted(title + ": targets reached against the base position")
+     << "\nset xlabel " << io::gnuplotQuoted("base moved along x [" + unit + "]")
+     << "\nset ylabel 'targets reached [%]'\nset yrange [0:105]\nset grid\nset key bottom right\n"
+     << "plot " << io::gnuplotQuoted(map_data)
+     << " using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb '#4686fb' title "
+        "'reachability map (estimate)'";
+  if (confirmed > 0) {
+    gp << ", " << io::gnuplotQuoted(ik_data)
+       << " using 1:2 with points pt 9 ps 1.6 lc rgb '#7a0403' title 'inverse kinematics "
+          "(confirmed)'";
+  }
+  gp << "\n";
+  return io::runGnuplot(dir, gp.str(), png);
+}
+
+}  // namespace mcws
