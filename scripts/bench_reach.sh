@@ -11,18 +11,6 @@ samples=${1:-100000000}
 source "$(dirname "$0")/lib/bench_common.sh" 5 "${2:-}"
 robot=$root/robots/inspection6.yaml
 
-# Runs a command $runs times under /usr/bin/time -v; prints "median wall s, median peak MB".
-timed() {
-  : >"$tmp/wall"; : >"$tmp/rss"
-  for _ in $(seq "$runs"); do
-    /usr/bin/time -v "$@" 2>"$tmp/time.log" >/dev/null
-    awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
-      "$tmp/time.log" >>"$tmp/wall"
-    awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss"
-  done
-  echo "$(median <"$tmp/wall") $(median <"$tmp/rss")"
-}
-
 echo
 echo "## mcws_reach, inspection6, $samples samples (median of $runs)"
 echo "| resolution | manipulability | threads | voxels | wall s | M samples/s | peak RSS MB |"
@@ -32,7 +20,7 @@ for resolution in 10cm 2cm; do
     for threads in 2 1; do
       flags=()
       [[ $manip == no ]] && flags+=(--no-manipulability)
-      read -r wall rss < <(timed "$build/apps/mcws_reach" --robot "$robot" --resolution "$resolution" \
+      read -r wall rss < <(time_runs "$build/apps/mcws_reach" --robot "$robot" --resolution "$resolution" \
         --samples "$samples" --threads "$threads" --output "$tmp/map.pcd" "${flags[@]}")
       voxels=$(sed -n 's/^POINTS //p' "$tmp/map.pcd")
       awk -v r="$resolution" -v m="$manip" -v t="$threads" -v v="$voxels" -v w="$wall" \
@@ -44,7 +32,7 @@ done
 
 echo
 echo "## Peer in the same run: mcws_sample, inspection6, 10000000 samples, 2 threads (median of $runs)"
-read -r wall rss < <(timed "$build/apps/mcws_sample" --robot "$robot" --samples 10000000 \
+read -r wall rss < <(time_runs "$build/apps/mcws_sample" --robot "$robot" --samples 10000000 \
   --threads 2 --output "$tmp/ws.pcd")
 awk -v w="$wall" -v rss="$rss" 'BEGIN {
   printf "wall %.2f s, %.1f M samples/s, peak RSS %.0f MB\n", w, 10 / w, rss }'

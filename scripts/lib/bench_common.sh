@@ -31,3 +31,16 @@ benchmark_medians() {  # binary
   "$1" --benchmark_repetitions="$runs" --benchmark_report_aggregates_only=true \
     --benchmark_min_time=0.5 2>/dev/null | grep -E "_median" | sed 's/_median//'
 }
+
+# Runs a command $runs times under /usr/bin/time -v, its stdout to $tmp/out (the last run's);
+# prints "median wall s, median peak RSS MB".
+time_runs() {  # command...
+  : >"$tmp/wall"; : >"$tmp/rss"
+  for _ in $(seq "$runs"); do
+    /usr/bin/time -v "$@" 2>"$tmp/time.log" >"$tmp/out"
+    awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
+      "$tmp/time.log" >>"$tmp/wall"
+    awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss"
+  done
+  echo "$(median <"$tmp/wall") $(median <"$tmp/rss")"
+}

@@ -392,6 +392,7 @@ std::vector<PairReport> CollisionChecker::report(const Eigen::VectorXd& q) const
           distance = depth_known ? -depth : 0.0;
         } else {
           fcl::DistanceRequest<double> request;
+          request.gjk_solver_type = fcl::GST_INDEP;  // as clearance(): see shapeClearance()
           fcl::DistanceResult<double> result;
           distance =
               std::max(0.0, fcl::distance(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
@@ -446,7 +447,10 @@ double CollisionChecker::shapeClearance(const Shape& a, const Shape& b, double c
     }
   }
   if (shapesCollide(a, b, data, body_a, body_b)) return 0.0;
+  // FCL's own GJK (GST_INDEP): the default libccd solver over-estimates a capsule-box distance
+  // by up to about 1e-3 of its size, which the tolerance below would not cover.
   fcl::DistanceRequest<double> request;
+  request.gjk_solver_type = fcl::GST_INDEP;
   fcl::DistanceResult<double> result;
   const double d = fcl::distance(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
                                  T_b * b.T_body_shape, request, result);

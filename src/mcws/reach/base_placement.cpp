@@ -1,10 +1,14 @@
 #include "mcws/reach/base_placement.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <numeric>
 #include <sstream>
+#include <string>
 
 #include "mcws/core/error.h"
 #include "mcws/io/gnuplot.h"
@@ -12,9 +16,6 @@
 namespace mcws {
 
 namespace {
-
-/// Directions probed around an approach within a tolerance: 8 at half of it, 8 at all of it.
-constexpr int kProbesPerRing = 8;
 
 /// Whether any roll bin of direction region `region` is reached in voxel v.
 bool regionReached(const ReachMap& map, std::size_t v, int region) {
@@ -39,10 +40,17 @@ bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vec
   } else {
     const SpherePartition& sphere = map.bins().sphere();
     reached = regionReached(map, v, sphere.region(R.col(2)));
-    for (int ring = 1; ring <= 2 && !reached && approach_tolerance > 0.0; ++ring) {
-      const double tilt = 0.5 * ring * approach_tolerance;
-      for (int k = 0; k < kProbesPerRing && !reached; ++k) {
-        const double turn = 2.0 * M_PI * k / kProbesPerRing;
+    // Rings of directions around the approach out to the tolerance, spaced at most half a
+    // region's diameter (about 3.5 / sqrt(N) rad) apart, along and across the rings.
+    const double spacing = 1.75 / std::sqrt(static_cast<double>(sphere.regions()));
+    const int rings =
+        approach_tolerance > 0.0 ? static_cast<int>(std::ceil(approach_tolerance / spacing)) : 0;
+    for (int ring = 1; ring <= rings && !reached; ++ring) {
+      const double tilt = approach_tolerance * ring / rings;
+      const int probes =
+          std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * std::sin(tilt) / spacing)));
+      for (int k = 0; k < probes && !reached; ++k) {
+        const double turn = 2.0 * M_PI * k / probes;
         const Eigen::Vector3d d =
             std::cos(tilt) * R.col(2) +
             std::sin(tilt) * (std::cos(turn) * R.col(0) + std::sin(turn) * R.col(1));
@@ -88,14 +96,38 @@ std::vector<BaseCandidate> placeBase(
   const std::size_t confirm =
       options.confirm < 0 ? order.size()
                           : std::min(order.size(), static_cast<std::size_t>(options.confirm));
+  // One parallel region over every (candidate, target) pair: a region per candidate would
+  // wait at its barrier after a handful of targets.
+  const std::size_t n_targets = targets.size();
+  std::vector<TargetReach> results(confirm * n_targets);
+  const int threads = study.options().threads > 0 ? study.options().threads : omp_get_num_procs();
+  std::vector<std::string> errors(threads);
+  std::atomic<std::size_t> done{0};
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const int t = omp_get_thread_num();
+    if (!errors[t].empty()) continue;
+    try {
+      Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
+      move.translation() = candidates[order[i / n_targets]].offset;
+      results[i] = study.evaluate(targets[i % n_targets], move);
+      const std::size_t finished = ++done;
+      if (progress && t == 0) progress(finished / n_targets, confirm);
+    } catch (const std::exception& e) {
+      errors[t] = e.what();
+    }
+  }
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw Error(error);
+  }
   for (std::size_t k = 0; k < confirm; ++k) {
     BaseCandidate& candidate = candidates[order[k]];
-    Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
-    move.translation() = candidate.offset;
-    candidate.ik = summarize(study.evaluate(targets, move));
+    candidate.ik = summarize(std::vector<TargetReach>(
+        results.begin() + static_cast<std::ptrdiff_t>(k * n_targets),
+        results.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_targets)));
     candidate.confirmed = true;
-    if (progress) progress(k + 1, confirm);
   }
+  if (progress) progress(confirm, confirm);
   return candidates;
 }
 

@@ -22,8 +22,9 @@ namespace mcws {
 /// translation of the whole robot, world frame [length unit]): the voxel holding the target
 /// point less the offset has the target's orientation bin. A free-roll target counts any roll bin
 /// of its approach's direction region; with `approach_tolerance` > 0 [rad] also of the regions of
-/// 16 directions around the approach, 8 at half and 8 at the full tolerance. A full pose counts
-/// its own bin only.
+/// directions around the approach out to the tolerance (rings spaced, and probes along each ring
+/// spaced, at most half a region's diameter apart, so no region that reaches well inside the
+/// tolerance cone is missed). A full pose counts its own bin only.
 bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vector3d& offset,
                 double approach_tolerance, float* manipulability = nullptr);
 

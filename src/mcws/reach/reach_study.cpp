@@ -63,6 +63,11 @@ void ReachStudyOptions::check() const {
     msg << "approach tolerance " << approach_tolerance << " rad is not a number >= 0";
   } else if (starts < 1) {
     msg << "IK starts " << starts << " is not at least 1";
+  } else if (ik.max_iterations < 1 || ik.restarts < 0) {
+    msg << "IK max_iterations " << ik.max_iterations << " or restarts " << ik.restarts
+        << " is out of range (>= 1, >= 0)";
+  } else if (!(ik.position_tolerance > 0.0) || !std::isfinite(ik.position_tolerance)) {
+    msg << "IK position tolerance " << ik.position_tolerance << " is not a positive number";
   } else if (!(clearance_cap > 0.0)) {
     msg << "clearance cap " << clearance_cap << " is not positive";
   } else {

@@ -46,8 +46,8 @@ struct ReachStudyOptions {
   /// kept and the best chosen (collision-free first, then the highest manipulability), so more
   /// starts find better solutions, not only some solution.
   int starts{4};
-  /// Tolerances, budgets and the seed of the solves (position_only and free_roll are set per
-  /// target).
+  /// Position tolerance, budgets and the seed of the solves. position_only and free_roll are set
+  /// per target, and orientation_tolerance from approach_tolerance (1e-6 rad when that is 0).
   IkOptions ik;
   QualityOptions quality;
   /// Clearances at or above this are reported as this value [length unit] (saves FCL distance
@@ -55,8 +55,8 @@ struct ReachStudyOptions {
   double clearance_cap{std::numeric_limits<double>::infinity()};
   /// Worker threads over the targets, 0 = all cores. Results do not depend on it.
   int threads{0};
-  /// \throws mcws::Error for a negative or non-finite tolerance, starts < 1, a bad quality or
-  ///   cap.
+  /// \throws mcws::Error for a negative or non-finite tolerance, starts < 1, IK budgets or a
+  ///   position tolerance solveIk() would refuse, a bad quality or cap.
   void check() const;
 };
 

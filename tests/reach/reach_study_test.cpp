@@ -1,0 +1,909 @@
+// mcws::ReachStudy, the free-roll inverse kinematics under it and base placement, against
+// independent references: the planar 2R arm's closed-form annulus, elbow solutions and
+// manipulability l1 l2 |sin q2|; its clearances from a hand-written 2-D distance (segment to
+// rectangle, convex, minimised by ternary search) and from CollisionChecker::report(); the
+// maintenance arm's cylindrical geometry worked by hand from robots/maintenance4.yaml; the
+// base-placement interval of two targets in closed form.
+#include "mcws/reach/reach_study.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "kinematics/random_joints.h"
+#include "mcws/collision/collision_checker.h"
+#include "mcws/collision/collision_model.h"
+#include "mcws/core/error.h"
+#include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/kinematics/inverse_kinematics.h"
+#include "mcws/kinematics/robot_yaml.h"
+#include "mcws/reach/base_placement.h"
+#include "mcws/reach/orientation_bins.h"
+#include "mcws/reach/reach_map.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+/// robots/planar2.yaml: upper arm, forearm [cm], elbow limit [rad], link capsule radius [cm],
+/// base sphere radius [cm].
+constexpr double kL1 = 40.0, kL2 = 30.0, kElbowLimit = 160.0 * kDeg;
+constexpr double kLinkRadius = 2.5, kBaseRadius = 5.0;
+/// Outer and inner radius of planar2's annulus (the elbow bent to its limit).
+constexpr double kOuter = kL1 + kL2;
+const double kInner = std::sqrt(kL1 * kL1 + kL2 * kL2 + 2.0 * kL1 * kL2 * std::cos(kElbowLimit));
+
+Robot planar2() { return loadRobot(test::robotPath("planar2")); }
+
+/// Angle between two directions [rad], well conditioned at 0 and pi.
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+/// The planar arm's manipulability of the tool point at distance r from the base: l1 l2 |sin q2|
+/// with cos q2 = (r^2 - l1^2 - l2^2) / (2 l1 l2).
+double planarManipulability(double r) {
+  const double c = (r * r - kL1 * kL1 - kL2 * kL2) / (2.0 * kL1 * kL2);
+  return kL1 * kL2 * std::sqrt(std::max(0.0, 1.0 - c * c));
+}
+
+/// |dm/dr| of planarManipulability(): dc/dr = r / (l1 l2), so |dm/dr| = |c| r / sqrt(1 - c^2).
+double planarManipulabilitySlope(double r) {
+  const double c = (r * r - kL1 * kL1 - kL2 * kL2) / (2.0 * kL1 * kL2);
+  return std::abs(c) * r / std::sqrt(std::max(1e-300, 1.0 - c * c));
+}
+
+/// A study's manipulability m of planar2's solution q for a target r_target from its base: the
+/// closed form at q's own tool point to 1e-9 relative, and at the target radius within what the
+/// IK position tolerance (1e-6 cm) moves it.
+void expectPlanarManipulability(double m, const Eigen::VectorXd& q, double r_target) {
+  const double r = toolPose(loadRobot(test::robotPath("planar2")), q).translation().norm();
+  EXPECT_NEAR(m, planarManipulability(r), 1e-9 * planarManipulability(r)) << "r " << r;
+  EXPECT_NEAR(m, kL1 * kL2 * std::abs(std::sin(q[1])), 1e-9 * kL1 * kL2);
+  EXPECT_NEAR(m, planarManipulability(r_target),
+              1.01e-6 * planarManipulabilitySlope(r_target) + 1e-9 * kL1 * kL2)
+      << "r " << r_target;
+}
+
+/// Both elbow solutions (q1, q2) of the planar arm for the point (x, y) [cm], within the elbow
+/// limit.
+std::vector<std::pair<double, double>> planarSolutions(double x, double y) {
+  const double c = (x * x + y * y - kL1 * kL1 - kL2 * kL2) / (2.0 * kL1 * kL2);
+  std::vector<std::pair<double, double>> out;
+  if (std::abs(c) > 1.0) return out;
+  for (const double sign : {1.0, -1.0}) {
+    const double q2 = sign * std::acos(c);
+    if (std::abs(q2) > kElbowLimit) continue;
+    const double q1 = std::atan2(y, x) - std::atan2(kL2 * std::sin(q2), kL1 + kL2 * std::cos(q2));
+    out.emplace_back(q1, q2);
+  }
+  return out;
+}
+
+/// Difference of two angles wrapped into (-pi, pi].
+double angleDifference(double a, double b) { return std::remainder(a - b, 2.0 * M_PI); }
+
+/// A box of planar2's scene seen from above: centre and half sizes [cm]. The boxes are 40 cm tall
+/// about z = 0 and the arm moves in z = 0, so distances are 2-D.
+struct Rect {
+  Eigen::Vector2d centre, half;
+};
+const Rect kPosts[] = {{{30, 38}, {5, 5}}, {{-32, 36}, {5, 5}}, {{0, -52}, {4, 4}}};
+
+/// Distance from the segment ab to the rectangle: the point-to-rectangle distance is convex, so
+/// along the segment it is a convex function of the parameter, minimised by ternary search.
+double segmentRectDistance(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Rect& rect) {
+  auto at = [&](double t) {
+    const Eigen::Vector2d p = a + t * (b - a);
+    const Eigen::Vector2d outside =
+        ((p - rect.centre).cwiseAbs() - rect.half).cwiseMax(Eigen::Vector2d::Zero());
+    return outside.norm();
+  };
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+    if (at(m1) < at(m2)) {
+      hi = m2;
+    } else {
+      lo = m1;
+    }
+  }
+  return std::min({at(0.0), at(1.0), at(0.5 * (lo + hi))});
+}
+
+/// Distance from a point to the segment ab.
+double pointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                            const Eigen::Vector2d& b) {
+  const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+  return (a + t * (b - a) - p).norm();
+}
+
+/// planar2's clearance by hand at (q1, q2) with the robot moved by `move` (x, y) [cm]: the base
+/// sphere against the forearm capsule (the one non-adjacent link pair), each link capsule against
+/// each post (the base is not checked against the environment); negative when colliding.
+double planarClearance(double q1, double q2,
+                       const Eigen::Vector2d& move = Eigen::Vector2d::Zero()) {
+  const Eigen::Vector2d base = move;
+  const Eigen::Vector2d elbow = base + kL1 * Eigen::Vector2d(std::cos(q1), std::sin(q1));
+  const Eigen::Vector2d tip = elbow + kL2 * Eigen::Vector2d(std::cos(q1 + q2), std::sin(q1 + q2));
+  double d = pointSegmentDistance(base, elbow, tip) - kBaseRadius - kLinkRadius;
+  for (const Rect& post : kPosts) {
+    d = std::min(d, segmentRectDistance(base, elbow, post) - kLinkRadius);
+    d = std::min(d, segmentRectDistance(elbow, tip, post) - kLinkRadius);
+  }
+  return d;
+}
+
+Eigen::Isometry3d translation(double x, double y, double z) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  return T;
+}
+
+ReachStudyOptions planarOptions() {
+  ReachStudyOptions options;
+  options.quality = QualityOptions{QualityTask::kPosition, 1.0};
+  return options;
+}
+
+// ---- free-roll inverse kinematics
+// ----------------------------------------------------------------
+
+// A pose rolled about its own z axis keeps the tool point and the approach: free-roll IK must meet
+// both exactly while the roll comes out wherever the solver lands; full-pose IK must meet the roll.
+TEST(FreeRollIk, InspectionArmMeetsPointAndApproachOfRolledPoses) {
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  const IkSolver solver(robot);
+  std::mt19937_64 rng(20240611);
+  std::uniform_real_distribution<double> roll(-M_PI, M_PI);
+  const Eigen::VectorXd seed = Eigen::VectorXd::Zero(robot.dof());
+  int roll_differs = 0;
+  for (int i = 0; i < 20; ++i) {
+    const Eigen::VectorXd q = test::randomJoints(robot, rng);
+    const double phi = roll(rng);
+    const Eigen::Isometry3d target =
+        toolPose(robot, q) * Eigen::AngleAxisd(phi, Eigen::Vector3d::UnitZ());
+    IkOptions options;
+    options.free_roll = true;
+    const IkResult free = solver.solve(target, seed, options);
+    ASSERT_TRUE(free.converged()) << i << ": " << ikStatusName(free.status);
+    const Eigen::Isometry3d T = toolPose(robot, free.q);
+    EXPECT_LE((T.translation() - target.translation()).norm(), 1e-6 + 1e-9) << i;
+    const double approach_error = angleBetween(T.linear().col(2), target.linear().col(2));
+    EXPECT_LT(approach_error, 1e-6) << i;
+    EXPECT_NEAR(free.orientation_error, approach_error, 1e-9) << i;
+    for (int j = 0; j < robot.dof(); ++j) {
+      EXPECT_GE(free.q[j], robot.joints[j].lower) << i;
+      EXPECT_LE(free.q[j], robot.joints[j].upper) << i;
+    }
+    // The roll left over: the angle between the tool's x axis and the target's.
+    if (angleBetween(T.linear().col(0), target.linear().col(0)) > 1e-3) ++roll_differs;
+
+    // The full pose, roll included.
+    const IkResult full = solver.solve(target, seed, IkOptions{});
+    ASSERT_TRUE(full.converged()) << i;
+    const Eigen::Isometry3d T_full = toolPose(robot, full.q);
+    EXPECT_LE((T_full.translation() - target.translation()).norm(), 1e-6 + 1e-9) << i;
+    EXPECT_LT(Eigen::AngleAxisd(target.linear() * T_full.linear().transpose()).angle(), 1e-6) << i;
+  }
+  // Were the roll matched too, free roll would be the full pose.
+  EXPECT_GE(roll_differs, 10);
+}
+
+// planar2's tool z is always +z and its roll is q1 + q2: a point with a roll the elbow solutions
+// do not have is unreachable as a full pose and reachable with the roll free.
+TEST(FreeRollIk, PlanarArmReachesPointWhoseRollItCannotMatch) {
+  const Robot robot = planar2();
+  const IkSolver solver(robot);
+  // r = 50: q2 = +-90 deg, q1 + q2 = +-(90 - atan2(30, 40)) = +-53.13 deg; ask for 17 deg.
+  Eigen::Isometry3d target = translation(50, 0, 0);
+  target.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::VectorXd seed = Eigen::VectorXd::Zero(2);
+  IkOptions options;
+  options.restarts = 5;
+  EXPECT_FALSE(solver.solve(target, seed, options).converged());
+  options.free_roll = true;
+  const IkResult free = solver.solve(target, seed, options);
+  ASSERT_TRUE(free.converged());
+  EXPECT_NEAR(std::abs(free.q[1]), 90.0 * kDeg, 1e-6);
+  EXPECT_NEAR(std::abs(angleDifference(free.q[0] + free.q[1], 0.0)),
+              (90.0 - std::atan2(30.0, 40.0) / kDeg) * kDeg, 1e-6);
+  // position_only wins over free_roll.
+  options.position_only = true;
+  const IkResult point = solver.solve(target, seed, options);
+  ASSERT_TRUE(point.converged());
+  EXPECT_NEAR((toolPose(robot, point.q).translation() - target.translation()).norm(), 0.0, 1e-6);
+}
+
+// ---- targetFromNormal, options ------------------------------------------------------------------
+
+TEST(ReachStudyTarget, FromNormalApproachesAgainstTheNormal) {
+  const std::vector<Eigen::Vector3d> normals = {{0, 0, -1},   {0, 0, 3},        {1, 0, 0},
+                                                {-2, 0.1, 0}, {0.3, -0.4, 0.5}, {0, 1e-3, 0}};
+  for (const Eigen::Vector3d& n : normals) {
+    const Eigen::Vector3d point(1.5, -2.0, 7.0);
+    const ReachTarget target = targetFromNormal(point, n);
+    EXPECT_TRUE(target.free_roll);
+    EXPECT_EQ(target.pose.translation(), point);
+    const Eigen::Matrix3d R = target.pose.linear();
+    EXPECT_NEAR((R.col(2) + n / n.norm()).norm(), 0.0, 1e-15) << n.transpose();
+    EXPECT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff(), 0.0, 1e-14)
+        << n.transpose();
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-14) << n.transpose();
+    EXPECT_NEAR((R.col(0) - OrientationBins::rollReference(R.col(2))).norm(), 0.0, 1e-15);
+    EXPECT_EQ(target.pose.matrix().row(3), Eigen::RowVector4d(0, 0, 0, 1));
+  }
+  // The world x axis projected, or y for approaches near +-x (rollReference's rule), by hand.
+  EXPECT_NEAR(
+      (targetFromNormal({0, 0, 0}, {0, 0, -1}).pose.linear().col(0) - Eigen::Vector3d::UnitX())
+          .norm(),
+      0.0, 1e-15);
+  EXPECT_NEAR(
+      (targetFromNormal({0, 0, 0}, {1, 0, 0}).pose.linear().col(0) - Eigen::Vector3d::UnitY())
+          .norm(),
+      0.0, 1e-15);
+}
+
+TEST(ReachStudyTarget, FromNormalRejectsBadInput) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d p(1, 2, 3);
+  EXPECT_NE(test::errorOf([&] { targetFromNormal(p, Eigen::Vector3d::Zero()); }).find("normal"),
+            std::string::npos);
+  EXPECT_NE(test::errorOf([&] {
+              targetFromNormal(p, {nan, 0, 1});
+            }).find("normal"),
+            std::string::npos);
+  EXPECT_NE(test::errorOf([&] {
+              targetFromNormal(p, {inf, 0, 0});
+            }).find("normal"),
+            std::string::npos);
+  EXPECT_NE(test::errorOf([&] {
+              targetFromNormal({0, nan, 0}, {0, 0, 1});
+            }).find("point"),
+            std::string::npos);
+  EXPECT_NE(test::errorOf([&] {
+              targetFromNormal({inf, 0, 0}, {0, 0, 1});
+            }).find("point"),
+            std::string::npos);
+}
+
+TEST(ReachStudyOptionsCheck, RejectsBadValues) {
+  const Robot robot = planar2();
+  auto bad = [&](auto edit, const char* words) {
+    ReachStudyOptions options;
+    edit(options);
+    EXPECT_THROW(options.check(), Error) << words;
+    EXPECT_NE(test::errorOf([&] { (void)ReachStudy(robot, nullptr, options); }).find(words),
+              std::string::npos);
+  };
+  bad([](ReachStudyOptions& o) { o.approach_tolerance = -0.1; }, "approach tolerance");
+  bad([](ReachStudyOptions& o) { o.approach_tolerance = std::nan(""); }, "approach tolerance");
+  bad([](ReachStudyOptions& o) { o.approach_tolerance = INFINITY; }, "approach tolerance");
+  bad([](ReachStudyOptions& o) { o.starts = 0; }, "starts");
+  bad([](ReachStudyOptions& o) { o.clearance_cap = 0.0; }, "clearance cap");
+  bad([](ReachStudyOptions& o) { o.clearance_cap = std::nan(""); }, "clearance cap");
+  bad([](ReachStudyOptions& o) { o.quality.characteristic_length = 0.0; }, "characteristic");
+  EXPECT_NO_THROW(ReachStudyOptions{}.check());
+}
+
+// ---- the planar arm against its closed form
+// ------------------------------------------------------
+
+// Targets in the arm's plane approached along +z (normal -z): reached iff r in [r_min, 70], with
+// manipulability l1 l2 |sin q2|.
+TEST(ReachStudy, PlanarAnnulusAndManipulabilityInClosedForm) {
+  const Robot robot = planar2();
+  const ReachStudy study(robot, nullptr, planarOptions());
+  struct Case {
+    double r;
+    bool reached;
+  };
+  const Case cases[] = {{kInner + 1.0, true}, {30.0, true},          {50.0, true},
+                        {69.0, true},         {kOuter + 1.0, false}, {kInner - 1.0, false},
+                        {10.0, false},        {0.0, false},          {100.0, false}};
+  std::vector<ReachTarget> targets;
+  std::vector<bool> expected;
+  for (const Case& c : cases) {
+    for (const double t : {0.0, 1.0, 2.5, -2.0}) {
+      targets.push_back(
+          targetFromNormal({c.r * std::cos(t), c.r * std::sin(t), 0.0}, {0.0, 0.0, -1.0}));
+      expected.push_back(c.reached);
+    }
+  }
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const TargetReach reach = study.evaluate(targets[i]);
+    const Eigen::Vector3d p = targets[i].pose.translation();
+    const double r = p.norm();
+    ASSERT_EQ(reach.reached, expected[i]) << "r = " << r << " at " << p.transpose();
+    EXPECT_EQ(reach.solved, expected[i]) << r;
+    EXPECT_EQ(reach.label, kLabelFree);
+    EXPECT_EQ(reach.clearance, std::numeric_limits<double>::infinity());  // no collision model
+    if (!expected[i]) {
+      EXPECT_EQ(reach.manipulability, 0.0) << r;
+      EXPECT_EQ(reach.score(), 0.0) << r;
+      continue;
+    }
+    ASSERT_EQ(reach.q.size(), 2);
+    const Eigen::Isometry3d T = toolPose(robot, reach.q);
+    EXPECT_LE((T.translation() - p).norm(), 1e-6 + 1e-9) << r;
+    EXPECT_LE(reach.position_error, 1e-6) << r;
+    EXPECT_LE(reach.orientation_error, 1e-6) << r;
+    EXPECT_NEAR(std::cos(reach.q[1]), (r * r - kL1 * kL1 - kL2 * kL2) / (2.0 * kL1 * kL2), 1e-7)
+        << r;
+    EXPECT_LE(std::abs(reach.q[1]), kElbowLimit);
+    {
+      SCOPED_TRACE(r);
+      expectPlanarManipulability(reach.manipulability, reach.q, r);
+    }
+    EXPECT_EQ(reach.score(), reach.manipulability);
+  }
+
+  // The vector form: the same results in the targets' order, whatever the threads; progress ends
+  // with (all, all).
+  ReachStudyOptions two_threads = planarOptions();
+  two_threads.threads = 2;
+  const ReachStudy parallel(robot, nullptr, two_threads);
+  std::size_t last_done = 0, last_all = 0, calls = 0;
+  const std::vector<TargetReach> all = parallel.evaluate(targets, Eigen::Isometry3d::Identity(),
+                                                         [&](std::size_t done, std::size_t n) {
+                                                           EXPECT_GE(done, last_done);
+                                                           last_done = done;
+                                                           last_all = n;
+                                                           ++calls;
+                                                         });
+  ASSERT_EQ(all.size(), targets.size());
+  EXPECT_GE(calls, 1u);
+  EXPECT_EQ(last_done, targets.size());
+  EXPECT_EQ(last_all, targets.size());
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const TargetReach one = study.evaluate(targets[i]);
+    EXPECT_EQ(all[i].reached, one.reached) << i;
+    EXPECT_EQ(all[i].q, one.q) << i;
+    EXPECT_EQ(all[i].manipulability, one.manipulability) << i;
+  }
+  EXPECT_TRUE(study.evaluate(std::vector<ReachTarget>{}).empty());
+}
+
+// T_move moves the whole robot: target p is reached iff the robot in place reaches T_move^-1 p.
+TEST(ReachStudy, MovedRobotReachesTheAnnulusAboutItsNewBase) {
+  const Robot robot = planar2();
+  ReachStudyOptions options = planarOptions();
+  options.starts = 2;
+  const ReachStudy study(robot, nullptr, options);
+  const Eigen::Vector3d points[] = {{50, 0, 0}, {10, 40, 0}, {-30, -20, 0}};
+  int reached = 0, missed = 0;
+  for (const Eigen::Vector3d& p : points) {
+    for (double dx = -90.0; dx <= 90.0; dx += 15.0) {
+      const double r = (p - Eigen::Vector3d(dx, 0, 0)).norm();
+      if (std::abs(r - kOuter) < 0.5 || std::abs(r - kInner) < 0.5) continue;  // on an edge
+      const bool expected = r >= kInner && r <= kOuter;
+      const TargetReach reach =
+          study.evaluate(targetFromNormal(p, {0, 0, -1}), translation(dx, 0, 0));
+      ASSERT_EQ(reach.reached, expected) << p.transpose() << " moved by " << dx << ": r " << r;
+      if (!expected) {
+        ++missed;
+        continue;
+      }
+      ++reached;
+      // The robot in place puts its tool at p - d.
+      EXPECT_LE((toolPose(robot, reach.q).translation() + Eigen::Vector3d(dx, 0, 0) - p).norm(),
+                1e-6 + 1e-9);
+      expectPlanarManipulability(reach.manipulability, reach.q, r);
+    }
+  }
+  EXPECT_GT(reached, 5);
+  EXPECT_GT(missed, 5);
+
+  // A rotating move turns the approach too: planar2 turned by 90 deg about x works in the world
+  // x-z plane with its tool z along Rx(90) z = -y.
+  Eigen::Isometry3d tilt = translation(5, 0, 0);
+  tilt.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Vector3d p(45, 0, 30);  // robot frame (40, 30, 0), r = 50
+  const TargetReach along = study.evaluate(targetFromNormal(p, {0, 1, 0}), tilt);
+  ASSERT_TRUE(along.reached);
+  EXPECT_LE((tilt * toolPose(robot, along.q).translation() - p).norm(), 1e-6 + 1e-9);
+  expectPlanarManipulability(along.manipulability, along.q, 50.0);
+  EXPECT_FALSE(study.evaluate(targetFromNormal(p, {0, 0, -1}), tilt).reached);
+  EXPECT_FALSE(study.evaluate(targetFromNormal(p, {0, 1, 0})).reached);  // in place: off-plane
+}
+
+// An approach the arm cannot take (-x; its tool z is always +z, 90 deg away): refused when
+// exact, accepted by the point-only stage when the tolerance exceeds 90 deg.
+TEST(ReachStudy, ApproachToleranceAcceptsThePointAloneWithinIt) {
+  const Robot robot = planar2();
+  const ReachTarget target = targetFromNormal({40, 30, 0}, {1, 0, 0});
+  const auto evaluate = [&](double tolerance_deg) {
+    ReachStudyOptions options = planarOptions();
+    options.starts = 2;
+    options.ik.restarts = 3;
+    options.approach_tolerance = tolerance_deg * kDeg;
+    return ReachStudy(robot, nullptr, options).evaluate(target);
+  };
+  const TargetReach exact = evaluate(0.0);
+  EXPECT_FALSE(exact.reached);
+  EXPECT_FALSE(exact.solved);
+  EXPECT_EQ(exact.score(), 0.0);
+  const TargetReach short_of = evaluate(80.0);
+  EXPECT_FALSE(short_of.reached);
+  EXPECT_FALSE(short_of.solved);
+  for (const double tolerance : {100.0, 90.0 + 1e-4}) {
+    const TargetReach loose = evaluate(tolerance);
+    ASSERT_TRUE(loose.reached) << tolerance;
+    EXPECT_TRUE(loose.solved);
+    EXPECT_NEAR(loose.orientation_error, M_PI / 2, 1e-9) << tolerance;
+    EXPECT_LE(loose.position_error, 1e-6);
+    EXPECT_LE((toolPose(robot, loose.q).translation() - target.pose.translation()).norm(),
+              1e-6 + 1e-9);
+    expectPlanarManipulability(loose.manipulability, loose.q, 50.0);
+  }
+}
+
+// ---- collisions and clearance
+// --------------------------------------------------------------------
+
+class ReachStudyCollision : public ::testing::Test {
+ protected:
+  ReachStudyCollision()
+      : robot_(planar2()),
+        checker_(robot_, loadCollisionModel(robot_, test::robotPath("planar2"))) {}
+  ReachStudy study() const {
+    ReachStudyOptions options = planarOptions();
+    options.starts = 8;
+    return ReachStudy(robot_, &checker_, options);
+  }
+  Robot robot_;
+  CollisionChecker checker_;
+};
+
+// Targets with one elbow solution free and the other in a post: the free one is chosen; its
+// clearance matches the hand-made 2-D distance and the minimum of report()'s.
+TEST_F(ReachStudyCollision, ChoosesTheFreeElbowAndMeasuresItsClearance) {
+  // My model of the pairs: base-forearm, and both links against three posts.
+  ASSERT_EQ(checker_.pairs().size(), 7u);
+  const ReachStudy s = study();
+  const Eigen::Vector2d targets[] = {{50, 20}, {15, 50}, {-15, 50}, {45, 25}};
+  for (const Eigen::Vector2d& p : targets) {
+    const auto solutions = planarSolutions(p.x(), p.y());
+    ASSERT_EQ(solutions.size(), 2u);
+    const double c0 = planarClearance(solutions[0].first, solutions[0].second);
+    const double c1 = planarClearance(solutions[1].first, solutions[1].second);
+    ASSERT_TRUE((c0 > 0.5 && c1 < -0.5) || (c1 > 0.5 && c0 < -0.5)) << p.transpose();  // design
+    const auto& free = c0 > 0.0 ? solutions[0] : solutions[1];
+    const double free_clearance = std::max(c0, c1);
+
+    const TargetReach reach = s.evaluate(targetFromNormal({p.x(), p.y(), 0.0}, {0, 0, -1}));
+    ASSERT_TRUE(reach.reached) << p.transpose();
+    EXPECT_EQ(reach.label, kLabelFree);
+    EXPECT_EQ(checker_.label(reach.q), kLabelFree);
+    EXPECT_NEAR(angleDifference(reach.q[0], free.first), 0.0, 1e-6) << p.transpose();
+    EXPECT_NEAR(reach.q[1], free.second, 1e-6) << p.transpose();
+
+    double report_min = std::numeric_limits<double>::infinity();
+    for (const PairReport& pair : checker_.report(reach.q)) {
+      EXPECT_FALSE(pair.colliding) << pair.body_a << "-" << pair.body_b;
+      report_min = std::min(report_min, pair.distance);
+    }
+    // clearance() takes FCL's box distances 1e-6 short (collision_checker.h); report() does not.
+    EXPECT_LE(reach.clearance, report_min + 1e-9) << p.transpose();
+    EXPECT_GE(reach.clearance, report_min - 1e-6 - 1e-9) << p.transpose();
+    // The exact distance: FCL's capsule-box GJK (libccd) is off by up to 6.5e-4 cm here (at
+    // (-15, 50): 10.005884 against the exact 10.005231, an elbow 12.505 cm from post_a's face),
+    // over the true distance although the checker documents a lower bound.
+    EXPECT_NEAR(reach.clearance, free_clearance, 1e-3) << p.transpose();
+    EXPECT_NEAR(report_min, free_clearance, 1e-3) << p.transpose();
+  }
+}
+
+// The tool point inside a post: kinematically solved, not reached, labelled environment.
+TEST_F(ReachStudyCollision, TargetInsideAPostIsSolvedButNotReached) {
+  const ReachStudy s = study();
+  for (const Eigen::Vector2d& p :
+       {Eigen::Vector2d(30, 38), Eigen::Vector2d(-32, 36), Eigen::Vector2d(0, -52)}) {
+    for (const auto& [q1, q2] : planarSolutions(p.x(), p.y())) {
+      ASSERT_LT(planarClearance(q1, q2), 0.0);  // design: both elbows collide
+    }
+    const TargetReach reach = s.evaluate(targetFromNormal({p.x(), p.y(), 0.0}, {0, 0, -1}));
+    EXPECT_TRUE(reach.solved) << p.transpose();
+    EXPECT_FALSE(reach.reached) << p.transpose();
+    EXPECT_EQ(reach.label, kLabelEnvironment) << p.transpose();
+    EXPECT_EQ(reach.clearance, 0.0);
+    EXPECT_EQ(reach.score(), 0.0);
+    expectPlanarManipulability(reach.manipulability, reach.q, p.norm());
+    EXPECT_LE((toolPose(robot_, reach.q).translation() - Eigen::Vector3d(p.x(), p.y(), 0)).norm(),
+              1e-6 + 1e-9);
+  }
+}
+
+// The moved robot is checked at its new base against the scene that stays: the clearance is the
+// hand-made distance to the posts seen from the moved base.
+TEST_F(ReachStudyCollision, MovedRobotIsCheckedAgainstTheFixedScene) {
+  const ReachStudy s = study();
+  // Robot moved by (10, 10): world (50, 20) is (40, 10) for it; elbow +109.5 deg free, -109.5 in
+  // post_a.
+  {
+    const Eigen::Vector2d move(10, 10), p(50, 20);
+    const auto solutions = planarSolutions(p.x() - move.x(), p.y() - move.y());
+    ASSERT_EQ(solutions.size(), 2u);
+    const double c0 = planarClearance(solutions[0].first, solutions[0].second, move);
+    const double c1 = planarClearance(solutions[1].first, solutions[1].second, move);
+    ASSERT_TRUE(c0 > 0.5 && c1 < -0.5) << c0 << " " << c1;
+    const TargetReach reach =
+        s.evaluate(targetFromNormal({p.x(), p.y(), 0}, {0, 0, -1}), translation(10, 10, 0));
+    ASSERT_TRUE(reach.reached);
+    EXPECT_NEAR(angleDifference(reach.q[0], solutions[0].first), 0.0, 1e-6);
+    EXPECT_NEAR(reach.q[1], solutions[0].second, 1e-6);
+    EXPECT_NEAR(reach.clearance, c0, 1e-3);  // FCL's capsule-box accuracy, as above
+  }
+  // Robot moved by (-20, 18): world post_a's centre (30, 38) is (50, 20) for it, which the robot
+  // in place reaches; moved, its tool is inside the post.
+  {
+    const ReachTarget target = targetFromNormal({30, 38, 0}, {0, 0, -1});
+    const TargetReach moved = s.evaluate(target, translation(-20, 18, 0));
+    EXPECT_TRUE(moved.solved);
+    EXPECT_FALSE(moved.reached);
+    EXPECT_EQ(moved.label, kLabelEnvironment);
+    const TargetReach in_place = s.evaluate(targetFromNormal({50, 20, 0}, {0, 0, -1}));
+    EXPECT_TRUE(in_place.reached);
+  }
+  // A cap: clearances at or above it are the cap.
+  ReachStudyOptions options = planarOptions();
+  options.starts = 8;
+  options.clearance_cap = 5.0;
+  const ReachStudy capped(robot_, &checker_, options);
+  const TargetReach far = capped.evaluate(targetFromNormal({50, 20, 0}, {0, 0, -1}));
+  ASSERT_TRUE(far.reached);
+  EXPECT_EQ(far.clearance, 5.0);
+}
+
+// ---- the maintenance arm's geometry by hand
+// ------------------------------------------------------
+
+// robots/maintenance4.yaml: base at z = -20, axis 1 down; the column (15 + q2) puts axis 3 at
+// z = -35 - q2, 25 cm from axis 1; the forearm and tool are
+// horizontal, tool point s = 20 + q4 (q4 in [0, 40]) beyond axis 3 along the tool z. A target
+// approached along -y at (dx, -30.5, -51): axis 3 at c = p + s (0, 1, 0) with
+// dx^2 + (s - 30.5)^2 = 25^2; s = 30.5 + sqrt(625 - dx^2) always fits, s = 30.5 - sqrt(...)
+// needs |dx| >= 22.69; the elbow angle between the link (c / 25) and the forearm (0, -1) is at
+// most 150 deg: c_y <= 25 cos 30 deg, so |dx| >= 12.5 on the first branch. Reached iff
+// 12.5 <= |dx| <= 25.
+TEST(ReachStudy, MaintenanceArmCylindricalGeometryByHand) {
+  const Robot robot = loadRobot(test::robotPath("maintenance4"));
+  ASSERT_EQ(robot.dof(), 4);
+  ReachStudyOptions options;
+  options.starts = 3;
+  const ReachStudy study(robot, nullptr, options);
+  const double y = -30.5, z = -51.0;
+  for (const double dx : {18.0, 22.0, -20.0, 14.0}) {
+    const TargetReach reach = study.evaluate(targetFromNormal({dx, y, z}, {0, 1, 0}));
+    ASSERT_TRUE(reach.reached) << dx;
+    const double s = 30.5 + std::sqrt(625.0 - dx * dx);
+    const Eigen::Vector2d c(dx, y + s);  // axis 3 in the world xy plane
+    EXPECT_NEAR(c.norm(), 25.0, 1e-12);
+    const double elbow = std::acos(c.dot(Eigen::Vector2d(0, -1)) / 25.0);
+    EXPECT_NEAR(reach.q[1], -z - 35.0, 1e-5) << dx;  // column: z = -35 - q2
+    EXPECT_NEAR(reach.q[3], s - 20.0, 1e-5) << dx;
+    EXPECT_NEAR(std::abs(reach.q[2]), elbow, 1e-5) << dx;
+    const Eigen::Isometry3d T = toolPose(robot, reach.q);
+    EXPECT_LE((T.translation() - Eigen::Vector3d(dx, y, z)).norm(), 1e-6 + 1e-9) << dx;
+    EXPECT_LT(angleBetween(T.linear().col(2), Eigen::Vector3d(0, -1, 0)), 1e-6) << dx;
+  }
+  for (const double dx : {0.0, 5.0, 10.0, -10.0, 26.0, 30.0}) {
+    const TargetReach reach = study.evaluate(targetFromNormal({dx, y, z}, {0, 1, 0}));
+    EXPECT_FALSE(reach.reached) << dx;
+    EXPECT_FALSE(reach.solved) << dx;
+  }
+  // Out of the column's travel (axis 3 between z = -65 and -35): below and above it.
+  EXPECT_FALSE(study.evaluate(targetFromNormal({18, y, -70}, {0, 1, 0})).reached);
+  EXPECT_FALSE(study.evaluate(targetFromNormal({18, y, -30}, {0, 1, 0})).reached);
+  // A vertical approach: the tool is always horizontal.
+  EXPECT_FALSE(study.evaluate(targetFromNormal({18, y, z}, {0, 0, 1})).reached);
+}
+
+// ---- summaries and heat-map points
+// ----------------------------------------------------------------
+
+TEST(ReachStudySummary, HandMadeResults) {
+  std::vector<TargetReach> results(5);
+  results[0].reached = results[0].solved = true;
+  results[0].manipulability = 2.0;
+  results[0].clearance = 3.0;
+  results[1].reached = results[1].solved = true;
+  results[1].manipulability = 4.0;
+  results[1].clearance = 1.5;
+  results[2].solved = true;  // in a collision
+  results[2].label = kLabelEnvironment;
+  results[2].manipulability = 50.0;
+  results[2].clearance = 0.0;
+  results[3].manipulability = 7.0;  // not solved (a value that must not count)
+  results[4].reached = results[4].solved = true;
+  results[4].manipulability = 9.0;
+  results[4].clearance = 8.0;
+  const ReachSummary s = summarize(results);
+  EXPECT_EQ(s.targets, 5u);
+  EXPECT_EQ(s.reached, 3u);
+  EXPECT_EQ(s.solved, 4u);
+  EXPECT_DOUBLE_EQ(s.share_reached, 3.0 / 5.0);
+  EXPECT_DOUBLE_EQ(s.mean_score, (2.0 + 4.0 + 9.0) / 5.0);
+  EXPECT_DOUBLE_EQ(s.mean_manipulability_reached, (2.0 + 4.0 + 9.0) / 3.0);
+  EXPECT_EQ(s.min_clearance_reached, 1.5);
+
+  const ReachSummary none = summarize({});
+  EXPECT_EQ(none.targets, 0u);
+  EXPECT_EQ(none.share_reached, 0.0);
+  EXPECT_EQ(none.mean_score, 0.0);
+  EXPECT_EQ(none.mean_manipulability_reached, 0.0);
+  EXPECT_EQ(none.min_clearance_reached, std::numeric_limits<double>::infinity());
+  const ReachSummary missed = summarize({results[2], results[3]});
+  EXPECT_EQ(missed.reached, 0u);
+  EXPECT_EQ(missed.solved, 1u);
+  EXPECT_EQ(missed.share_reached, 0.0);
+  EXPECT_EQ(missed.mean_score, 0.0);
+  EXPECT_EQ(missed.mean_manipulability_reached, 0.0);
+  EXPECT_EQ(missed.min_clearance_reached, std::numeric_limits<double>::infinity());
+}
+
+TEST(ReachStudySummary, TargetPointCarriesTheResult) {
+  const ReachTarget target = targetFromNormal({1, 2, 3}, {0, 0.6, 0.8});
+  TargetReach reach;
+  reach.reached = reach.solved = true;
+  reach.q = Eigen::Vector3d(0.5, -1.25, 2.0);
+  reach.manipulability = 12.5;
+  reach.clearance = 4.25;
+  reach.orientation_error = 0.125;
+  ReachTargetPoint point = reachTargetPoint(target, reach);
+  EXPECT_EQ(point.x, 1.f);
+  EXPECT_EQ(point.y, 2.f);
+  EXPECT_EQ(point.z, 3.f);
+  EXPECT_NEAR(point.normal_x, 0.0, 1e-7);
+  EXPECT_NEAR(point.normal_y, 0.6, 1e-7);
+  EXPECT_NEAR(point.normal_z, 0.8, 1e-7);
+  EXPECT_EQ(point.q1, 0.5f);
+  EXPECT_EQ(point.q2, -1.25f);
+  EXPECT_EQ(point.q3, 2.0f);
+  for (int j = 3; j < kMaxJoints; ++j) EXPECT_EQ(point.q[j], 0.f) << j;
+  EXPECT_EQ(point.label, kLabelFree);
+  EXPECT_EQ(point.reached, 1.f);
+  EXPECT_EQ(point.score, 12.5f);
+  EXPECT_EQ(point.manipulability, 12.5f);
+  EXPECT_EQ(point.clearance, 4.25f);
+  EXPECT_EQ(point.orientation_error, 0.125f);
+
+  // In a collision: score 0, clearance 0; without a collision model: clearance -1.
+  reach.reached = false;
+  reach.label = kLabelEnvironment;
+  reach.clearance = 0.0;
+  point = reachTargetPoint(target, reach);
+  EXPECT_EQ(point.reached, 0.f);
+  EXPECT_EQ(point.score, 0.f);
+  EXPECT_EQ(point.manipulability, 12.5f);
+  EXPECT_EQ(point.label, kLabelEnvironment);
+  EXPECT_EQ(point.clearance, 0.f);
+  reach.reached = true;
+  reach.label = kLabelFree;
+  reach.clearance = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(reachTargetPoint(target, reach).clearance, -1.f);
+  // Not solved: no joint values, no clearance.
+  TargetReach missed;
+  missed.q = Eigen::Vector3d(0.5, 0.5, 0.5);
+  missed.orientation_error = 0.5;
+  point = reachTargetPoint(target, missed);
+  for (int j = 0; j < kMaxJoints; ++j) EXPECT_EQ(point.q[j], 0.f) << j;
+  EXPECT_EQ(point.clearance, -1.f);
+  EXPECT_EQ(point.reached, 0.f);
+  EXPECT_EQ(point.orientation_error, 0.5f);
+}
+
+// ---- base placement
+// -------------------------------------------------------------------------------
+
+/// planar2's map: 2 cm voxels, 16 direction regions (the polar cap holds every direction within
+/// acos(1 - 2/16) = 28.96 deg of +z), position manipulability.
+const ReachMap& planarMap() {
+  static const ReachMap map = [] {
+    ReachGrid grid;
+    grid.resolution = 2.0;
+    grid.directions = 16;
+    grid.rolls = 1;
+    ReachSampling sampling;
+    sampling.samples = 2000000;
+    sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
+    return buildReachMap(planar2(), grid, sampling);
+  }();
+  return map;
+}
+
+// The map's answer for single targets: the voxel of the point less the offset, and the approach's
+// region or, within a tolerance, that of the probes around it.
+TEST(BasePlacement, MapReachesAnnulusAndApproach) {
+  const ReachMap& map = planarMap();
+  const Eigen::Vector3d p(45.0, 12.0, 0.0);  // r = 46.6, voxel well inside the annulus
+  const ReachTarget up = targetFromNormal(p, {0, 0, -1});
+  float m = -1.f;
+  ASSERT_TRUE(mapReaches(map, up, Eigen::Vector3d::Zero(), 0.0, &m));
+  EXPECT_EQ(m, map.bestManipulability(static_cast<std::size_t>(map.find(p))));
+  EXPECT_GT(m, 0.f);
+  EXPECT_LE(m, kL1 * kL2 * (1.0 + 1e-6));
+  // Moved: (45, 12) less (40, 0) is (5, 12), r = 13 < r_min; less (-30, 0): r = 75.9 > 70.
+  EXPECT_FALSE(mapReaches(map, up, {40, 0, 0}, 0.0));
+  EXPECT_FALSE(mapReaches(map, up, {-30, 0, 0}, 0.0));
+  EXPECT_TRUE(mapReaches(map, up, {20, 0, 0}, 0.0));  // (25, 12): r = 27.7
+  float untouched = -1.f;
+  EXPECT_FALSE(mapReaches(map, up, {40, 0, 0}, 0.0, &untouched));
+  EXPECT_EQ(untouched, -1.f);
+  // Out of the plane: z = 3 is voxel k = 1, which no sample (z = 0) reaches.
+  EXPECT_FALSE(mapReaches(map, targetFromNormal({45, 12, 3}, {0, 0, -1}), {0, 0, 0}, 0.0));
+  // Approach -x, 90 deg from the only reached direction +z. The target's x axis is +y, its y axis
+  // -z, so the probe turned 270 deg tilts towards +z: at 50 deg (half of 100) it is 40 deg from
+  // +z, at 100 deg 10 deg from +z, inside the polar cap. With 60 deg the nearest probe is 30 deg
+  // from +z, outside the cap (28.96 deg).
+  const ReachTarget side = targetFromNormal(p, {1, 0, 0});
+  EXPECT_FALSE(mapReaches(map, side, Eigen::Vector3d::Zero(), 0.0));
+  EXPECT_FALSE(mapReaches(map, side, Eigen::Vector3d::Zero(), 60.0 * kDeg));
+  EXPECT_TRUE(mapReaches(map, side, Eigen::Vector3d::Zero(), 100.0 * kDeg));
+  // Approach tilted 40 deg from +z towards +x: the target's x axis points down that slope, so the
+  // probe turned 180 deg tilts towards +z. Tolerance 10 deg: probes 35 and 30 deg from +z, outside
+  // the cap; 20 deg: the full ring reaches 20 deg from +z, inside; 80 deg: the half ring lands on
+  // +z itself (the full ring, 40 deg past it, would not).
+  const Eigen::Vector3d slope(std::sin(40.0 * kDeg), 0.0, std::cos(40.0 * kDeg));
+  const ReachTarget tilted = targetFromNormal(p, -slope);
+  ASSERT_NEAR((tilted.pose.linear().col(0) -
+               Eigen::Vector3d(std::cos(40.0 * kDeg), 0.0, -std::sin(40.0 * kDeg)))
+                  .norm(),
+              0.0, 1e-12);
+  EXPECT_FALSE(mapReaches(map, tilted, Eigen::Vector3d::Zero(), 0.0));
+  EXPECT_FALSE(mapReaches(map, tilted, Eigen::Vector3d::Zero(), 10.0 * kDeg));
+  EXPECT_TRUE(mapReaches(map, tilted, Eigen::Vector3d::Zero(), 20.0 * kDeg));
+  EXPECT_TRUE(mapReaches(map, tilted, Eigen::Vector3d::Zero(), 80.0 * kDeg));
+  // A full pose counts its own bin: the roll is irrelevant with one roll bin.
+  ReachTarget full = up;
+  full.free_roll = false;
+  full.pose.linear() = Eigen::AngleAxisd(1.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  EXPECT_TRUE(mapReaches(map, full, Eigen::Vector3d::Zero(), 0.0));
+  full.pose.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  EXPECT_FALSE(mapReaches(map, full, Eigen::Vector3d::Zero(), 0.0));
+}
+
+// Two targets 40 cm apart at y = 50 and the robot moved along x by d: both reached iff
+// d^2 + 50^2 <= 70^2 and (40 - d)^2 + 50^2 <= 70^2, d in [40 - sqrt(2400), sqrt(2400)] =
+// [-8.99, 48.99]. Manipulabilities in closed form; the best base maximises their mean.
+TEST(BasePlacement, TwoTargetsIntervalInClosedForm) {
+  const ReachMap& map = planarMap();
+  const Robot robot = planar2();
+  ReachStudyOptions options = planarOptions();
+  options.starts = 2;
+  options.ik.restarts = 5;
+  options.threads = 1;  // 101 tiny parallel loops: no gain, and slow on a busy machine
+  const ReachStudy study(robot, nullptr, options);
+  const std::vector<ReachTarget> targets = {targetFromNormal({0, 50, 0}, {0, 0, -1}),
+                                            targetFromNormal({40, 50, 0}, {0, 0, -1})};
+  std::vector<Eigen::Vector3d> offsets;
+  for (int d = -30; d <= 70; ++d) offsets.emplace_back(d, 0.0, 0.0);
+  PlacementOptions placement;
+  placement.confirm = -1;
+  std::size_t progress_calls = 0, progress_last = 0;
+  const std::vector<BaseCandidate> candidates =
+      placeBase(map, study, targets, offsets, placement, [&](std::size_t done, std::size_t all) {
+        ++progress_calls;
+        EXPECT_GE(done, progress_last);  // never backwards
+        progress_last = done;
+        EXPECT_EQ(all, offsets.size());
+      });
+  ASSERT_EQ(candidates.size(), offsets.size());
+  EXPECT_GE(progress_calls, 1u);
+  EXPECT_EQ(progress_last, offsets.size());  // ends with all confirmed
+
+  const double half = std::sqrt(kOuter * kOuter - 50.0 * 50.0);  // 48.99
+  const double low = 40.0 - half, high = half, centre = 20.0;
+  const double slack = 2.0 * map.grid().resolution + 1.0;
+  double best_expected = -1.0;
+  int best_d = 0;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const BaseCandidate& x = candidates[c];
+    const double d = offsets[c].x();
+    EXPECT_EQ(x.offset, offsets[c]);
+    ASSERT_TRUE(x.confirmed) << d;
+    const double r1 = std::hypot(d, 50.0), r2 = std::hypot(40.0 - d, 50.0);
+    const int expected_reached = (r1 <= kOuter ? 1 : 0) + (r2 <= kOuter ? 1 : 0);
+    EXPECT_EQ(x.ik.targets, 2u);
+    EXPECT_EQ(x.ik.reached, static_cast<std::size_t>(expected_reached)) << d;
+    const double expected_score = ((r1 <= kOuter ? planarManipulability(r1) : 0.0) +
+                                   (r2 <= kOuter ? planarManipulability(r2) : 0.0)) /
+                                  2.0;
+    // Each target's manipulability within what the IK position tolerance moves it.
+    const double score_tolerance =
+        1.01e-6 * (planarManipulabilitySlope(r1) + planarManipulabilitySlope(r2)) / 2.0 +
+        1e-9 * kL1 * kL2;
+    EXPECT_NEAR(x.ik.mean_score, expected_score, score_tolerance) << d;
+    if (d >= low && d <= high) {
+      EXPECT_EQ(x.ik.share_reached, 1.0) << d;
+      EXPECT_EQ(x.map_share, 1.0) << d;
+      if (expected_score > best_expected) {
+        best_expected = expected_score;
+        best_d = static_cast<int>(d);
+      }
+    } else {
+      EXPECT_LT(x.ik.share_reached, 1.0) << d;
+    }
+    // The map over-estimates by a voxel at most.
+    if (std::abs(d - centre) > (high - centre) + slack) {
+      EXPECT_LT(x.map_share, 1.0) << d;
+    }
+    EXPECT_GE(x.map_share, x.ik.share_reached) << d;
+    EXPECT_GE(x.map_score, 0.0);
+    EXPECT_LE(x.map_score, kL1 * kL2 * (1.0 + 1e-6));
+  }
+  EXPECT_EQ(best_d, 20);  // the symmetric middle, r = 53.85 for both
+  const int best = bestCandidate(candidates);
+  ASSERT_GE(best, 0);
+  EXPECT_EQ(candidates[static_cast<std::size_t>(best)].ik.share_reached, 1.0);
+  EXPECT_EQ(candidates[static_cast<std::size_t>(best)].offset.x(), best_d);
+  const double r_best = std::hypot(20.0, 50.0);
+  EXPECT_NEAR(candidates[static_cast<std::size_t>(best)].ik.mean_score, best_expected,
+              1.01e-6 * planarManipulabilitySlope(r_best) + 1e-9 * kL1 * kL2);
+}
+
+// Only the best `confirm` by the map are confirmed; bestCandidate picks among them.
+TEST(BasePlacement, ConfirmsTheMapsBestOnly) {
+  const ReachMap& map = planarMap();
+  ReachStudyOptions options = planarOptions();
+  options.starts = 2;
+  options.ik.restarts = 5;
+  options.threads = 1;  // 101 tiny parallel loops: no gain, and slow on a busy machine
+  const ReachStudy study(planar2(), nullptr, options);
+  const std::vector<ReachTarget> targets = {targetFromNormal({0, 50, 0}, {0, 0, -1}),
+                                            targetFromNormal({40, 50, 0}, {0, 0, -1})};
+  // Offsets -40 .. 80 step 20: only 0, 20 and 40 lie in [-8.99, 48.99].
+  std::vector<Eigen::Vector3d> offsets;
+  for (int d = -40; d <= 80; d += 20) offsets.emplace_back(d, 0.0, 0.0);
+  PlacementOptions placement;
+  placement.confirm = 3;
+  const std::vector<BaseCandidate> candidates = placeBase(map, study, targets, offsets, placement);
+  std::vector<double> confirmed;
+  for (const BaseCandidate& c : candidates) {
+    if (c.confirmed) {
+      confirmed.push_back(c.offset.x());
+      EXPECT_EQ(c.ik.share_reached, 1.0) << c.offset.x();
+    } else {
+      EXPECT_EQ(c.ik.targets, 0u);
+    }
+  }
+  EXPECT_EQ(confirmed, (std::vector<double>{0.0, 20.0, 40.0}));
+  const int best = bestCandidate(candidates);
+  ASSERT_GE(best, 0);
+  EXPECT_EQ(candidates[static_cast<std::size_t>(best)].offset.x(), 20.0);
+
+  placement.confirm = 0;
+  const std::vector<BaseCandidate> none = placeBase(map, study, targets, offsets, placement);
+  EXPECT_EQ(bestCandidate(none), -1);
+  EXPECT_EQ(bestCandidate({}), -1);
+  EXPECT_THROW(placeBase(map, study, {}, offsets, placement), Error);
+  EXPECT_THROW(placeBase(map, study, targets, {}, placement), Error);
+}
+
+TEST(BasePlacement, BestCandidateOrdersByShareThenScoreThenFirst) {
+  std::vector<BaseCandidate> c(5);
+  const double share[] = {0.5, 1.0, 1.0, 1.0, 0.9};
+  const double score[] = {900.0, 10.0, 30.0, 30.0, 50.0};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c[i].confirmed = true;
+    c[i].ik.share_reached = share[i];
+    c[i].ik.mean_score = score[i];
+  }
+  EXPECT_EQ(bestCandidate(c), 2);
+  c[2].confirmed = false;
+  EXPECT_EQ(bestCandidate(c), 3);
+  c[3].confirmed = false;
+  c[1].confirmed = false;
+  EXPECT_EQ(bestCandidate(c), 4);
+}
+
+}  // namespace
+}  // namespace mcws
