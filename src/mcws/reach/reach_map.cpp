@@ -1,6 +1,7 @@
 #include "mcws/reach/reach_map.h"
 
 #include <omp.h>
+#include <sys/mman.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,24 @@
 #include "mcws/workspace/sampler.h"
 
 namespace mcws {
+
+template <typename T>
+T* HugePageAllocator<T>::allocate(std::size_t n) {
+  constexpr std::size_t kHuge = std::size_t{2} << 20;
+  if (n > std::numeric_limits<std::size_t>::max() / sizeof(T) - kHuge) throw std::bad_alloc();
+  const std::size_t bytes = n * sizeof(T);
+  void* p = nullptr;
+  if (bytes >= kHuge) {
+    p = std::aligned_alloc(kHuge, (bytes + kHuge - 1) / kHuge * kHuge);
+    if (p) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure changes nothing
+  } else {
+    p = std::malloc(bytes == 0 ? 1 : bytes);
+  }
+  if (!p) throw std::bad_alloc();
+  return static_cast<T*>(p);
+}
+template struct HugePageAllocator<std::uint64_t>;
+template struct HugePageAllocator<ReachMap::Entry>;
 namespace {
 
 constexpr char kMagic[] = "MCWS-REACH-MAP 1";
@@ -215,7 +234,7 @@ void ReachMap::sort() {
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return keys_[a] < keys_[b]; });
-  std::vector<std::uint64_t> keys(keys_.size()), records(records_.size());
+  Array<std::uint64_t> keys(keys_.size()), records(records_.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     keys[i] = keys_[order[i]];
     std::copy_n(records_.begin() + order[i] * stride_, stride_, records.begin() + i * stride_);

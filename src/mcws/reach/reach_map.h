@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <iosfwd>
 #include <string>
@@ -32,6 +33,27 @@ struct ReachGrid {
   /// \throws mcws::Error naming the bad value (resolution not positive and finite, directions
   ///   or rolls < 1, or more than 65536 bins).
   void check() const;
+};
+
+/// \brief Allocator of the map's large arrays: blocks of 2 MB or more are 2 MB aligned and
+/// advised to the kernel as transparent huge pages (madvise), so the random accesses of a map
+/// with millions of voxels miss the TLB far less. Smaller blocks come from malloc.
+template <typename T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <typename U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}
+  T* allocate(std::size_t n);
+  void deallocate(T* p, std::size_t) { std::free(p); }
+  template <typename U>
+  bool operator==(const HugePageAllocator<U>&) const {
+    return true;
+  }
+  template <typename U>
+  bool operator!=(const HugePageAllocator<U>&) const {
+    return false;
+  }
 };
 
 /// \brief A sparse 6-D reachability map: position voxels x orientation bins.
@@ -127,9 +149,11 @@ class ReachMap {
   int stride_{3};      ///< words of one voxel's record: count, best manipulability, bits
   int index_bits_{0};  ///< log2 of the index's size
   double inverse_resolution_{0.0};
-  std::vector<std::uint64_t> keys_;     ///< packed voxel indices
-  std::vector<std::uint64_t> records_;  ///< per voxel: count, float bits of the best, bit set
-  std::vector<Entry> table_;
+  template <typename T>
+  using Array = std::vector<T, HugePageAllocator<T>>;
+  Array<std::uint64_t> keys_;     ///< packed voxel indices
+  Array<std::uint64_t> records_;  ///< per voxel: count, float bits of the best, bit set
+  Array<Entry> table_;
 };
 
 /// \brief How a map is filled.
