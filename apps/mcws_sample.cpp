@@ -48,10 +48,7 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
   cli.addSwitch("collision", "label each sample by collision (needs --robot with collision:)");
   cli.addSwitch("quality", "add fields manipulability and inverse_condition (needs --robot)");
-  cli.addValue("quality-task", "position | full: Jacobian rows --quality measures (see above)");
-  cli.addValue("length",
-               "characteristic length L of --quality-task full: a length with unit (50cm) or a "
-               "number in the robot's unit");
+  app::declareQualityFlags(cli);
   cli.addSwitch("ascii", "write ASCII PCD instead of binary");
   cli.addSwitch("json", "print a JSON summary on stdout");
 }

@@ -80,6 +80,15 @@ double parseAngle(const std::string& text, const std::string& flag) {
   throw UsageError("--" + flag + ": " + text + " has no unit (write 5deg or 0.087rad)");
 }
 
+void declareQualityFlags(CommandLine& cli) {
+  cli.addValue("quality-task",
+               "position | full: the Jacobian rows manipulability measures (default full for 6 "
+               "or more joints, position for fewer)");
+  cli.addValue("length",
+               "characteristic length L of --quality-task full: a length with unit (50cm) or a "
+               "number in the robot's unit (default the chain's length)");
+}
+
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot) {
   QualityOptions quality = defaultQualityOptions(robot);
   if (cli.has("quality-task")) {

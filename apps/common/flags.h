@@ -68,6 +68,9 @@ double parseLength(const std::string& text, const std::string& flag, LengthUnit 
 ///   non-zero value without a unit.
 double parseAngle(const std::string& text, const std::string& flag);
 
+/// \brief Declares --quality-task and --length (read by readQualityOptions()).
+void declareQualityFlags(CommandLine& cli);
+
 /// \brief --quality-task (position | full) and --length (parseLength()) over the robot's
 /// defaults (defaultQualityOptions()).
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);

@@ -18,10 +18,7 @@ void declareMapFlags(CommandLine& cli, const char* resolution_help) {
 }
 
 void declareSharedFlags(CommandLine& cli) {
-  cli.addValue("quality-task", "position | full: how manipulability is measured (mcws_sample)");
-  cli.addValue("length",
-               "characteristic length of --quality-task full: a length with unit or a number in "
-               "the robot's unit");
+  declareQualityFlags(cli);
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
 }

@@ -18,7 +18,7 @@ namespace mcws::app {
 /// \brief --resolution, --orientations, --rolls, --samples, --no-manipulability (with
 /// --quality-task and --length, --seed and --threads, which the study shares).
 void declareMapFlags(CommandLine& cli, const char* resolution_help);
-/// \brief --quality-task, --length, --seed, --threads.
+/// \brief --quality-task, --length (declareQualityFlags()), --seed, --threads.
 void declareSharedFlags(CommandLine& cli);
 /// \brief --targets, --standoff, --approach-tolerance, --ik-starts, --no-collision.
 void declareStudyFlags(CommandLine& cli);
