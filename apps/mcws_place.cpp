@@ -42,7 +42,7 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("along", "\"first last step\": base offsets along x [robot length unit]");
   cli.addValue("across", "\"first last step\": base offsets along y (default 0 only)");
   cli.addValue("up", "\"first last step\": base offsets along z (default 0 only)");
-  cli.addValue("map", "the robot's reachability map (mcws_reach --map)");
+  cli.addValue("map", "the robot's reachability map (mcws_reach --map, without --collision)");
   app::declareMapFlags(cli,
                        "voxel edge of a map built here (without --map): a length with unit "
                        "(2cm, 0.02m, 20mm) or a number in the robot's unit");
@@ -69,9 +69,10 @@ std::vector<double> steps(const app::CommandLine& cli, const std::string& flag) 
     throw app::UsageError(msg.str());
   }
   const double count = std::floor((v[1] - v[0]) / v[2] + 1e-9) + 1.0;
-  if (count > 1e5) {
-    throw app::UsageError("--" + flag + ": " + std::to_string(static_cast<long>(count)) +
-                          " positions, at most 100000");
+  if (!(count <= 1e5)) {  // also catches an overflow to infinity
+    std::ostringstream msg;
+    msg << "--" << flag << ": " << count << " positions, at most 100000";
+    throw app::UsageError(msg.str());
   }
   std::vector<double> values;
   for (int k = 0; k < static_cast<int>(count); ++k) values.push_back(v[0] + k * v[2]);
@@ -97,7 +98,8 @@ std::vector<Eigen::Vector3d> offsets(const app::CommandLine& cli) {
 ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about) {
   const std::string unit = unitName(robot.length_unit);
   if (cli.has("map")) {
-    for (const char* flag : {"resolution", "orientations", "rolls", "samples"}) {
+    for (const char* flag :
+         {"resolution", "orientations", "rolls", "samples", "no-manipulability"}) {
       if (cli.has(flag))
         throw app::UsageError(std::string("--") + flag +
                               " is for a map built here, not with --map");
@@ -113,6 +115,19 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
       throw Error(path + ": the map is of robot '" + (h.is_object() ? h.value("robot", "?") : "?") +
                   "' in " + (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
                   robot.name + "' in " + unit);
+    }
+    // Samples colliding with the environment at the robot's own base are missing from such a
+    // map: moved with the base, the environment's shadow would move too.
+    if (h.value("collision", false)) {
+      throw Error(path +
+                  ": the map counts only samples free of the environment at the robot's "
+                  "base (mcws_reach --collision); placement needs a map without it");
+    }
+    const nlohmann::json wanted = app::qualitySummary(app::readQualityOptions(cli, robot), robot);
+    if (h.contains("manipulability") && !h["manipulability"].is_null() &&
+        h["manipulability"] != wanted) {
+      throw Error(path + ": the map's manipulability is measured as " + h["manipulability"].dump() +
+                  ", not as " + wanted.dump() + " (--quality-task, --length)");
     }
     about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
     return map;
@@ -146,9 +161,11 @@ int main(int argc, char** argv) {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
+    const app::Progress clock("mcws_place", "");  // the whole run's seconds
     const std::string output = cli.required("output");
-    io::checkOutputPath(output);
-    if (cli.has("plot")) io::checkOutputPath(cli.required("plot"));
+    std::vector<std::string> inputs = {cli.required("robot"), cli.required("targets")};
+    if (cli.has("map")) inputs.push_back(cli.required("map"));
+    app::checkOutputs({{"output", output}, {"plot", cli.text("plot", "")}}, inputs);
     if (!cli.has("along")) throw app::UsageError("missing --along");
     const std::vector<Eigen::Vector3d> moves = offsets(cli);
     PlacementOptions placement;
@@ -220,7 +237,7 @@ int main(int argc, char** argv) {
         {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
         {"best", best_json},
         {"candidates", table},
-        {"seconds", progress.seconds()},
+        {"seconds", clock.seconds()},
         {"output", output}};
     if (cli.has("json")) {
       std::cout << json.dump() << "\n";

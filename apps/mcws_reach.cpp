@@ -84,9 +84,11 @@ struct PendingFile {
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
 void runMap(const app::CommandLine& cli, const Robot& robot) {
   const std::string output = cli.required("output");
-  for (const char* flag : {"output", "map", "halfcut", "histogram"}) {
-    if (cli.has(flag)) io::checkOutputPath(cli.required(flag));
-  }
+  app::checkOutputs({{"output", output},
+                     {"map", cli.text("map", "")},
+                     {"halfcut", cli.text("halfcut", "")},
+                     {"histogram", cli.text("histogram", "")}},
+                    {cli.required("robot")});
   const ReachGrid grid = app::readReachGrid(cli, robot);
   ReachSampling sampling = app::readReachSampling(cli, robot);
   const std::uint64_t samples = sampling.samples;
@@ -138,7 +140,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
                                     {"length_unit", unit},
                                     {"samples", samples},
                                     {"seed", sampling.seed},
-                                    {"collision", cli.has("collision")}}
+                                    {"collision", cli.has("collision")},
+                                    {"manipulability", summary["manipulability"]}}
                          .dump());
     map_file.write(cli.required("map"), bytes.str());
   }
@@ -162,8 +165,9 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
 /// The reach study: IK per target, the heat map and its summary.
 void runStudy(const app::CommandLine& cli, const Robot& robot) {
   const std::string output = cli.required("output");
-  io::checkOutputPath(output);
-  for (const char* flag : {"resolution", "map", "halfcut", "histogram", "samples", "collision"}) {
+  app::checkOutputs({{"output", output}}, {cli.required("robot"), cli.required("targets")});
+  for (const char* flag : {"resolution", "orientations", "rolls", "samples", "no-manipulability",
+                           "map", "halfcut", "histogram", "collision"}) {
     if (cli.has(flag))
       throw app::UsageError(std::string("--") + flag + " is for maps, not --targets");
   }
@@ -183,7 +187,8 @@ void runStudy(const app::CommandLine& cli, const Robot& robot) {
     if (!results[i].reached) {
       unreached.push_back({{"target", i},
                            {"solved", results[i].solved},
-                           {"label", labelName(results[i].label)},
+                           {"label", results[i].solved ? nlohmann::json(labelName(results[i].label))
+                                                       : nlohmann::json(nullptr)},
                            {"position_error", results[i].position_error},
                            {"orientation_error_deg", results[i].orientation_error * 180.0 / M_PI}});
     }

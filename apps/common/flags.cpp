@@ -53,7 +53,8 @@ SamplePoint readPoint(const CommandLine& cli) {
              : SamplePoint::kFlange;
 }
 
-double parseLength(const std::string& text, const std::string& flag, LengthUnit unit) {
+double parseLength(const std::string& text, const std::string& flag, LengthUnit unit,
+                   bool allow_zero) {
   std::size_t end = text.size();
   double scale = 1.0;
   for (const auto& [suffix, metres] : {std::pair{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}}) {
@@ -64,7 +65,9 @@ double parseLength(const std::string& text, const std::string& flag, LengthUnit 
       break;
     }
   }
-  const double value = parsePositive(text.substr(0, end), flag) * scale;
+  const std::string number = text.substr(0, end);
+  const double value =
+      (allow_zero ? parseNonNegative(number, flag) : parsePositive(number, flag)) * scale;
   if (!std::isfinite(value)) throw UsageError("--" + flag + ": " + text + " is too large");
   return value;
 }

@@ -60,8 +60,11 @@ SamplePoint readPoint(const CommandLine& cli);
 
 /// \brief A length flag: a number with an optional unit suffix (m, cm, mm: "2cm", "0.02m"),
 /// converted to `unit`; a bare number is already in `unit`.
-/// \throws UsageError naming the flag for a value that is not a positive finite length.
-double parseLength(const std::string& text, const std::string& flag, LengthUnit unit);
+/// \param allow_zero accept 0 (a distance that may be none) as well as positive lengths.
+/// \throws UsageError naming the flag for a value that is not a positive (or, with allow_zero,
+///   non-negative) finite length.
+double parseLength(const std::string& text, const std::string& flag, LengthUnit unit,
+                   bool allow_zero = false);
 
 /// \brief An angle flag >= 0 with its unit: "5deg", "0.087rad"; a bare 0 is accepted.
 /// \returns [rad]. \throws UsageError naming the flag for a negative or non-numeric value or a

@@ -1,6 +1,7 @@
 #include "common/reach_args.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "common/flags.h"
@@ -34,7 +35,9 @@ void declareStudyFlags(CommandLine& cli) {
                "largest accepted approach (or orientation) error of a target, with unit: 5deg, "
                "0.1rad (default 0: exact)");
   cli.addValue("ik-starts", "IK starting joint vectors per target (default 4)");
-  cli.addSwitch("no-collision", "ignore the robot's collision model when solving targets");
+  cli.addSwitch("no-collision",
+                "ignore the robot's collision model (when solving targets, and in a map "
+                "mcws_place builds)");
 }
 
 ReachGrid readReachGrid(const CommandLine& cli, const Robot& robot) {
@@ -62,6 +65,10 @@ ReachStudyOptions readReachStudyOptions(const CommandLine& cli, const Robot& rob
   ReachStudyOptions options;
   options.approach_tolerance =
       parseAngle(cli.text("approach-tolerance", "0"), "approach-tolerance");
+  if (options.approach_tolerance > M_PI) {
+    throw UsageError("--approach-tolerance: " + cli.required("approach-tolerance") +
+                     " is more than 180deg");
+  }
   options.starts = static_cast<int>(parseInteger(cli.text("ik-starts", "4"), "ik-starts", 1, 1000));
   options.ik.seed = readSeed(cli);
   options.threads = readThreads(cli);
@@ -71,8 +78,9 @@ ReachStudyOptions readReachStudyOptions(const CommandLine& cli, const Robot& rob
 
 std::vector<ReachTarget> readTargets(const CommandLine& cli, const Robot& robot) {
   std::vector<ReachTarget> targets = loadTargets(cli.required("targets"));
-  if (cli.has("standoff") && cli.required("standoff") != "0") {
-    const double standoff = parseLength(cli.required("standoff"), "standoff", robot.length_unit);
+  if (cli.has("standoff")) {
+    const double standoff =
+        parseLength(cli.required("standoff"), "standoff", robot.length_unit, true);
     for (ReachTarget& target : targets) {
       target.pose.translation() -= standoff * target.pose.linear().col(2);
     }

@@ -1,5 +1,7 @@
 #include "common/targets_io.h"
 
+#include <pcl/common/io.h>
+#include <pcl/console/print.h>
 #include <pcl/conversions.h>
 
 #include <Eigen/Geometry>
@@ -29,8 +31,21 @@ std::vector<ReachTarget> targetsFromPcd(const std::string& path) {
                   "': a target is a point and its surface normal (pcl::PointNormal)");
     }
   }
+  // PCL's conversion leaves a field of another type at 0 without a word: insist on
+  // pcl::PointNormal's.
+  for (const pcl::PCLPointField& f : blob.fields) {
+    const bool used = f.name == "x" || f.name == "y" || f.name == "z" || f.name == "normal_x" ||
+                      f.name == "normal_y" || f.name == "normal_z";
+    if (used && (f.datatype != pcl::PCLPointField::FLOAT32 || f.count != 1)) {
+      throw Error(path + ": field '" + f.name +
+                  "' is not one 4-byte float (TYPE F, SIZE 4, COUNT 1)");
+    }
+  }
   pcl::PointCloud<pcl::PointNormal> cloud;
+  const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // a missing curvature is fine
   pcl::fromPCLPointCloud2(blob, cloud);
+  pcl::console::setVerbosityLevel(level);
   std::vector<ReachTarget> targets;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const pcl::PointNormal& p = cloud[i];
@@ -52,16 +67,23 @@ std::vector<ReachTarget> targetsFromCsv(const std::string& path) {
   while (std::getline(text, line)) {
     ++number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     if (header.empty()) {
       header = line;
-      header.erase(std::remove(header.begin(), header.end(), ' '), header.end());
+      header.erase(std::remove_if(header.begin(), header.end(),
+                                  [](char c) { return c == ' ' || c == '\t'; }),
+                   header.end());
       if (header != "x,y,z,normal_x,normal_y,normal_z" && header != "x,y,z,roll,pitch,yaw") {
         throw Error(where + "header '" + line +
                     "' is neither x,y,z,normal_x,normal_y,normal_z nor x,y,z,roll,pitch,yaw");
       }
       continue;
+    }
+    if (line.find_last_not_of(" \t") != std::string::npos &&
+        line[line.find_last_not_of(" \t")] == ',') {
+      throw Error(where + "ends with a comma: an empty value");
     }
     double v[6];
     std::istringstream fields(line);
@@ -71,7 +93,8 @@ std::vector<ReachTarget> targetsFromCsv(const std::string& path) {
       if (count == 6) throw Error(where + "more than 6 values");
       char* end = nullptr;
       v[count] = std::strtod(field.c_str(), &end);
-      if (end == field.c_str() ||
+      const bool decimal = field.find_first_of("xXpP") == std::string::npos;  // no hex floats
+      if (end == field.c_str() || !decimal ||
           field.find_first_not_of(" \t", end - field.c_str()) != std::string::npos ||
           !std::isfinite(v[count])) {
         throw Error(where + "value " + std::to_string(count + 1) + " '" + field +

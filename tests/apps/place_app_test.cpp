@@ -129,6 +129,24 @@ TEST_F(StudyApp, BadTargetsAreOneLineAndWriteNothing) {
                           "--ik-starts needs --targets", out_);
   test::expectToolFailure(kReach, " --robot /nonexistent.yaml --targets " + good + out, 1,
                           "/nonexistent.yaml", out_);
+  test::writeFile(file("comma.csv"), "x,y,z,normal_x,normal_y,normal_z\n50,0,0,0,0,-1,\n");
+  test::expectToolFailure(kReach, robot + " --targets " + file("comma.csv") + out, 1,
+                          "comma.csv:2: ends with a comma", out_);
+  test::expectToolFailure(kReach,
+                          robot + " --targets " + good + " --approach-tolerance 181deg" + out, 2,
+                          "--approach-tolerance: 181deg is more than 180deg", out_);
+  test::expectToolFailure(kReach, robot + " --targets " + good + " --rolls 2" + out, 2,
+                          "--rolls is for maps", out_);
+  // The output may not replace an input.
+  test::expectToolFailure(kReach, robot + " --targets " + good + " --output " + good, 2, "--output",
+                          out_);
+  // Coordinates stored as doubles would be read as zeros by PCL: refused.
+  test::writeFile(file("double.pcd"),
+                  "VERSION 0.7\nFIELDS x y z normal_x normal_y normal_z\nSIZE 8 8 8 4 4 4\n"
+                  "TYPE F F F F F F\nCOUNT 1 1 1 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+                  "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n50 0 0 0 0 -1\n");
+  test::expectToolFailure(kReach, robot + " --targets " + file("double.pcd") + out, 1,
+                          "field 'x' is not one 4-byte float", out_);
 }
 
 /// The approach tolerance: a target approached along -x is out of the planar arm's reach (its
@@ -141,7 +159,7 @@ TEST_F(StudyApp, ApproachToleranceAdmitsTiltedTargets) {
   const test::RunResult exact = test::run(common);
   ASSERT_EQ(exact.exit_code, 0) << exact.err;
   EXPECT_EQ(nlohmann::json::parse(exact.out)["reached"], 0);
-  const test::RunResult loose = test::run(common + " --approach-tolerance 91deg");
+  const test::RunResult loose = test::run(common + " --approach-tolerance 91deg --standoff 0cm");
   ASSERT_EQ(loose.exit_code, 0) << loose.err;
   EXPECT_EQ(nlohmann::json::parse(loose.out)["reached"], 1);
   pcl::PointCloud<ReachTargetPoint> heat;
@@ -220,6 +238,21 @@ TEST_F(StudyApp, PlacementBadInput) {
   ASSERT_EQ(map.exit_code, 0) << map.err;
   test::expectToolFailure(kPlace, common + " --along \"0 10 1\" --map " + file("m.bin"), 1,
                           "the map is of robot 'inspection6'", out_);
+  // A map counting only samples free of the environment at the robot's own base.
+  const test::RunResult collision_map =
+      test::run(kReach + " --robot " + test::robotPath("planar2") +
+                " --resolution 5cm --samples 10000 --collision --output " + file("c.pcd") +
+                " --map " + file("c.bin"));
+  ASSERT_EQ(collision_map.exit_code, 0) << collision_map.err;
+  test::expectToolFailure(kPlace, common + " --along \"0 10 1\" --map " + file("c.bin"), 1,
+                          "placement needs a map without it", out_);
+  test::expectToolFailure(kPlace, common + " --along \"0 1 1e-300\" --resolution 2cm", 2,
+                          "positions, at most 100000", out_);
+  test::expectToolFailure(kPlace,
+                          " --robot " + test::robotPath("planar2") + " --targets " + targets +
+                              " --along \"0 10 1\" --resolution 2cm --output " + output("b.pcd") +
+                              " --plot " + output("b.pcd"),
+                          2, "--plot", out_);
 }
 
 }  // namespace

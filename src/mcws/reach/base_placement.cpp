@@ -43,10 +43,10 @@ bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vec
     // Rings of directions around the approach out to the tolerance, spaced at most half a
     // region's diameter (about 3.5 / sqrt(N) rad) apart, along and across the rings.
     const double spacing = 1.75 / std::sqrt(static_cast<double>(sphere.regions()));
-    const int rings =
-        approach_tolerance > 0.0 ? static_cast<int>(std::ceil(approach_tolerance / spacing)) : 0;
+    const double tolerance = std::min(approach_tolerance, M_PI);  // beyond pi: every direction
+    const int rings = tolerance > 0.0 ? static_cast<int>(std::ceil(tolerance / spacing)) : 0;
     for (int ring = 1; ring <= rings && !reached; ++ring) {
-      const double tilt = approach_tolerance * ring / rings;
+      const double tilt = tolerance * ring / rings;
       const int probes =
           std::max(8, static_cast<int>(std::ceil(2.0 * M_PI * std::sin(tilt) / spacing)));
       for (int k = 0; k < probes && !reached; ++k) {
@@ -96,38 +96,38 @@ std::vector<BaseCandidate> placeBase(
   const std::size_t confirm =
       options.confirm < 0 ? order.size()
                           : std::min(order.size(), static_cast<std::size_t>(options.confirm));
-  // One parallel region over every (candidate, target) pair: a region per candidate would
-  // wait at its barrier after a handful of targets.
+  // Parallel over (candidate, target) pairs, a block of candidates at a time (a region per
+  // candidate would wait at its barrier after a handful of targets; all pairs at once would hold
+  // every result in memory).
   const std::size_t n_targets = targets.size();
-  std::vector<TargetReach> results(confirm * n_targets);
+  const std::size_t block = std::max<std::size_t>(1, (std::size_t{1} << 16) / n_targets);
   const int threads = study.options().threads > 0 ? study.options().threads : omp_get_num_procs();
-  std::vector<std::string> errors(threads);
-  std::atomic<std::size_t> done{0};
+  std::vector<TargetReach> results;
+  for (std::size_t first = 0; first < confirm; first += block) {
+    const std::size_t count = std::min(block, confirm - first);
+    results.assign(count * n_targets, TargetReach());
+    FirstError error;
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (std::size_t i = 0; i < results.size(); ++i) {
-    const int t = omp_get_thread_num();
-    if (!errors[t].empty()) continue;
-    try {
-      Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
-      move.translation() = candidates[order[i / n_targets]].offset;
-      results[i] = study.evaluate(targets[i % n_targets], move);
-      const std::size_t finished = ++done;
-      if (progress && t == 0) progress(finished / n_targets, confirm);
-    } catch (const std::exception& e) {
-      errors[t] = e.what();
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      if (error.failed()) continue;
+      try {
+        Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
+        move.translation() = candidates[order[first + i / n_targets]].offset;
+        results[i] = study.evaluate(targets[i % n_targets], move);
+      } catch (const std::exception& e) {
+        error.record(i, e.what());
+      }
     }
+    error.rethrow();
+    for (std::size_t k = 0; k < count; ++k) {
+      BaseCandidate& candidate = candidates[order[first + k]];
+      candidate.ik = summarize(std::vector<TargetReach>(
+          results.begin() + static_cast<std::ptrdiff_t>(k * n_targets),
+          results.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_targets)));
+      candidate.confirmed = true;
+    }
+    if (progress) progress(first + count, confirm);
   }
-  for (const std::string& error : errors) {
-    if (!error.empty()) throw Error(error);
-  }
-  for (std::size_t k = 0; k < confirm; ++k) {
-    BaseCandidate& candidate = candidates[order[k]];
-    candidate.ik = summarize(std::vector<TargetReach>(
-        results.begin() + static_cast<std::ptrdiff_t>(k * n_targets),
-        results.begin() + static_cast<std::ptrdiff_t>((k + 1) * n_targets)));
-    candidate.confirmed = true;
-  }
-  if (progress) progress(confirm, confirm);
   return candidates;
 }
 

@@ -33,7 +33,8 @@ struct BaseCandidate {
   Eigen::Vector3d offset{Eigen::Vector3d::Zero()};  ///< the robot's move [length unit]
   double map_share{0.0};  ///< share of the targets the map marks reachable [1]
   /// Mean over the targets of the best manipulability of the target's voxel where the map marks
-  /// it reachable, 0 elsewhere (an upper estimate of the IK score).
+  /// it reachable, 0 elsewhere: an estimate of the IK score (above it at the rims of the reach,
+  /// where a voxel only partly reachable counts; below it where the samples missed a bin).
   double map_score{0.0};
   bool confirmed{false};  ///< inverse kinematics was run here
   ReachSummary ik;        ///< the reach study at this position (when confirmed)

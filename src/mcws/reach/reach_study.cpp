@@ -21,18 +21,24 @@ namespace {
 /// The IK tolerance standing for an approach tolerance of 0 [rad].
 constexpr double kExactAngle = 1e-6;
 
-/// Angle between the tool's z axis (or the whole rotation, for a full pose) and the target's.
-double orientationError(const ReachTarget& target, const Eigen::Matrix3d& R) {
-  if (target.free_roll) {
-    const Eigen::Vector3d z = R.col(2), z_target = target.pose.linear().col(2);
+/// Angle between the tool's z axis (or the whole rotation, when the roll counts) and R_target's.
+double orientationError(bool free_roll, const Eigen::Matrix3d& R_target, const Eigen::Matrix3d& R) {
+  if (free_roll) {
+    const Eigen::Vector3d z = R.col(2), z_target = R_target.col(2);
     return std::atan2(z.cross(z_target).norm(), z.dot(z_target));
   }
-  return Eigen::AngleAxisd(target.pose.linear() * R.transpose()).angle();
+  return Eigen::AngleAxisd(R_target * R.transpose()).angle();
 }
 
-/// b is the better solution of a: collision-free first, then the higher manipulability.
+/// b is the better solution of a: solved first, then collision-free, then the higher
+/// manipulability; of two unsolved attempts the closer one (position, then orientation).
 bool better(const TargetReach& b, const TargetReach& a) {
+  if (!a.solved && !b.solved) {
+    if (b.position_error != a.position_error) return b.position_error < a.position_error;
+    return b.orientation_error < a.orientation_error;
+  }
   if (!a.solved) return b.solved;
+  if (!b.solved) return false;
   const bool free_a = a.label == kLabelFree, free_b = b.label == kLabelFree;
   if (free_a != free_b) return free_b;
   return b.manipulability > a.manipulability;
@@ -59,8 +65,8 @@ ReachTarget targetFromNormal(const Eigen::Vector3d& point, const Eigen::Vector3d
 
 void ReachStudyOptions::check() const {
   std::ostringstream msg;
-  if (!(approach_tolerance >= 0.0) || !std::isfinite(approach_tolerance)) {
-    msg << "approach tolerance " << approach_tolerance << " rad is not a number >= 0";
+  if (!(approach_tolerance >= 0.0) || !(approach_tolerance <= M_PI)) {
+    msg << "approach tolerance " << approach_tolerance << " rad is not within [0, pi]";
   } else if (starts < 1) {
     msg << "IK starts " << starts << " is not at least 1";
   } else if (ik.max_iterations < 1 || ik.restarts < 0) {
@@ -75,6 +81,19 @@ void ReachStudyOptions::check() const {
     return;
   }
   throw Error(msg.str());
+}
+
+void FirstError::record(std::size_t item, const std::string& message) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (!failed_ || item < item_) {
+    item_ = item;
+    message_ = message;
+  }
+  failed_ = true;
+}
+
+void FirstError::rethrow() const {
+  if (failed_) throw Error(message_);
 }
 
 ReachSummary summarize(const std::vector<TargetReach>& results) {
@@ -134,7 +153,8 @@ bool ReachStudy::solve(const ReachTarget& target, const Eigen::Isometry3d& T, in
   ik.position_only = true;
   IkResult point = solver_.solve(T, result.q, ik);
   if (!point.converged()) return false;
-  point.orientation_error = orientationError(target, toolPose(robot_, point.q).linear());
+  point.orientation_error =
+      orientationError(target.free_roll, T.linear(), toolPose(robot_, point.q).linear());
   if (point.orientation_error > options_.approach_tolerance) return false;
   result = point;
   return true;
@@ -182,22 +202,19 @@ std::vector<TargetReach> ReachStudy::evaluate(
   std::vector<TargetReach> results(targets.size());
   std::atomic<std::size_t> done{0};
   const int threads = options_.threads > 0 ? options_.threads : omp_get_num_procs();
-  std::vector<std::string> errors(threads);
+  FirstError error;
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    const int t = omp_get_thread_num();
-    if (!errors[t].empty()) continue;
+    if (error.failed()) continue;
     try {
       results[i] = evaluate(targets[i], T_move);
       const std::size_t finished = ++done;
-      if (progress && t == 0) progress(finished, targets.size());
+      if (progress && omp_get_thread_num() == 0) progress(finished, targets.size());
     } catch (const std::exception& e) {
-      errors[t] = e.what();
+      error.record(i, e.what());
     }
   }
-  for (const std::string& error : errors) {
-    if (!error.empty()) throw Error(error);
-  }
+  error.rethrow();
   if (progress) progress(targets.size(), targets.size());
   return results;
 }

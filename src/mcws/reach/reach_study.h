@@ -9,10 +9,13 @@
 #include <pcl/register_point_struct.h>
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <vector>
 
 #include "mcws/collision/collision_checker.h"
@@ -82,6 +85,23 @@ struct TargetReach {
   double score() const { return reached ? manipulability : 0.0; }
 };
 
+/// \brief The error of the lowest-numbered failing item of a parallel loop, so the message does
+/// not depend on the thread count or the schedule. Thread-safe.
+class FirstError {
+ public:
+  /// \brief Whether any item failed (items after a failure may be skipped).
+  bool failed() const { return failed_.load(std::memory_order_relaxed); }
+  void record(std::size_t item, const std::string& message);
+  /// \brief Throws mcws::Error with the lowest item's message, if any failed.
+  void rethrow() const;
+
+ private:
+  std::atomic<bool> failed_{false};
+  std::mutex mutex_;
+  std::size_t item_{0};
+  std::string message_;
+};
+
 /// \brief Share reached and mean score of a study's results.
 struct ReachSummary {
   std::size_t targets{0}, reached{0}, solved{0};
@@ -98,10 +118,10 @@ ReachSummary summarize(const std::vector<TargetReach>& results);
 /// \brief Reaches targets with one robot and, optionally, its collision model.
 ///
 /// Each target is solved from ReachStudyOptions::starts starting joint vectors by solveIk(): a
-/// full pose (6 rows), a point and approach (free roll: 5 conditions), and for either, when the
-/// arm cannot meet the orientation exactly (fewer joints), a second solve of the point alone from
-/// the first one's best joint vector, accepted when its orientation error is within
-/// approach_tolerance. The base may be moved: the robot displaced rigidly by `T_move` (world
+/// full pose (6 rows) or a point and approach (free roll: 5 conditions); with approach_tolerance >
+/// 0, a start that fails (an arm with fewer joints cannot meet the orientation exactly) gets a
+/// second solve of the point alone from the first one's best joint vector, accepted when its
+/// orientation error is within the tolerance. The base may be moved: the robot displaced rigidly by `T_move` (world
 /// frame) reaches target T where the robot in place reaches T_move^-1 T, and its bodies are
 /// checked at T_move * T_world_base against the fixed environment.
 class ReachStudy {
