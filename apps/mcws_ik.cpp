@@ -21,7 +21,9 @@ constexpr char kSummary[] =
 world frame (damped least squares with seeded random restarts). Lengths are in the robot file's
 length unit, angles in rad; roll pitch yaw are fixed-axis angles, R = Rz(yaw) Ry(pitch) Rx(roll).
 --matrix takes the 4x4 pose row by row; a rotation printed with few decimals
-(|R^T R - I| <= 1e-3) is replaced by the nearest rotation. Exits 1 when no solution is found
+(|R^T R - I| <= 1e-3) is replaced by the nearest rotation. With --free-roll only the tool point
+and the direction of the tool's z axis count (orientation_error is then the angle between the
+tool's z axis and the target's). Exits 1 when no solution is found
 within the tolerances.)";
 
 void declareFlags(app::CommandLine& cli) {
@@ -32,6 +34,9 @@ void declareFlags(app::CommandLine& cli) {
       "q0",
       R"(first guess, one value per joint [rad | length unit] (default: middle of the limits))");
   cli.addSwitch("position-only", "match the tool point only (arms with fewer than 6 joints)");
+  cli.addSwitch("free-roll",
+                "match the tool point and the direction of the tool's z axis, the roll about it "
+                "free (a point and an approach direction; arms with 5 joints)");
   cli.addValue("tolerance", "position tolerance [length unit] (1e-6)");
   cli.addValue("angle-tolerance", "orientation tolerance [rad] (1e-6)");
   cli.addValue("restarts", "random restarts after the first guess (20)");
@@ -52,6 +57,10 @@ Eigen::Isometry3d readTarget(const app::CommandLine& cli) {
 IkOptions readOptions(const app::CommandLine& cli) {
   IkOptions options;
   options.position_only = cli.has("position-only");
+  options.free_roll = cli.has("free-roll");
+  if (options.position_only && options.free_roll) {
+    throw app::UsageError("--position-only and --free-roll exclude each other");
+  }
   options.position_tolerance = app::parsePositive(cli.text("tolerance", "1e-6"), "tolerance");
   options.orientation_tolerance =
       app::parsePositive(cli.text("angle-tolerance", "1e-6"), "angle-tolerance");
@@ -70,7 +79,8 @@ Error noSolution(const Robot& robot, const IkResult& result, const IkOptions& op
       << result.orientation_error << " rad away, after " << result.iterations << " iterations from "
       << result.attempts << " starts";
   if (robot.dof() < 6 && !options.position_only) {
-    msg << "; the robot has " << robot.dof() << " joints, try --position-only";
+    msg << "; the robot has " << robot.dof() << " joints, try --position-only"
+        << (options.free_roll ? "" : " or --free-roll");
   }
   return Error(msg.str());
 }
@@ -82,7 +92,8 @@ void printSolution(const Robot& robot, const IkResult& result, const IkOptions& 
   std::printf("\niterations: %d (%d start%s)\nposition error: %.3g %s\n", result.iterations,
               result.attempts, result.attempts == 1 ? "" : "s", result.position_error, unit);
   if (!options.position_only) {
-    std::printf("orientation error: %.3g rad\n", result.orientation_error);
+    std::printf("%s error: %.3g rad\n", options.free_roll ? "approach (z axis)" : "orientation",
+                result.orientation_error);
   }
 }
 

@@ -111,6 +111,27 @@ TEST(IkApp, PositionOnlyMaintenanceArm) {
   EXPECT_LT((toolPose(robot, solved).translation() - p).norm(), 1e-6);
 }
 
+/// The planar arm's tool z axis is always world z: a pose with a yaw other than the two its
+/// elbows give is out of reach as a full pose, but reached with the roll free.
+TEST(IkApp, FreeRollPlanarArmMeetsPointAndApproach) {
+  const std::string args = " --robot " + test::robotPath("planar2") + " --pose '50 0 0 0 0 0.3'";
+  const test::RunResult full = test::run(kIk + args);
+  EXPECT_EQ(full.exit_code, 1);
+  EXPECT_THAT(full.err, HasSubstr("try --position-only or --free-roll"));
+  const test::RunResult r = test::run(kIk + args + " --free-roll --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Eigen::VectorXd q = jsonQ(nlohmann::json::parse(r.out));
+  // l1 = 40, l2 = 30 at r = 50: cos q2 = (50^2 - 40^2 - 30^2) / (2 40 30) = 0.
+  EXPECT_NEAR(std::abs(q[1]), M_PI / 2, 1e-6);
+  const Robot robot = loadRobot(test::robotPath("planar2"));
+  EXPECT_LT((toolPose(robot, q).translation() - Eigen::Vector3d(50, 0, 0)).norm(), 1e-6);
+  const test::RunResult text = test::run(kIk + args + " --free-roll");
+  EXPECT_THAT(text.out, HasSubstr("approach (z axis) error: "));
+  const test::RunResult both = test::run(kIk + args + " --free-roll --position-only");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_THAT(both.err, HasSubstr("--position-only and --free-roll exclude each other"));
+}
+
 TEST(IkApp, FailuresAndBadInput) {
   test::TempDir nothing_written;
   struct Case {
@@ -122,7 +143,8 @@ TEST(IkApp, FailuresAndBadInput) {
   const Case cases[] = {
       {kInspection + " --pose '3000 0 0 0 0 0'", 1,
        "no solution (no_solution): the best pose found is "},
-      {deicing + " --pose '60 25 20 0 0 0'", 1, "the robot has 4 joints, try --position-only"},
+      {deicing + " --pose '60 25 20 0 0 0'", 1,
+       "the robot has 4 joints, try --position-only or --free-roll"},
       {kInspection + " --pose '1 2 3 nan 0 0'", 2, "--pose: 'nan' is not a finite number"},
       {kInspection + " --pose '1 2 inf 0 0 0'", 2, "--pose: 'inf' is not a finite number"},
       {kInspection + " --pose '1 2 3 0 0'", 2,
