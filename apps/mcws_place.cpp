@@ -194,18 +194,7 @@ int main(int argc, char** argv) {
       plot = std::make_unique<io::AtomicFile>(cli.required("plot"));
       plot->write(png.data(), png.size());
     }
-    std::vector<BasePoint> points;
-    for (const BaseCandidate& c : candidates) {
-      BasePoint p;
-      p.getVector3fMap() = (robot.T_world_base.translation() + c.offset).cast<float>();
-      p.map_share = static_cast<float>(c.map_share);
-      p.map_score = static_cast<float>(c.map_score);
-      if (c.confirmed) {
-        p.ik_share = static_cast<float>(c.ik.share_reached);
-        p.ik_score = static_cast<float>(c.ik.mean_score);
-      }
-      points.push_back(p);
-    }
+    const std::vector<BasePoint> points = basePoints(candidates, robot.T_world_base);
     io::PcdStreamWriter<BasePoint> cloud(output, points.size());
     cloud.write(points.data(), points.size());
     cloud.commit();

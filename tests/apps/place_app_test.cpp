@@ -218,6 +218,16 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
   EXPECT_EQ(nlohmann::json::parse(from_file.out)["candidates"], candidates);
 }
 
+TEST_F(StudyApp, PlacementHelpDescribesTheFlags) {
+  const test::RunResult r = test::run(kPlace + " --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* flag :
+       {"--robot", "--targets", "--along", "--across", "--up", "--map", "--resolution", "--confirm",
+        "--standoff", "--approach-tolerance", "--output", "--plot", "--json"}) {
+    EXPECT_THAT(r.out, HasSubstr(flag));
+  }
+}
+
 TEST_F(StudyApp, PlacementBadInput) {
   const std::string targets = planarTargets({{0, 50}});
   const std::string common = " --robot " + test::robotPath("planar2") + " --targets " + targets +

@@ -196,4 +196,21 @@ std::string renderPlacementPng(const std::vector<BaseCandidate>& candidates,
   return io::runGnuplot(dir, gp.str(), png);
 }
 
+std::vector<BasePoint> basePoints(const std::vector<BaseCandidate>& candidates,
+                                  const Eigen::Isometry3d& T_world_base) {
+  std::vector<BasePoint> points;
+  for (const BaseCandidate& c : candidates) {
+    BasePoint p;
+    p.getVector3fMap() = (T_world_base.translation() + c.offset).cast<float>();
+    p.map_share = static_cast<float>(c.map_share);
+    p.map_score = static_cast<float>(c.map_score);
+    if (c.confirmed) {
+      p.ik_share = static_cast<float>(c.ik.share_reached);
+      p.ik_score = static_cast<float>(c.ik.mean_score);
+    }
+    points.push_back(p);
+  }
+  return points;
+}
+
 }  // namespace mcws

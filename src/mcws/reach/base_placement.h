@@ -8,7 +8,7 @@
 #include <pcl/point_types.h>
 #include <pcl/register_point_struct.h>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <functional>
 #include <string>
 #include <vector>
@@ -77,6 +77,11 @@ struct EIGEN_ALIGN16 BasePoint {
       : data{0.f, 0.f, 0.f, 1.f}, map_share(0.f), map_score(0.f), ik_share(-1.f), ik_score(-1.f) {}
   PCL_MAKE_ALIGNED_OPERATOR_NEW
 };
+
+/// \brief The candidates as points, in their order: where the base frame T_world_base lands
+/// after each offset.
+std::vector<BasePoint> basePoints(const std::vector<BaseCandidate>& candidates,
+                                  const Eigen::Isometry3d& T_world_base);
 
 }  // namespace mcws
 

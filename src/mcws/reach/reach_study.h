@@ -121,9 +121,9 @@ ReachSummary summarize(const std::vector<TargetReach>& results);
 /// full pose (6 rows) or a point and approach (free roll: 5 conditions); with approach_tolerance >
 /// 0, a start that fails (an arm with fewer joints cannot meet the orientation exactly) gets a
 /// second solve of the point alone from the first one's best joint vector, accepted when its
-/// orientation error is within the tolerance. The base may be moved: the robot displaced rigidly by `T_move` (world
-/// frame) reaches target T where the robot in place reaches T_move^-1 T, and its bodies are
-/// checked at T_move * T_world_base against the fixed environment.
+/// orientation error is within the tolerance. The base may be moved: the robot displaced rigidly by
+/// `T_move` (world frame) reaches target T where the robot in place reaches T_move^-1 T, and its
+/// bodies are checked at T_move * T_world_base against the fixed environment.
 class ReachStudy {
  public:
   /// \param checker the robot's collision checker, or nullptr for kinematics only; must outlive
