@@ -229,36 +229,6 @@ TEST(ReachMap, MergeRejectsAnotherGrid) {
   }
 }
 
-TEST(ReachMap, BatchedAddIsAddOfTheCountedSamples) {
-  ReachMap one(handGrid()), batched(handGrid());
-  std::mt19937_64 rng(83);
-  std::uniform_real_distribution<double> coordinate(-3.0, 3.0), value(0.0, 5.0);
-  std::uniform_int_distribution<int> bin(0, 199);
-  std::uint64_t counted_samples = 0;
-  for (int batch = 0; batch < 400; ++batch) {
-    const int lanes = 1 + batch % 8;
-    double p[24], w[8];
-    int bins[8];
-    bool counted[8];
-    for (int k = 0; k < lanes; ++k) {
-      for (int a = 0; a < 3; ++a) p[a * lanes + k] = coordinate(rng);
-      bins[k] = bin(rng);
-      w[k] = value(rng);
-      counted[k] = (rng() % 4) != 0;
-      if (counted[k]) {
-        one.add({p[k], p[lanes + k], p[2 * lanes + k]}, bins[k], static_cast<float>(w[k]));
-        ++counted_samples;
-      }
-    }
-    batched.add(p, bins, w, counted, lanes);
-  }
-  EXPECT_EQ(batched.samples(), counted_samples);
-  one.sort();
-  batched.sort();
-  EXPECT_EQ(bytesOf(batched), bytesOf(one));
-  EXPECT_GT(batched.size(), 512u);  // past the index's first growth (1024 slots, half full)
-}
-
 TEST(ReachMap, ManyVoxelsSurviveTheIndexGrowingAndSorting) {
   // Past several rebuilds of the open-addressing index (1024 slots, load at most one half).
   ReachGrid grid;
@@ -673,6 +643,27 @@ TEST(BuildReachMap, MapDoesNotDependOnTheThreadCount) {
   ReachSampling other = planarSampling(robot, 1);
   other.seed = 8;
   EXPECT_NE(bytesOf(buildReachMap(robot, planarGrid(), other)), one);
+}
+
+TEST(BuildReachMap, AMapLargerThanTheCacheMatchesABruteForceMapForAnyThreadCount) {
+  // 1.5 mm voxels, over 1e5 of them: a thread's table (64-byte slots) outgrows the 4 MB up to
+  // which samples are recorded as they come, and the rest are recorded sorted into the table's
+  // order (with 1, 2 and 3 threads, at least one table each).
+  const Robot robot = planar2();
+  ReachGrid grid = planarGrid();
+  grid.resolution = 0.15;
+  ReachSampling sampling = planarSampling(robot, 1);
+  sampling.samples = 400001;
+  const auto expected = bruteForcePlanarMap(robot, grid, sampling, nullptr);
+  ASSERT_GT(expected.size(), 100000u);
+  std::string one;
+  for (const int threads : {1, 2, 3}) {
+    sampling.threads = threads;
+    const ReachMap map = buildReachMap(robot, grid, sampling);
+    expectSameMap(contents(map), expected);
+    if (threads == 1) one = bytesOf(map);
+    EXPECT_EQ(bytesOf(map), one) << threads;
+  }
 }
 
 TEST(BuildReachMap, MapOfAllSamplesIsTheMergeOfTheMapsOfItsParts) {

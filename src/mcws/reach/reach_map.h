@@ -24,6 +24,7 @@
 namespace mcws {
 
 class CollisionChecker;
+struct ReachSampling;
 
 /// \brief The grid of a reachability map.
 struct ReachGrid {
@@ -88,10 +89,6 @@ class ReachMap {
   /// \brief Records one sample: tool point p [length unit], orientation bin, manipulability.
   /// \throws mcws::Error for a bin outside [0, bins().size()) or p outside the grid's range.
   void add(const Eigen::Vector3d& p, int bin, float manipulability);
-  /// \brief add() for up to 8 samples, their memory fetched together: p laid out
-  /// p[a * lanes + k]; samples whose `counted` is false are skipped.
-  void add(const double* p, const int* bins, const double* manipulability, const bool* counted,
-           int lanes);
   /// \brief Adds another map of the same grid (counts add, bins unite, manipulability max).
   /// \throws mcws::Error when the grids differ.
   void merge(const ReachMap& other);
@@ -138,6 +135,8 @@ class ReachMap {
   void checkBin(int bin) const;
   bool inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const;
   void record(std::size_t v, int bin, float manipulability);
+  friend ReachMap buildReachMap(const Robot&, const ReachGrid&, const ReachSampling&,
+                                const std::function<void(std::uint64_t, std::uint64_t)>&);
   std::uint64_t* bitsOf(std::size_t v) { return records_.data() + v * stride_ + 2; }
   const std::uint64_t* bitsOf(std::size_t v) const { return records_.data() + v * stride_ + 2; }
   std::uint64_t keyOf(const Eigen::Vector3d& p) const;
