@@ -420,8 +420,16 @@ class SlotTable {
         fresh_.push_back(s);
       }
     };
+    constexpr std::size_t kAhead = 16;  // slots fetched ahead of their sample
     if (cached()) {
-      for (const auto& batch : batches) std::for_each(batch.begin(), batch.end(), lookup);
+      for (const auto& batch : batches) {
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+          if (i + kAhead < batch.size()) {
+            __builtin_prefetch(table_.data() + home(batch[i + kAhead].key) * slot_words_, 1);
+          }
+          lookup(batch[i]);
+        }
+      }
     } else {
       constexpr int kBucketBits = 11;
       std::array<std::size_t, (1 << kBucketBits) + 1> start{};
@@ -435,7 +443,6 @@ class SlotTable {
           sorted_[start[fraction(s.key) >> (64 - kBucketBits)]++] = s;
         }
       }
-      constexpr std::size_t kAhead = 16;
       for (std::size_t i = 0; i < sorted_.size(); ++i) {
         if (i + kAhead < sorted_.size()) {
           __builtin_prefetch(table_.data() + home(sorted_[i + kAhead].key) * slot_words_, 1);
