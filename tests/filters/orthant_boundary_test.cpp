@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
@@ -636,6 +637,71 @@ TEST(OrthantBoundary, RejectsBadParameters) {
               }),
               HasSubstr("the hull depth test works in a plane"));
   EXPECT_THROW(parseBoundaryPlane("xw"), Error);
+}
+
+/// The largest angle [rad] between circularly consecutive directions to the neighbours, from
+/// their atan2 angles in double (2 pi when fewer than two directions).
+double largestAngularGap(const std::vector<Neighbour>& neighbours) {
+  std::vector<double> angles;
+  for (const Neighbour& q : neighbours) {
+    if (q.x != 0.0f || q.y != 0.0f) angles.push_back(std::atan2(double{q.y}, double{q.x}));
+  }
+  if (angles.size() < 2) return 2 * M_PI;
+  std::sort(angles.begin(), angles.end());
+  double largest = angles.front() + 2 * M_PI - angles.back();
+  for (std::size_t k = 1; k < angles.size(); ++k) {
+    largest = std::max(largest, angles[k] - angles[k - 1]);
+  }
+  return largest;
+}
+
+Neighbour neighbourAt(double angle, double radius) {
+  return Neighbour(static_cast<float>(radius * std::cos(angle)),
+                   static_cast<float>(radius * std::sin(angle)), 0.0f,
+                   static_cast<float>(radius * radius), 0);
+}
+
+TEST(EmptySector, TheBinnedPrefilterAgreesWithTheAnglesOnRandomAndWorstCaseNeighbourhoods) {
+  // The sector test first rejects points by 64 angular bins, then decides the rest exactly.
+  // Whatever the bins reject must truly have no empty sector of the gap: compared with the
+  // largest gap between the neighbours' atan2 angles, on random neighbourhoods and on ones
+  // built with a single empty arc just wider or just narrower than the gap, at random rotations
+  // (a bin's limit one too lenient rejects some of the wider ones).
+  const CounterRng rng(5);
+  std::uint64_t draw = 0;
+  const auto uniform = [&] { return rng.uniform(draw++, 0); };
+  std::vector<orthant::Direction> scratch;
+  for (const double degrees : {90.0, 92.0, 100.0, 135.0}) {
+    const double gap = degrees * M_PI / 180.0;
+    const orthant::SectorGap sector = orthant::sectorGap(gap);
+    int random_with_gap = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      std::vector<Neighbour> neighbours;
+      const int m = 2 + trial % 24;
+      for (int k = 0; k < m; ++k) {
+        neighbours.push_back(neighbourAt(2 * M_PI * uniform(), 0.5 + 1.5 * uniform()));
+      }
+      const double largest = largestAngularGap(neighbours);
+      if (std::abs(largest - gap) < 1e-6) continue;  // too close to call in float directions
+      random_with_gap += largest > gap;
+      ASSERT_EQ(orthant::hasEmptySector(neighbours, sector, scratch), largest > gap)
+          << degrees << " deg, trial " << trial << ", largest gap " << largest;
+    }
+    EXPECT_GT(random_with_gap, 100) << degrees;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const double width =
+          gap + (trial % 2 ? 1.0 : -1.0) * (0.05 + 0.45 * (trial % 5) / 4.0) * M_PI / 180.0;
+      const double start = 2 * M_PI * uniform();
+      std::vector<Neighbour> neighbours = {neighbourAt(start, 1.0),
+                                           neighbourAt(start + width, 1.3)};
+      for (double a = start + width + 0.035; a < start + 2 * M_PI - 0.02; a += 0.035) {
+        neighbours.push_back(neighbourAt(a, 0.5 + uniform()));
+      }
+      ASSERT_EQ(orthant::hasEmptySector(neighbours, sector, scratch), width > gap)
+          << degrees << " deg, empty arc " << width * 180.0 / M_PI << " deg at "
+          << start * 180.0 / M_PI;
+    }
+  }
 }
 
 }  // namespace
