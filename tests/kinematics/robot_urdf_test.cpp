@@ -2,9 +2,15 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#endif
 
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <sstream>
+#include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -203,6 +209,144 @@ TEST(RobotUrdf, ReportsLimitsInTheWrongOrderZeroAxisAndOddNames) {
             "bad.urdf: joint 'j1': axis must be a finite non-zero vector");
   EXPECT_EQ(errorOf(replace(kPlanar, R"("j3" type)", R"("j,3" type)")),
             "bad.urdf: joint 'j,3': name contains '=', ',' or a space");
+}
+
+/// `count` copies of `text`.
+std::string repeat(const std::string& text, int count) {
+  std::string out;
+  for (int i = 0; i < count; ++i) out += text;
+  return out;
+}
+
+/// kPlanar with `content` inside its tool link: the robot and tool elements are two levels.
+std::string planarWithToolContent(const std::string& content) {
+  return replace(kPlanar, R"(<link name="tool"/>)", R"(<link name="tool">)" + content + "</link>");
+}
+
+/// The error of loading `text` written to the file `path`.
+std::string fileErrorOf(const std::string& path, const std::string& text) {
+  test::writeFile(path, text);
+  try {
+    loadRobotUrdf(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << path;
+  return "";
+}
+
+TEST(RobotUrdf, RefusesDeepNestingBeforeTheParserOverflowsItsStack) {
+  test::TempDir dir;
+  const std::string path = dir.file("deep.urdf");
+  // robot + link + 998 = 1000 levels pass; one more does not.
+  EXPECT_EQ(
+      parseRobotUrdf(planarWithToolContent(repeat("<x>", 998) + repeat("</x>", 998)), "ok").dof(),
+      3);
+  EXPECT_EQ(errorOf(planarWithToolContent(repeat("<x>", 999) + repeat("</x>", 999))),
+            "bad.urdf: XML nested deeper than 1000 elements");
+  // TinyXML recursed once per level and overflowed an 8 MB stack at 100,000 levels.
+  EXPECT_EQ(
+      fileErrorOf(path, planarWithToolContent(repeat("<x>", 100000) + repeat("</x>", 100000))),
+      path + ": XML nested deeper than 1000 elements");
+  // A quoted "/>" does not close an element.
+  EXPECT_EQ(errorOf(planarWithToolContent(repeat("<x a=\"/>\" b='>'>", 999) + repeat("</x>", 999))),
+            "bad.urdf: XML nested deeper than 1000 elements");
+}
+
+TEST(RobotUrdf, NestingCountSkipsEmptyElementsCommentsCdataAndTheDeclaration) {
+  // 2,000 empty elements side by side, and 2,000 tags inside a comment and CDATA at level 3.
+  const std::string content = repeat("<x/><y a='1'/>", 1000) + "<x><!--" + repeat("<x>", 2000) +
+                              "--></x><x><![CDATA[" + repeat("<x>", 2000) + "]]></x>";
+  EXPECT_EQ(
+      parseRobotUrdf("<?xml version='1.0' encoding=\"UTF-8\" ?>\n" + planarWithToolContent(content),
+                     "ok")
+          .dof(),
+      3);
+}
+
+TEST(RobotUrdf, RefusesTextThatCouldHideNestingFromTheCount) {
+  // TinyXML would read "></x>" as the declaration's version and never see an end tag.
+  EXPECT_EQ(errorOf(planarWithToolContent("<x><?xml version=\"></x>\"?>")),
+            "bad.urdf: XML declaration on line 4 is not of the form <?xml name=\"value\" ...?>");
+  // TinyXML would take "\xC3<" as one character and never see the end tag.
+  EXPECT_EQ(errorOf(planarWithToolContent("<x>\xC3</x>")),
+            "bad.urdf: line 4 is not UTF-8 text (byte 0xC3 starts a cut-short character)");
+  EXPECT_EQ(parseRobotUrdf(planarWithToolContent("<x>caf\xC3\xA9</x>"), "ok").dof(), 3);
+}
+
+TEST(RobotUrdf, RefusesAFileLargerThan64MiB) {
+  test::TempDir dir;
+  const std::string path = dir.file("huge.urdf");
+  test::writeFile(path, "");
+  std::filesystem::resize_file(path, 64 * 1024 * 1024 + 1);  // sparse: nothing is written
+  try {
+    loadRobotUrdf(path);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ": URDF of 67108865 bytes is larger than 64 MiB");
+  }
+}
+
+/// A URDF of links base, a, b and the given fixed joints "name parent child".
+std::string linksAndJoints(const std::vector<std::string>& joints) {
+  std::string text = R"(<robot name="r"><link name="base"/><link name="a"/><link name="b"/>)";
+  for (const std::string& joint : joints) {
+    std::istringstream words(joint);
+    std::string name, parent, child;
+    words >> name >> parent >> child;
+    text += "<joint name='" + name + "' type='fixed'><parent link='" + parent + "'/><child link='" +
+            child + "'/></joint>";
+  }
+  return text + "</robot>";
+}
+
+TEST(RobotUrdf, NamesTheJointThatClosesALoop) {
+  test::TempDir dir;
+  const std::string path = dir.file("loop.urdf");
+  // base -> a -> b -> a: j2 leads back to a, which is on the path from base.
+  EXPECT_EQ(fileErrorOf(path, linksAndJoints({"j0 base a", "j1 a b", "j2 b a"})),
+            path + ": joint 'j2' closes a loop: its child link 'a' is also its ancestor");
+  // A loop apart from the root: the search from base ended round the loop for ever.
+  EXPECT_EQ(fileErrorOf(path, linksAndJoints({"j1 a b", "j2 b a"})),
+            path + ": joint 'j2' closes a loop: its child link 'a' is also its ancestor");
+  // A joint from a link to itself.
+  EXPECT_EQ(errorOf(linksAndJoints({"j0 base a", "j1 a b", "j2 b b"})),
+            "bad.urdf: joint 'j2' closes a loop: its child link 'b' is also its ancestor");
+  // Every link has a parent, so urdfdom finds no root: the walk up from a meets a again first,
+  // and the search from a returns to it by j2. urdfdom, rejecting this text itself, leaks the
+  // links of the loop (they own each other by shared_ptr) where the loader cannot free them.
+#if defined(__SANITIZE_ADDRESS__)
+  const __lsan::ScopedDisabler urdfdom_leaks_the_loop_it_rejects;
+#endif
+  EXPECT_EQ(errorOf(R"(<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
+      <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>)"),
+            "bad.urdf: joint 'j2' closes a loop: its child link 'a' is also its ancestor");
+}
+
+TEST(RobotUrdf, RefusesALinkWithTwoParentJoints) {
+  // base -> a by j1 and base -> b -> a by j3: the search reaches a by j1 first (name order).
+  EXPECT_EQ(errorOf(linksAndJoints({"j1 base a", "j2 base b", "j3 b a"})),
+            "bad.urdf: joint 'j3': link 'a' already has parent joint 'j1' (the joints must form "
+            "a tree)");
+}
+
+TEST(RobotUrdf, RefusesLimitsAndOriginsLargerThan1e9LikeRobotYaml) {
+  const std::string j1_limit = R"(lower="-2" upper="2")";
+  EXPECT_EQ(errorOf(replace(kPlanar, j1_limit, R"(lower="-1e308" upper="2")")),
+            "bad.urdf: joint 'j1': lower limit -1e+308 is out of range (at most 1e9 in size)");
+  EXPECT_EQ(errorOf(replace(kPlanar, j1_limit, R"(lower="-2" upper="1e308")")),
+            "bad.urdf: joint 'j1': upper limit 1e+308 is out of range (at most 1e9 in size)");
+  EXPECT_EQ(errorOf(replace(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0" upper="2e9")")),
+            "bad.urdf: joint 'j3': upper limit 2e+09 is out of range (at most 1e9 in size)");
+  EXPECT_EQ(
+      errorOf(replace(kPlanar, R"(<origin xyz="0.2 0 0"/>)", R"(<origin xyz="0 -1e308 0"/>)")),
+      "bad.urdf: joint 'j2': origin coordinate -1e+308 is out of range (at most 1e9 in "
+      "size)");
+  const Robot robot =
+      parseRobotUrdf(replace(kPlanar, j1_limit, R"(lower="-1e9" upper="1e9")"), "ok.urdf");
+  EXPECT_EQ(robot.joints[0].lower, -1e9);
+  EXPECT_EQ(robot.joints[0].upper, 1e9);
 }
 
 }  // namespace

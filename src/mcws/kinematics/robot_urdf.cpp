@@ -3,13 +3,19 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/core/text_file.h"
+#include "mcws/core/yaml_reader.h"
 
 namespace mcws {
 namespace {
@@ -38,7 +44,223 @@ std::string oneLine(std::string text) {
   return text;
 }
 
-urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::string& source) {
+/// The shortest text that reads back as `value` ("1e+308", "1000000000.5").
+std::string shortest(double value) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+}
+
+/// 1-based number of the line holding byte `at`.
+std::size_t lineOf(const std::string& text, std::size_t at) {
+  return 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+}
+
+/// White space as TinyXML's IsWhiteSpace() sees it (isspace in the C locale).
+bool isXmlSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+}
+
+bool isAsciiLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
+
+/// The ASCII characters of an XML name after its first (TinyXML's ReadName()).
+bool isNameChar(char c) {
+  return isAsciiLetter(c) || (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.' || c == ':';
+}
+
+/// The offset just after the first `end` at or after `from`, or the end of the text.
+std::size_t after(const std::string& text, std::size_t from, const char* end) {
+  const std::size_t found = text.find(end, from);
+  return found == std::string::npos ? text.size() : found + std::char_traits<char>::length(end);
+}
+
+/// The offset of the '>' that ends the start tag at `at` (quoted attribute values skipped, as
+/// TinyXML skips them), or the end of the text.
+std::size_t startTagEnd(const std::string& text, std::size_t at) {
+  for (std::size_t i = at + 1; i < text.size(); ++i) {
+    if (text[i] == '>') return i;
+    if (text[i] == '"' || text[i] == '\'') {
+      i = text.find(text[i], i + 1);
+      if (i == std::string::npos) break;
+    }
+  }
+  return text.size();
+}
+
+/// Throws unless every byte that TinyXML reads as the lead of a multi-byte UTF-8 character (0xC2
+/// to 0xF4) is followed by its continuation bytes (0x80 to 0xBF). TinyXML takes a lead's whole
+/// length without looking, so a cut-short character would swallow the '<' or quote after it and
+/// the nesting count of checkXmlNesting() would lose step with the parser.
+void checkUtf8(const std::string& text, const std::string& source) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto lead = static_cast<unsigned char>(text[i]);
+    const int continuations = lead >= 0xC2 && lead <= 0xDF   ? 1
+                              : lead >= 0xE0 && lead <= 0xEF ? 2
+                              : lead >= 0xF0 && lead <= 0xF4 ? 3
+                                                             : 0;
+    for (int k = 1; k <= continuations; ++k) {
+      const auto byte = i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0;
+      if (byte < 0x80 || byte > 0xBF) {
+        std::ostringstream msg;
+        msg << source << ": line " << lineOf(text, i) << " is not UTF-8 text (byte 0x" << std::hex
+            << std::uppercase << int{lead} << " starts a cut-short character)";
+        throw Error(msg.str());
+      }
+    }
+    i += continuations;
+  }
+}
+
+/// Throws unless the `<?xml` declaration at `at` is plain: attributes `name="value"` (names and
+/// values of letters, digits and "_-.:"), each after white space, then `?>` or `>`. TinyXML ends a
+/// declaration at the first '>' outside the quoted value of a version, encoding or standalone
+/// attribute; in the plain form that is its first '>', where checkXmlNesting() ends it too.
+void checkPlainDeclaration(const std::string& text, std::size_t at, const std::string& source) {
+  std::size_t i = at + 5;
+  const auto skip = [&](bool (*is)(char)) {
+    const std::size_t from = i;
+    while (i < text.size() && is(text[i])) ++i;
+    return i > from;
+  };
+  const auto at_char = [&](char c) { return i < text.size() && text[i] == c; };
+  for (;;) {
+    const bool spaced = skip(isXmlSpace);
+    if (at_char('>') || text.compare(i, 2, "?>") == 0) return;
+    if (!spaced || !isAsciiLetter(text[i]) || !skip(isNameChar)) break;
+    skip(isXmlSpace);
+    if (!at_char('=')) break;
+    ++i;
+    skip(isXmlSpace);
+    if (!at_char('"') && !at_char('\'')) break;
+    const char quote = text[i++];
+    skip(isNameChar);
+    if (!at_char(quote)) break;
+    ++i;
+  }
+  throw Error(source + ": XML declaration on line " + std::to_string(lineOf(text, at)) +
+              " is not of the form <?xml name=\"value\" ...?>");
+}
+
+/// \brief Bounds the recursion of TinyXML (urdfdom's parser, one level per nested element)
+/// before it runs, and finds where the content of the `<robot>` element begins.
+///
+/// The scan splits the text as TinyXML 2.6 does: comments end at `-->`, CDATA at `]]>`, a start
+/// tag at its first '>' outside quotes (an empty element when `/>`), an end tag and any other
+/// markup (`<?xml ?>`, `<!DOCTYPE>`) at its first '>'. So it counts the parser's depth exactly
+/// up to the point where the parser stops at an error. Two places where TinyXML reads more than
+/// that would let a crafted file hide nesting from the count, so they are errors: a cut-short
+/// UTF-8 character (checkUtf8()) and a declaration with a '>' inside quotes
+/// (checkPlainDeclaration()).
+/// \return the offset just after the first top-level `<robot ...>` tag, or npos.
+/// \throws mcws::Error "source: XML nested deeper than 1000 elements", or as the two checks.
+std::size_t checkXmlNesting(const std::string& text, const std::string& source) {
+  checkUtf8(text, source);
+  std::size_t robot_content = std::string::npos;
+  int depth = 0;
+  for (std::size_t at = text.find('<'); at < text.size(); at = text.find('<', at)) {
+    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
+    if (text.compare(at, 4, "<!--") == 0) {
+      at = after(text, at + 4, "-->");
+    } else if (text.compare(at, 9, "<![CDATA[") == 0) {
+      at = after(text, at + 9, "]]>");
+    } else if (next == '/') {
+      depth = std::max(depth - 1, 0);
+      at = after(text, at, ">");
+    } else if (isAsciiLetter(next) || next == '_' || static_cast<unsigned char>(next) >= 127) {
+      const std::size_t end = startTagEnd(text, at);
+      if (end == text.size()) break;
+      if (text[end - 1] != '/') {
+        if (++depth > kMaxUrdfNesting) {
+          throw Error(source + ": XML nested deeper than " + std::to_string(kMaxUrdfNesting) +
+                      " elements");
+        }
+        if (depth == 1 && robot_content == std::string::npos &&
+            text.compare(at + 1, 5, "robot") == 0 && !isNameChar(text[at + 6])) {
+          robot_content = end + 1;
+        }
+      }
+      at = end + 1;
+    } else {
+      std::string opening = text.substr(at, 5);
+      std::transform(opening.begin(), opening.end(), opening.begin(),
+                     [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; });
+      if (opening == "<?xml") checkPlainDeclaration(text, at, source);
+      at = after(text, at, ">");
+    }
+  }
+  return robot_content;
+}
+
+/// \brief Throws unless the joints make the links a tree: no link its own ancestor, none with
+/// two parent joints. urdfdom checks neither, and a loop would send the chain searches of
+/// ChainReader round for ever.
+///
+/// A depth-first search from the root links (those no joint has as child) enters each link by
+/// one joint. A joint leading back to a link on the current path closes a loop; one leading to a
+/// link entered before gives it a second parent. Links the roots do not reach lie on or below a
+/// loop: the search starts again from the first link met twice when walking up parent joints.
+void checkTree(const urdf::ModelInterface& model, const std::string& source) {
+  std::map<std::string, std::vector<const urdf::Joint*>> child_joints;  // by parent link
+  std::map<std::string, const urdf::Joint*> some_parent_joint;          // by child link
+  for (const auto& named : model.joints_) {
+    child_joints[named.second->parent_link_name].push_back(named.second.get());
+    some_parent_joint[named.second->child_link_name] = named.second.get();
+  }
+  enum class Visit { kNotYet, kOnPath, kDone };
+  std::map<std::string, Visit> visit;
+  std::map<std::string, const urdf::Joint*> entered_by;
+  const auto search = [&](const std::string& start) {
+    std::vector<std::pair<std::string, std::size_t>> path{{start, 0}};  // link, next child joint
+    visit[start] = Visit::kOnPath;
+    while (!path.empty()) {
+      const std::vector<const urdf::Joint*>& joints = child_joints[path.back().first];
+      if (path.back().second == joints.size()) {
+        visit[path.back().first] = Visit::kDone;
+        path.pop_back();
+        continue;
+      }
+      const urdf::Joint& joint = *joints[path.back().second++];
+      const std::string& child = joint.child_link_name;
+      if (visit[child] == Visit::kOnPath) {
+        throw Error(source + ": joint '" + joint.name + "' closes a loop: its child link '" +
+                    child + "' is also its ancestor");
+      }
+      if (visit[child] == Visit::kDone) {
+        throw Error(source + ": joint '" + joint.name + "': link '" + child +
+                    "' already has parent joint '" + entered_by[child]->name +
+                    "' (the joints must form a tree)");
+      }
+      entered_by[child] = &joint;
+      visit[child] = Visit::kOnPath;
+      path.emplace_back(child, 0);
+    }
+  };
+  for (const auto& named : model.links_) {
+    if (!some_parent_joint.count(named.first)) search(named.first);
+  }
+  for (const auto& named : model.links_) {
+    if (visit[named.first] != Visit::kNotYet) continue;
+    std::string on_loop = named.first;  // walked up until a link comes round again
+    std::set<std::string> walked;
+    while (walked.insert(on_loop).second) {
+      on_loop = some_parent_joint.at(on_loop)->parent_link_name;
+    }
+    search(on_loop);  // throws: the search comes back round to on_loop
+  }
+}
+
+/// checkTree(), and on failure emptying every link's list of child links first: urdfdom's links
+/// own their children (shared_ptr), so a loop among them would never be freed.
+void checkTreeFreeingLoops(urdf::ModelInterface& model, const std::string& source) {
+  try {
+    checkTree(model, source);
+  } catch (const Error&) {
+    for (const auto& named : model.links_) named.second->child_links.clear();
+    throw;
+  }
+}
+
+/// urdfdom's model of the text, or null with urdfdom's first error in `why`.
+urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string& why) {
   static std::mutex console_mutex;  // console_bridge's output handler is process-wide
   const std::lock_guard<std::mutex> lock(console_mutex);
   CapturedMessages messages;
@@ -51,14 +273,37 @@ urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::str
     exception_text = e.what();
   }
   console_bridge::restorePreviousOutputHandler();
-  if (!model) {
-    std::string why = !exception_text.empty() ? exception_text : messages.firstError();
-    if (why.empty()) why = "not a valid URDF document";
-    throw Error(source + ": malformed URDF: " + oneLine(why));
-  }
+  why = !exception_text.empty() ? exception_text : messages.firstError();
   return model;
 }
 
+/// urdfdom's model of the text, checked to be a tree (checkTreeFreeingLoops()).
+///
+/// urdfdom rejects a URDF in which every link has a parent joint (then the joints necessarily
+/// form a loop) as having no root link, without naming a joint. To name the joint that closes the
+/// loop, a failed text is parsed again with an extra link that no joint names: if urdfdom then
+/// accepts it, that link was the only one without a parent and the tree check finds the loop.
+urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::string& source) {
+  const std::size_t robot_content = checkXmlNesting(text, source);
+  std::string why;
+  urdf::ModelInterfaceSharedPtr model = tryParseModel(text, why);
+  if (model) {
+    checkTreeFreeingLoops(*model, source);
+    return model;
+  }
+  if (robot_content != std::string::npos) {
+    std::string with_root = text;
+    with_root.insert(robot_content, "<link name=\"mcws_added_root_link\"/>");
+    std::string ignored;
+    if (const urdf::ModelInterfaceSharedPtr rooted = tryParseModel(with_root, ignored)) {
+      checkTreeFreeingLoops(*rooted, source);
+    }
+  }
+  if (why.empty()) why = "not a valid URDF document";
+  throw Error(source + ": malformed URDF: " + oneLine(why));
+}
+
+/// Reads a chain from a model that checkTree() accepted, so its searches up and down the tree end.
 class ChainReader {
  public:
   ChainReader(const urdf::ModelInterface& model, std::string source)
@@ -145,6 +390,12 @@ class ChainReader {
     for (double value : numbers) {
       if (!std::isfinite(value)) fail("joint '" + joint.name + "': origin is not finite");
     }
+    for (double value : {p.position.x, p.position.y, p.position.z}) {
+      if (std::abs(value) > YamlReader::kLargestNumber) {
+        fail("joint '" + joint.name + "': origin coordinate " + shortest(value) +
+             " is out of range (at most 1e9 in size)");
+      }
+    }
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
     T.linear() = Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
@@ -194,6 +445,12 @@ class ChainReader {
     if (!std::isfinite(out.lower) || !std::isfinite(out.upper)) {
       fail(label + ": limits are not finite");
     }
+    for (const auto& [bound, value] : {std::pair{"lower", out.lower}, {"upper", out.upper}}) {
+      if (std::abs(value) > YamlReader::kLargestNumber) {
+        fail(label + ": " + bound + " limit " + shortest(value) +
+             " is out of range (at most 1e9 in size)");
+      }
+    }
     if (out.lower > out.upper) {
       std::ostringstream msg;
       msg.precision(10);
@@ -207,15 +464,27 @@ class ChainReader {
   std::string source_;
 };
 
+/// Throws when a URDF of `bytes` bytes is larger than kMaxUrdfBytes.
+void checkUrdfSize(std::uintmax_t bytes, const std::string& source) {
+  if (bytes > kMaxUrdfBytes) {
+    throw Error(source + ": URDF of " + std::to_string(bytes) + " bytes is larger than " +
+                std::to_string(kMaxUrdfBytes >> 20) + " MiB");
+  }
+}
+
 }  // namespace
 
 Robot parseRobotUrdf(const std::string& text, const std::string& source,
                      const UrdfChainOptions& options) {
+  checkUrdfSize(text.size(), source);
   const urdf::ModelInterfaceSharedPtr model = parseModel(text, source);
   return ChainReader(*model, source).read(options);
 }
 
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
+  std::error_code ec;  // a file that cannot be sized is left to readTextFile's messages
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec) checkUrdfSize(bytes, path);
   return parseRobotUrdf(readTextFile(path, "robot file"), path, options);
 }
 

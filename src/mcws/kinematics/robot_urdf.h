@@ -2,11 +2,20 @@
 /// \file
 /// \brief Serial chains read from URDF files (urdfdom) into the mcws::Robot model.
 
+#include <cstdint>
 #include <string>
 
 #include "mcws/kinematics/robot.h"
 
 namespace mcws {
+
+/// \brief Largest URDF text read [bytes] (64 MiB, hundreds of times a large robot's URDF).
+constexpr std::uintmax_t kMaxUrdfBytes = std::uintmax_t{64} << 20;
+
+/// \brief Deepest element nesting handed to the XML parser. TinyXML, which urdfdom uses,
+/// recurses once per nested element and overflows an 8 MB stack at some tens of thousands of
+/// levels; a URDF nests about five.
+constexpr int kMaxUrdfNesting = 1000;
 
 /// \brief Which chain of a URDF tree to read.
 struct UrdfChainOptions {
@@ -29,10 +38,14 @@ struct UrdfChainOptions {
 /// \param path a `.urdf` file.
 /// \param options root and tip links (default: the whole tree's root to its single leaf).
 /// \throws mcws::Error, one line naming the file and the link or joint: missing or unreadable
-///   file, malformed XML or URDF (urdfdom's message), unknown root or tip link, a tip that is not
-///   below the root, several leaves and no tip, no moving joint, a floating, planar or mimic
-///   joint, a moving joint without limits, limits in the wrong order, non-finite numbers, a zero
-///   axis, a joint name containing '=', ',' or a space.
+///   file, a file larger than kMaxUrdfBytes, XML nested deeper than kMaxUrdfNesting elements,
+///   text that is not UTF-8 or an XML declaration other than `<?xml name="value" ...?>` (the
+///   nesting check needs both), malformed XML or URDF (urdfdom's message), joints that close a
+///   loop or give a link a second parent, unknown root or tip link, a tip that is not below the
+///   root, several leaves and no tip, no moving joint, a floating, planar or mimic joint, a moving
+///   joint without limits, limits in the wrong order, non-finite numbers, limits or origin
+///   coordinates larger than 1e9 in size (as robot YAML files), a zero axis, a joint name
+///   containing '=', ',' or a space.
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options = {});
 
 /// \brief As loadRobotUrdf(), from the URDF text.
