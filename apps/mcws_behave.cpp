@@ -82,7 +82,7 @@ Settings readSettings(const app::CommandLine& cli) {
     s.insulators =
         static_cast<int>(app::parseInteger(cli.required("insulators"), "insulators", 1, 200));
   app::checkOutputs({{"log", s.log}, {"timeline", s.timeline}, {"plot", s.plot}},
-                    {s.model, s.faults});
+                    {{"model", s.model}, {"faults", s.faults}});
   return s;
 }
 

@@ -174,12 +174,11 @@ Method methodFromFlags(const app::CommandLine& cli) {
 /// Checks both destinations before any work, so that neither is written when the other cannot
 /// be.
 void checkOutputs(const app::CommandLine& cli) {
-  io::checkOutputPath(cli.required("output"));
-  if (!cli.has("interior")) return;
-  if (cli.required("interior") == cli.required("output")) {
+  if (cli.has("interior") && cli.required("interior") == cli.required("output")) {
     throw app::UsageError("--interior and --output name the same file");
   }
-  io::checkOutputPath(cli.required("interior"));
+  app::checkOutputs({{"output", cli.required("output")}, {"interior", cli.text("interior", "")}},
+                    {{"input", cli.required("input")}});
 }
 
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or

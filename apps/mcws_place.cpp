@@ -163,9 +163,10 @@ int main(int argc, char** argv) {
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const app::Progress clock("mcws_place", "");  // the whole run's seconds
     const std::string output = cli.required("output");
-    std::vector<std::string> inputs = {cli.required("robot"), cli.required("targets")};
-    if (cli.has("map")) inputs.push_back(cli.required("map"));
-    app::checkOutputs({{"output", output}, {"plot", cli.text("plot", "")}}, inputs);
+    app::checkOutputs({{"output", output}, {"plot", cli.text("plot", "")}},
+                      {{"robot", cli.required("robot")},
+                       {"targets", cli.required("targets")},
+                       {"map", cli.text("map", "")}});
     if (!cli.has("along")) throw app::UsageError("missing --along");
     const std::vector<Eigen::Vector3d> moves = offsets(cli);
     PlacementOptions placement;

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
       throw app::UsageError("--plot: draws a two-joint configuration space; robot '" +
                             problem.robot.name + "' has " + std::to_string(problem.robot.dof()));
     app::checkOutputs({{"output", output}, {"plot", plot}, {"plot-offsets", plot_offsets}},
-                      {scenario_path, scenario.robot_path});
+                      {{"scenario", scenario_path}, {"scenario's robot", scenario.robot_path}});
 
     const SwayPlanner planner(problem);
     std::map<std::string, app::Progress> bars;

@@ -88,7 +88,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
                      {"map", cli.text("map", "")},
                      {"halfcut", cli.text("halfcut", "")},
                      {"histogram", cli.text("histogram", "")}},
-                    {cli.required("robot")});
+                    {{"robot", cli.required("robot")}});
   const ReachGrid grid = app::readReachGrid(cli, robot);
   ReachSampling sampling = app::readReachSampling(cli, robot);
   const std::uint64_t samples = sampling.samples;
@@ -165,7 +165,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
 /// The reach study: IK per target, the heat map and its summary.
 void runStudy(const app::CommandLine& cli, const Robot& robot) {
   const std::string output = cli.required("output");
-  app::checkOutputs({{"output", output}}, {cli.required("robot"), cli.required("targets")});
+  app::checkOutputs({{"output", output}},
+                    {{"robot", cli.required("robot")}, {"targets", cli.required("targets")}});
   for (const char* flag : {"resolution", "orientations", "rolls", "samples", "no-manipulability",
                            "map", "halfcut", "histogram", "collision"}) {
     if (cli.has(flag))

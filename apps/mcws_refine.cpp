@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
     options.point = app::readPoint(cli);
     const int threads = app::readThreads(cli);
     const std::string output = cli.required("output");
+    app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
+                                             {"input", cli.required("input")},
+                                             {"cloud", cli.text("cloud", "")}});
 
     const Robot robot = app::readRobot(cli);
     const auto boundary = app::loadCloud(cli.required("input"));

@@ -133,6 +133,7 @@ int main(int argc, char** argv) {
       throw app::UsageError("--fix, --point, --collision and --quality need --robot");
     if (!cli.has("quality") && (cli.has("quality-task") || cli.has("length")))
       throw app::UsageError("--quality-task and --length need --quality");
+    app::checkOutputs({{"output", output}}, {{"robot", cli.text("robot", "")}});
 
     const Source source = cli.has("robot") ? robotSource(cli, seed, point) : shapeSource(cli, seed);
     app::Progress progress("mcws_sample", "samples");

@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string input = cli.required("input"), output = cli.required("output");
     const std::set<std::uint32_t> labels = readLabels(cli);
+    app::checkOutputs({{"output", output}}, {{"input", input}});
 
     app::Progress clock("mcws_select", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);

@@ -190,8 +190,8 @@ int main(int argc, char** argv) {
         move.line ? app::parsePose(move.to, "to-pose") : Eigen::Isometry3d();
     if (!move.line) points.push_back(app::parseJointValues(robot, move.to, "to"));
     const Eigen::VectorXd max_velocity = readMaxVelocity(cli, robot);
-    io::checkOutputPath(move.output);
-    if (!move.plot.empty()) io::checkOutputPath(move.plot);
+    app::checkOutputs({{"output", move.output}, {"plot", move.plot}},
+                      {{"robot", cli.required("robot")}});
 
     SampledTrajectory samples;
     if (move.line) {

@@ -143,23 +143,35 @@ std::vector<std::pair<std::string, double>> parseAssignments(const std::string& 
   return pairs;
 }
 
-void checkOutputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                  const std::vector<std::string>& inputs) {
-  auto same = [](const std::string& a, const std::string& b) {
-    std::error_code ec;
-    return a == b || std::filesystem::equivalent(a, b, ec);
-  };
+namespace {
+
+/// Whether writing `output` would replace `other`: see checkOutputs().
+bool sameFile(const std::string& output, const std::string& other) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(output, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status)) return false;
+  if (output == other || fs::equivalent(output, other, ec)) return true;
+  const fs::path resolved_output = fs::weakly_canonical(output, ec);
+  if (ec) return false;
+  return resolved_output == fs::weakly_canonical(other, ec) && !ec;
+}
+
+}  // namespace
+
+void checkOutputs(const std::vector<FlagPath>& outputs, const std::vector<FlagPath>& inputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto& [flag, path] = outputs[i];
     if (path.empty()) continue;
     for (std::size_t j = 0; j < i; ++j) {
-      if (same(path, outputs[j].second))
+      if (!outputs[j].second.empty() && sameFile(path, outputs[j].second))
         throw UsageError("--" + flag + ": must differ from --" + outputs[j].first);
     }
-    for (const std::string& input : inputs) {
-      if (same(path, input)) throw UsageError("--" + flag + ": '" + path + "' is an input file");
+    for (const auto& [input_flag, input] : inputs) {
+      if (!input.empty() && sameFile(path, input))
+        throw UsageError("--" + flag + ": '" + path + "' is the same file as --" + input_flag);
     }
-    io::checkOutputPath(path);  // a missing or read-only directory: a failed run (exit 1)
+    io::checkOutputPath(path);  // a missing or read-only directory or file: a failed run (exit 1)
   }
 }
 

@@ -78,13 +78,22 @@ Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag
 std::vector<std::pair<std::string, double>> parseAssignments(const std::string& text,
                                                              const std::string& flag);
 
-/// \brief Checks a tool's output files before anything is computed: each (flag, path) with a
-/// non-empty path must differ from the other outputs and from every input file (by name or as
-/// the same file), and its directory must exist and be writable.
-/// \throws UsageError naming the flag and the path; mcws::Error (exit 1) for a directory that
-///   is missing or not writable.
-void checkOutputs(const std::vector<std::pair<std::string, std::string>>& outputs,
-                  const std::vector<std::string>& inputs);
+/// \brief A file named on the command line: the flag (without "--") and the path, e.g.
+/// {"input", "a.pcd"}. A path that comes from another file has a label that reads after "--",
+/// e.g. {"scenario's robot", path}.
+using FlagPath = std::pair<std::string, std::string>;
+
+/// \brief Checks a tool's output files before anything is computed: each output with a non-empty
+/// path must differ from the other outputs and from every input with a non-empty path, and
+/// mcws::io::checkOutputPath() must accept it (directory exists and is writable, not read-only).
+/// Two paths are the same file when they are equal, name the same existing file (std::filesystem
+/// ::equivalent: through symbolic or hard links) or resolve to the same path (weakly_canonical:
+/// "./a.pcd" is "a.pcd"). An existing device, FIFO or socket is written through, so it replaces
+/// nothing and is never the same file as another.
+/// \throws UsageError "--output: 'a.pcd' is the same file as --input" or "--plot: must differ
+///   from --output"; mcws::Error (exit 1) for a directory that is missing or not writable or a
+///   read-only file.
+void checkOutputs(const std::vector<FlagPath>& outputs, const std::vector<FlagPath>& inputs);
 
 /// \brief Progress lines "program: 45% (4500000/10000000)" on stderr, only for runs longer than
 /// about a second and at most twice a second.
