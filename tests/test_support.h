@@ -5,12 +5,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mcws/core/error.h"
 
@@ -25,6 +29,53 @@ inline std::string readFile(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// \brief A numeric CSV file with a header line, as the tools write trajectories and paths.
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  /// The last row; throws (a failed test rather than a crash) when there is none.
+  const std::vector<double>& last() const {
+    if (rows.empty()) throw std::runtime_error("the CSV has no rows");
+    return rows.back();
+  }
+  /// The index of a named column (a failure and 0 when there is none).
+  int column(const std::string& name) const {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == name) return static_cast<int>(i);
+    }
+    ADD_FAILURE() << "no column " << name;
+    return 0;
+  }
+  /// The largest value (or absolute value) of a column.
+  double max(const std::string& name, bool absolute) const {
+    const int c = column(name);
+    double best = -1e300;
+    for (const auto& row : rows) best = std::max(best, absolute ? std::abs(row[c]) : row[c]);
+    return best;
+  }
+};
+
+/// \brief Parses CSV text; a row with another cell count than the header throws.
+inline Csv parseCsv(const std::string& text) {
+  Csv csv;
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);
+  std::istringstream head(line);
+  for (std::string cell; std::getline(head, cell, ',');) csv.header.push_back(cell);
+  while (std::getline(lines, line)) {
+    std::vector<double> row;
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+    if (row.size() != csv.header.size()) {  // a failed test, not a read past the row's end
+      throw std::runtime_error("CSV row '" + line + "' has " + std::to_string(row.size()) +
+                               " cells, the header " + std::to_string(csv.header.size()));
+    }
+    csv.rows.push_back(row);
+  }
+  return csv;
 }
 
 inline void writeFile(const std::string& path, const std::string& text) {

@@ -2,6 +2,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
@@ -78,7 +79,24 @@ TEST(FkApp, BadJointVectors) {
 }
 
 TEST(FkApp, IgnoreLimitsAcceptsValuesOutsideThem) {
-  EXPECT_EQ(test::run(kFk + kInspection + " --q '0 0 0 0 0 4' --ignore-limits").exit_code, 0);
+  // q6 = 4 rad is beyond its 180 degree limit. The last joint (a = 0, alpha = 0, d = 500 mm)
+  // turns the flange about its own z axis: the same point, and R(4) = R(0) Rz(4) by hand, not
+  // the pose at the limit (R(0) Rz(pi)).
+  const test::RunResult zero = test::run(kFk + kInspection + " --q '0 0 0 0 0 0' --json");
+  const test::RunResult four =
+      test::run(kFk + kInspection + " --q '0 0 0 0 0 4' --ignore-limits --json");
+  ASSERT_EQ(zero.exit_code, 0) << zero.err;
+  ASSERT_EQ(four.exit_code, 0) << four.err;
+  const auto p0 = nlohmann::json::parse(zero.out)["pose"],
+             p4 = nlohmann::json::parse(four.out)["pose"];
+  const double c = std::cos(4.0), s = std::sin(4.0);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(p4[i][3].get<double>(), p0[i][3].get<double>(), 1e-9) << i;
+    const double r0 = p0[i][0].get<double>(), r1 = p0[i][1].get<double>();
+    EXPECT_NEAR(p4[i][0].get<double>(), c * r0 + s * r1, 1e-12) << i;
+    EXPECT_NEAR(p4[i][1].get<double>(), -s * r0 + c * r1, 1e-12) << i;
+    EXPECT_NEAR(p4[i][2].get<double>(), p0[i][2].get<double>(), 1e-12) << i;
+  }
 }
 
 }  // namespace

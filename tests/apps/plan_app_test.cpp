@@ -119,28 +119,6 @@ std::vector<std::string> messageLines(const std::string& err) {
   return lines;
 }
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-};
-
-Csv parseCsv(const std::string& text) {
-  Csv csv;
-  std::istringstream lines(text);
-  std::string line;
-  std::getline(lines, line);
-  std::istringstream head(line);
-  for (std::string cell; std::getline(head, cell, ',');) csv.header.push_back(cell);
-  while (std::getline(lines, line)) {
-    std::vector<double> row;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-    EXPECT_EQ(row.size(), csv.header.size()) << line;
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
-
 /// `json` without any key (at any depth) that ends in "seconds": wall times differ between runs.
 nlohmann::json withoutTimes(const nlohmann::json& json) {
   if (json.is_object()) {
@@ -278,14 +256,14 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
   EXPECT_TRUE(messageLines(r.err).empty()) << r.err;
   EXPECT_EQ(outputs_.fileCount(), 1u);
 
-  const Csv csv = parseCsv(test::readFile(out));
+  const test::Csv csv = test::parseCsv(test::readFile(out));
   ASSERT_EQ(csv.header, (std::vector<std::string>{"D", "q1_rad", "q2_rad"}));
   ASSERT_GE(csv.rows.size(), 2u);
   EXPECT_EQ(csv.rows.front()[0], 0.0);
   EXPECT_NEAR(csv.rows.front()[1], 0.0, kCsvTol);
   EXPECT_NEAR(csv.rows.front()[2], 0.0, kCsvTol);
-  EXPECT_NEAR(csv.rows.back()[1], 120 * M_PI / 180, kCsvTol);
-  EXPECT_NEAR(csv.rows.back()[2], 0.0, kCsvTol);
+  EXPECT_NEAR(csv.last()[1], 120 * M_PI / 180, kCsvTol);
+  EXPECT_NEAR(csv.last()[2], 0.0, kCsvTol);
   for (std::size_t k = 1; k < csv.rows.size(); ++k) {
     EXPECT_GT(csv.rows[k][0], csv.rows[k - 1][0]) << "row " << k;
     // D is the joint-space distance (scales 1/rad), row by row.
@@ -294,7 +272,7 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
     EXPECT_NEAR(csv.rows[k][0] - csv.rows[k - 1][0], step, 1e-9) << "row " << k;
   }
   // The post stands in the way: the path is longer than the straight turn of 2 pi / 3.
-  EXPECT_GT(csv.rows.back()[0], 2 * M_PI / 3);
+  EXPECT_GT(csv.last()[0], 2 * M_PI / 3);
 
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["status"], "ok");
@@ -313,7 +291,7 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
     for (int j = 0; j < 2; ++j)
       EXPECT_NEAR(chosen["waypoints"][k][j].get<double>(), csv.rows[k][1 + j], kCsvTol);
   }
-  EXPECT_NEAR(chosen["length"].get<double>(), csv.rows.back()[0], 1e-9);
+  EXPECT_NEAR(chosen["length"].get<double>(), csv.last()[0], 1e-9);
   EXPECT_GE(chosen["probability"].get<double>(), 0.5);  // the threshold
 
   const auto& validation = json["validation"];
@@ -368,9 +346,9 @@ TEST_F(McwsPlan, SeedChangesTheRoadmapNotTheEnds) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_FALSE(json.contains("validation"));  // --validation-poses 0 skips it
-  const Csv csv = parseCsv(test::readFile(out));
+  const test::Csv csv = test::parseCsv(test::readFile(out));
   ASSERT_GE(csv.rows.size(), 2u);
-  EXPECT_NEAR(csv.rows.back()[1], 120 * M_PI / 180, kCsvTol);
+  EXPECT_NEAR(csv.last()[1], 120 * M_PI / 180, kCsvTol);
 }
 
 TEST_F(McwsPlan, PlotOfTheTwoJointArmIsAPng) {

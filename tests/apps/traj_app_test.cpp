@@ -28,40 +28,7 @@ const double kSeedGoal[6] = {-0.267, 0.268, -0.769, -0.151, 0.329, 0.594};
 // CSV numbers have 12 significant digits.
 constexpr double kCsvTol = 1e-10;
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return static_cast<int>(i);
-    }
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-  double max(const std::string& name, bool absolute) const {
-    const int c = column(name);
-    double best = -1e300;
-    for (const auto& row : rows) best = std::max(best, absolute ? std::abs(row[c]) : row[c]);
-    return best;
-  }
-};
-
-Csv readCsv(const std::string& path) {
-  Csv csv;
-  std::istringstream lines(test::readFile(path));
-  std::string line;
-  std::getline(lines, line);
-  std::istringstream head(line);
-  for (std::string cell; std::getline(head, cell, ',');) csv.header.push_back(cell);
-  while (std::getline(lines, line)) {
-    std::vector<double> row;
-    std::istringstream cells(line);
-    for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
-    EXPECT_EQ(row.size(), csv.header.size());
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
+test::Csv readCsv(const std::string& path) { return test::parseCsv(test::readFile(path)); }
 
 TEST(TrajApp, HelpExitsZero) {
   const test::RunResult r = test::run(kTraj + " --help");
@@ -78,7 +45,7 @@ TEST(TrajApp, ThePapersQuinticMoveHasClosedFormEndsAndPeaks) {
   const test::RunResult r = test::run(kTraj + kInspection + kSeedMove + " --output " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("1001 samples"));
-  const Csv csv = readCsv(out);
+  const test::Csv csv = readCsv(out);
   ASSERT_EQ(csv.header.size(), 1u + 18u + 3u);
   EXPECT_EQ(csv.header[0], "t");
   EXPECT_EQ(csv.header[1], "j1");
@@ -86,13 +53,13 @@ TEST(TrajApp, ThePapersQuinticMoveHasClosedFormEndsAndPeaks) {
   EXPECT_EQ(csv.header[13], "j1_acc");
   EXPECT_EQ(csv.header[19], "x");
   ASSERT_EQ(csv.rows.size(), 1001u);
-  EXPECT_DOUBLE_EQ(csv.rows.back()[0], 10.0);
+  EXPECT_DOUBLE_EQ(csv.last()[0], 10.0);
   for (int j = 0; j < 6; ++j) {
     const std::string name = "j" + std::to_string(j + 1);
     EXPECT_NEAR(csv.rows.front()[1 + j], 0.0, kCsvTol);
-    EXPECT_NEAR(csv.rows.back()[1 + j], kSeedGoal[j], kCsvTol);
-    EXPECT_NEAR(csv.rows.back()[7 + j], 0.0, kCsvTol);   // at rest
-    EXPECT_NEAR(csv.rows.back()[13 + j], 0.0, kCsvTol);  // no jerk at the stop
+    EXPECT_NEAR(csv.last()[1 + j], kSeedGoal[j], kCsvTol);
+    EXPECT_NEAR(csv.last()[7 + j], 0.0, kCsvTol);   // at rest
+    EXPECT_NEAR(csv.last()[13 + j], 0.0, kCsvTol);  // no jerk at the stop
     // Peak velocity 1.875 D / T at t = 5 s (row 500).
     EXPECT_NEAR(csv.max(name + "_vel", true), 1.875 * std::abs(kSeedGoal[j]) / 10, kCsvTol);
     EXPECT_NEAR(std::abs(csv.rows[500][7 + j]), 1.875 * std::abs(kSeedGoal[j]) / 10, kCsvTol);
@@ -103,7 +70,7 @@ TEST(TrajApp, ThePapersQuinticMoveHasClosedFormEndsAndPeaks) {
   ASSERT_EQ(fk.exit_code, 0) << fk.err;
   const auto position = nlohmann::json::parse(fk.out)["position"];
   for (int k = 0; k < 3; ++k) {
-    EXPECT_NEAR(csv.rows.back()[19 + k], position[k].get<double>(), 1e-8);
+    EXPECT_NEAR(csv.last()[19 + k], position[k].get<double>(), 1e-8);
   }
 }
 
@@ -134,7 +101,7 @@ TEST(TrajApp, SplinePassesTheViasAtEqualIntervals) {
       " --to '1 0 -0.2 0 0.5 0.4' --duration 6 --rate 50 --output " +
       out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const Csv csv = readCsv(out);
+  const test::Csv csv = readCsv(out);
   ASSERT_EQ(csv.rows.size(), 301u);
   // Vias at t = 2 s and 4 s (rows 100 and 200).
   const double via1[6] = {0.5, 0.2, -0.3, 0.1, 0, 0}, via2[6] = {0.8, -0.1, -0.6, 0.2, 0.3, 0.1};
@@ -142,7 +109,7 @@ TEST(TrajApp, SplinePassesTheViasAtEqualIntervals) {
     EXPECT_NEAR(csv.rows[100][1 + j], via1[j], kCsvTol);
     EXPECT_NEAR(csv.rows[200][1 + j], via2[j], kCsvTol);
     EXPECT_NEAR(csv.rows.front()[7 + j], 0.0, kCsvTol);
-    EXPECT_NEAR(csv.rows.back()[7 + j], 0.0, kCsvTol);
+    EXPECT_NEAR(csv.last()[7 + j], 0.0, kCsvTol);
     // Velocity and acceleration continuous across the vias: neighbouring samples close.
     for (int row : {100, 200}) {
       EXPECT_LT(std::abs(csv.rows[row + 1][13 + j] - csv.rows[row - 1][13 + j]), 0.05);
@@ -234,8 +201,8 @@ TEST(TrajApp, StraightLineToAPoseThroughIk) {
     EXPECT_NEAR(summary["tool_start"][k].get<double>(), p0[k], 1e-6);
     EXPECT_NEAR(summary["tool_end"][k].get<double>(), p1[k], 1e-4);
   }
-  const Csv csv = readCsv(out);
-  for (int j = 0; j < 6; ++j) EXPECT_NEAR(csv.rows.back()[1 + j], q1[j], 1e-6) << j;
+  const test::Csv csv = readCsv(out);
+  for (int j = 0; j < 6; ++j) EXPECT_NEAR(csv.last()[1 + j], q1[j], 1e-6) << j;
 }
 
 TEST(TrajApp, BadInput) {
