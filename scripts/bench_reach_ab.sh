@@ -28,12 +28,9 @@ for resolution in 2cm 10cm; do
       for side in before after; do
         dir=$build
         [[ $side == before ]] && dir=$old
-        /usr/bin/time -v "$dir/apps/mcws_reach" --robot "$robot" --resolution "$resolution" \
-          --samples "$samples" --threads 2 --output "$tmp/map.$side.pcd" "${flags[@]}" \
-          2>"$tmp/time.log" >/dev/null
-        awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
-          "$tmp/time.log" >>"$tmp/wall.$side"
-        awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss.$side"
+        time_once "$tmp/wall.$side" "$tmp/rss.$side" "$dir/apps/mcws_reach" --robot "$robot" \
+          --resolution "$resolution" --samples "$samples" --threads 2 \
+          --output "$tmp/map.$side.pcd" "${flags[@]}"
       done
     done
     cmp -s "$tmp/map.before.pcd" "$tmp/map.after.pcd" || { echo "the maps differ" >&2; exit 1; }

@@ -32,15 +32,21 @@ benchmark_medians() {  # binary
     --benchmark_min_time=0.5 2>/dev/null | grep -E "_median" | sed 's/_median//'
 }
 
+# Runs a command once under /usr/bin/time -v, its stdout to $tmp/out; appends its wall time [s]
+# to WALL_FILE and its peak RSS [MB] to RSS_FILE.
+time_once() {  # wall_file, rss_file, command...
+  local wall=$1 rss=$2
+  shift 2
+  /usr/bin/time -v "$@" 2>"$tmp/time.log" >"$tmp/out"
+  awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
+    "$tmp/time.log" >>"$wall"
+  awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$rss"
+}
+
 # Runs a command $runs times under /usr/bin/time -v, its stdout to $tmp/out (the last run's);
 # prints "median wall s, median peak RSS MB".
 time_runs() {  # command...
   : >"$tmp/wall"; : >"$tmp/rss"
-  for _ in $(seq "$runs"); do
-    /usr/bin/time -v "$@" 2>"$tmp/time.log" >"$tmp/out"
-    awk -F': ' '/Elapsed \(wall clock\)/ {n = split($2, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s}' \
-      "$tmp/time.log" >>"$tmp/wall"
-    awk -F': ' '/Maximum resident set size/ {print $2 / 1024}' "$tmp/time.log" >>"$tmp/rss"
-  done
+  for _ in $(seq "$runs"); do time_once "$tmp/wall" "$tmp/rss" "$@"; done
   echo "$(median <"$tmp/wall") $(median <"$tmp/rss")"
 }
