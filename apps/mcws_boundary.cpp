@@ -9,12 +9,14 @@
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
+#include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/io/atomic_file.h"
 
@@ -35,9 +37,20 @@ cloud's mean spacing.
 2-D, 26 in 3-D) is a boundary cell, represented by its point nearest to the cell's mean.
 --method extremum (4.2, needs --plane): in columns of width --cell along the plane's first axis,
 the lowest and highest point along the second, and both points around any gap wider than --gap.
-NaN points are dropped from both outputs.)";
+NaN points are dropped from both outputs.
+The cloud must have at least 3 distinct finite points in the plane (4 in 3-D), or it has no
+boundary (exit 1, for 2-D and 3-D alike); with --plane it must extend along both of the plane's
+axes (a cloud flat in one of them is a --plane error, exit 2, naming the plane it lies in; a 3-D
+cloud is projected). Lengths (--radius, --outer-radius, --cell, --gap) lie between a tenth of the
+cloud's mean spacing and its extent in the plane, --auto-radius c such that c x spacing does,
+--adaptive k below the number of distinct points, --hull-depth in [0.1, 10] or 0.)";
 
 using Filter = OrthantBoundary<WorkspacePoint>;
+
+/// --hull-depth > 0 [local spacings]: below a tenth of a spacing only the hull's own vertices
+/// stay; a neighbourhood of the recommended radius is at most about 6 spacings deep, so beyond 10
+/// every candidate is kept (a band, not a boundary).
+constexpr double kHullDepthRange[2] = {0.1, 10.0};
 
 /// A configured filter and, after it ran, the parameters it used (for --json).
 struct Method {
@@ -117,7 +130,12 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
     boundary->setMinimumGap(gap * M_PI / 180.0);
   }
   if (cli.has("hull-depth")) {
-    boundary->setHullDepth(app::parseNonNegative(cli.required("hull-depth"), "hull-depth"));
+    const double depth = app::parseNonNegative(cli.required("hull-depth"), "hull-depth");
+    if (depth != 0.0 && !(depth >= kHullDepthRange[0] && depth <= kHullDepthRange[1])) {
+      throw app::UsageError("--hull-depth: " + cli.required("hull-depth") +
+                            " is not 0 (off) or in [0.1, 10] local spacings");
+    }
+    boundary->setHullDepth(depth);
   }
   boundary->setNumberOfThreads(app::readThreads(cli));
   boundary->setGridSearch(!cli.has("tree-search"));
@@ -171,6 +189,80 @@ Method methodFromFlags(const app::CommandLine& cli) {
   return orthantMethod(cli, plane);
 }
 
+/// A number in a short form for messages.
+std::string shortNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+/// Usage error unless --flag's value lies in [low, high] ((low, high] with `open_low`), `unit`
+/// and `why` telling what the range is.
+void requireWithin(const app::CommandLine& cli, const char* flag, double low, double high,
+                   bool open_low, const std::string& unit, const std::string& why) {
+  const double value = app::parseNumber(cli.required(flag), flag);
+  if ((open_low ? value > low : value >= low) && value <= high) return;
+  throw app::UsageError("--" + std::string(flag) + ": " + cli.required(flag) + " is not in " +
+                        (open_low ? "(" : "[") + shortNumber(low) + ", " + shortNumber(high) +
+                        "] " + unit + " (" + why + ")");
+}
+
+/// Checks the numeric flags against the cloud they work on (CloudSummary): lengths within
+/// parameterLengths(), counts below the number of points, an outer radius beyond the radius. A
+/// value the filter would reject is a usage error naming its flag, never a filter's error.
+void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
+                            const CloudSummary& cloud) {
+  const LengthRange length = parameterLengths(cloud);
+  const double h = cloud.spacing;  // > 0: requireRegionPoints() passed
+  const std::string lengths =
+      "a tenth of the cloud's mean spacing " + shortNumber(h) + " to its extent";
+  auto value = [&](const char* flag) { return app::parseNumber(cli.required(flag), flag); };
+  if (method.name != "orthant") {
+    // The grid packs 21 bits per axis: a cell may not be so small that the extent needs more.
+    const double cells = cloud.largest / kMaxBaselineCellsPerAxis * (1.0 + 1e-6);
+    if (cli.has("cell")) {
+      requireWithin(cli, "cell", std::max(length.min, cells), length.max, false, "[length unit]",
+                    lengths);
+    }
+    if (cli.has("gap"))
+      requireWithin(cli, "gap", length.min, length.max, false, "[length unit]", lengths);
+    return;
+  }
+  double radius = 0.0;  // a fixed radius [length unit]; 0: adaptive
+  if (cli.has("radius")) {
+    requireWithin(cli, "radius", length.min, length.max, false, "[length unit]", lengths);
+    radius = value("radius");
+  }
+  if (cli.has("auto-radius")) {
+    requireWithin(cli, "auto-radius", length.min / h, length.max / h, false, "mean spacings",
+                  "the radius c x " + shortNumber(h) + " from a tenth of a spacing to the extent");
+    radius = value("auto-radius") * h;  // as the filter computes it
+  }
+  const auto& filter = static_cast<const Filter&>(*method.filter);
+  if (cli.has("adaptive")) {
+    requireWithin(cli, "adaptive", 1.0, std::min<double>(1000.0, cloud.distinct - 1.0), false,
+                  "neighbours",
+                  "fewer than the cloud's " + std::to_string(cloud.distinct) +
+                      " distinct points, at most 1000");
+  }
+  if (cli.has("outer-radius")) {
+    if (radius > 0.0) {
+      requireWithin(cli, "outer-radius", radius, length.max, true, "[length unit]",
+                    "beyond the radius, at most the cloud's extent");
+    } else {
+      orthant::PointTestSettings test;
+      test.dimensions = boundaryDimensions(method.plane);
+      test.adaptive =
+          orthant::AdaptiveRadius{filter.getAdaptiveNeighbours(), Filter::kRecommendedScale};
+      const double typical = orthant::typicalOuterRadius(test, h);
+      requireWithin(cli, "outer-radius", 1.0, length.max / typical, true,
+                    "times each point's radius",
+                    "a factor beyond 1 of the radius, about " + shortNumber(typical) +
+                        ", that keeps it within the cloud's extent");
+    }
+  }
+}
+
 /// Checks both destinations before any work, so that neither is written when the other cannot
 /// be.
 void checkOutputs(const app::CommandLine& cli) {
@@ -183,16 +275,18 @@ void checkOutputs(const app::CommandLine& cli) {
 
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or
 /// neither.
+/// Both record the robot the input records, if any.
 void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
-  app::saveCloud(cloud, kept, output);
+  const std::optional<io::CloudProvenance> robot = app::readProvenance(cli.required("input"));
+  app::saveCloud(cloud, kept, output, robot);
   if (!cli.has("interior")) return;
   for (const auto i : removed) {
     if (pcl::isFinite(cloud[i])) interior.push_back(i);
   }
   try {
-    app::saveCloud(cloud, interior, cli.required("interior"));
+    app::saveCloud(cloud, interior, cli.required("interior"), robot);
   } catch (...) {
     std::remove(output.c_str());  // all or nothing
     throw;
@@ -211,7 +305,11 @@ int main(int argc, char** argv) {
 
     app::Progress clock("mcws_boundary", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
+    const CloudSummary region = summarizeCloud(*cloud, method.plane);
+    requireRegionPoints(region, input);
     if (method.plane == BoundaryPlane::k3D) app::requireVolume(*cloud, input);
+    app::asUsageError("plane", [&] { requirePlaneFits(region, input); });
+    checkFlagsAgainstCloud(cli, method, region);
     method.filter->setInputCloud(cloud);
     pcl::Indices kept, interior;
     method.filter->filter(kept);

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "common/app.h"
 #include "common/cloud_io.h"
@@ -26,7 +27,13 @@ assumes the density near the edge is about that inside, as for uniform samples).
 mcws_refine has samples on the edge itself (joint limits): measure it with --correction none
 (--alpha 5). Method 'column': the rectangles of Yin, Wang & Yu 2010, eqs. (2)-(4), over --boundary points grouped
 into crossings per column. With --boundary the default also reports the column method as a
-cross-check.)";
+cross-check; every boundary point must be a point of --input (exit 1 naming the first that is
+not).
+The cloud must have at least 3 distinct finite points in the plane (4 in 3-D), or it has no
+area or volume (exit 1, for 2-D and 3-D alike; so must the boundary); with --plane it must extend
+along both of the plane's axes (a cloud flat in one of them is a --plane error, exit 2, naming
+the plane it lies in; a 3-D cloud is projected). --alpha lies in [1, 1000] local spacings,
+--column-width between a tenth of the cloud's mean spacing and its extent in the plane (or 0).)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("input", "workspace cloud (PCD)");
@@ -47,6 +54,10 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
+/// --alpha [local spacings]: at 1 a uniform cloud's own triangles already fail the limit (18 % of
+/// them); 1000 spacings span a 2-D cloud of 10^6 points, so a wider limit keeps the convex hull.
+constexpr double kAlphaRange[2] = {1.0, 1000.0};
+
 /// The command line, checked.
 struct Settings {
   std::string input, method, correction;
@@ -62,6 +73,16 @@ Settings readSettings(const app::CommandLine& cli) {
   s.plane = app::readPlane(cli);
   if (s.method == "column" && (s.plane == BoundaryPlane::k3D || !cli.has("boundary")))
     throw app::UsageError("--method column measures an area: give --plane and --boundary");
+  if (cli.has("boundary") && s.plane == BoundaryPlane::k3D)
+    throw app::UsageError("--boundary: the column cross-check measures an area: give --plane");
+  if (cli.has("column-width") && !cli.has("boundary"))
+    throw app::UsageError("--column-width applies to the column method: give --boundary");
+  if (s.method == "column") {
+    for (const char* flag : {"alpha", "correction", "leave-one-out", "threads"}) {
+      if (cli.has(flag))
+        throw app::UsageError("--" + std::string(flag) + " does not apply to --method column");
+    }
+  }
   s.correction = app::parseChoice(cli.text("correction", "efron"), "correction", {"efron", "none"});
   s.delaunay.edge_correction = s.correction == "efron";
   s.delaunay.leave_one_out = app::parseChoice(cli.text("leave-one-out", "star"), "leave-one-out",
@@ -73,19 +94,64 @@ Settings readSettings(const app::CommandLine& cli) {
   // simplices there (de-icing arm, 10^6 samples: volume -0.19 % at 3, -0.02 % at 5).
   s.delaunay.alpha_factor =
       app::parsePositive(cli.text("alpha", s.correction == "none" ? "5" : "3"), "alpha");
+  if (!(s.delaunay.alpha_factor >= kAlphaRange[0] && s.delaunay.alpha_factor <= kAlphaRange[1])) {
+    throw app::UsageError("--alpha: " + cli.required("alpha") +
+                          " is not in [1, 1000] local spacings");
+  }
   s.delaunay.threads = app::readThreads(cli);
   s.column_width = app::parseNonNegative(cli.text("column-width", "0"), "column-width");
   return s;
 }
 
-/// The cloud at `path` projected onto the plane (3-D: as it is, and checked to span a volume).
-pcl::PointCloud<pcl::PointXYZ> loadProjected(const std::string& path, BoundaryPlane plane) {
-  const app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
+/// A number in a short form for messages.
+std::string shortNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+/// The cloud at `path`, checked to be a region in the plane (or 3-D): requireRegionPoints(), and
+/// a --plane that fits it (a usage error).
+app::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
+                                    CloudSummary& summary) {
+  app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
+  summary = summarizeCloud(*cloud, plane);
+  requireRegionPoints(summary, path);
   if (plane == BoundaryPlane::k3D) app::requireVolume(*cloud, path);
+  app::asUsageError("plane", [&] { requirePlaneFits(summary, path); });
+  return cloud;
+}
+
+/// The --boundary points, checked to be points of the --input cloud and to be a region.
+app::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
+                                      const app::WorkspaceCloud& cloud, BoundaryPlane plane) {
+  app::WorkspaceCloud::Ptr boundary = app::loadCloud(path);
+  if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
+    const auto& p = (*boundary)[*i];
+    throw Error("--boundary " + path + ": point " + std::to_string(*i) + " (" + shortNumber(p.x) +
+                ", " + shortNumber(p.y) + ", " + shortNumber(p.z) + ") is not a point of --input " +
+                input + ": a boundary of another cloud?");
+  }
+  requireRegionPoints(summarizeCloud(*boundary, plane), path);
+  return boundary;
+}
+
+/// --column-width, 0 or between a tenth of the cloud's mean spacing and its extent.
+void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSummary& cloud) {
+  const LengthRange length = parameterLengths(cloud);
+  if (width == 0.0 || (width >= length.min && width <= length.max)) return;
+  throw app::UsageError("--column-width: " + cli.required("column-width") + " is not 0 or in [" +
+                        shortNumber(length.min) + ", " + shortNumber(length.max) +
+                        "] [length unit] (a tenth of the cloud's mean spacing " +
+                        shortNumber(cloud.spacing) + " to its extent)");
+}
+
+/// The finite points of `cloud` projected onto the plane (3-D: as they are).
+pcl::PointCloud<pcl::PointXYZ> projected(const app::WorkspaceCloud& cloud, BoundaryPlane plane) {
   pcl::PointCloud<pcl::PointXYZ> points;
-  pcl::Indices all(cloud->size()), source;
+  pcl::Indices all(cloud.size()), source;
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  projectToPlane(*cloud, all, plane, points, source);
+  projectToPlane(cloud, all, plane, points, source);
   return points;
 }
 
@@ -118,12 +184,17 @@ int main(int argc, char** argv) {
 
     app::Progress clock("mcws_measure", "points");
     const char* key = boundaryDimensions(settings.plane) == 2 ? "area" : "volume";
-    const pcl::PointCloud<pcl::PointXYZ> region = loadProjected(settings.input, settings.plane);
+    CloudSummary summary;
+    app::WorkspaceCloud::Ptr cloud = loadRegion(settings.input, settings.plane, summary);
+    checkColumnWidth(cli, settings.column_width, summary);
     std::optional<ColumnArea> column;
     if (cli.has("boundary")) {
-      column = columnArea(loadProjected(cli.required("boundary"), settings.plane),
-                          settings.column_width);
+      const app::WorkspaceCloud::Ptr boundary =
+          loadBoundary(cli.required("boundary"), settings.input, *cloud, settings.plane);
+      column = columnArea(projected(*boundary, settings.plane), settings.column_width);
     }
+    const pcl::PointCloud<pcl::PointXYZ> region = projected(*cloud, settings.plane);
+    cloud.reset();  // the triangulation's memory is the peak
     nlohmann::json out;
     if (settings.method == "delaunay") {
       if (region.size() >= kProgressPoints) {  // minutes for a million points in 3-D

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/app.h"
+#include "common/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/collision/collision_checker.h"
@@ -82,7 +83,8 @@ struct PendingFile {
 };
 
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
-void runMap(const app::CommandLine& cli, const Robot& robot) {
+void runMap(const app::CommandLine& cli, const Robot& robot,
+            const io::CloudProvenance& provenance) {
   const std::string output = cli.required("output");
   app::checkOutputs({{"output", output},
                      {"map", cli.text("map", "")},
@@ -146,7 +148,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
     map_file.write(cli.required("map"), bytes.str());
   }
   const auto points = reachPoints(map);
-  io::PcdStreamWriter<ReachPoint> cloud(output, points.size());
+  io::PcdStreamWriter<ReachPoint> cloud(output, points.size(), io::PcdFormat::kBinary, provenance);
   cloud.write(points.data(), points.size());
   cloud.commit();
   for (PendingFile* file : {&halfcut, &histogram, &map_file}) {
@@ -163,7 +165,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot) {
 }
 
 /// The reach study: IK per target, the heat map and its summary.
-void runStudy(const app::CommandLine& cli, const Robot& robot) {
+void runStudy(const app::CommandLine& cli, const Robot& robot,
+              const io::CloudProvenance& provenance) {
   const std::string output = cli.required("output");
   app::checkOutputs({{"output", output}},
                     {{"robot", cli.required("robot")}, {"targets", cli.required("targets")}});
@@ -194,7 +197,8 @@ void runStudy(const app::CommandLine& cli, const Robot& robot) {
                            {"orientation_error_deg", results[i].orientation_error * 180.0 / M_PI}});
     }
   }
-  io::PcdStreamWriter<ReachTargetPoint> cloud(output, heat.size());
+  io::PcdStreamWriter<ReachTargetPoint> cloud(output, heat.size(), io::PcdFormat::kBinary,
+                                              provenance);
   cloud.write(heat.data(), heat.size());
   cloud.commit();
 
@@ -238,13 +242,14 @@ int main(int argc, char** argv) {
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const Robot robot = app::readRobot(cli);
+    const io::CloudProvenance provenance = app::robotProvenance(robot);  // recorded in the PCD
     if (cli.has("targets")) {
-      runStudy(cli, robot);
+      runStudy(cli, robot, provenance);
     } else {
       for (const char* flag : {"approach-tolerance", "ik-starts", "no-collision", "standoff"}) {
         if (cli.has(flag)) throw app::UsageError(std::string("--") + flag + " needs --targets");
       }
-      runMap(cli, robot);
+      runMap(cli, robot, provenance);
     }
     return app::kExitOk;
   });

@@ -21,7 +21,9 @@ writes them and mcws_boundary keeps them): sample i moves each joint of boundary
 up to --spread times the joint's range, clamped to its limits. Joints with one value in every
 boundary point (pinned by mcws_sample --fix) keep it. With --cloud, the output is that cloud
 followed by the new samples: the refined cloud to pass to mcws_boundary and mcws_measure. Same
---seed, same output, for any --threads.)";
+--seed, same output, for any --threads. A cloud whose header records the robot it was made from
+(name and SHA-256 of the robot file, as mcws_sample writes it) must come from the --robot file;
+the output records that robot.)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
   cli.addValue("robot", "robot description the cloud was sampled from");
@@ -62,6 +64,13 @@ int main(int argc, char** argv) {
                                              {"cloud", cli.text("cloud", "")}});
 
     const Robot robot = app::readRobot(cli);
+    const io::CloudProvenance provenance = app::robotProvenance(robot);
+    for (const char* flag : {"input", "cloud"}) {
+      if (cli.has(flag)) {
+        const std::string path = cli.required(flag);
+        app::requireSameRobot(flag, path, app::readProvenance(path), provenance);
+      }
+    }
     const auto boundary = app::loadCloud(cli.required("input"));
     const RefineSampler sampler(robot, *boundary, options);
     const auto refined = cli.has("cloud") ? app::loadCloud(cli.required("cloud"))
@@ -73,7 +82,7 @@ int main(int argc, char** argv) {
                      [&](std::size_t done, std::size_t total) { progress.update(done, total); });
     pcl::Indices all(refined->size());
     std::iota(all.begin(), all.end(), 0);
-    app::saveCloud(*refined, all, output);
+    app::saveCloud(*refined, all, output, provenance);
 
     if (cli.has("json")) {
       nlohmann::json summary{{"robot", robot.name},

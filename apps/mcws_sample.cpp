@@ -6,8 +6,10 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "common/app.h"
+#include "common/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/reach/quality_sampler.h"
@@ -59,11 +61,18 @@ struct Source {
   std::unique_ptr<PointGenerator> generator;
   std::unique_ptr<QualitySampler> quality;  ///< --quality: generator's points with the quality
   nlohmann::json summary;                   ///< what the source adds to --json
+  std::optional<io::CloudProvenance> provenance;  ///< the robot, recorded in the cloud's header
 };
 
 Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint point) {
   Source source;
   const Robot robot = app::readRobot(cli);
+  source.provenance = app::robotProvenance(robot);
+  if (robot.dof() > kMaxJoints) {  // the robot file's fault, not --fix's (exit 1)
+    throw Error(cli.required("robot") + ": robot '" + robot.name + "' has " +
+                std::to_string(robot.dof()) + " joints; a workspace point records at most " +
+                std::to_string(kMaxJoints));
+  }
   RobotSamplerOptions options;
   options.seed = seed;
   options.point = point;
@@ -139,6 +148,8 @@ int main(int argc, char** argv) {
     app::Progress progress("mcws_sample", "samples");
     const auto format = cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary;
     const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+    std::optional<io::ScopedProvenance> provenance;  // for the writer inside writeSamples()
+    if (source.provenance) provenance.emplace(*source.provenance);
     const SampleSummary result =
         source.quality ? writeSamples(*source.quality, samples, output, format, threads, report)
                        : writeSamples(*source.generator, samples, output, format, threads, report);

@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < cloud->size(); ++i) {
       if (labels.count((*cloud)[i].label)) kept.push_back(static_cast<pcl::index_t>(i));
     }
-    app::saveCloud(*cloud, kept, output);
+    app::saveCloud(*cloud, kept, output, app::readProvenance(input));  // the input's robot
     if (cli.has("json")) {
       std::cout << nlohmann::json{{"input", input},
                                   {"output", output},

@@ -1,5 +1,6 @@
 // mcws_traj: a joint-space trajectory (the quintic blend of Liu, Han, Xu & Li 2021, the cubic, or a
 // cubic spline through via points), sampled at a rate and written as CSV, with an optional PNG.
+#include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -30,6 +31,14 @@ unit, time in s. The whole move is checked against the joint limits (and --max-v
 profile) from its pose at --from to that pose, each sample solved by IK seeded with the previous
 one; a sample without a solution, or a joint jump (another IK branch), stops it with an error
 naming the time.)";
+
+/// --duration [s]: below a millisecond a move is a jump; the upper end only keeps the arithmetic
+/// of the profiles well inside a double.
+constexpr double kDurationRange[2] = {1e-3, 1e6};
+constexpr double kMaxRate = 1e6;  ///< --rate [Hz]
+/// Samples one run writes: a million (1000 s at 1 kHz) is about 300 MB of CSV and 0.2 GB of
+/// memory; beyond, the file is more than a spreadsheet or a plot can take.
+constexpr double kMaxSamples = 1e6;
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("robot", "robot description (.yaml or .urdf)");
@@ -64,8 +73,22 @@ Move readMove(const app::CommandLine& cli) {
   Move m;
   m.duration_text = cli.required("duration");
   m.duration = app::parsePositive(m.duration_text, "duration", "s");
+  if (m.duration < kDurationRange[0] || m.duration > kDurationRange[1]) {
+    throw app::UsageError("--duration: " + m.duration_text +
+                          " is not in [0.001, 1000000] s (a millisecond to 11.6 days)");
+  }
   m.rate = app::parsePositive(cli.required("rate"), "rate", "Hz");
-  app::asUsageError("rate", [&] { return sampleCount(m.duration, m.rate); });
+  if (m.rate > kMaxRate) {
+    throw app::UsageError("--rate: " + cli.required("rate") + " is not in (0, 1000000] Hz");
+  }
+  // Both in range, the count fits a double exactly; the library's own limit is far above ours.
+  if (std::floor(m.duration * m.rate) + 2.0 > kMaxSamples) {
+    throw app::UsageError(
+        "--duration " + m.duration_text + " s at --rate " + cli.required("rate") +
+        " Hz: " + std::to_string(static_cast<long long>(m.duration * m.rate) + 1) +
+        " samples, more than the 1000000 mcws_traj writes (a CSV of about 300 "
+        "MB); lower --rate or split the move");
+  }
   m.vias = cli.all("via");
   m.profile = app::parseChoice(cli.text("profile", m.vias.empty() ? "quintic" : "cubic"), "profile",
                                {"quintic", "cubic"});
@@ -127,10 +150,14 @@ std::string moveShape(const Move& move) {
 }
 
 /// The CSV and, with --plot, the PNG: both written or neither.
+/// The CSV is written in pieces, with progress on stderr for a long one.
 void saveMove(const Robot& robot, const Move& move, const SampledTrajectory& samples) {
-  const std::string csv = trajectoryCsv(robot, samples);
   io::AtomicFile csv_file(move.output);
-  csv_file.write(csv.data(), csv.size());
+  app::Progress progress("mcws_traj", "samples written");
+  writeTrajectoryCsv(robot, samples, [&](const std::string& piece, std::size_t done) {
+    csv_file.write(piece.data(), piece.size());
+    progress.update(done, static_cast<std::size_t>(samples.size()));
+  });
   std::optional<io::AtomicFile> png_file;
   if (!move.plot.empty()) {
     const std::string png = renderTrajectoryPng(

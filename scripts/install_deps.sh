@@ -24,6 +24,9 @@ packages=(
   libompl-dev                   # motion planning roadmaps (OMPL's PRM) for mcws_plan
   graphviz                      # renders the behaviour state machines (mcws_behave --dot) to PNG
   time                          # /usr/bin/time -v in the benchmark scripts
+  libpng-dev                    # the tests decode the tools' PNG pictures (tests/png_image.h)
+  libssl-dev                    # SHA-256 of the robot file recorded in every cloud (libcrypto)
+  clang-14 libclang-rt-14-dev   # libFuzzer targets of fuzz/ (scripts/run_fuzzers.sh)
 )
 
 missing=()

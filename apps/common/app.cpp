@@ -2,26 +2,61 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "mcws/io/atomic_file.h"
 
 namespace mcws::app {
 
+std::string escapeControlBytes(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      out += c;
+    } else {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+/// The flags of the command line, as given, for the out-of-memory message ("" before parsing).
+std::string& givenFlags() {
+  static std::string given;
+  return given;
+}
+
+}  // namespace
+
 int run(const char* program, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const std::bad_alloc&) {
+    const std::string activity = Activity::takeFailed();
+    std::cerr << program << ": out of memory"
+              << (activity.empty() ? std::string() : " while " + activity)
+              << (givenFlags().empty() ? std::string() : " (given: " + givenFlags() + ")")
+              << ": a file or flag asks for more than this machine has\n";
+    return kExitFailure;
   } catch (const UsageError& e) {
-    std::cerr << program << ": " << e.what() << " (see --help)\n";
+    std::cerr << program << ": " << escapeControlBytes(e.what()) << " (see --help)\n";
     return kExitUsage;
   } catch (const po::error& e) {
-    std::cerr << program << ": " << e.what() << " (see --help)\n";
+    std::cerr << program << ": " << escapeControlBytes(e.what()) << " (see --help)\n";
     return kExitUsage;
   } catch (const std::exception& e) {
-    std::cerr << program << ": " << e.what() << "\n";
+    std::cerr << program << ": " << escapeControlBytes(e.what()) << "\n";
     return kExitFailure;
   }
 }
@@ -59,6 +94,14 @@ bool CommandLine::parse(int argc, char** argv) {
     return false;
   }
   po::notify(values_);
+  std::string& given = givenFlags();
+  given.clear();
+  for (int k = 1; k < argc; ++k) {
+    std::string word = escapeControlBytes(argv[k]);
+    if (word.size() > 60) word = word.substr(0, 60) + "...";
+    given += (k > 1 ? " " : "") + word;
+  }
+  if (given.size() > 300) given = given.substr(0, 300) + "...";
   for (const auto& [flag, value] : values_) {
     const auto* text = boost::any_cast<std::string>(&value.value());
     if (text && text->rfind("--", 0) == 0) {
@@ -91,8 +134,11 @@ double parseNumber(const std::string& text, const std::string& flag) {
   const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
-  const double value = std::strtod(begin, &end);
-  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(value)) {
+  // Decimal notation only: strtod would also take hex ("0x10"), "inf", "nan" and leading blanks.
+  const bool decimal =
+      !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
+  const double value = decimal ? std::strtod(begin, &end) : 0.0;
+  if (!decimal || end != begin + text.size() || errno == ERANGE || !std::isfinite(value)) {
     throw UsageError("--" + flag + ": '" + text + "' is not a finite number");
   }
   return value;
@@ -117,13 +163,19 @@ std::int64_t parseInteger(const std::string& text, const std::string& flag, std:
 }
 
 Eigen::VectorXd parseNumberList(const std::string& text, const std::string& flag) {
-  std::string spaced = text;
-  for (char& c : spaced) {
-    if (c == ',') c = ' ';
-  }
-  std::istringstream in(spaced);
   std::vector<double> values;
-  for (std::string word; in >> word;) values.push_back(parseNumber(word, flag));
+  std::istringstream items(text);
+  for (std::string item; std::getline(items, item, ',');) {
+    std::istringstream in(item);
+    std::size_t before = values.size();
+    for (std::string word; in >> word;) values.push_back(parseNumber(word, flag));
+    if (values.size() == before && text.find(',') != std::string::npos) {
+      throw UsageError("--" + flag + ": no number between commas in '" + text + "'");
+    }
+  }
+  if (!text.empty() && text.back() == ',') {
+    throw UsageError("--" + flag + ": no number after the last comma in '" + text + "'");
+  }
   if (values.empty()) throw UsageError("--" + flag + ": no numbers in '" + text + "'");
   return Eigen::Map<Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }

@@ -7,6 +7,7 @@
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <optional>
 #include <string>
@@ -29,9 +30,52 @@ class UsageError : public Error {
   using Error::Error;
 };
 
+/// \brief `text` with its control bytes (below 0x20, and 0x7f) written as \xNN, so that a value
+/// read from a file or typed as a flag cannot break a one-line message or drive the terminal.
+/// Bytes from 0x80 up are kept (UTF-8 names). run() applies it to every message.
+std::string escapeControlBytes(const std::string& text);
+
 /// \brief Runs a tool's body: mcws::app::UsageError and Boost.Program_options errors print
-/// "program: message" and return 2, every other error prints it and returns 1.
+/// "program: message" and return 2, every other error prints it and returns 1. Running out of
+/// memory (std::bad_alloc, which names nothing) is reported with the innermost Activity and the
+/// flags given: "out of memory while reading --input 'a.pcd' (given: --input a.pcd --radius 2)".
 int run(const char* program, const std::function<int()>& body);
+
+/// \brief Names what a tool is doing while the object lives, e.g. "reading --input 'a.pcd'", for
+/// the message of run() when memory runs out. Activities nest; header-only so that the loaders'
+/// fuzz build, which has no app.cpp, links.
+class Activity {
+ public:
+  explicit Activity(std::string what) : unwinding_(std::uncaught_exceptions()) {
+    failed().clear();  // an exception that left an earlier one was handled
+    stack().push_back(std::move(what));
+  }
+  /// Left by an exception: remembered as the activity that failed (the innermost one).
+  ~Activity() {
+    if (std::uncaught_exceptions() > unwinding_ && failed().empty()) failed() = stack().back();
+    stack().pop_back();
+  }
+  Activity(const Activity&) = delete;
+  Activity& operator=(const Activity&) = delete;
+  /// \brief The activity an exception left last (then forgotten), else the innermost one alive,
+  /// "" when none.
+  static std::string takeFailed() {
+    std::string what = failed().empty() && !stack().empty() ? stack().back() : failed();
+    failed().clear();
+    return what;
+  }
+
+ private:
+  static std::vector<std::string>& stack() {
+    static std::vector<std::string> activities;  // the tools' main thread only
+    return activities;
+  }
+  static std::string& failed() {
+    static std::string what;
+    return what;
+  }
+  int unwinding_;  ///< exceptions in flight when the activity began
+};
 
 /// \brief Flags of one tool (long options only, so "--q '-1 0.5'" reads as a value).
 class CommandLine {

@@ -18,7 +18,9 @@
 #include <limits>
 #include <vector>
 
+#include "common/app.h"
 #include "mcws/core/error.h"
+#include "mcws/kinematics/robot.h"
 
 namespace mcws::app {
 
@@ -62,9 +64,11 @@ struct PcdField {
 struct PcdHeader {
   std::vector<PcdField> fields;
   std::uint64_t points{0};
-  std::string data;              ///< ascii, binary or binary_compressed
-  std::uint64_t data_offset{0};  ///< bytes before the data [byte]
-  int data_line{0};              ///< line number of the DATA line
+  std::string data;                               ///< ascii, binary or binary_compressed
+  std::uint64_t data_offset{0};                   ///< bytes before the data [byte]
+  int data_line{0};                               ///< line number of the DATA line
+  std::optional<io::CloudProvenance> provenance;  ///< the mcws comment line, if any
+  int provenance_line{0};                         ///< its line number
 
   /// Bytes per point [byte].
   std::uint64_t pointSize() const {
@@ -174,7 +178,12 @@ class HeaderChecker {
              " in the header (a PCD header is text)");
       }
     }
-    if (text.empty() || text[0] == '#') return;
+    if (text.empty()) return;
+    const std::size_t first = text.find_first_not_of(" \t");
+    if (first != std::string::npos && text[first] == '#') {  // PCL's reader trims, then skips
+      comment(text);
+      return;
+    }
     if (text.front() == ' ' || text.front() == '\t' || text.back() == ' ' || text.back() == '\t')
       fail("white space at the start or end (PCL's reader miscounts the values)");
     const std::vector<std::string> words = tokens(text);
@@ -208,6 +217,23 @@ class HeaderChecker {
   [[noreturn]] void fail(const std::string& message) const {
     throw Error(path_ + ": not a readable PCD file: line " + std::to_string(number_) + ": " +
                 message);
+  }
+
+  /// Reads the mcws provenance line among the comments; other comments are left alone.
+  void comment(const std::string& text) {
+    if (!io::isProvenanceComment(text)) return;
+    if (header_.provenance) {
+      throw Error(path_ + ": line " + std::to_string(number_) +
+                  ": a second mcws provenance comment (the first is line " +
+                  std::to_string(header_.provenance_line) + ")");
+    }
+    try {
+      header_.provenance = io::parseProvenanceComment(text);
+    } catch (const Error& e) {
+      throw Error(path_ + ": line " + std::to_string(number_) +
+                  ": malformed mcws provenance comment: " + e.what());
+    }
+    header_.provenance_line = number_;
   }
 
   static std::string order() {
@@ -486,9 +512,9 @@ void requireRepresentable(const WorkspaceCloud& cloud, const std::string& path) 
   }
 }
 
-}  // namespace
-
-pcl::PCLPointCloud2 loadPcd(const std::string& path) {
+/// The size of the cloud file `path` [byte]. \throws mcws::Error when it is missing, not a regular
+/// file or unreadable.
+std::uint64_t cloudFileSize(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw Error(
@@ -497,6 +523,19 @@ pcl::PCLPointCloud2 loadPcd(const std::string& path) {
   }
   const std::uint64_t file_size = std::filesystem::file_size(path, ec);
   if (ec) throw Error(path + ": cannot read the file");
+  return file_size;
+}
+
+/// "deicing' (deicing.yaml, sha256 0123456789ab...)" for a mismatch message.
+std::string describeRobot(const io::CloudProvenance& p) {
+  return "'" + p.robot + "' (" + p.file + ", sha256 " + p.sha256.substr(0, 12) + "...)";
+}
+
+}  // namespace
+
+pcl::PCLPointCloud2 loadPcd(const std::string& path) {
+  const Activity reading("reading '" + path + "'");
+  const std::uint64_t file_size = cloudFileSize(path);
   const PcdHeader header = readHeader(path, file_size);
   if (header.points == 0) throw Error(path + ": the cloud has no points");
   for (const char* axis : {"x", "y", "z"}) {
@@ -566,8 +605,29 @@ void requireVolume(const WorkspaceCloud& cloud, const std::string& path) {
   }
 }
 
-void saveCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const std::string& path) {
-  io::PcdStreamWriter<WorkspacePoint> writer(path, indices.size());
+std::optional<io::CloudProvenance> readProvenance(const std::string& path) {
+  return readHeader(path, cloudFileSize(path)).provenance;
+}
+
+io::CloudProvenance robotProvenance(const Robot& robot) {
+  return {robot.name, std::filesystem::path(robot.source).filename().string(),
+          io::sha256OfFile(robot.source), unitName(robot.length_unit)};
+}
+
+void requireSameRobot(const std::string& flag, const std::string& path,
+                      const std::optional<io::CloudProvenance>& recorded,
+                      const io::CloudProvenance& robot) {
+  if (!recorded || recorded->sha256 == robot.sha256) return;
+  const bool edited = recorded->robot == robot.robot && recorded->file == robot.file;
+  throw Error("--" + flag + " '" + path + "' was made from robot " + describeRobot(*recorded) +
+              " but --robot is " + describeRobot(robot) +
+              (edited ? ": the robot file has changed since" : ""));
+}
+
+void saveCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const std::string& path,
+               const std::optional<io::CloudProvenance>& provenance) {
+  io::PcdStreamWriter<WorkspacePoint> writer(path, indices.size(), io::PcdFormat::kBinary,
+                                             provenance);
   std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> chunk;
   chunk.reserve(std::min<std::size_t>(indices.size(), 1u << 16));
   for (std::size_t begin = 0; begin < indices.size(); begin += 1u << 16) {

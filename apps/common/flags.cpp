@@ -132,6 +132,7 @@ Robot readRobot(const CommandLine& cli) {
   if (chain && std::filesystem::path(path).extension() != ".urdf") {
     throw UsageError("--root and --tip need a .urdf robot");
   }
+  const Activity reading("reading --robot '" + path + "'");
   try {
     return chain ? loadRobotUrdf(path, {cli.text("root", ""), cli.text("tip", "")})
                  : loadRobot(path);

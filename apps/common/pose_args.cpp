@@ -1,6 +1,7 @@
 #include "common/pose_args.h"
 
 #include <Eigen/SVD>
+#include <cmath>
 #include <sstream>
 
 #include "common/app.h"
@@ -9,12 +10,24 @@
 namespace mcws::app {
 namespace {
 
+/// The largest value a pose or matrix entry may have, as robot files cap their lengths: beyond,
+/// squared distances lose every digit (1e300 once read as 0 away).
+constexpr double kMaxPoseValue = 1e9;
+
 Eigen::VectorXd numbers(const std::string& text, const std::string& flag, int count,
                         const char* what) {
   const Eigen::VectorXd values = parseNumberList(text, flag);
   if (values.size() != count) {
     throw UsageError("--" + flag + ": " + std::to_string(values.size()) + " values given, " +
                      std::to_string(count) + " wanted (" + what + ")");
+  }
+  for (Eigen::Index k = 0; k < values.size(); ++k) {
+    if (std::abs(values[k]) > kMaxPoseValue) {
+      std::ostringstream msg;
+      msg << "--" << flag << ": value " << k + 1 << " (" << values[k]
+          << ") is out of range (at most 1e9 in size, as in robot files)";
+      throw UsageError(msg.str());
+    }
   }
   return values;
 }

@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/points/unique_positions.h"
 
 namespace mcws {
 
@@ -87,6 +90,116 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
     h = std::pow(measure / static_cast<double>(n), 1.0 / dimensions);
   }
   return h;
+}
+
+namespace {
+
+/// A number in a short form for messages (0.00079, 2, 1e+30).
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+/// The input axes (0 x, 1 y, 2 z) a plane's first and second coordinates come from.
+std::array<int, 2> planeAxes(BoundaryPlane plane) {
+  switch (plane) {
+    case BoundaryPlane::kXZ:
+      return {0, 2};
+    case BoundaryPlane::kYZ:
+      return {1, 2};
+    default:
+      return {0, 1};
+  }
+}
+
+/// Whether the cloud extends along axis k: more than kFlatExtentShare of its largest extent.
+bool extendsAlong(const CloudSummary& cloud, int k) {
+  return cloud.extent[k] > kFlatExtentShare * cloud.extent.maxCoeff();
+}
+
+constexpr const char* kAxisName[] = {"x", "y", "z"};
+
+}  // namespace
+
+CloudSummary summarizeFinitePoints(const pcl::PointCloud<pcl::PointXYZ>& finite,
+                                   BoundaryPlane plane, std::size_t points) {
+  CloudSummary s;
+  s.plane = plane;
+  s.points = points;
+  s.finite = finite.size();
+  if (finite.empty()) return s;
+  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : finite) {
+    const Eigen::Array3d q(p.x, p.y, p.z);
+    lo = lo.min(q);
+    hi = hi.max(q);
+  }
+  s.extent = (hi - lo).matrix();
+  if (plane == BoundaryPlane::k3D) {
+    s.largest = s.extent.maxCoeff();
+  } else {
+    const std::array<int, 2> axes = planeAxes(plane);
+    s.largest = std::max(s.extent[axes[0]], s.extent[axes[1]]);
+  }
+  pcl::PointCloud<pcl::PointXYZ> projected;
+  pcl::Indices all(finite.size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  projectToPlane(finite, all, plane, projected, source);
+  std::vector<pcl::index_t> position_of;
+  const pcl::PointCloud<pcl::PointXYZ> positions = uniquePositions(projected, position_of);
+  s.distinct = positions.size();
+  s.spacing = meanSpacing(positions, boundaryDimensions(plane));
+  return s;
+}
+
+void requireRegionPoints(const CloudSummary& cloud, const std::string& what) {
+  const std::string where =
+      cloud.plane == BoundaryPlane::k3D
+          ? std::string("in 3-D")
+          : std::string("in the ") + boundaryPlaneName(cloud.plane) + " plane";
+  const std::size_t needed = minimumRegionPoints(cloud.plane);
+  if (cloud.distinct < needed) {
+    std::string of = std::to_string(cloud.points) + (cloud.points == 1 ? " point" : " points");
+    if (cloud.finite < cloud.points)
+      of += ", " + std::to_string(cloud.points - cloud.finite) + " not finite";
+    throw Error(what + ": " + std::to_string(cloud.distinct) + " distinct finite point" +
+                (cloud.distinct == 1 ? "" : "s") + " " + where + " (of " + of +
+                "); a region there needs at least " + std::to_string(needed));
+  }
+  if (cloud.plane == BoundaryPlane::k3D) return;
+  int spanned = 0, along = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (extendsAlong(cloud, k)) {
+      ++spanned;
+      along = k;
+    }
+  }
+  if (spanned < 2) {
+    throw Error(what + ": the points extend along " + kAxisName[along] +
+                " only (a line): no region " + where);
+  }
+}
+
+void requirePlaneFits(const CloudSummary& cloud, const std::string& what) {
+  if (cloud.plane == BoundaryPlane::k3D) return;
+  const std::array<int, 2> axes = planeAxes(cloud.plane);
+  for (const int flat : axes) {
+    if (extendsAlong(cloud, flat)) continue;
+    // The two axes it extends along (requireRegionPoints() rules out fewer).
+    std::string lies;
+    for (int k = 0; k < 3; ++k) lies += extendsAlong(cloud, k) ? kAxisName[k] : "";
+    throw Error(what + ": the cloud is flat in " + kAxisName[flat] + " (extent " +
+                shortNumber(cloud.extent[flat]) + ", its largest " +
+                shortNumber(cloud.extent.maxCoeff()) + "), so in the " +
+                boundaryPlaneName(cloud.plane) +
+                " plane every point is on its boundary and the area is 0; it lies in the " + lies +
+                " plane");
+  }
+}
+
+LengthRange parameterLengths(const CloudSummary& cloud) {
+  return {kShortestLengthSpacings * cloud.spacing, cloud.largest};
 }
 
 }  // namespace mcws

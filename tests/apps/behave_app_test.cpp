@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -61,7 +62,7 @@ TEST(BehaveApp, ACleanRunWritesLogTimelinePlotDotAndSummary) {
                     png = dir.file("run.png"), dot = dir.file("dot");
   const test::RunResult r =
       test::run(kBehave + " --model " + kModel + " --insulators 3 --log " + log + " --timeline " +
-                csv + " --plot " + png + " --dot " + dot + " --json");
+                csv + " --plot " + png + " --plot-all --dot " + dot + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The plan is echoed for the worker to confirm.
   EXPECT_THAT(r.err, HasSubstr("1 CB1 move down one disc -> disc 1"));
@@ -94,7 +95,34 @@ TEST(BehaveApp, ACleanRunWritesLogTimelinePlotDotAndSummary) {
   // One row every 0.1 s of the simulated duration, plus the header and the row at 0.
   const double duration = summary["duration_s"];
   EXPECT_NEAR(test::lineCount(timeline), duration / 0.1 + 2, 1.0);
-  EXPECT_EQ(test::readFile(png).rfind("\x89PNG", 0), 0u);
+  // The plot (--plot-all: the whole run, the first and last timeline rows at the frame's
+  // edges; firstDiscWindow() has its own test): phase II (CB2)
+  // shaded #d6e6f5 from the first row the timeline gives to CB2, within 3 pixels.
+  double t_cb2 = -1.0, t_last = 0.0;
+  {
+    std::istringstream rows(timeline);
+    std::string row;
+    std::getline(rows, row);  // header: t_s is column 0, cb column 4
+    while (std::getline(rows, row)) {
+      std::vector<std::string> cells;
+      std::istringstream fields(row);
+      for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+      ASSERT_GT(cells.size(), 4u) << row;
+      t_last = std::stod(cells[0]);
+      if (t_cb2 < 0.0 && cells[4] == "CB2") t_cb2 = t_last;
+    }
+  }
+  ASSERT_GT(t_cb2, 0.0);
+  const test::PngImage picture(png);
+  ASSERT_EQ(picture.width(), 1200);
+  ASSERT_EQ(picture.height(), 800);
+  const test::PixelBox frame = picture.frame();
+  ASSERT_FALSE(frame.empty());
+  const test::PixelBox upper{frame.x0, frame.x1, frame.y0, frame.y0 + 100};
+  const test::PixelBox phase2 = picture.box(0xd6e6f5, 0, upper);
+  ASSERT_FALSE(phase2.empty());
+  EXPECT_NEAR(phase2.x0, frame.x0 + t_cb2 / t_last * frame.width(), 3.0) << "CB2 at " << t_cb2;
+  EXPECT_FALSE(picture.box(0xfbf0d9, 0, upper).empty());  // phase I before it
   for (const char* name : {"CB1.dot", "CB2.dot", "CB3.dot", "task.dot"}) {
     EXPECT_THAT(test::readFile(dot + "/" + name), HasSubstr("digraph")) << name;
   }

@@ -76,8 +76,10 @@ TEST_F(BoundaryApp, BadFlags) {
                 "--hull-depth works in a plane: give --plane xy, xz or yz");
   expectFailure(io + " --plane xy --method grid --hull-depth 1", 2,
                 "--hull-depth does not apply to --method grid");
-  expectFailure(io + " --plane xy --radius 0.1 --outer-radius 0.05", 1,
-                "outer radius 0.05 is smaller than radius 0.1");
+  // Issue 17: a value the filter would refuse is a usage error naming the flag and its range.
+  expectFailure(io + " --plane xy --radius 0.1 --outer-radius 0.05", 2,
+                "--outer-radius: 0.05 is not in (0.1, 1.99741] [length unit] (beyond the radius, "
+                "at most the cloud's extent)");
   expectFailure("--input " + disk_, 2, "missing --output");
 }
 
@@ -189,8 +191,9 @@ TEST_F(BoundaryApp, BaselineMethodFlags) {
   expectFailure(io + " --cell 0.1", 2, "--cell does not apply to --method orthant");
   expectFailure("--input " + disk_ + " --output " + out() + " --method extremum", 2,
                 "--method extremum works in a plane: give --plane xy, xz or yz");
-  expectFailure(io + " --method grid --cell 1e-9", 1,
-                "GridBoundary: cell size 1e-09 is too small for the extent");
+  expectFailure(io + " --method grid --cell 1e-9", 2,
+                "--cell: 1e-9 is not in [0.001249, 1.99741] [length unit] (a tenth of the cloud's "
+                "mean spacing 0.01249 to its extent)");
 }
 
 TEST_F(BoundaryApp, GridMethodOnTheDiskReportsItsCellsAndPartitionsTheCloud) {

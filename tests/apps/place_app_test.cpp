@@ -11,6 +11,7 @@
 
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/reach_study.h"
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -202,7 +203,20 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
   ASSERT_EQ(pcl::io::loadPCDFile(file("bases.pcd"), bases), 0);
   ASSERT_EQ(bases.size(), 51u);
   EXPECT_FLOAT_EQ(bases[0].x, -30.f);  // planar2's base is at the origin
-  EXPECT_EQ(test::readFile(file("placement.png")).substr(1, 3), "PNG");
+  // The picture: IK's confirmations (dark red triangles) at 100 % span the confirmed interval,
+  // [-8, 48] of the positions [-30, 70]: 56 % of the span of all triangles, whatever the axes.
+  const test::PngImage png(file("placement.png"));
+  ASSERT_EQ(png.width(), 1000);
+  ASSERT_EQ(png.height(), 600);
+  const test::PixelBox frame = png.frame();
+  ASSERT_FALSE(frame.empty());
+  test::PixelBox plot = frame;
+  plot.y1 -= 60;  // above the legend's samples
+  const test::PixelBox all = png.box(0x7a0403, 0, plot);
+  ASSERT_FALSE(all.empty());
+  const test::PixelBox top = png.box(0x7a0403, 0, {plot.x0, plot.x1, all.y0, all.y0 + 6});
+  EXPECT_NEAR(static_cast<double>(top.x1 - top.x0) / (all.x1 - all.x0), 56.0 / 100.0, 0.01);
+  EXPECT_FALSE(png.box(0x4686fb, 0, plot).empty());  // the map's estimate is drawn too
 
   // The same from a map file written by mcws_reach, and for another thread count.
   const test::RunResult map = test::run(kReach + " --robot " + test::robotPath("planar2") +

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -351,15 +352,35 @@ TEST_F(McwsPlan, SeedChangesTheRoadmapNotTheEnds) {
   EXPECT_NEAR(csv.last()[1], 120 * M_PI / 180, kCsvTol);
 }
 
-TEST_F(McwsPlan, PlotOfTheTwoJointArmIsAPng) {
+TEST_F(McwsPlan, PlotOfTheTwoJointArmShowsTheChosenPath) {
   if (test::run("command -v gnuplot").exit_code != 0) GTEST_SKIP() << "gnuplot is not installed";
   const std::string png = outputs_.file("cspace.png");
   const test::RunResult r =
       test::run(kPlan + " --scenario " + okScenario() + " --output " + outputs_.file("path.csv") +
                 " --validation-poses 100 --cells 16 --plot " + png);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(test::readFile(png), StartsWith("\x89PNG"));
   EXPECT_EQ(outputs_.fileCount(), 2u);
+  // The configuration space q1 x q2 over the joint limits [-180, 180] x [-160, 160] deg fills
+  // the frame; the chosen path (#08519c, 4 pixels wide) starts at (0, 0) and ends at (120, 0)
+  // (within 8 pixels: a shared-node mark may cover its end).
+  const test::PngImage picture(png);
+  ASSERT_EQ(picture.width(), 1000);
+  ASSERT_EQ(picture.height(), 900);
+  const test::PixelBox frame = picture.frame();
+  ASSERT_FALSE(frame.empty());
+  auto pixel = [&](double q1_deg, double q2_deg) {
+    return std::pair<int, int>{
+        static_cast<int>(std::lround(frame.x0 + (q1_deg + 180.0) / 360.0 * frame.width())),
+        static_cast<int>(std::lround(frame.y1 - (q2_deg + 160.0) / 320.0 * frame.height()))};
+  };
+  for (const auto& [q1, q2] : {std::pair{0.0, 0.0}, std::pair{120.0, 0.0}}) {
+    const auto [x, y] = pixel(q1, q2);
+    EXPECT_FALSE(picture.box(0x08519c, 0, {x - 8, x + 8, y - 8, y + 8}).empty())
+        << "no chosen path at (" << q1 << ", " << q2 << ") deg, pixel " << x << ", " << y;
+  }
+  // and nowhere near q1 = -90 deg (it does not turn the long way round).
+  const auto [x, y] = pixel(-90.0, 0.0);
+  EXPECT_TRUE(picture.box(0x08519c, 0, {x - 4, x + 4, frame.y0, frame.y1}).empty());
 }
 
 TEST_F(McwsPlan, InputFilesAreNeverModified) {

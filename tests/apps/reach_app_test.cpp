@@ -12,6 +12,7 @@
 
 #include "mcws/points/point_types.h"
 #include "mcws/reach/reach_map.h"
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -174,17 +175,58 @@ TEST_F(ReachApp, UrdfInMetresAndYamlInMillimetresGiveTheSameMap) {
   }
 }
 
-TEST_F(ReachApp, PicturesArePngs) {
+TEST_F(ReachApp, PicturesShowTheMap) {
   const test::RunResult r =
       test::run(kReach + " --robot " + test::robotPath("inspection6") +
                 " --resolution 20cm --samples 100000 --output " + out() + " --halfcut " +
                 out("cut.png") + " --histogram " + out("hist.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* png : {"cut.png", "hist.png"}) {
-    const std::string bytes = test::readFile(out(png));
-    ASSERT_GT(bytes.size(), 8000u) << png;
-    EXPECT_EQ(bytes.substr(1, 3), "PNG") << png;
+  pcl::PointCloud<ReachPoint> map;
+  ASSERT_EQ(pcl::io::loadPCDFile(out(), map), 0);
+  float max_d = 0.0f;
+  for (const ReachPoint& p : map) max_d = std::max(max_d, p.reachability);
+  // The slab is the layer of 20 cm voxels whose y range [c - 100, c + 100) holds y = 0.
+  Eigen::Array2f lo(1e9f, 1e9f), hi(-1e9f, -1e9f);  // x, z of its voxel centres
+  for (const ReachPoint& p : map) {
+    if (p.y - 100.0f <= 0.0f && 0.0f < p.y + 100.0f) {
+      lo = lo.min(Eigen::Array2f(p.x, p.z));
+      hi = hi.max(Eigen::Array2f(p.x, p.z));
+    }
   }
+  ASSERT_LT(lo.x(), hi.x());
+
+  // Histogram of D over [0, 1] (its x range), bins of 0.05 drawn in #6b9efc: the bars end at the
+  // bin holding the largest D of the map, within two pixels.
+  const test::PngImage hist(out("hist.png"));
+  ASSERT_EQ(hist.width(), 1000);
+  ASSERT_EQ(hist.height(), 650);
+  const test::PixelBox frame = hist.frame();
+  ASSERT_FALSE(frame.empty());
+  test::PixelBox bars = frame;
+  bars.y0 += 40;  // below the legend's sample
+  const test::PixelBox drawn = hist.box(0x6b9efc, 8, bars);
+  ASSERT_FALSE(drawn.empty());
+  const double pixels_per_d = frame.x1 - frame.x0;
+  EXPECT_NEAR(drawn.x0, frame.x0, 2.0);
+  EXPECT_NEAR(drawn.x1, frame.x0 + std::ceil(max_d / 0.05) * 0.05 * pixels_per_d, 2.0)
+      << "largest D " << max_d;
+  EXPECT_NEAR(drawn.y1, frame.y1, 2.0);  // bars stand on the axis
+
+  // Half-cut: the slab's voxels as squares, equal scales on both axes (size ratio -1): the drawn
+  // cells span the centres' extent plus one voxel in x and in z, in the same proportion.
+  const test::PngImage cut(out("cut.png"));
+  ASSERT_EQ(cut.width(), 1100);
+  ASSERT_EQ(cut.height(), 900);
+  const test::PixelBox plot = cut.frame();
+  ASSERT_FALSE(plot.empty());
+  const test::PixelBox cells = cut.box([](test::Rgb c) { return !test::isGrey(c); }, plot);
+  ASSERT_FALSE(cells.empty());
+  const double ratio = (hi.x() - lo.x() + 200.0) / (hi.y() - lo.y() + 200.0);
+  EXPECT_NEAR(static_cast<double>(cells.width()) / cells.height(), ratio, 0.02);
+  // inspection6 turns about its base's z axis: the cells are centred in x as the data are.
+  const double centre = 0.5 * (cells.x0 + cells.x1), data_centre = 0.5 * (lo.x() + hi.x());
+  EXPECT_NEAR((centre - 0.5 * (plot.x0 + plot.x1)) / cells.width(),
+              data_centre / (hi.x() - lo.x() + 200.0), 0.01);
 }
 
 /// mcws_sample --quality on the planar 2R arm: manipulability l1 l2 |sin q2| (closed form) and

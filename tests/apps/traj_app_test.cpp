@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -117,13 +119,38 @@ TEST(TrajApp, SplinePassesTheViasAtEqualIntervals) {
   }
 }
 
-TEST(TrajApp, PlotWritesAPngBesideTheCsv) {
+TEST(TrajApp, PlotShowsTheMoveBesideTheCsv) {
   test::TempDir dir;
   const test::RunResult r = test::run(kTraj + kInspection + kSeedMove + " --output " +
                                       dir.file("t.csv") + " --plot " + dir.file("t.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(test::readFile(dir.file("t.png")), StartsWith("\x89PNG"));
   EXPECT_EQ(dir.fileCount(), 2u);
+  const test::PngImage png(dir.file("t.png"));
+  ASSERT_EQ(png.width(), 1400);
+  ASSERT_EQ(png.height(), 1000);
+  // Joint positions, top left: gnuplot's colours for j1 .. j6. Where each curve ends (its
+  // rightmost pixels, left of the legend), the curves lie in the order of the goal values.
+  const test::Rgb colour[6] = {0x9400d3, 0x009e73, 0x56b4e9, 0xe69f00, 0xf0e442, 0x0072b2};
+  const test::PixelBox positions{0, static_cast<int>(0.43 * png.width()), 0,
+                                 static_cast<int>(0.47 * png.height())};
+  std::vector<std::pair<double, double>> end_y_and_goal;
+  for (int j = 0; j < 6; ++j) {
+    const test::PixelBox curve = png.box(colour[j], 0, positions);
+    ASSERT_FALSE(curve.empty()) << "j" << j + 1;
+    const test::PixelBox end = png.box(colour[j], 0, {curve.x1, curve.x1, curve.y0, curve.y1});
+    end_y_and_goal.emplace_back(0.5 * (end.y0 + end.y1), kSeedGoal[j]);
+  }
+  std::sort(end_y_and_goal.begin(), end_y_and_goal.end());  // top of the picture first
+  for (std::size_t k = 1; k < end_y_and_goal.size(); ++k) {
+    EXPECT_GT(end_y_and_goal[k - 1].second, end_y_and_goal[k].second)
+        << "curves end at y " << end_y_and_goal[k - 1].first << " and " << end_y_and_goal[k].first;
+  }
+  // The tool path, bottom right, with its start (green) and end (red) marks.
+  const test::PixelBox tool_panel{png.width() / 2, png.width() - 1, png.height() / 2,
+                                  png.height() - 1};
+  for (const test::Rgb mark : {0x1f77b4u, 0x2ca02cu, 0xd62728u}) {
+    EXPECT_FALSE(png.box(mark, 0, tool_panel).empty()) << std::hex << mark;
+  }
 }
 
 TEST(TrajApp, UrdfRobotGivesTheYamlMoveInMetres) {
@@ -230,7 +257,16 @@ TEST(TrajApp, BadInput) {
       {kInspection + move + " --duration 10 --rate -5", 2,
        "--rate: -5 Hz is not a positive number"},
       {kInspection + move + " --duration 10 --rate 1e9", 2,
-       "--rate: sampling: 10 s at 1e+09 Hz gives more than 1e8 samples"},
+       "--rate: 1e9 is not in (0, 1000000] Hz"},
+      // Issue 17: the huge count is refused at once naming both flags (it held 67 GB before),
+      // and the durations that reached the profile's arithmetic name --duration.
+      {kInspection + move + " --duration 100 --rate 100000", 2,
+       "--duration 100 s at --rate 100000 Hz: 10000001 samples, more than the 1000000 mcws_traj "
+       "writes"},
+      {kInspection + move + " --duration 1e12 --rate 1", 2,
+       "--duration: 1e12 is not in [0.001, 1000000] s"},
+      {kInspection + move + " --duration 1e-300 --rate 100", 2,
+       "--duration: 1e-300 is not in [0.001, 1000000] s"},
       {kInspection + " --from '0 0 0' --to '0 0 0 0 0 0'" + timing, 2,
        "--from: robot 'inspection6' has 6 joints but 3 joint values were given"},
       {kInspection + " --from '0 0 0 0 0 0' --to '0 0 0 0 0 nan'" + timing, 2,

@@ -12,6 +12,7 @@ namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::StartsWith;
 
 const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maintenance4",
                                       "insulator_cleaner"};
@@ -145,6 +146,37 @@ TEST(RobotYaml, ReportsEmptyJointListAndSyntaxErrors) {
   EXPECT_THAT(errorOf("just text"), HasSubstr("the document must be a map"));
 }
 
+TEST(RobotYaml, RefusesControlBytesBeforeYamlCppSeesThem) {
+  // Found by the robot_yaml fuzzer: yaml-cpp 0.7 looped forever on a file with NUL bytes.
+  EXPECT_EQ(errorOf(replace(kValid, "convention: standard", std::string("convention: sta\0d", 17))),
+            "bad.yaml:3: control byte \\x00 at column 16 (a robot file is text)");
+  EXPECT_EQ(errorOf(replace(kValid, "name: two", "name: t\x1bwo")),
+            "bad.yaml:1: control byte \\x1b at column 8 (a robot file is text)");
+  EXPECT_EQ(parseRobotYaml(replace(kValid, "name: two", "name:\ttwo\r"), "ok.yaml").name, "two");
+}
+
+TEST(RobotYaml, ReportsTextAfterTheDocumentThatTheParserCannotPlace) {
+  // Found by the robot_yaml fuzzer: yaml-cpp's LoadAll() looped for ever, allocating, on a stray
+  // ',' at the start of a line after an indented map's list (the fuzzer's input, shortened).
+  EXPECT_EQ(errorOf("    j1:\n      - {a: 1}\n , 0]}\n"),
+            "bad.yaml:3: YAML syntax: text the parser cannot place in the document (a stray ',', "
+            "']' or '}', or a wrong indentation?)");
+}
+
+TEST(RobotYaml, ReportsAnUnterminatedQuoteWhereItStarts) {
+  // yaml-cpp reads the rest of the file into the name; it was reported as a missing 'units'.
+  const std::string text = replace(kValid, "name: two", "name: \"two");
+  EXPECT_THAT(errorOf(text), StartsWith("bad.yaml:1: a quoted value runs over"));
+  EXPECT_THAT(errorOf(text), HasSubstr("several lines: a missing closing quote (\")?"));
+  // Quotes that close, with escaped quotes inside, are fine.
+  EXPECT_EQ(parseRobotYaml(replace(kValid, "name: two", "name: 'tw''o\\'"), "ok.yaml").name,
+            "tw'o\\");
+  EXPECT_EQ(parseRobotYaml(replace(kValid, "name: two", "name: \"t\\\"wo\""), "ok.yaml").name,
+            "t\"wo");
+  EXPECT_THAT(errorOf(replace(kValid, "convention: standard", "convention: 'standard")),
+              StartsWith("bad.yaml:3: a quoted value runs over"));
+}
+
 TEST(RobotYaml, ReportsDuplicateAndNonScalarKeys) {
   EXPECT_THAT(errorOf(replace(kValid, "a: 100,", "a: 100, a: 5,")),
               HasSubstr("joint 1 'j1': key 'a' given twice"));
@@ -154,7 +186,8 @@ TEST(RobotYaml, ReportsDuplicateAndNonScalarKeys) {
 }
 
 TEST(RobotYaml, ReportsSeveralDocumentsEmptyFileAndOddNames) {
-  EXPECT_THAT(errorOf(kValid + "---\n" + kValid), HasSubstr("bad.yaml: holds 2 YAML documents"));
+  EXPECT_THAT(errorOf(kValid + "---\n" + kValid),
+              HasSubstr("bad.yaml: holds more than one YAML document; a robot file holds one"));
   EXPECT_THAT(errorOf(""), HasSubstr("bad.yaml: the document must be a map"));
   EXPECT_THAT(errorOf(replace(kValid, "name: j2", "name: 'j 2'")),
               HasSubstr("joint 2: name 'j 2' contains '=', ',' or a space"));

@@ -3,7 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <sstream>
+#include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -64,6 +66,28 @@ TEST(TrajectoryCsv, HeaderNamesJointsAndEveryRowHoldsStateAndToolPosition) {
     ++rows;
   }
   EXPECT_EQ(rows, 9);
+}
+
+TEST(TrajectoryCsv, WrittenInPiecesIsTheSameText) {
+  const Robot robot = slideArm();
+  const SampledTrajectory s =
+      sampleTrajectory(pointToPoint(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(1.0, 20.0), 2.0,
+                                    TimeProfile::kQuintic),
+                       4.0);  // 9 samples
+  std::string joined;
+  std::vector<std::size_t> done;
+  std::vector<int> lines;
+  writeTrajectoryCsv(
+      robot, s,
+      [&](const std::string& piece, std::size_t n) {
+        joined += piece;
+        done.push_back(n);
+        lines.push_back(static_cast<int>(std::count(piece.begin(), piece.end(), '\n')));
+      },
+      4);
+  EXPECT_EQ(joined, trajectoryCsv(robot, s));
+  EXPECT_EQ(done, (std::vector<std::size_t>{4, 8, 9}));
+  EXPECT_EQ(lines, (std::vector<int>{5, 4, 1}));  // the header goes with the first piece
 }
 
 TEST(TrajectoryCsv, RejectsATrajectoryOfAnotherRobot) {

@@ -692,17 +692,7 @@ const StatePose* BehaviorModel::poseOf(const std::string& state) const {
 // ---- reading -----------------------------------------------------------------------------------
 
 BehaviorModel parseBehaviorModel(const std::string& text, const std::string& source) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  if (documents.size() > 1) {
-    throw Error(source + ": holds " + std::to_string(documents.size()) +
-                " YAML documents; a behaviour model holds one");
-  }
-  return BehaviorModelReader(source).read(documents.empty() ? YAML::Node() : documents.front());
+  return BehaviorModelReader(source).read(loadYamlDocument(text, source, "a behaviour model"));
 }
 
 BehaviorModel loadBehaviorModel(const std::string& path) {

@@ -317,17 +317,7 @@ const char* lowBatteryPolicyName(LowBatteryPolicy policy) {
 }
 
 FaultScript parseFaultScript(const std::string& text, const std::string& source) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(atLine(source, e.mark.line >= 0 ? e.mark.line + 1 : 0) + ": YAML syntax: " + e.msg);
-  }
-  if (documents.size() > 1) {
-    throw Error(source + ": holds " + std::to_string(documents.size()) +
-                " YAML documents; a fault file holds one");
-  }
-  return FaultScriptReader(source).read(documents.empty() ? YAML::Node() : documents.front());
+  return FaultScriptReader(source).read(loadYamlDocument(text, source, "a fault file"));
 }
 
 FaultScript loadFaultScript(const std::string& path) {

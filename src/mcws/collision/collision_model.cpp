@@ -225,13 +225,7 @@ const char* shapeTypeName(ShapeType type) {
 
 CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
                                   const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  return CollisionYamlReader(robot, source).read(root);
+  return CollisionYamlReader(robot, source).read(loadYamlDocument(text, source, "a robot file"));
 }
 
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path) {

@@ -5,9 +5,12 @@
 ///
 /// Header-only; only the readers that link yaml-cpp include it (mcws::core does not link it).
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <sstream>
 #include <string>
@@ -36,6 +39,120 @@ inline int lineOf(const YAML::Node& node) {
 /// \brief "source:line", or "source" alone when `line` is 0 (unknown).
 inline std::string atLine(const std::string& source, int line) {
   return source + (line > 0 ? ":" + std::to_string(line) : "");
+}
+
+/// \brief The lines (0-based) where yaml-cpp's parser starts documents; nothing else is kept.
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  std::vector<int> lines;
+  void OnDocumentStart(const YAML::Mark& mark) override { lines.push_back(mark.line); }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+/// \brief Whether the quoted YAML scalar that starts at text[begin] (a ' or ") closes on the
+/// same line ('' and \" are escaped quotes).
+inline bool closesOnItsLine(const std::string& text, std::size_t begin) {
+  const char quote = text[begin];
+  for (std::size_t k = begin + 1; k < text.size() && text[k] != '\n'; ++k) {
+    if (quote == '"' && text[k] == '\\') {
+      ++k;  // the escaped character
+    } else if (text[k] == quote) {
+      if (quote == '\'' && k + 1 < text.size() && text[k + 1] == '\'') {
+        ++k;  // '' is a quote inside single quotes
+      } else {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+/// \brief The one YAML document of a file (a Null node for an empty file).
+///
+/// yaml-cpp's syntax errors become "source:line: YAML syntax: ...", and a file of several
+/// documents is an error naming `what` ("a robot file"), as is text after the document that
+/// the parser cannot place. A quoted value that spans lines is
+/// reported where it starts, as an unterminated quote: YAML allows such values (folding the line
+/// breaks into blanks) and no mcws file
+/// needs them, while a missing closing quote makes yaml-cpp read the rest of the file into one
+/// value and the reader then reports a missing field far from the mistake.
+/// \throws mcws::Error as above.
+inline YAML::Node loadYamlDocument(const std::string& text, const std::string& source,
+                                   const std::string& what) {
+  // Control bytes are not YAML (its spec allows tab, line feed and carriage return only), and
+  // yaml-cpp 0.7 loops forever on some inputs with NUL bytes: refused before it sees them.
+  int line = 1;
+  for (std::size_t k = 0, line_start = 0; k < text.size(); ++k) {
+    const auto byte = static_cast<unsigned char>(text[k]);
+    if (byte == '\n') {
+      ++line;
+      line_start = k + 1;
+    } else if ((byte < 0x20 && byte != '\t' && byte != '\r') || byte == 0x7f) {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      throw Error(atLine(source, line) + ": control byte " + escaped + " at column " +
+                  std::to_string(k - line_start + 1) + " (" + what + " is text)");
+    }
+  }
+  // The documents are counted by yaml-cpp's parser before any is built, stopping at the second:
+  // YAML::LoadAll() of yaml-cpp 0.7 loops for ever, allocating, when text it cannot place follows
+  // the first document (a stray ',' at the start of a line), and YAML::Load() drops such text.
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DocumentStarts starts;
+  try {
+    while (starts.lines.size() < 2 && parser.HandleNextDocument(starts)) {
+    }
+  } catch (const YAML::Exception& e) {
+    throw Error(atLine(source, e.mark.line >= 0 ? e.mark.line + 1 : 0) + ": YAML syntax: " + e.msg);
+  }
+  if (starts.lines.size() > 1) {
+    const int second = starts.lines[1];  // 0-based
+    std::size_t at = 0;
+    for (int k = 0; k < second && at != std::string::npos; ++k) {
+      at = text.find('\n', at);
+      if (at != std::string::npos) ++at;
+    }
+    if (at != std::string::npos && text.compare(at, 3, "---") == 0) {
+      throw Error(source + ": holds more than one YAML document; " + what + " holds one");
+    }
+    throw Error(atLine(source, second + 1) +
+                ": YAML syntax: text the parser cannot place in the document (a stray ',', ']' "
+                "or '}', or a wrong indentation?)");
+  }
+  if (starts.lines.empty()) return YAML::Node();
+  std::vector<YAML::Node> documents{YAML::Load(text)};
+  std::vector<YAML::Node> pending{documents.front()};  // no recursion: depth is the file's
+  while (!pending.empty()) {
+    const YAML::Node node = pending.back();
+    pending.pop_back();
+    if (node.IsScalar() && node.Mark().pos >= 0) {
+      const auto begin = static_cast<std::size_t>(node.Mark().pos);
+      const char quote = begin < text.size() ? text[begin] : ' ';
+      if ((quote == '"' || quote == '\'') && !closesOnItsLine(text, begin)) {
+        throw Error(atLine(source, lineOf(node)) + ": a quoted value runs over several lines: a " +
+                    "missing closing quote (" + std::string(1, quote) + ")?");
+      }
+    } else if (node.IsSequence()) {
+      for (const YAML::Node& item : node) pending.push_back(item);
+    } else if (node.IsMap()) {
+      for (const auto& item : node) {
+        pending.push_back(item.first);
+        pending.push_back(item.second);
+      }
+    }
+  }
+  return documents.front();
 }
 
 /// \brief A number with its unit, "155 mm", as written (not converted).

@@ -9,11 +9,13 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/provenance.h"
 
 namespace mcws::io {
 
@@ -24,17 +26,21 @@ enum class PcdFormat { kBinary, kAscii };
 ///
 /// The header is PCL's own (pcl::PCDWriter::generateHeader), and binary data is packed exactly as
 /// pcl::PCDWriter::writeBinary packs it, so the file is byte for byte what
-/// pcl::io::savePCDFileBinary would write for the same cloud. The file is written under a temporary
-/// name and appears only on commit() (see AtomicFile).
+/// pcl::io::savePCDFileBinary would write for the same cloud, but for the one header comment line
+/// that records the robot the cloud comes from (CloudProvenance) when there is one. The file is
+/// written under a temporary name and appears only on commit() (see AtomicFile).
 template <typename PointT>
 class PcdStreamWriter {
  public:
   /// \param path target file.
   /// \param points number of points that will be written (at most INT_MAX, as in PCL).
   /// \param format binary (default) or ASCII.
+  /// \param provenance the robot the points come from, recorded as a header comment after PCL's
+  ///   first line; without it, that of the ScopedProvenance alive on this thread, if any.
   /// \throws mcws::Error when the path cannot be written or `points` is too large.
   PcdStreamWriter(const std::string& path, std::size_t points,
-                  PcdFormat format = PcdFormat::kBinary)
+                  PcdFormat format = PcdFormat::kBinary,
+                  const std::optional<CloudProvenance>& provenance = std::nullopt)
       : file_(path), declared_(points), format_(format) {
     if (points > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
       throw Error("cannot write '" + path + "': a PCD file holds at most 2^31-1 points");
@@ -54,9 +60,10 @@ class PcdStreamWriter {
       record_size_ += size;
     }
     const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
-    const std::string header =
-        pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
-        (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
+    std::string header = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
+                         (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
+    const std::optional<CloudProvenance> robot = provenance ? provenance : scopedProvenance();
+    if (robot) header.insert(header.find('\n') + 1, provenanceComment(*robot) + "\n");
     file_.write(header.data(), header.size());
   }
 

@@ -168,16 +168,7 @@ class RobotYamlReader : YamlReader {
 }  // namespace
 
 Robot parseRobotYaml(const std::string& text, const std::string& source) {
-  std::vector<YAML::Node> documents;
-  try {
-    documents = YAML::LoadAll(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
-  if (documents.size() > 1)
-    throw Error(source + ": holds " + std::to_string(documents.size()) +
-                " YAML documents; a robot file holds one");
-  return RobotYamlReader(source).read(documents.empty() ? YAML::Node() : documents.front());
+  return RobotYamlReader(source).read(loadYamlDocument(text, source, "a robot file"));
 }
 
 Robot loadRobot(const std::string& path) {

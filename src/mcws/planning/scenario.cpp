@@ -370,13 +370,7 @@ double parseQuantity(const std::string& text, char want, LengthUnit length_unit)
 }
 
 Scenario parseScenario(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(source + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
-  return ScenarioReader(source).read(root);
+  return ScenarioReader(source).read(loadYamlDocument(text, source, "a scenario file"));
 }
 
 Scenario loadScenario(const std::string& path) {

@@ -1,7 +1,9 @@
 #include "mcws/trajectory/trajectory_io.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -36,7 +38,9 @@ Eigen::MatrixXd toolPositions(const Robot& robot, const SampledTrajectory& tr) {
   return xyz;
 }
 
-std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& tr) {
+void writeTrajectoryCsv(const Robot& robot, const SampledTrajectory& tr,
+                        const std::function<void(const std::string&, std::size_t)>& sink,
+                        std::size_t rows) {
   const Eigen::MatrixXd xyz = toolPositions(robot, tr);
   std::string out = "t";
   for (const char* suffix : {"", "_vel", "_acc"}) {
@@ -48,16 +52,32 @@ std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& tr) {
     std::snprintf(number, sizeof number, ",%.12g", value);
     out += number;
   };
-  for (int i = 0; i < tr.size(); ++i) {
-    std::snprintf(number, sizeof number, "%.12g", tr.t[i]);
-    out += number;
-    for (const Eigen::MatrixXd* m : {&tr.q, &tr.qd, &tr.qdd}) {
-      for (Eigen::Index j = 0; j < m->cols(); ++j) put((*m)(i, j));
+  const auto n = static_cast<std::size_t>(tr.size());
+  rows = std::max<std::size_t>(rows, 1);
+  std::size_t begin = 0;
+  do {  // once with the header alone for no samples
+    const std::size_t end = begin + std::min(rows, n - begin);
+    for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
+      std::snprintf(number, sizeof number, "%.12g", tr.t[i]);
+      out += number;
+      for (const Eigen::MatrixXd* m : {&tr.q, &tr.qd, &tr.qdd}) {
+        for (Eigen::Index j = 0; j < m->cols(); ++j) put((*m)(i, j));
+      }
+      for (int k = 0; k < 3; ++k) put(xyz(i, k));
+      out += '\n';
     }
-    for (int k = 0; k < 3; ++k) put(xyz(i, k));
-    out += '\n';
-  }
-  return out;
+    sink(out, end);
+    out.clear();
+    begin = end;
+  } while (begin < n);
+}
+
+std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& tr) {
+  std::string csv;
+  writeTrajectoryCsv(
+      robot, tr, [&](const std::string& piece, std::size_t) { csv += piece; },
+      std::numeric_limits<std::size_t>::max());
+  return csv;
 }
 
 std::string renderTrajectoryPng(const Robot& robot, const SampledTrajectory& tr,

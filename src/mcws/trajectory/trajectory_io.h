@@ -3,6 +3,8 @@
 /// \brief Sampled trajectories as CSV text and as a PNG picture (gnuplot).
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <functional>
 #include <string>
 
 #include "mcws/kinematics/robot.h"
@@ -21,6 +23,14 @@ Eigen::MatrixXd toolPositions(const Robot& robot, const SampledTrajectory& traje
 /// position `x`, `y`, `z` [length unit]. Numbers with 12 significant digits.
 /// \throws mcws::Error when the trajectory does not fit the robot.
 std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& trajectory);
+
+/// \brief The text of trajectoryCsv() in pieces of at most `rows` samples (the header line goes
+/// with the first), each handed to `sink` with the number of samples written so far: a file of a
+/// million samples (300 MB) is written without holding it as one string.
+/// \throws mcws::Error when the trajectory does not fit the robot, and what `sink` throws.
+void writeTrajectoryCsv(const Robot& robot, const SampledTrajectory& trajectory,
+                        const std::function<void(const std::string& piece, std::size_t done)>& sink,
+                        std::size_t rows = 65536);
 
 /// \brief Renders the trajectory as a PNG with gnuplot: joint positions, velocities and
 /// accelerations over time (as Fig. 5 of Liu, Han, Xu & Li 2021) and the tool path in 3-D (as its

@@ -1,12 +1,20 @@
 #pragma once
 /// \file
 /// \brief What the boundary filters share: the plane a 2-D method works in, the projection of a
-/// cloud onto it, and the mean point spacing of a cloud.
+/// cloud onto it, and the mean point spacing of a cloud; what a cloud must be to have a boundary
+/// in a plane or in 3-D, and the lengths a parameter may take for it.
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace mcws {
 
@@ -83,5 +91,93 @@ void splitByBoundary(const pcl::Indices& input, const pcl::Indices& source, IsBo
 /// about 8 points each. For n points uniform in a region of area A this is sqrt(A / n).
 /// \return 0 for fewer than 2 points or a cloud of identical points.
 double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensions);
+
+/// \brief An extent below this share of a cloud's largest extent is float rounding of a flat
+/// cloud, not a dimension (floats resolve 6e-8; cloud_io's requireVolume uses the same share).
+constexpr double kFlatExtentShare = 1e-6;
+
+/// \brief What a boundary or a measure in `plane` sees of a cloud, for the checks below.
+struct CloudSummary {
+  BoundaryPlane plane{BoundaryPlane::k3D};
+  std::size_t points{0};    ///< every point
+  std::size_t finite{0};    ///< points with finite x, y and z
+  std::size_t distinct{0};  ///< distinct positions of the finite points in the plane (or 3-D)
+  Eigen::Vector3d extent{Eigen::Vector3d::Zero()};  ///< x, y, z extent of the finite points [unit]
+  double largest{0.0};  ///< largest extent along the plane's two axes (3-D: all three) [unit]
+  double spacing{0.0};  ///< meanSpacing() of the distinct positions [unit]; 0 for fewer than 2
+};
+
+/// \brief CloudSummary of the finite points of a cloud in input coordinates (the projection
+/// to `plane` is done here). The positions and spacing are those OrthantBoundary computes.
+CloudSummary summarizeFinitePoints(const pcl::PointCloud<pcl::PointXYZ>& finite,
+                                   BoundaryPlane plane, std::size_t points);
+
+/// \brief CloudSummary of any cloud with x, y, z (non-finite points counted and skipped).
+template <typename PointT>
+CloudSummary summarizeCloud(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane) {
+  pcl::Indices all(cloud.size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  pcl::PointCloud<pcl::PointXYZ> finite;
+  projectToPlane(cloud, all, BoundaryPlane::k3D, finite, source);
+  return summarizeFinitePoints(finite, plane, cloud.size());
+}
+
+/// \brief The fewest distinct finite positions a region has: 3 in a plane (a triangle), 4 in
+/// 3-D (a tetrahedron). With fewer, a cloud has no boundary, area or volume.
+inline std::size_t minimumRegionPoints(BoundaryPlane plane) {
+  return static_cast<std::size_t>(boundaryDimensions(plane)) + 1;
+}
+
+/// \brief Checks that a cloud can be a region in its plane (or 3-D): at least
+/// minimumRegionPoints() distinct finite positions there, and in a plane, a cloud that extends
+/// along two axes (one that is flat in one of the plane's axes but lies in another plane is for
+/// requirePlaneFits() to name). The same rule for 2-D and 3-D, so that a single point, copies of
+/// one point or an all-NaN cloud fail alike.
+/// \param what names the cloud in the message (its file).
+/// \throws mcws::Error "a.pcd: 2 distinct finite points in the xy plane (of 5 points, 3 not
+///   finite); a region there needs at least 3" or "a.pcd: the points extend along x only (a
+///   line): no region in the xy plane".
+void requireRegionPoints(const CloudSummary& cloud, const std::string& what);
+
+/// \brief Checks that a cloud that extends along two or three axes is not flat (extent below
+/// kFlatExtentShare of the largest) along one of the plane's two axes. Nothing to check in 3-D
+/// (a flat cloud has no volume: cloud_io's requireVolume). A genuinely 3-D cloud is projected to
+/// any plane and passes.
+/// \throws mcws::Error "a.pcd: the cloud is flat in y (extent 0, its largest 2), so in the xy
+///   plane every point is on its boundary and the area is 0; it lies in the xz plane".
+void requirePlaneFits(const CloudSummary& cloud, const std::string& what);
+
+/// \brief The lengths a parameter of a boundary method or of the column area may take for a
+/// cloud [unit]: from a tenth of its mean spacing (below, a point's neighbourhood, cell or column
+/// holds no other point) to its largest extent in the plane (beyond, one neighbourhood, cell or
+/// column holds the whole cloud).
+struct LengthRange {
+  double min{0.0};
+  double max{0.0};
+};
+LengthRange parameterLengths(const CloudSummary& cloud);
+constexpr double kShortestLengthSpacings = 0.1;  ///< LengthRange::min in mean spacings
+
+/// \brief The index of the first point of `subset` that is not a finite point of `cloud` (the
+/// same float x, y and z; -0 equals 0), or none: every point of a boundary written by
+/// mcws_boundary is a copy of a point of its cloud.
+template <typename PointA, typename PointB>
+std::optional<std::size_t> firstPointNotIn(const pcl::PointCloud<PointA>& subset,
+                                           const pcl::PointCloud<PointB>& cloud) {
+  using Key = std::array<float, 3>;
+  auto key = [](const auto& p) { return Key{p.x + 0.0f, p.y + 0.0f, p.z + 0.0f}; };  // -0 -> 0
+  std::vector<Key> keys;
+  keys.reserve(cloud.size());
+  for (const auto& p : cloud) {
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) keys.push_back(key(p));
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t i = 0; i < subset.size(); ++i) {
+    const auto& p = subset[i];
+    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    if (!finite || !std::binary_search(keys.begin(), keys.end(), key(p))) return i;
+  }
+  return std::nullopt;
+}
 
 }  // namespace mcws

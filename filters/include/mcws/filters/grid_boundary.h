@@ -11,6 +11,11 @@
 
 namespace mcws {
 
+/// \brief Most cells (grid) or columns (extremum) the baselines lay along an axis: a cell's
+/// coordinate is packed in 21 bits, less the empty cells on either side. A fixed cell size below
+/// extent / this is an error.
+constexpr double kMaxBaselineCellsPerAxis = 2097148.0;
+
 /// \brief Keeps one point per boundary cell of a grid laid over the cloud (negative mode: every
 /// other point).
 ///

@@ -17,7 +17,7 @@ namespace mcws {
 namespace detail {
 
 /// Cells per axis a packed key holds: 21 bits (0 .. 2^21 - 1), less the empty cells on either side.
-constexpr double kMaxCellsPerAxis = 2097148.0;
+constexpr double kMaxCellsPerAxis = kMaxBaselineCellsPerAxis;
 
 /// Cell coordinates packed 21 bits per axis (x high, z low); coordinates start at 1 so that the
 /// neighbours of every occupied cell have a key.

@@ -1,0 +1,68 @@
+// The one message app::run() prints for what a tool's body throws (issue 17 section 4): running
+// out of memory names what was being read and the flags given, instead of a bare std::bad_alloc;
+// control bytes from a file or flag are escaped, so a message stays one line.
+#include <gtest/gtest.h>
+
+#include <new>
+
+#include "common/app.h"
+#include "common/pose_args.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+TEST(AppRun, OutOfMemoryNamesTheActivityAndTheFlags) {
+  app::CommandLine cli("t --input FILE", "test");
+  cli.addValue("input", "a cloud");
+  const char* argv[] = {"t", "--input", "big.pcd"};
+  ASSERT_TRUE(cli.parse(3, const_cast<char**>(argv)));
+  ::testing::internal::CaptureStderr();
+  const int code = app::run("mcws_test", [] {
+    const app::Activity reading("reading 'big.pcd'");
+    throw std::bad_alloc();
+    return 0;
+  });
+  EXPECT_EQ(code, app::kExitFailure);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(),
+            "mcws_test: out of memory while reading 'big.pcd' (given: --input big.pcd): a file or "
+            "flag asks for more than this machine has\n");
+  EXPECT_EQ(app::Activity::takeFailed(), "");  // unwound, and forgotten once reported
+}
+
+TEST(AppRun, ControlBytesInAMessageAreEscaped) {
+  ::testing::internal::CaptureStderr();
+  const int code = app::run("mcws_test", []() -> int {
+    throw Error(
+        "a\nb\x1b[31m\x7f"
+        "z");
+  });
+  EXPECT_EQ(code, app::kExitFailure);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "mcws_test: a\\x0ab\\x1b[31m\\x7fz\n");
+  EXPECT_EQ(app::escapeControlBytes("caf\xc3\xa9\t"), "caf\xc3\xa9\\x09");  // UTF-8 kept
+}
+
+TEST(AppFlags, RealNumbersAreDecimalOnlyAndListsHaveNoEmptyItems) {
+  EXPECT_EQ(app::parseNumber("-1.5e3", "x"), -1500.0);
+  EXPECT_EQ(app::parseNumber("+.5", "x"), 0.5);
+  for (const char* bad : {"0x10", "inf", "-infinity", "nan", " 5", "5 ", "1e400", "", "1,5"}) {
+    EXPECT_EQ(test::errorOf([&] { app::parseNumber(bad, "x"); }),
+              "--x: '" + std::string(bad) + "' is not a finite number");
+  }
+  EXPECT_EQ(app::parseNumberList("0, 1 2,3", "q"), Eigen::Vector4d(0, 1, 2, 3));
+  EXPECT_EQ(test::errorOf([] { app::parseNumberList("0,,0,0,30", "q"); }),
+            "--q: no number between commas in '0,,0,0,30'");
+  EXPECT_EQ(test::errorOf([] { app::parseNumberList(",1", "q"); }),
+            "--q: no number between commas in ',1'");
+  EXPECT_EQ(test::errorOf([] { app::parseNumberList("1,2,", "q"); }),
+            "--q: no number after the last comma in '1,2,'");
+}
+
+TEST(AppFlags, PoseValuesBeyondWhatRobotFilesHoldAreRefused) {
+  EXPECT_EQ(test::errorOf([] { app::parsePose("1e300 0 0 0 0 0", "pose"); }),
+            "--pose: value 1 (1e+300) is out of range (at most 1e9 in size, as in robot files)");
+  EXPECT_NO_THROW(app::parsePose("1e9 0 0 0 0 0", "pose"));
+}
+
+}  // namespace
+}  // namespace mcws
