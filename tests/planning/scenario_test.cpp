@@ -622,6 +622,13 @@ TEST_F(Scenario, RobotFileThatDoesNotExist) {
       {"robot: 'nowhere.yaml' does not exist (looked for " + dir_.file("nowhere.yaml") + ")"});
 }
 
+TEST_F(Scenario, RobotFileNameTooLongForTheFileSystem) {
+  // Found by the scenario fuzzer: std::filesystem::exists threw (ENAMETOOLONG) past the loader.
+  const std::string name(5000, 'r');
+  expectError(replaced(kScenario, "robot: arm.yaml", "robot: " + name), 2,
+              {"robot: '" + name + "' cannot be looked up: File name too long"});
+}
+
 TEST_F(Scenario, RobotFileWithoutCollisionSection) {
   std::string robot = kRobot;
   robot.erase(robot.find("collision:"));

@@ -325,7 +325,7 @@ std::pair<double, double> firstDiscWindow(const std::vector<TimelineRow>& rows) 
 std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) {
+  if (ec || !fs::is_directory(dir, ec)) {
     throw Error("cannot create the directory '" + dir + "'" +
                 (ec ? ": " + ec.message() : ": it is not a directory"));
   }

@@ -71,9 +71,11 @@ class ScenarioReader : YamlReader {
     const std::string robot_file = scalar(robot_node, "robot");
     std::filesystem::path path(robot_file);
     if (path.is_relative()) path = std::filesystem::path(source()).parent_path() / path;
-    if (!std::filesystem::exists(path)) {
-      fail(robot_node,
-           "robot: '" + robot_file + "' does not exist (looked for " + path.string() + ")");
+    std::error_code ec;  // a name too long for the file system is an error, not an exception
+    if (!std::filesystem::exists(path, ec)) {
+      fail(robot_node, "robot: '" + robot_file + "' " +
+                           (ec ? "cannot be looked up: " + ec.message()
+                               : "does not exist (looked for " + path.string() + ")"));
     }
     scenario.robot_path = path.string();
     problem.robot = loadRobot(scenario.robot_path);
