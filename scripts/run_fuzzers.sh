@@ -46,7 +46,10 @@ for name in "${names[@]}"; do
       -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/$name/" \
       "$work/$name/corpus" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
-    echo "run_fuzzers: $name: ${runs:-?} inputs in $seconds s, no crash, hang or leak" >&2
+    rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log")
+    corpus=$(find "$work/$name/corpus" -type f | wc -l)
+    echo "run_fuzzers: $name: ${runs:-?} inputs in $seconds s, corpus $corpus files, peak ${rss:-?} MB;" \
+      "no crash, hang or leak" >&2
   else
     failed+=("$name")
     echo "run_fuzzers: $name FAILED; the input is in $work/$name/ (crash-*, timeout-*, leak-*):" >&2
