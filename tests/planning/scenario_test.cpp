@@ -629,6 +629,14 @@ TEST_F(Scenario, RobotFileNameTooLongForTheFileSystem) {
               {"robot: '" + name + "' cannot be looked up: File name too long"});
 }
 
+TEST_F(Scenario, AKeyThatIsAMapOrAList) {
+  // Found by the scenario fuzzer: YAML's "? key" form made the key reading throw past the loader.
+  const std::string text = kScenario;
+  const int next = test::lineCount(text) + 1;  // the line after the scenario's last
+  expectError(text + "? {poses: 101}\n: 1\n", next, {"scenario: a key must be a plain name"});
+  expectError(text + "? [a, b]\n: 1\n", next, {"scenario: a key must be a plain name"});
+}
+
 TEST_F(Scenario, RobotFileWithoutCollisionSection) {
   std::string robot = kRobot;
   robot.erase(robot.find("collision:"));
