@@ -189,13 +189,6 @@ Method methodFromFlags(const app::CommandLine& cli) {
   return orthantMethod(cli, plane);
 }
 
-/// A number in a short form for messages.
-std::string shortNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 /// Usage error unless --flag's value lies in [low, high] ((low, high] with `open_low`), `unit`
 /// and `why` telling what the range is.
 void requireWithin(const app::CommandLine& cli, const char* flag, double low, double high,
@@ -203,8 +196,8 @@ void requireWithin(const app::CommandLine& cli, const char* flag, double low, do
   const double value = app::parseNumber(cli.required(flag), flag);
   if ((open_low ? value > low : value >= low) && value <= high) return;
   throw app::UsageError("--" + std::string(flag) + ": " + cli.required(flag) + " is not in " +
-                        (open_low ? "(" : "[") + shortNumber(low) + ", " + shortNumber(high) +
-                        "] " + unit + " (" + why + ")");
+                        (open_low ? "(" : "[") + app::shortNumber(low) + ", " +
+                        app::shortNumber(high) + "] " + unit + " (" + why + ")");
 }
 
 /// Checks the numeric flags against the cloud they work on (CloudSummary): lengths within
@@ -215,7 +208,7 @@ void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
   const LengthRange length = parameterLengths(cloud);
   const double h = cloud.spacing;  // > 0: requireRegionPoints() passed
   const std::string lengths =
-      "a tenth of the cloud's mean spacing " + shortNumber(h) + " to its extent";
+      "a tenth of the cloud's mean spacing " + app::shortNumber(h) + " to its extent";
   auto value = [&](const char* flag) { return app::parseNumber(cli.required(flag), flag); };
   if (method.name != "orthant") {
     // The grid packs 21 bits per axis: a cell may not be so small that the extent needs more.
@@ -234,8 +227,9 @@ void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
     radius = value("radius");
   }
   if (cli.has("auto-radius")) {
-    requireWithin(cli, "auto-radius", length.min / h, length.max / h, false, "mean spacings",
-                  "the radius c x " + shortNumber(h) + " from a tenth of a spacing to the extent");
+    requireWithin(
+        cli, "auto-radius", length.min / h, length.max / h, false, "mean spacings",
+        "the radius c x " + app::shortNumber(h) + " from a tenth of a spacing to the extent");
     radius = value("auto-radius") * h;  // as the filter computes it
   }
   const auto& filter = static_cast<const Filter&>(*method.filter);
@@ -257,7 +251,7 @@ void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
       const double typical = orthant::typicalOuterRadius(test, h);
       requireWithin(cli, "outer-radius", 1.0, length.max / typical, true,
                     "times each point's radius",
-                    "a factor beyond 1 of the radius, about " + shortNumber(typical) +
+                    "a factor beyond 1 of the radius, about " + app::shortNumber(typical) +
                         ", that keeps it within the cloud's extent");
     }
   }

@@ -103,13 +103,6 @@ Settings readSettings(const app::CommandLine& cli) {
   return s;
 }
 
-/// A number in a short form for messages.
-std::string shortNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 /// The cloud at `path`, checked to be a region in the plane (or 3-D): requireRegionPoints(), and
 /// a --plane that fits it (a usage error).
 app::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
@@ -128,9 +121,10 @@ app::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string
   app::WorkspaceCloud::Ptr boundary = app::loadCloud(path);
   if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
     const auto& p = (*boundary)[*i];
-    throw Error("--boundary " + path + ": point " + std::to_string(*i) + " (" + shortNumber(p.x) +
-                ", " + shortNumber(p.y) + ", " + shortNumber(p.z) + ") is not a point of --input " +
-                input + ": a boundary of another cloud?");
+    throw Error("--boundary " + path + ": point " + std::to_string(*i) + " (" +
+                app::shortNumber(p.x) + ", " + app::shortNumber(p.y) + ", " +
+                app::shortNumber(p.z) + ") is not a point of --input " + input +
+                ": a boundary of another cloud?");
   }
   requireRegionPoints(summarizeCloud(*boundary, plane), path);
   return boundary;
@@ -141,9 +135,9 @@ void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSumm
   const LengthRange length = parameterLengths(cloud);
   if (width == 0.0 || (width >= length.min && width <= length.max)) return;
   throw app::UsageError("--column-width: " + cli.required("column-width") + " is not 0 or in [" +
-                        shortNumber(length.min) + ", " + shortNumber(length.max) +
+                        app::shortNumber(length.min) + ", " + app::shortNumber(length.max) +
                         "] [length unit] (a tenth of the cloud's mean spacing " +
-                        shortNumber(cloud.spacing) + " to its extent)");
+                        app::shortNumber(cloud.spacing) + " to its extent)");
 }
 
 /// The finite points of `cloud` projected onto the plane (3-D: as they are).

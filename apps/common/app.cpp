@@ -130,6 +130,12 @@ std::vector<std::string> CommandLine::all(const std::string& flag) const {
   return has(flag) ? values_[flag].as<std::vector<std::string>>() : std::vector<std::string>{};
 }
 
+std::string shortNumber(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 double parseNumber(const std::string& text, const std::string& flag) {
   const char* begin = text.c_str();
   char* end = nullptr;

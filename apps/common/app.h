@@ -111,6 +111,9 @@ class CommandLine {
   po::variables_map values_;
 };
 
+/// \brief A number in a short form for messages: 6 significant digits, no trailing zeros
+/// (0.102375, 39, 1e+30).
+std::string shortNumber(double value);
 /// \brief A real number; "0.5x", "", "nan" are errors naming the flag.
 double parseNumber(const std::string& text, const std::string& flag);
 /// \brief A whole number in [minimum, maximum]; "10x", "-3", "1e3" are errors naming the flag.

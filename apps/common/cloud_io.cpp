@@ -95,8 +95,8 @@ std::string printable(const std::string& text) {
   return text.size() > 40 ? out + "..." : out;
 }
 
-/// A number in a short form for messages (3e+38).
-std::string shortNumber(double value) {
+/// A number to three significant digits for messages (3e+38).
+std::string threeDigits(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", value);
   return text;
@@ -501,14 +501,14 @@ void requireRepresentable(const WorkspaceCloud& cloud, const std::string& path) 
   }
   if (largest > kMaxCoordinate) {
     throw Error(
-        path + ": coordinates up to " + shortNumber(largest) +
-        " are beyond what the geometry can represent (|x| <= " + shortNumber(kMaxCoordinate) + ")");
+        path + ": coordinates up to " + threeDigits(largest) +
+        " are beyond what the geometry can represent (|x| <= " + threeDigits(kMaxCoordinate) + ")");
   }
   const float extent = (max - min).maxCoeff();
   if (extent > 0.0f && extent < kMinExtent) {
-    throw Error(path + ": the points span only " + shortNumber(extent) +
+    throw Error(path + ": the points span only " + threeDigits(extent) +
                 ", too little for the geometry to resolve (an extent >= " +
-                shortNumber(kMinExtent) + ", or all points at one place)");
+                threeDigits(kMinExtent) + ", or all points at one place)");
   }
 }
 
