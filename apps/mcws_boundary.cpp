@@ -200,13 +200,29 @@ void requireWithin(const app::CommandLine& cli, const char* flag, double low, do
                         app::shortNumber(high) + "] " + unit + " (" + why + ")");
 }
 
+/// Whether a flag given has a range in the cloud's mean spacings (checkFlagsAgainstCloud), so
+/// that the cloud is summarised with its spacing, a pass over every point the default run skips.
+bool needsSpacing(const app::CommandLine& cli) {
+  for (const char* flag : {"cell", "gap", "radius", "auto-radius", "outer-radius"}) {
+    if (cli.has(flag)) return true;
+  }
+  return false;
+}
+
 /// Checks the numeric flags against the cloud they work on (CloudSummary): lengths within
 /// parameterLengths(), counts below the number of points, an outer radius beyond the radius. A
 /// value the filter would reject is a usage error naming its flag, never a filter's error.
 void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
                             const CloudSummary& cloud) {
+  if (cli.has("adaptive")) {
+    requireWithin(cli, "adaptive", 1.0, std::min<double>(1000.0, cloud.distinct - 1.0), false,
+                  "neighbours",
+                  "fewer than the cloud's " + std::to_string(cloud.distinct) +
+                      " distinct points, at most 1000");
+  }
+  if (!needsSpacing(cli)) return;
   const LengthRange length = parameterLengths(cloud);
-  const double h = cloud.spacing;  // > 0: requireRegionPoints() passed
+  const double h = *cloud.spacing;  // > 0: requireRegionPoints() passed
   const std::string lengths =
       "a tenth of the cloud's mean spacing " + app::shortNumber(h) + " to its extent";
   auto value = [&](const char* flag) { return app::parseNumber(cli.required(flag), flag); };
@@ -233,12 +249,6 @@ void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
     radius = value("auto-radius") * h;  // as the filter computes it
   }
   const auto& filter = static_cast<const Filter&>(*method.filter);
-  if (cli.has("adaptive")) {
-    requireWithin(cli, "adaptive", 1.0, std::min<double>(1000.0, cloud.distinct - 1.0), false,
-                  "neighbours",
-                  "fewer than the cloud's " + std::to_string(cloud.distinct) +
-                      " distinct points, at most 1000");
-  }
   if (cli.has("outer-radius")) {
     if (radius > 0.0) {
       requireWithin(cli, "outer-radius", radius, length.max, true, "[length unit]",
@@ -299,7 +309,8 @@ int main(int argc, char** argv) {
 
     app::Progress clock("mcws_boundary", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
-    const CloudSummary region = summarizeCloud(*cloud, method.plane);
+    const CloudSummary region = summarizeCloud(
+        *cloud, method.plane, needsSpacing(cli) ? SummaryDetail::kSpacing : SummaryDetail::kCounts);
     requireRegionPoints(region, input);
     if (method.plane == BoundaryPlane::k3D) app::requireVolume(*cloud, input);
     app::asUsageError("plane", [&] { requirePlaneFits(region, input); });

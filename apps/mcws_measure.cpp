@@ -106,9 +106,9 @@ Settings readSettings(const app::CommandLine& cli) {
 /// The cloud at `path`, checked to be a region in the plane (or 3-D): requireRegionPoints(), and
 /// a --plane that fits it (a usage error).
 app::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
-                                    CloudSummary& summary) {
+                                    SummaryDetail detail, CloudSummary& summary) {
   app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
-  summary = summarizeCloud(*cloud, plane);
+  summary = summarizeCloud(*cloud, plane, detail);
   requireRegionPoints(summary, path);
   if (plane == BoundaryPlane::k3D) app::requireVolume(*cloud, path);
   app::asUsageError("plane", [&] { requirePlaneFits(summary, path); });
@@ -132,12 +132,13 @@ app::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string
 
 /// --column-width, 0 or between a tenth of the cloud's mean spacing and its extent.
 void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSummary& cloud) {
+  if (width == 0.0) return;
   const LengthRange length = parameterLengths(cloud);
-  if (width == 0.0 || (width >= length.min && width <= length.max)) return;
+  if (width >= length.min && width <= length.max) return;
   throw app::UsageError("--column-width: " + cli.required("column-width") + " is not 0 or in [" +
                         app::shortNumber(length.min) + ", " + app::shortNumber(length.max) +
                         "] [length unit] (a tenth of the cloud's mean spacing " +
-                        app::shortNumber(cloud.spacing) + " to its extent)");
+                        app::shortNumber(*cloud.spacing) + " to its extent)");
 }
 
 /// The finite points of `cloud` projected onto the plane (3-D: as they are).
@@ -179,7 +180,10 @@ int main(int argc, char** argv) {
     app::Progress clock("mcws_measure", "points");
     const char* key = boundaryDimensions(settings.plane) == 2 ? "area" : "volume";
     CloudSummary summary;
-    app::WorkspaceCloud::Ptr cloud = loadRegion(settings.input, settings.plane, summary);
+    // The spacing only for a --column-width to check (a pass over every point).
+    app::WorkspaceCloud::Ptr cloud = loadRegion(
+        settings.input, settings.plane,
+        settings.column_width > 0.0 ? SummaryDetail::kSpacing : SummaryDetail::kCounts, summary);
     checkColumnWidth(cli, settings.column_width, summary);
     std::optional<ColumnArea> column;
     if (cli.has("boundary")) {

@@ -15,6 +15,17 @@
 
 namespace mcws {
 
+std::array<int, 2> planeAxes(BoundaryPlane plane) {
+  switch (plane) {
+    case BoundaryPlane::kXZ:
+      return {0, 2};
+    case BoundaryPlane::kYZ:
+      return {1, 2};
+    default:
+      return {0, 1};
+  }
+}
+
 BoundaryPlane parseBoundaryPlane(const std::string& name) {
   if (name == "xy") return BoundaryPlane::kXY;
   if (name == "xz") return BoundaryPlane::kXZ;
@@ -101,18 +112,6 @@ std::string shortNumber(double value) {
   return text;
 }
 
-/// The input axes (0 x, 1 y, 2 z) a plane's first and second coordinates come from.
-std::array<int, 2> planeAxes(BoundaryPlane plane) {
-  switch (plane) {
-    case BoundaryPlane::kXZ:
-      return {0, 2};
-    case BoundaryPlane::kYZ:
-      return {1, 2};
-    default:
-      return {0, 1};
-  }
-}
-
 /// Whether the cloud extends along axis k: more than kFlatExtentShare of its largest extent.
 bool extendsAlong(const CloudSummary& cloud, int k) {
   return cloud.extent[k] > kFlatExtentShare * cloud.extent.maxCoeff();
@@ -122,35 +121,11 @@ constexpr const char* kAxisName[] = {"x", "y", "z"};
 
 }  // namespace
 
-CloudSummary summarizeFinitePoints(const pcl::PointCloud<pcl::PointXYZ>& finite,
-                                   BoundaryPlane plane, std::size_t points) {
-  CloudSummary s;
-  s.plane = plane;
-  s.points = points;
-  s.finite = finite.size();
-  if (finite.empty()) return s;
-  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const auto& p : finite) {
-    const Eigen::Array3d q(p.x, p.y, p.z);
-    lo = lo.min(q);
-    hi = hi.max(q);
-  }
-  s.extent = (hi - lo).matrix();
-  if (plane == BoundaryPlane::k3D) {
-    s.largest = s.extent.maxCoeff();
-  } else {
-    const std::array<int, 2> axes = planeAxes(plane);
-    s.largest = std::max(s.extent[axes[0]], s.extent[axes[1]]);
-  }
-  pcl::PointCloud<pcl::PointXYZ> projected;
-  pcl::Indices all(finite.size()), source;
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  projectToPlane(finite, all, plane, projected, source);
-  std::vector<pcl::index_t> position_of;
-  const pcl::PointCloud<pcl::PointXYZ> positions = uniquePositions(projected, position_of);
-  s.distinct = positions.size();
-  s.spacing = meanSpacing(positions, boundaryDimensions(plane));
-  return s;
+void DistinctCounter::add(float x, float y, float z) {
+  if (full()) return;
+  const std::array<float, 3> key{x + 0.0f, y + 0.0f, z + 0.0f};  // -0 + 0 = +0
+  const auto at = std::lower_bound(seen_.begin(), seen_.end(), key);
+  if (at == seen_.end() || *at != key) seen_.insert(at, key);
 }
 
 void requireRegionPoints(const CloudSummary& cloud, const std::string& what) {
@@ -199,7 +174,8 @@ void requirePlaneFits(const CloudSummary& cloud, const std::string& what) {
 }
 
 LengthRange parameterLengths(const CloudSummary& cloud) {
-  return {kShortestLengthSpacings * cloud.spacing, cloud.largest};
+  if (!cloud.spacing) throw Error("parameterLengths: the cloud was summarised without its spacing");
+  return {kShortestLengthSpacings * *cloud.spacing, cloud.largest};
 }
 
 }  // namespace mcws

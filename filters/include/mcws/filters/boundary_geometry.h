@@ -12,9 +12,12 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "mcws/points/unique_positions.h"
 
 namespace mcws {
 
@@ -27,6 +30,9 @@ BoundaryPlane parseBoundaryPlane(const std::string& name);
 const char* boundaryPlaneName(BoundaryPlane plane);
 /// \brief 2 for a plane, 3 for k3D.
 inline int boundaryDimensions(BoundaryPlane plane) { return plane == BoundaryPlane::k3D ? 3 : 2; }
+/// \brief The input axes (0 x, 1 y, 2 z) a plane's first and second coordinates come from (k3D:
+/// x and y).
+std::array<int, 2> planeAxes(BoundaryPlane plane);
 
 /// \brief The points' coordinates in the method's space: for a plane (a, b) its two coordinates
 /// go to x and y and z is 0 (xz: x -> x, z -> y); for k3D a copy. Non-finite points are skipped;
@@ -96,30 +102,83 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
 /// cloud, not a dimension (floats resolve 6e-8; cloud_io's requireVolume uses the same share).
 constexpr double kFlatExtentShare = 1e-6;
 
+/// \brief Distinct positions are counted up to this many (CloudSummary::distinct): enough for
+/// every check (a region needs 3 or 4, an adaptive k at most 1000 below the count), and counting
+/// stops there, so a large cloud is summarised in one pass without hashing every point.
+constexpr std::size_t kDistinctCounted = 1001;
+
 /// \brief What a boundary or a measure in `plane` sees of a cloud, for the checks below.
 struct CloudSummary {
   BoundaryPlane plane{BoundaryPlane::k3D};
   std::size_t points{0};    ///< every point
   std::size_t finite{0};    ///< points with finite x, y and z
-  std::size_t distinct{0};  ///< distinct positions of the finite points in the plane (or 3-D)
+  std::size_t distinct{0};  ///< distinct positions of the finite points in the plane (or 3-D),
+                            ///< counted up to kDistinctCounted
   Eigen::Vector3d extent{Eigen::Vector3d::Zero()};  ///< x, y, z extent of the finite points [unit]
   double largest{0.0};  ///< largest extent along the plane's two axes (3-D: all three) [unit]
-  double spacing{0.0};  ///< meanSpacing() of the distinct positions [unit]; 0 for fewer than 2
+  /// meanSpacing() of the distinct positions [unit] (0 for fewer than 2), the one OrthantBoundary
+  /// computes; only when asked for (SummaryDetail::kSpacing): it costs a pass over every point.
+  std::optional<double> spacing;
 };
 
-/// \brief CloudSummary of the finite points of a cloud in input coordinates (the projection
-/// to `plane` is done here). The positions and spacing are those OrthantBoundary computes.
-CloudSummary summarizeFinitePoints(const pcl::PointCloud<pcl::PointXYZ>& finite,
-                                   BoundaryPlane plane, std::size_t points);
+/// \brief How much summarizeCloud() works out: the counts and extents (one pass that stops
+/// hashing positions at kDistinctCounted), or the mean spacing too.
+enum class SummaryDetail { kCounts, kSpacing };
+
+/// \brief Counts distinct positions up to kDistinctCounted (-0 and +0 are one position).
+class DistinctCounter {
+ public:
+  /// \brief Counts (x, y, z) unless kDistinctCounted are counted already.
+  void add(float x, float y, float z);
+  bool full() const { return seen_.size() >= kDistinctCounted; }
+  std::size_t count() const { return seen_.size(); }
+
+ private:
+  std::vector<std::array<float, 3>> seen_;  // sorted
+};
+
+/// \brief The mean spacing of the finite points of `cloud` in `plane`: meanSpacing() of their
+/// distinct positions there, as OrthantBoundary computes it.
+template <typename PointT>
+double planeSpacing(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane) {
+  pcl::Indices all(cloud.size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  pcl::PointCloud<pcl::PointXYZ> projected;
+  projectToPlane(cloud, all, plane, projected, source);
+  std::vector<pcl::index_t> position_of;
+  return meanSpacing(uniquePositions(projected, position_of), boundaryDimensions(plane));
+}
 
 /// \brief CloudSummary of any cloud with x, y, z (non-finite points counted and skipped).
 template <typename PointT>
-CloudSummary summarizeCloud(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane) {
-  pcl::Indices all(cloud.size()), source;
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  pcl::PointCloud<pcl::PointXYZ> finite;
-  projectToPlane(cloud, all, BoundaryPlane::k3D, finite, source);
-  return summarizeFinitePoints(finite, plane, cloud.size());
+CloudSummary summarizeCloud(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane,
+                            SummaryDetail detail = SummaryDetail::kCounts) {
+  CloudSummary s;
+  s.plane = plane;
+  s.points = cloud.size();
+  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  const std::array<int, 2> axes = planeAxes(plane);
+  DistinctCounter distinct;
+  for (const PointT& p : cloud) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+    ++s.finite;
+    const Eigen::Array3d q(p.x, p.y, p.z);
+    lo = lo.min(q);
+    hi = hi.max(q);
+    if (distinct.full()) continue;
+    if (plane == BoundaryPlane::k3D) {
+      distinct.add(p.x, p.y, p.z);
+    } else {
+      distinct.add(p.data[axes[0]], p.data[axes[1]], 0.0f);
+    }
+  }
+  s.distinct = distinct.count();
+  if (s.finite == 0) return s;
+  s.extent = (hi - lo).matrix();
+  s.largest = plane == BoundaryPlane::k3D ? s.extent.maxCoeff()
+                                          : std::max(s.extent[axes[0]], s.extent[axes[1]]);
+  if (detail == SummaryDetail::kSpacing) s.spacing = planeSpacing(cloud, plane);
+  return s;
 }
 
 /// \brief The fewest distinct finite positions a region has: 3 in a plane (a triangle), 4 in
@@ -148,9 +207,9 @@ void requireRegionPoints(const CloudSummary& cloud, const std::string& what);
 void requirePlaneFits(const CloudSummary& cloud, const std::string& what);
 
 /// \brief The lengths a parameter of a boundary method or of the column area may take for a
-/// cloud [unit]: from a tenth of its mean spacing (below, a point's neighbourhood, cell or column
-/// holds no other point) to its largest extent in the plane (beyond, one neighbourhood, cell or
-/// column holds the whole cloud).
+/// cloud summarised with its spacing (SummaryDetail::kSpacing) [unit]: from a tenth of its mean
+/// spacing (below, a point's neighbourhood, cell or column holds no other point) to its largest
+/// extent in the plane (beyond, one neighbourhood, cell or column holds the whole cloud).
 struct LengthRange {
   double min{0.0};
   double max{0.0};
