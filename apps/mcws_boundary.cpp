@@ -14,6 +14,7 @@
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
+#include "common/units.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant/cloud_stages.h"
@@ -43,7 +44,10 @@ boundary (exit 1, for 2-D and 3-D alike); with --plane it must extend along both
 axes (a cloud flat in one of them is a --plane error, exit 2, naming the plane it lies in; a 3-D
 cloud is projected). Lengths (--radius, --outer-radius, --cell, --gap) lie between a tenth of the
 cloud's mean spacing and its extent in the plane, --auto-radius c such that c x spacing does,
---adaptive k below the number of distinct points, --hull-depth in [0.1, 10] or 0.)";
+--adaptive k below the number of distinct points, --hull-depth in [0.1, 10] or 0.
+Flags' lengths are in the cloud's unit; --json gives the radius (for an adaptive radius, the
+median of the points' radii) and the mean spacing in the unit the cloud records (or --unit),
+named by "length_unit" and "units".)";
 
 using Filter = OrthantBoundary<WorkspacePoint>;
 
@@ -57,8 +61,21 @@ struct Method {
   std::string name;
   BoundaryPlane plane;
   std::shared_ptr<pcl::FilterIndices<WorkspacePoint>> filter;
-  std::function<nlohmann::json()> parameters;
+  /// The parameters used, lengths in `units`, with their "units".
+  std::function<nlohmann::json(const app::ResultUnits& units)> parameters;
 };
+
+/// JSON of the lengths a method used, in `units`, and their "units" entries.
+nlohmann::json lengths(std::initializer_list<std::pair<const char*, double>> values,
+                       const app::ResultUnits& units) {
+  nlohmann::json out, unit;
+  for (const auto& [key, value] : values) {
+    out[key] = units.length(value);
+    unit[key] = units.lengthName();
+  }
+  out["units"] = unit;
+  return out;
+}
 
 void addFlags(app::CommandLine& cli) {
   cli.addValue("input", "workspace cloud (PCD)");
@@ -87,6 +104,7 @@ void addFlags(app::CommandLine& cli) {
   cli.addSwitch("tree-search",
                 "orthant: search every point in the kd-tree, not the cell grid (same result, "
                 "slower; for comparison)");
+  app::declareUnitFlag(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
@@ -139,9 +157,9 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   }
   boundary->setNumberOfThreads(app::readThreads(cli));
   boundary->setGridSearch(!cli.has("tree-search"));
-  return {"orthant", plane, boundary, [boundary] {
-            return nlohmann::json{{"radius", boundary->usedRadius()},
-                                  {"spacing", boundary->usedSpacing()}};
+  return {"orthant", plane, boundary, [boundary](const app::ResultUnits& units) {
+            return lengths(
+                {{"radius", boundary->usedRadius()}, {"spacing", boundary->usedSpacing()}}, units);
           }};
 }
 
@@ -152,11 +170,12 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(app::parsePositive(cli.required("cell"), "cell"));
-  return {"grid", plane, grid, [grid] {
-            return nlohmann::json{{"cell", grid->usedCellSize()},
-                                  {"spacing", grid->usedSpacing()},
-                                  {"occupied_cells", grid->occupiedCells()},
-                                  {"boundary_cells", grid->boundaryCells()}};
+  return {"grid", plane, grid, [grid](const app::ResultUnits& units) {
+            nlohmann::json out =
+                lengths({{"cell", grid->usedCellSize()}, {"spacing", grid->usedSpacing()}}, units);
+            out["occupied_cells"] = grid->occupiedCells();
+            out["boundary_cells"] = grid->boundaryCells();
+            return out;
           }};
 }
 
@@ -171,11 +190,13 @@ Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   extremum->setPlane(plane);
   if (cli.has("cell")) extremum->setColumnWidth(app::parsePositive(cli.required("cell"), "cell"));
   if (cli.has("gap")) extremum->setGapThreshold(app::parsePositive(cli.required("gap"), "gap"));
-  return {"extremum", plane, extremum, [extremum] {
-            return nlohmann::json{{"cell", extremum->usedColumnWidth()},
-                                  {"gap", extremum->usedGapThreshold()},
-                                  {"spacing", extremum->usedSpacing()},
-                                  {"columns", extremum->columns()}};
+  return {"extremum", plane, extremum, [extremum](const app::ResultUnits& units) {
+            nlohmann::json out = lengths({{"cell", extremum->usedColumnWidth()},
+                                          {"gap", extremum->usedGapThreshold()},
+                                          {"spacing", extremum->usedSpacing()}},
+                                         units);
+            out["columns"] = extremum->columns();
+            return out;
           }};
 }
 
@@ -306,6 +327,7 @@ int main(int argc, char** argv) {
     const std::string input = cli.required("input"), output = cli.required("output");
     const Method method = methodFromFlags(cli);
     checkOutputs(cli);
+    const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
 
     app::Progress clock("mcws_boundary", "points");
     const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
@@ -327,7 +349,9 @@ int main(int argc, char** argv) {
                               {"points", cloud->size()},
                               {"boundary", kept.size()},
                               {"seconds", clock.seconds()}};
-    summary.update(method.parameters());
+    summary.update(method.parameters(units));
+    summary["length_unit"] = units.lengthName();
+    summary["units"]["seconds"] = "s";
     if (cli.has("interior")) summary["interior"] = interior.size();
     if (cli.has("json")) {
       std::cout << summary.dump() << "\n";

@@ -34,7 +34,8 @@ nlohmann::json reportJson(const Robot& robot, std::uint32_t label, std::size_t c
                           const std::vector<PairReport>& shown) {
   nlohmann::json out;
   out["robot"] = robot.name;
-  out["unit"] = unitName(robot.length_unit);
+  out["length_unit"] = unitName(robot.length_unit);
+  out["units"] = {{"pairs.distance", unitName(robot.length_unit)}};
   out["label"] = label;
   out["label_name"] = labelName(label);
   out["pairs_checked"] = checked;

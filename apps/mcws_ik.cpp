@@ -7,6 +7,7 @@
 #include "common/app.h"
 #include "common/flags.h"
 #include "common/pose_args.h"
+#include "common/units.h"
 #include "mcws/kinematics/inverse_kinematics.h"
 
 namespace {
@@ -118,13 +119,16 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       nlohmann::json out;
       out["robot"] = robot.name;
-      out["unit"] = unitName(robot.length_unit);
+      out["length_unit"] = unitName(robot.length_unit);
       out["status"] = ikStatusName(result.status);
       out["q"] = std::vector<double>(result.q.data(), result.q.data() + result.q.size());
       out["iterations"] = result.iterations;
       out["attempts"] = result.attempts;
       out["position_error"] = result.position_error;
       out["orientation_error"] = result.orientation_error;
+      out["units"] = {{"q", app::jointUnits(robot)},
+                      {"position_error", unitName(robot.length_unit)},
+                      {"orientation_error", "rad"}};
       std::cout << out.dump() << "\n";
     } else {
       printSolution(robot, result, options);

@@ -91,10 +91,12 @@ int main(int argc, char** argv) {
                              {"copied", kept},
                              {"points", refined->size()},
                              {"spread", options.spread},
+                             {"length_unit", unitName(robot.length_unit)},
                              {"pinned", sampler.pinnedJoints()},
                              {"seed", options.seed},
                              {"output", output},
-                             {"seconds", progress.seconds()}};
+                             {"seconds", progress.seconds()},
+                             {"units", {{"spread", "joint ranges"}, {"seconds", "s"}}}};
       std::cout << summary.dump() << "\n";
     } else {
       std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << samples

@@ -11,6 +11,7 @@
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
+#include "common/units.h"
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/workspace/sampler.h"
@@ -89,7 +90,7 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
     return std::make_unique<RobotSampler>(robot, options);
   });
   source.summary = {{"robot", robot.name},
-                    {"unit", unitName(robot.length_unit)},
+                    {"length_unit", unitName(robot.length_unit)},
                     {"point", point == SamplePoint::kTool ? "tool" : "flange"}};
   if (cli.has("quality")) {
     const QualityOptions quality = app::readQualityOptions(cli, robot);
@@ -104,8 +105,13 @@ Source shapeSource(const app::CommandLine& cli, std::uint64_t seed) {
   const Shape shape = app::asUsageError("shape", [&] { return parseShape(name); });
   Source source;
   source.generator = std::make_unique<ShapeSampler>(shape, seed);
-  source.summary = {{"shape", name},
-                    {shapeIsPlanar(shape) ? "area" : "volume", shapeMeasure(shape)}};
+  const char* measure = shapeIsPlanar(shape) ? "area" : "volume";
+  source.summary = {
+      {"shape", name},
+      {measure, shapeMeasure(shape)},
+      {"length_unit", app::kUnrecordedUnit},
+      {"units",
+       {{measure, std::string(app::kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
   return source;
 }
 
@@ -162,6 +168,10 @@ int main(int argc, char** argv) {
     if (source.checker) summary["labels"] = labelSummary(result, samples);
     summary["bbox"] = {{"min", {result.min.x(), result.min.y(), result.min.z()}},
                        {"max", {result.max.x(), result.max.y(), result.max.z()}}};
+    const std::string length = summary["length_unit"];
+    summary["units"]["bbox.min"] = length;
+    summary["units"]["bbox.max"] = length;
+    summary["units"]["seconds"] = "s";
     if (cli.has("json")) {
       std::cout << summary.dump() << "\n";
     } else {

@@ -9,6 +9,7 @@
 
 #include "common/app.h"
 #include "common/cloud_io.h"
+#include "common/units.h"
 
 namespace {
 
@@ -62,13 +63,18 @@ int main(int argc, char** argv) {
     }
     app::saveCloud(*cloud, kept, output, app::readProvenance(input));  // the input's robot
     if (cli.has("json")) {
-      std::cout << nlohmann::json{{"input", input},
-                                  {"output", output},
-                                  {"points_in", cloud->size()},
-                                  {"points_out", kept.size()},
-                                  {"labels", labels}}
-                       .dump()
-                << "\n";
+      std::cout
+          << nlohmann::json{{"input", input},
+                            {"output", output},
+                            {"points_in", cloud->size()},
+                            {"points_out", kept.size()},
+                            {"labels", labels},
+                            {"length_unit",
+                             app::ResultUnits(app::recordedUnit(input), std::nullopt).lengthName()},
+                            {"seconds", clock.seconds()},
+                            {"units", {{"seconds", "s"}}}}
+                 .dump()
+          << "\n";
     } else {
       std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000) << " ms : " << kept.size()
                 << " of " << cloud->size() << " points] -> " << output << "\n";

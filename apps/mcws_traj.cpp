@@ -8,6 +8,7 @@
 #include "common/app.h"
 #include "common/flags.h"
 #include "common/pose_args.h"
+#include "common/units.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/trajectory/cartesian_line.h"
@@ -180,7 +181,7 @@ nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTr
                            const Eigen::MatrixXd& xyz) {
   nlohmann::json out;
   out["robot"] = robot.name;
-  out["unit"] = unitName(robot.length_unit);
+  out["length_unit"] = unitName(robot.length_unit);
   out["profile"] = move.line           ? "line, " + move.profile
                    : move.vias.empty() ? move.profile
                                        : "cubic spline";
@@ -198,6 +199,14 @@ nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTr
   out["tool_start"] = {xyz(0, 0), xyz(0, 1), xyz(0, 2)};
   out["tool_end"] = {xyz(last, 0), xyz(last, 1), xyz(last, 2)};
   out["tool_path_length"] = pathLength(xyz);
+  const std::string length = unitName(robot.length_unit);
+  out["units"] = {{"duration", "s"},
+                  {"rate", "Hz"},
+                  {"peak_velocity", app::jointUnits(robot, "/s")},
+                  {"peak_acceleration", app::jointUnits(robot, "/s^2")},
+                  {"tool_start", length},
+                  {"tool_end", length},
+                  {"tool_path_length", length}};
   return out;
 }
 

@@ -182,7 +182,7 @@ TEST_F(SampleApp, DeicingPlaneCloudWithJson) {
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["points"], 6000);
   EXPECT_EQ(json["robot"], "deicing");
-  EXPECT_EQ(json["unit"], "cm");
+  EXPECT_EQ(json["length_unit"], "cm");
   // In the X-Z plane the reach is at most a1 + a2max = 120 cm.
   EXPECT_LE(json["bbox"]["max"][0].get<double>(), 120.0 + 1e-3);
   EXPECT_NEAR(json["bbox"]["max"][1].get<double>(), 0.0, 1e-4);

@@ -162,7 +162,7 @@ TEST(TrajApp, UrdfRobotGivesTheYamlMoveInMetres) {
   ASSERT_EQ(yaml.exit_code, 0) << yaml.err;
   ASSERT_EQ(urdf.exit_code, 0) << urdf.err;
   const auto y = nlohmann::json::parse(yaml.out), u = nlohmann::json::parse(urdf.out);
-  EXPECT_EQ(u["unit"], "m");
+  EXPECT_EQ(u["length_unit"], "m");
   for (int k = 0; k < 3; ++k) {
     EXPECT_NEAR(u["tool_end"][k].get<double>() * 1000, y["tool_end"][k].get<double>(), 1e-9);
   }
@@ -191,7 +191,7 @@ TEST(FkApp, UrdfRobotReproducesThePapersMatrixInMetres) {
                 "1.0471975511965976 0.5235987755982988' --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
-  EXPECT_EQ(json["unit"], "m");
+  EXPECT_EQ(json["length_unit"], "m");
   EXPECT_NEAR(json["position"][0].get<double>(), -0.0393043, 0.5e-7);
   EXPECT_NEAR(json["position"][1].get<double>(), 0.7319230, 0.5e-7);
   EXPECT_NEAR(json["position"][2].get<double>(), -0.5692371, 0.5e-7);

@@ -107,6 +107,7 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
   units["configuration"] = joint_units;
   nlohmann::json out{{"scenario", scenario.name},
                      {"robot", scenario.robot_path},
+                     {"length_unit", unitName(problem.robot.length_unit)},
                      {"units", units},
                      {"status", overallStatus(result)},
                      {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
