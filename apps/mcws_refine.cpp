@@ -26,7 +26,7 @@ followed by the new samples: the refined cloud to pass to mcws_boundary and mcws
 the output records that robot.)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
-  cli.addValue("robot", "robot description the cloud was sampled from");
+  cli.addValue("robot", "robot description the cloud was sampled from (.yaml or .urdf)");
   cli.addValue("input", "boundary points (PCD with q1..qn)");
   cli.addValue("samples", "number of new samples K");
   cli.addValue("output", "output PCD file");

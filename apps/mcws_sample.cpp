@@ -41,7 +41,7 @@ by --length L (dimensionless). The default is full with L = the chain's length (
 offsets) for arms with six or more joints, position for fewer.)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml)");
+  cli.addValue("robot", "robot description (.yaml or .urdf)");
   cli.addValue("shape", "disk | annulus | ball | box, instead of --robot");
   cli.addValue("samples", "number of samples (default 6000)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
