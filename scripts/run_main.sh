@@ -18,7 +18,8 @@ bin=$root/build/apps
 # built by scripts/run_tests.sh. --target leaves the cache alone, so a later full build in build/
 # still builds them.
 "$root/scripts/build.sh" "$root/build" --target mcws_sample --target mcws_boundary \
-  --target mcws_refine --target mcws_measure --target mcws_plan --target mcws_behave
+  --target mcws_refine --target mcws_measure --target mcws_plan --target mcws_behave \
+  --target mcws_envelope
 mkdir -p "$out"
 
 robot=$root/robots/deicing.yaml
@@ -55,6 +56,12 @@ refined_measure() {  # name, sample flags, boundary flags
 }
 area=$(refined_measure deicing_xz_50k "--fix theta3=0" "--plane xz")
 volume=$(refined_measure deicing_3d_50k "" "")
+# The envelope of the refined 3-D cloud as a mesh (MeshLab, pcl_viewer), in cm and in metres.
+"$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none \
+  --output "$out/deicing_envelope.ply" >/dev/null
+"$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none --unit m \
+  --output "$out/deicing_envelope_m.stl" --json >"$out/.deicing_envelope.json.tmp"
+mv "$out/.deicing_envelope.json.tmp" "$out/deicing_envelope.json"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_3d_50k_boundary.pcd" \
   --output "$out/deicing_3d_boundary.png" --view 3d --unit cm \
   --title "De-icing arm: boundary of the 3-D workspace (50000 samples)"
@@ -78,7 +85,8 @@ mv "$out/.rehearsal_3.txt.tmp" "$out/rehearsal_3.txt"
 
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
-  deicing_xz_boundary.png deicing_3d_50k_boundary.pcd deicing_3d_boundary.png; do echo "  $out/$f"; done
+  deicing_xz_boundary.png deicing_3d_50k_boundary.pcd deicing_3d_boundary.png deicing_envelope.ply \
+  deicing_envelope_m.stl deicing_envelope.json; do echo "  $out/$f"; done
 # Relative error [%] of a measure against its closed form (BENCHMARKS.md: the area is known to
 # +-1.5 cm^2, 0.009 %, the volume to +-200 cm^3, 0.01 %).
 relative_error() {  # value, closed form
@@ -89,6 +97,10 @@ echo "  X-Z plane area ${area} cm^2, $(relative_error "$area" 16352.5) from the 
 echo "  3-D volume ${volume} cm^3, $(relative_error "$volume" 2098290) from the closed form" \
   "2098290 cm^3"
 echo "  (50000 samples + 50000 refined each; closed forms in BENCHMARKS.md)"
+json_number() { sed "s/.*\"$1\":\([^,}]*\).*/\1/" "$2"; }  # one number from a JSON object
+echo "  envelope mesh: $(json_number triangles "$out/deicing_envelope.json") triangles enclosing" \
+  "$(json_number volume "$out/deicing_envelope.json") m^3, closed and oriented:" \
+  "$(json_number closed_and_oriented "$out/deicing_envelope.json")"
 echo "mcws: planning under base sway (the maintenance-arm patent) written to $out:"
 for f in maintenance4_path.csv maintenance4_plan.txt planar2_path.csv planar2_cspace.png \
   planar2_offsets.png; do echo "  $out/$f"; done

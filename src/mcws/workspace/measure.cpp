@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <type_traits>
 #include <vector>
@@ -230,6 +231,168 @@ std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& d
   return boundary;
 }
 
+/// Rounds of filling around singular edges and vertices before fillForSurface() gives up (each
+/// round fills every singularity it finds; two are usual).
+constexpr int kFillRounds = 16;
+
+/// Whether the cells around vertex v that are kept (info != 0) form one group and the dropped
+/// ones another, each connected through the facets through v: the kept region's boundary near v
+/// is then one disk.
+template <typename Delaunay>
+bool singleFan(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+               std::vector<typename Delaunay::Cell_handle>& cells) {
+  cells.clear();
+  dt.incident_cells(v, std::back_inserter(cells));
+  std::vector<std::size_t> parent(cells.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](std::size_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (std::size_t a = 0; a < cells.size(); ++a) {
+    const int own = cells[a]->index(v);
+    for (int i = 0; i < 4; ++i) {
+      if (i == own) continue;  // the facet opposite v does not pass through it
+      const auto n = cells[a]->neighbor(i);
+      if ((n->info() != 0) != (cells[a]->info() != 0)) continue;
+      const auto b = std::find(cells.begin(), cells.end(), n) - cells.begin();
+      parent[root(a)] = root(static_cast<std::size_t>(b));
+    }
+  }
+  std::size_t kept_groups = 0, dropped_groups = 0;
+  for (std::size_t a = 0; a < cells.size(); ++a) {
+    if (root(a) == a) ++(cells[a]->info() != 0 ? kept_groups : dropped_groups);
+  }
+  return kept_groups <= 1 && dropped_groups <= 1;
+}
+
+/// Keeps (info 2) the dropped cells no path of dropped cells connects to the infinite ones.
+template <typename Delaunay>
+void fillCavities(Delaunay& dt) {
+  using Cell = typename Delaunay::Cell_handle;
+  constexpr char kOutside = 3;  // a dropped cell reached from the infinite ones
+  std::vector<Cell> stack;
+  for (const Cell c : dt.all_cell_handles()) {
+    if (dt.is_infinite(c)) {
+      c->info() = kOutside;
+      stack.push_back(c);
+    }
+  }
+  while (!stack.empty()) {
+    const Cell c = stack.back();
+    stack.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      const Cell n = c->neighbor(i);
+      if (n->info() == 0) {
+        n->info() = kOutside;
+        stack.push_back(n);
+      }
+    }
+  }
+  for (const Cell c : dt.all_cell_handles()) {
+    c->info() = c->info() == 0 ? 2 : (c->info() == kOutside ? 0 : c->info());
+  }
+}
+
+/// Makes the kept tetrahedra's boundary a closed 2-manifold by also keeping (info 2) the dropped
+/// finite cells it would enclose or pinch, round by round: cavities (dropped cells no path of
+/// dropped cells connects to the infinite ones, fillCavities()), then every dropped cell around
+/// an edge or a vertex where the kept region touches itself. Each round decides from the flags
+/// as they were at its start, so the result does not depend on the order the cells are listed
+/// in. \return false when singularities remain after kFillRounds rounds.
+template <typename Delaunay>
+bool fillForSurface(Delaunay& dt) {
+  using Cell = typename Delaunay::Cell_handle;
+  std::vector<Cell> around, fill;
+  for (int round = 0; round < kFillRounds; ++round) {
+    fillCavities(dt);
+    fill.clear();
+    std::vector<typename Delaunay::Vertex_handle> singular;
+    for (const Cell c : dt.finite_cell_handles()) {
+      if (!c->info()) continue;
+      for (int i = 0; i < 4; ++i) {
+        if (c->neighbor(i)->info()) continue;  // not a boundary facet
+        for (int j = 0; j < 4; ++j) {
+          if (j == i) continue;
+          for (int k = j + 1; k < 4; ++k) {
+            if (k == i) continue;
+            // Around edge (j, k): a manifold boundary edge has one run of kept cells.
+            auto circ = dt.incident_cells(c, j, k), done = circ;
+            around.clear();
+            do {
+              around.push_back(circ);
+            } while (++circ != done);
+            std::size_t changes = 0;
+            for (std::size_t a = 0; a < around.size(); ++a) {
+              changes += (around[a]->info() != 0) != (around[(a + 1) % around.size()]->info() != 0);
+            }
+            if (changes <= 2) continue;
+            for (const Cell a : around) {
+              if (!a->info() && !dt.is_infinite(a)) fill.push_back(a);
+            }
+          }
+          singular.push_back(c->vertex(j));
+        }
+      }
+    }
+    // Vertices of the boundary whose kept (or dropped) cells around them form several fans.
+    std::sort(singular.begin(), singular.end());
+    singular.erase(std::unique(singular.begin(), singular.end()), singular.end());
+    for (const auto v : singular) {
+      if (singleFan(dt, v, around)) continue;
+      for (const Cell a : around) {
+        if (!a->info() && !dt.is_infinite(a)) fill.push_back(a);
+      }
+    }
+    if (fill.empty()) return true;
+    for (const Cell a : fill) a->info() = 2;
+  }
+  return false;
+}
+
+/// The facets between kept and dropped tetrahedra (info 1 and 0; infinite cells are dropped),
+/// each oriented away from its kept tetrahedron (exact orientation test), over the points of
+/// `points` they use. Canonical order, whatever order the triangulation lists its cells in:
+/// vertices by point index, each triangle rotated to start at its smallest vertex, triangles
+/// sorted.
+template <typename Delaunay>
+TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points) {
+  std::vector<std::array<std::uint32_t, 3>> facets;
+  for (const auto c : dt.finite_cell_handles()) {
+    if (!c->info()) continue;
+    for (int i = 0; i < 4; ++i) {
+      if (c->neighbor(i)->info()) continue;
+      std::array<typename Delaunay::Vertex_handle, 3> v{
+          c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+      // Outward: the kept cell's fourth vertex on the negative side of (a, b, c).
+      if (CGAL::orientation(v[0]->point(), v[1]->point(), v[2]->point(), c->vertex(i)->point()) ==
+          CGAL::POSITIVE) {
+        std::swap(v[1], v[2]);
+      }
+      std::array<std::uint32_t, 3> t{v[0]->info(), v[1]->info(), v[2]->info()};
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      facets.push_back(t);
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  TriangleSurface surface;
+  std::vector<std::uint32_t> renumbered(points.size(), std::numeric_limits<std::uint32_t>::max());
+  for (const auto& t : facets) {
+    for (const std::uint32_t k : t) renumbered[k] = 0;
+  }
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (renumbered[k] == 0) {
+      renumbered[k] = static_cast<std::uint32_t>(surface.vertices.size());
+      surface.vertices.emplace_back(points[k].x, points[k].y, points[k].z);
+    }
+  }
+  surface.triangles.reserve(facets.size());
+  for (const auto& t : facets) {
+    surface.triangles.push_back({renumbered[t[0]], renumbered[t[1]], renumbered[t[2]]});
+  }
+  return surface;
+}
+
 /// Whether `p` lies in the region of the points of `dt`: in a finite simplex within the alpha
 /// limit. Where the points span only a line (2-D) or a plane (3-D), no simplex holds p.
 template <int D, typename Delaunay>
@@ -343,12 +506,20 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
-  if (!options.edge_correction) return result;
-  if (options.phase) options.phase("edge correction");
-  // A boundary vertex counts when its point lies outside the region of the others.
-  result.outside = options.leave_one_out == LeaveOneOut::kStar
-                       ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads)
-                       : outsideByRemoval<D>(dt, boundary, spacing, alpha_factor);
+  if (options.edge_correction) {
+    if (options.phase) options.phase("edge correction");
+    // A boundary vertex counts when its point lies outside the region of the others.
+    result.outside = options.leave_one_out == LeaveOneOut::kStar
+                         ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads)
+                         : outsideByRemoval<D>(dt, boundary, spacing, alpha_factor);
+  }
+  if constexpr (D == 3) {
+    if (options.surface) {
+      if (options.phase) options.phase("surface");
+      result.surface_is_manifold = fillForSurface(dt);  // last: it changes the kept flags
+      result.surface = keptSurface(dt, points);
+    }
+  }
   return result;
 }
 

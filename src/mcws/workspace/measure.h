@@ -5,11 +5,22 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <Eigen/Core>
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace mcws {
+
+/// \brief A triangle surface: vertices [length unit] and triangles as vertex indices, each
+/// counter-clockwise seen from outside (its normal, (b - a) x (c - a), points out).
+struct TriangleSurface {
+  std::vector<Eigen::Vector3d> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
 
 /// \brief Result of delaunayMeasure().
 struct RegionMeasure {
@@ -19,6 +30,14 @@ struct RegionMeasure {
   std::size_t boundary_vertices{0};  ///< vertices between kept and dropped simplices
   std::size_t outside{0};            ///< boundary vertices outside the region of the other points
   double alpha_factor{0.0};
+  /// With MeasureOptions::surface (3-D): the facets between kept and dropped tetrahedra, each
+  /// oriented away from its kept one, so a closed surface that encloses `uncorrected`. Vertices
+  /// in the order of the distinct input positions, triangles sorted: the same for any thread
+  /// count.
+  TriangleSurface surface;
+  /// Whether filling the cavities and the pinches of the kept region (within a few rounds) made
+  /// `surface` a closed 2-manifold.
+  bool surface_is_manifold{false};
 };
 
 /// \brief Area or volume of the region a cloud samples, from its Delaunay triangulation (CGAL).
@@ -70,6 +89,8 @@ struct MeasureOptions {
   /// cores unless OMP_NUM_THREADS). The result does not depend on it. TBB's limit is process-wide
   /// while the call runs (concurrent calls share the smallest).
   int threads{0};
+  /// 3-D: also return the boundary surface of the kept tetrahedra (RegionMeasure::surface).
+  bool surface{false};
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
   /// correction").
   std::function<void(const std::string&)> phase;

@@ -1,0 +1,81 @@
+#pragma once
+/// \file
+/// \brief The workspace envelope as a triangle mesh: the boundary of the region mcws_measure
+/// measures, closed and oriented outward, enclosing the same volume; its checks and its files.
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstdio>
+#include <string>
+
+#include "mcws/workspace/measure.h"
+
+namespace mcws {
+
+/// \brief The envelope of a 3-D cloud and what it was made from.
+struct Envelope {
+  TriangleSurface mesh;
+  RegionMeasure measure;  ///< delaunayMeasure() of the cloud (its volume is the target)
+  double volume{0.0};     ///< enclosed by `mesh` [length unit^3]
+  double area{0.0};       ///< of `mesh` [length unit^2]
+  double offset{0.0};     ///< outward offset of the alpha surface [length unit] (see below)
+  /// Volume the surface encloses beyond the kept tetrahedra before the offset: the cavities and
+  /// pinches filled to make it a 2-manifold [length unit^3]. A few per mille on a cloud whose edge
+  /// is sampled about as densely as its inside; more where the edge is sparse (plain joint-space
+  /// samples of an arm: refine them), where filling pinches closes concave parts.
+  double filled{0.0};
+  /// Whether the surface is a closed 2-manifold (the filling converged).
+  bool manifold{false};
+};
+
+/// \brief The envelope of the region a cloud samples: the surface of delaunayMeasure()'s kept
+/// tetrahedra (the alpha shape at the same alpha), each vertex then moved outward along its
+/// normal by one common distance so that the mesh encloses the measured volume.
+///
+/// The kept tetrahedra fill the region up to its outermost samples, `uncorrected`; the edge
+/// correction (Efron's identity) adds the band the samples miss along the edge. The offset that
+/// makes the mesh enclose `measure` is about that band's mean width, (measure - uncorrected) /
+/// area: a fraction of a spacing. With options.edge_correction false (refined clouds) there is
+/// no offset. Vertex normals are the area-weighted sums of the adjacent triangles' normals.
+/// \throws mcws::Error as delaunayMeasure(), and when the offset does not converge (a surface too
+///   folded for it).
+Envelope workspaceEnvelope(const pcl::PointCloud<pcl::PointXYZ>& points,
+                           const MeasureOptions& options);
+
+/// \brief Volume enclosed by a closed, outward-oriented surface (divergence theorem)
+/// [length unit^3].
+double enclosedVolume(const TriangleSurface& surface);
+/// \brief Total area of the triangles [length unit^2].
+double surfaceArea(const TriangleSurface& surface);
+/// \brief Moves every vertex by `distance` along its unit normal (area-weighted sum of the
+/// adjacent triangles' normals; a vertex whose normals cancel stays).
+TriangleSurface offsetSurface(const TriangleSurface& surface, double distance);
+
+/// \brief How a triangle surface is connected.
+struct SurfaceTopology {
+  std::size_t vertices{0}, edges{0}, triangles{0};
+  std::size_t open_edges{0};          ///< edges of one triangle only
+  std::size_t non_manifold_edges{0};  ///< edges of more than two triangles
+  std::size_t misoriented_edges{0};   ///< edges two triangles run in the same direction
+  long euler_characteristic{0};       ///< V - E + F: 2 for a sphere-like closed surface
+  /// Closed and consistently oriented: every edge in exactly two triangles, once each way.
+  bool closedAndOriented() const {
+    return open_edges == 0 && non_manifold_edges == 0 && misoriented_edges == 0;
+  }
+};
+SurfaceTopology surfaceTopology(const TriangleSurface& surface);
+
+/// \brief Mesh file formats.
+enum class MeshFormat { kPly, kStl, kVtk };
+/// \brief The format a file name's extension names (.ply, .stl, .vtk, any case).
+/// \throws mcws::Error naming the file for any other extension.
+MeshFormat meshFormatOf(const std::string& path);
+/// \brief Writes the surface: binary little-endian PLY (float vertices, int faces), binary STL
+/// (with each triangle's unit normal) or legacy ASCII VTK POLYDATA. `comment` goes into the PLY
+/// and VTK headers and the STL's 80-byte header (cut to fit). \throws mcws::Error on a write
+/// error.
+void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::string& comment,
+                  std::FILE* out);
+
+}  // namespace mcws
