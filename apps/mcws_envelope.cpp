@@ -44,10 +44,7 @@ each way).)";
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("input", "workspace cloud (PCD), 3-D");
   cli.addValue("output", "mesh file: .ply, .stl or .vtk");
-  cli.addValue("alpha", "simplex size limit, local spacings (default 3; 5 with --correction none)");
-  cli.addValue("correction", "efron | none (default efron; none for refined clouds)");
-  cli.addValue("threads",
-               "worker threads, 0 = all cores (default 0; the mesh is the same for any)");
+  app::declareRegionFlags(cli);
   app::declareUnitFlag(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -61,16 +58,7 @@ int main(int argc, char** argv) {
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string input = cli.required("input"), output = cli.required("output");
     const MeshFormat format = app::asUsageError("output", [&] { return meshFormatOf(output); });
-    MeasureOptions options;
-    options.edge_correction = app::parseChoice(cli.text("correction", "efron"), "correction",
-                                               {"efron", "none"}) == "efron";
-    options.alpha_factor =
-        app::parsePositive(cli.text("alpha", options.edge_correction ? "3" : "5"), "alpha");
-    if (!(options.alpha_factor >= 1.0 && options.alpha_factor <= 1000.0)) {
-      throw app::UsageError("--alpha: " + cli.required("alpha") +
-                            " is not in [1, 1000] local spacings");
-    }
-    options.threads = app::readThreads(cli);
+    MeasureOptions options = app::readRegionOptions(cli);
     app::checkOutputs({{"output", output}}, {{"input", input}});
     const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
 

@@ -60,24 +60,14 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("boundary", "its boundary points (from mcws_boundary)");
   cli.addValue("plane", "xy | xz | yz: an area in that plane (default: volume)");
   cli.addValue("method", "delaunay | column (default delaunay)");
-  cli.addValue(
-      "alpha",
-      "delaunay: simplex size limit, local spacings (default 3; 5 with --correction none)");
-  cli.addValue("correction", "delaunay: efron | none (default efron; none for refined clouds)");
+  app::declareRegionFlags(cli, "delaunay: ");
   cli.addValue(
       "leave-one-out",
       R"(efron: star (each vertex's star, all threads; default) | reinsert (remove, locate, reinsert each vertex: the same count, one thread, slower))");
-  cli.addValue(
-      "threads",
-      "delaunay: worker threads, 0 = all cores (default 0; the result is the same for any)");
   cli.addValue("column-width", "column: L [length unit] (default automatic)");
   app::declareUnitFlag(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
-
-/// --alpha [local spacings]: at 1 a uniform cloud's own triangles already fail the limit (18 % of
-/// them); 1000 spacings span a 2-D cloud of 10^6 points, so a wider limit keeps the convex hull.
-constexpr double kAlphaRange[2] = {1.0, 1000.0};
 
 /// The command line, checked.
 struct Settings {
@@ -104,22 +94,12 @@ Settings readSettings(const app::CommandLine& cli) {
         throw app::UsageError("--" + std::string(flag) + " does not apply to --method column");
     }
   }
-  s.correction = app::parseChoice(cli.text("correction", "efron"), "correction", {"efron", "none"});
-  s.delaunay.edge_correction = s.correction == "efron";
+  s.delaunay = app::readRegionOptions(cli);
+  s.correction = s.delaunay.edge_correction ? "efron" : "none";
   s.delaunay.leave_one_out = app::parseChoice(cli.text("leave-one-out", "star"), "leave-one-out",
                                               {"star", "reinsert"}) == "star"
                                  ? LeaveOneOut::kStar
                                  : LeaveOneOut::kRemoveAndReinsert;
-  // A refined cloud packs samples onto the joint-limit surfaces, where the k-th neighbour
-  // measures the surface's density and understates the spacing just inside: alpha 5 keeps the
-  // simplices there (de-icing arm, 10^6 samples: volume -0.19 % at 3, -0.02 % at 5).
-  s.delaunay.alpha_factor =
-      app::parsePositive(cli.text("alpha", s.correction == "none" ? "5" : "3"), "alpha");
-  if (!(s.delaunay.alpha_factor >= kAlphaRange[0] && s.delaunay.alpha_factor <= kAlphaRange[1])) {
-    throw app::UsageError("--alpha: " + cli.required("alpha") +
-                          " is not in [1, 1000] local spacings");
-  }
-  s.delaunay.threads = app::readThreads(cli);
   s.column_width = app::parseNonNegative(cli.text("column-width", "0"), "column-width");
   return s;
 }

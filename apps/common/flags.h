@@ -13,6 +13,7 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/reach/quality.h"
+#include "mcws/workspace/measure.h"
 #include "mcws/workspace/sampler.h"
 
 namespace mcws::app {
@@ -70,6 +71,15 @@ double parseLength(const std::string& text, const std::string& flag, LengthUnit 
 /// \returns [rad]. \throws UsageError naming the flag for a negative or non-numeric value or a
 ///   non-zero value without a unit.
 double parseAngle(const std::string& text, const std::string& flag);
+
+/// \brief Declares --alpha, --correction and --threads of the Delaunay region (mcws_measure,
+/// mcws_envelope), each help text prefixed by `prefix` (e.g. "delaunay: ").
+void declareRegionFlags(CommandLine& cli, const std::string& prefix = "");
+
+/// \brief --correction (efron | none; default efron), --alpha [local spacings] in [1, 1000]
+/// (default 3 with the correction, 5 without) and --threads, as MeasureOptions.
+/// \throws UsageError naming the flag.
+MeasureOptions readRegionOptions(const CommandLine& cli);
 
 /// \brief Declares --quality-task and --length (read by readQualityOptions()).
 void declareQualityFlags(CommandLine& cli);
