@@ -49,7 +49,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValues("fix", "pin joints instead of sampling them: name=value[,name=value] (repeatable)");
   cli.addValue("point", "tool | flange: which point to record (default tool)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
-  cli.addSwitch("collision", "label each sample by collision (needs --robot with collision:)");
+  cli.addSwitch("collision",
+                "label each sample by collision (needs a robot YAML with collision: or a URDF with "
+                "<collision> elements)");
   cli.addSwitch("quality", "add fields manipulability and inverse_condition (needs --robot)");
   app::declareQualityFlags(cli);
   cli.addSwitch("ascii", "write ASCII PCD instead of binary");

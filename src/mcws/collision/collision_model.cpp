@@ -5,6 +5,7 @@
 #include <pcl/io/vtk_lib_io.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +20,28 @@ namespace {
 
 constexpr double kDegree = M_PI / 180.0;
 
+/// How far a sphere's centre and radius may be from a cylinder's end-face centre and radius, as a
+/// fraction of the cylinder's length plus radius, for the two to be read as one capsule
+/// (mergeCapsules()). URDF numbers carry about 16 digits, and the end of a cylinder turned by
+/// rpy = pi/2 lies some 1e-16 of its length off the axis; 1e-9 is far above that rounding and far
+/// below any gap a designer would draw.
+constexpr double kCapsuleMatch = 1e-9;
+
+/// A model with a body for the base, one per joint and the tool, and no shapes.
+CollisionModel emptyModel(const Robot& robot) {
+  CollisionModel model;
+  model.links.resize(robot.joints.size() + 1);
+  model.links[0].name = "base";
+  for (std::size_t i = 0; i < robot.joints.size(); ++i)
+    model.links[i + 1].name = robot.joints[i].name;
+  model.tool.name = "tool";
+  return model;
+}
+
+bool isUrdfPath(const std::string& path) {
+  return std::filesystem::path(path).extension() == ".urdf";
+}
+
 /// Reads the `collision:` section; every mistake becomes "file:line: collision: ...".
 class CollisionYamlReader : YamlReader {
  public:
@@ -26,12 +49,7 @@ class CollisionYamlReader : YamlReader {
       : YamlReader(std::move(source)), robot_(robot) {}
 
   CollisionModel read(const YAML::Node& root) {
-    CollisionModel model;
-    model.links.resize(robot_.joints.size() + 1);
-    model.links[0].name = "base";
-    for (std::size_t i = 0; i < robot_.joints.size(); ++i)
-      model.links[i + 1].name = robot_.joints[i].name;
-    model.tool.name = "tool";
+    CollisionModel model = emptyModel(robot_);
     if (!root.IsMap() || !root["collision"]) return model;
     if (root["units"] && root["units"].IsMap() && root["units"]["angle"] &&
         root["units"]["angle"].IsScalar() && root["units"]["angle"].Scalar() == "rad") {
@@ -205,6 +223,119 @@ class CollisionYamlReader : YamlReader {
   double angle_scale_{kDegree};
 };
 
+/// The file a URDF `<mesh filename>` names: a path relative to the URDF file's directory, an
+/// absolute path, or a `file://` URI. \throws mcws::Error for `package://` and other URIs.
+std::string urdfMeshPath(const std::string& filename, const std::string& source,
+                         const std::string& where) {
+  std::string path = filename;
+  if (filename.rfind("file://", 0) == 0) {
+    path = filename.substr(7);
+  } else if (filename.rfind("package://", 0) == 0) {
+    throw Error(where + ": mesh '" + filename +
+                "': package:// URIs are not resolved (that needs ROS); give the path relative to "
+                "the URDF file, or an absolute path");
+  } else if (filename.find("://") != std::string::npos) {
+    throw Error(where + ": mesh '" + filename +
+                "': URI scheme not supported (a path relative to the URDF file, an absolute path "
+                "or file://)");
+  }
+  std::filesystem::path file = path;
+  if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
+  std::string extension = file.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".stl" && extension != ".obj") {
+    throw Error(where + ": mesh '" + filename +
+                "': " + (extension.empty() ? std::string("a file without extension") : extension) +
+                " meshes are not supported (STL or OBJ)");
+  }
+  return file.string();
+}
+
+/// The shape of one URDF `<collision>` element, with lengths times `unit` (robot length units
+/// per metre).
+ShapeSpec urdfShape(const UrdfCollision& in, double unit, const std::string& source) {
+  const std::string where =
+      source + ": link '" + in.link + "' <collision> " + std::to_string(in.element);
+  ShapeSpec shape;
+  shape.source = where;
+  shape.T_body_shape = in.T_body_geometry;
+  shape.T_body_shape.translation() *= unit;
+  switch (in.type) {
+    case UrdfGeometry::kSphere:
+      shape.type = ShapeType::kSphere;
+      shape.p_from = shape.p_to = shape.T_body_shape.translation();
+      shape.T_body_shape = Eigen::Isometry3d::Identity();  // a sphere is placed by p_from
+      shape.radius = in.radius * unit;
+      break;
+    case UrdfGeometry::kBox:
+      shape.type = ShapeType::kBox;
+      shape.size = in.size * unit;
+      break;
+    case UrdfGeometry::kCylinder:
+      shape.type = ShapeType::kCylinder;
+      shape.radius = in.radius * unit;
+      shape.length = in.length * unit;
+      break;
+    case UrdfGeometry::kMesh: {
+      shape.type = ShapeType::kMesh;
+      const std::string path = urdfMeshPath(in.filename, source, where);
+      TriangleMesh mesh;
+      try {
+        mesh = loadMesh(path, 1.0);
+      } catch (const Error& e) {
+        throw Error(where + ": mesh " + e.what());
+      }
+      for (Eigen::Vector3d& v : mesh.vertices) v = v.cwiseProduct(in.scale) * unit;
+      shape.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+      break;
+    }
+  }
+  return shape;
+}
+
+/// Replaces each cylinder that has, in the same body, a sphere of its radius centred on each of
+/// its end faces by one capsule between the two spheres' centres: the same set of points (a
+/// capsule is the union of such a cylinder and spheres), tested by the exact segment distance as
+/// a capsule of a YAML file. Each sphere closes one cylinder at most.
+void mergeCapsules(BodySpec& body) {
+  std::vector<ShapeSpec>& shapes = body.shapes;
+  std::vector<bool> dropped(shapes.size(), false);
+  const auto sphereAt = [&](const Eigen::Vector3d& p, double radius, double tolerance) {
+    for (std::size_t j = 0; j < shapes.size(); ++j) {
+      if (!dropped[j] && shapes[j].type == ShapeType::kSphere &&
+          std::abs(shapes[j].radius - radius) <= tolerance &&
+          (shapes[j].p_from - p).norm() <= tolerance) {
+        return int(j);
+      }
+    }
+    return -1;
+  };
+  for (ShapeSpec& shape : shapes) {
+    if (shape.type != ShapeType::kCylinder) continue;
+    const Eigen::Vector3d half = 0.5 * shape.length * Eigen::Vector3d::UnitZ();
+    const double tolerance = kCapsuleMatch * (shape.length + shape.radius);
+    const int from = sphereAt(shape.T_body_shape * (-half), shape.radius, tolerance);
+    if (from < 0) continue;
+    dropped[from] = true;
+    const int to = sphereAt(shape.T_body_shape * half, shape.radius, tolerance);
+    if (to < 0) {
+      dropped[from] = false;
+      continue;
+    }
+    dropped[to] = true;
+    shape.type = ShapeType::kCapsule;
+    shape.p_from = shapes[from].p_from;
+    shape.p_to = shapes[to].p_from;
+    shape.T_body_shape = Eigen::Isometry3d::Identity();
+    shape.length = 0.0;
+  }
+  std::vector<ShapeSpec> kept;
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    if (!dropped[i]) kept.push_back(std::move(shapes[i]));
+  }
+  shapes = std::move(kept);
+}
+
 }  // namespace
 
 const char* shapeTypeName(ShapeType type) {
@@ -228,7 +359,75 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
   return CollisionYamlReader(robot, source).read(loadYamlDocument(text, source, "a robot file"));
 }
 
+CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
+                                  const std::string& source, const UrdfChainOptions& chain) {
+  const UrdfRobotGeometry urdf = parseRobotUrdfGeometry(text, source, chain);
+  const auto jointNames = [](const Robot& r) {
+    std::string names;
+    for (const Joint& joint : r.joints) names += (names.empty() ? "" : ", ") + joint.name;
+    return names;
+  };
+  if (jointNames(urdf.robot) != jointNames(robot)) {
+    throw Error(source + ": the URDF chain's joints (" + jointNames(urdf.robot) +
+                ") are not those of robot '" + robot.name + "' (" + jointNames(robot) + ")");
+  }
+  const double unit = 1.0 / unitInMetres(robot.length_unit);
+  CollisionModel model = emptyModel(robot);
+  for (const UrdfCollision& element : urdf.collisions) {
+    ShapeSpec shape = urdfShape(element, unit, source);
+    switch (element.body) {
+      case UrdfBody::kBase:
+        model.links[0].shapes.push_back(std::move(shape));
+        break;
+      case UrdfBody::kLink:
+        model.links[std::size_t(element.joint) + 1].shapes.push_back(std::move(shape));
+        break;
+      case UrdfBody::kTool:
+        model.tool.shapes.push_back(std::move(shape));
+        break;
+      case UrdfBody::kEnvironment: {
+        // The environment is placed in the world frame, the URDF's root link frame in the base's.
+        shape.T_body_shape = robot.T_world_base * shape.T_body_shape;
+        shape.p_from = robot.T_world_base * shape.p_from;
+        shape.p_to = robot.T_world_base * shape.p_to;
+        auto object = std::find_if(model.environment.begin(), model.environment.end(),
+                                   [&](const BodySpec& b) { return b.name == element.link; });
+        if (object == model.environment.end()) {
+          const bool taken = element.link == "tool" || element.link == "base" ||
+                             std::any_of(robot.joints.begin(), robot.joints.end(),
+                                         [&](const Joint& j) { return j.name == element.link; });
+          if (taken) {
+            throw Error(source + ": link '" + element.link +
+                        "' is fixed to the base off the chain, so it is an environment object, "
+                        "but its name is already a body's (base, tool or a joint)");
+          }
+          model.environment.push_back(BodySpec{element.link, {}});
+          object = model.environment.end() - 1;
+        }
+        object->shapes.push_back(std::move(shape));
+        break;
+      }
+    }
+  }
+  for (BodySpec& link : model.links) mergeCapsules(link);
+  mergeCapsules(model.tool);
+  for (BodySpec& object : model.environment) mergeCapsules(object);
+  return model;
+}
+
+CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
+                                 const UrdfChainOptions& chain) {
+  std::error_code ec;  // a file that cannot be sized is left to readTextFile's messages
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxUrdfBytes) {
+    throw Error(path + ": URDF of " + std::to_string(bytes) + " bytes is larger than " +
+                std::to_string(kMaxUrdfBytes >> 20) + " MiB");
+  }
+  return parseCollisionUrdf(robot, readTextFile(path, "robot file"), path, chain);
+}
+
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path) {
+  if (isUrdfPath(path)) return loadCollisionUrdf(robot, path);
   return parseCollisionYaml(robot, readTextFile(path, "robot file"), path);
 }
 
@@ -240,7 +439,11 @@ bool hasGeometry(const CollisionModel& model) {
 
 CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path) {
   CollisionModel model = loadCollisionModel(robot, path);
-  if (!hasGeometry(model)) throw Error(path + ": has no collision geometry (collision: key)");
+  if (!hasGeometry(model)) {
+    throw Error(path + ": has no collision geometry " +
+                (isUrdfPath(path) ? "(no <collision> element on a link of its chain)"
+                                  : "(collision: key)"));
+  }
   return model;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Collision geometry of a robot, its tool and its surroundings, read from the `collision:`
-/// section of a robot YAML file.
+/// section of a robot YAML file or from the `<collision>` elements of a URDF file.
 
 #include <Eigen/Geometry>
 #include <array>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mcws/kinematics/robot.h"
+#include "mcws/kinematics/robot_urdf.h"
 
 namespace mcws {
 
@@ -94,15 +95,47 @@ struct CollisionModel {
 CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
                                   const std::string& source);
 
-/// \brief parseCollisionYaml() of a file. \throws mcws::Error when the file cannot be read.
+/// \brief The collision model of a robot read from a URDF: the `<collision>` elements of the links
+/// its chain carries.
+///
+/// Each element goes to the body that carries its link (loadRobotUrdfGeometry()): the base (the
+/// root link and the links up to the first moving joint), link i (the child link of moving joint
+/// i and the links fixed below it), the tool (links fixed after the last moving joint's child on
+/// the way to the tip link, e.g. a flange or tool link, placed in the flange frame), or an
+/// environment object named by its link (a link fixed to the base off the chain, in the world
+/// frame; objects in the order of their link names, as urdfdom keeps no file order). Geometry:
+/// `<sphere>`, `<box>`, `<cylinder>` (along z, centred on its origin, as ShapeType::kCylinder),
+/// `<mesh filename scale>` of an STL or OBJ file (loadMesh(); a path relative to the URDF file's
+/// directory, an absolute path, or a `file://` URI; `package://` and other URIs are errors, since
+/// resolving a ROS package needs ROS). URDF has no capsule: a `<cylinder>` and two `<sphere>`s of
+/// its radius centred on its end faces, in one body, are read as one capsule, which is the same
+/// set of points, so that it is tested by the exact segment distance as a YAML capsule is.
+/// Adjacent links are not checked (as for YAML); URDF gives no other allowed pairs (an SRDF is not
+/// read). Lengths are converted from metres to the robot's length unit.
+/// \param robot the chain read from the same text (joint names must match).
+/// \param text the URDF text; \param source its file name, for messages and mesh paths.
+/// \param chain root and tip links, as given to loadRobotUrdf() for `robot`.
+/// \throws mcws::Error, one line naming the file and the link: as loadRobotUrdfGeometry(); a
+///   chain whose joints are not the robot's; an unsupported mesh URI or format; a missing or
+///   unreadable mesh; an environment link named as the base, the tool or a joint.
+CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
+                                  const std::string& source, const UrdfChainOptions& chain = {});
+
+/// \brief parseCollisionUrdf() of a file. \throws mcws::Error when the file cannot be read.
+CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
+                                 const UrdfChainOptions& chain = {});
+
+/// \brief The collision model of a robot file: loadCollisionUrdf() (the whole tree's chain) for a
+/// `.urdf` file, else parseCollisionYaml() of the file.
+/// \throws mcws::Error when the file cannot be read, and as those two.
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path);
 
 /// \brief True when the model has at least one shape.
 bool hasGeometry(const CollisionModel& model);
 
 /// \brief loadCollisionModel() for a run that needs collision geometry (labelled sampling,
-/// collision checks). \throws mcws::Error "<path>: has no collision geometry (collision: key)"
-/// when the model has no shape.
+/// collision checks). \throws mcws::Error "<path>: has no collision geometry (collision: key)",
+/// or "(no <collision> element on a link of its chain)" for a URDF, when the model has no shape.
 CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path);
 
 /// \brief Reads a triangle mesh (STL or OBJ, by extension) with PCL's VTK-based

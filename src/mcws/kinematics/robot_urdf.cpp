@@ -25,14 +25,13 @@ namespace {
 class CapturedMessages : public console_bridge::OutputHandler {
  public:
   void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
-    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR && first_error_.empty()) {
-      first_error_ = text;
-    }
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) errors_.push_back(text);
   }
-  const std::string& firstError() const { return first_error_; }
+  std::string firstError() const { return errors_.empty() ? std::string() : errors_.front(); }
+  const std::vector<std::string>& errors() const { return errors_; }
 
  private:
-  std::string first_error_;
+  std::vector<std::string> errors_;
 };
 
 /// Message text on one line.
@@ -259,8 +258,11 @@ void checkTreeFreeingLoops(urdf::ModelInterface& model, const std::string& sourc
   }
 }
 
-/// urdfdom's model of the text, or null with urdfdom's first error in `why`.
-urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string& why) {
+/// urdfdom's model of the text, or null with urdfdom's first error in `why`. When `logged` is
+/// given it receives every error urdfdom logged, including those of a parse that succeeded
+/// (urdfdom skips a `<collision>` or `<visual>` it cannot read and goes on).
+urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string& why,
+                                            std::vector<std::string>* logged = nullptr) {
   static std::mutex console_mutex;  // console_bridge's output handler is process-wide
   const std::lock_guard<std::mutex> lock(console_mutex);
   CapturedMessages messages;
@@ -274,6 +276,7 @@ urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string
   }
   console_bridge::restorePreviousOutputHandler();
   why = !exception_text.empty() ? exception_text : messages.firstError();
+  if (logged) *logged = messages.errors();
   return model;
 }
 
@@ -283,10 +286,12 @@ urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string
 /// form a loop) as having no root link, without naming a joint. To name the joint that closes the
 /// loop, a failed text is parsed again with an extra link that no joint names: if urdfdom then
 /// accepts it, that link was the only one without a parent and the tree check finds the loop.
-urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::string& source) {
+/// \param logged as tryParseModel().
+urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::string& source,
+                                         std::vector<std::string>* logged = nullptr) {
   const std::size_t robot_content = checkXmlNesting(text, source);
   std::string why;
-  urdf::ModelInterfaceSharedPtr model = tryParseModel(text, why);
+  urdf::ModelInterfaceSharedPtr model = tryParseModel(text, why, logged);
   if (model) {
     checkTreeFreeingLoops(*model, source);
     return model;
@@ -309,43 +314,201 @@ class ChainReader {
   ChainReader(const urdf::ModelInterface& model, std::string source)
       : model_(model), source_(std::move(source)) {}
 
-  Robot read(const UrdfChainOptions& options) {
-    const urdf::LinkConstSharedPtr root = rootLink(options.root_link);
-    const urdf::LinkConstSharedPtr tip =
-        options.tip_link.empty() ? singleLeaf(root) : link(options.tip_link, "tip");
+  /// The links and joints of a chain.
+  struct Chain {
+    urdf::LinkConstSharedPtr root, tip;
+    std::vector<urdf::JointConstSharedPtr> joints;  ///< from the root to the tip
+  };
 
-    // Joints from the tip up to the root.
-    std::vector<urdf::JointConstSharedPtr> joints;
-    for (urdf::LinkConstSharedPtr current = tip; current != root;) {
+  Chain chain(const UrdfChainOptions& options) const {
+    Chain chain;
+    chain.root = rootLink(options.root_link);
+    chain.tip = options.tip_link.empty() ? singleLeaf(chain.root) : link(options.tip_link, "tip");
+    for (urdf::LinkConstSharedPtr current = chain.tip; current != chain.root;) {
       if (!current->parent_joint) {
-        fail("tip link '" + tip->name + "' is not below root link '" + root->name + "'");
+        fail("tip link '" + chain.tip->name + "' is not below root link '" + chain.root->name +
+             "'");
       }
-      joints.push_back(current->parent_joint);
+      chain.joints.push_back(current->parent_joint);
       current = model_.getLink(current->parent_joint->parent_link_name);
-      if (!current) fail("joint '" + joints.back()->name + "' has no parent link");
+      if (!current) fail("joint '" + chain.joints.back()->name + "' has no parent link");
     }
+    std::reverse(chain.joints.begin(), chain.joints.end());
+    return chain;
+  }
 
+  Robot robot(const Chain& chain) const {
     Robot robot;
     robot.name = model_.getName();
     robot.source = source_;
     robot.length_unit = LengthUnit::kMetre;
     Eigen::Isometry3d T_fixed = Eigen::Isometry3d::Identity();  // fixed joints since the last move
-    for (auto it = joints.rbegin(); it != joints.rend(); ++it) {
-      const urdf::Joint& joint = **it;
-      T_fixed = T_fixed * pose(joint);
-      if (joint.type == urdf::Joint::FIXED) continue;
-      robot.joints.push_back(movingJoint(joint, T_fixed));
+    for (const urdf::JointConstSharedPtr& joint : chain.joints) {
+      T_fixed = T_fixed * pose(*joint);
+      if (joint->type == urdf::Joint::FIXED) continue;
+      robot.joints.push_back(movingJoint(*joint, T_fixed));
       T_fixed = Eigen::Isometry3d::Identity();
     }
     if (robot.joints.empty()) {
-      fail("no revolute, continuous or prismatic joint between root link '" + root->name +
-           "' and tip link '" + tip->name + "'");
+      fail("no revolute, continuous or prismatic joint between root link '" + chain.root->name +
+           "' and tip link '" + chain.tip->name + "'");
     }
     robot.T_last_flange = T_fixed;
     return robot;
   }
 
+  /// The `<collision>` elements of the links the chain carries, placed on their bodies (see
+  /// loadRobotUrdfGeometry()). `robot` is robot(chain).
+  std::vector<UrdfCollision> collisions(const Chain& chain, const Robot& robot) const {
+    const std::map<std::string, Place> places = linkPlaces(chain, robot);
+    std::vector<UrdfCollision> out;
+    for (const auto& named : model_.links_) {  // by link name
+      const urdf::Link& link = *named.second;
+      if (link.collision_array.empty()) continue;
+      const auto place = places.find(link.name);
+      if (place == places.end()) {
+        fail("link '" + link.name +
+             "' has <collision> elements but is not part of the chain: " + notCarried(chain, link));
+      }
+      for (std::size_t k = 0; k < link.collision_array.size(); ++k) {
+        out.push_back(collisionElement(link, int(k) + 1, *link.collision_array[k], place->second));
+      }
+    }
+    return out;
+  }
+
  private:
+  /// Where a link's frame sits on the chain.
+  struct Place {
+    UrdfBody body{UrdfBody::kBase};
+    int joint{-1};  ///< kLink: the joint whose link carries it
+    /// The link's frame in the body's frame [m]; for kTool in the last link's frame until the
+    /// end of linkPlaces(), which turns it into the flange frame.
+    Eigen::Isometry3d T_body_link{Eigen::Isometry3d::Identity()};
+  };
+
+  /// The place of every link the chain carries: the chain's own links, then the branches that
+  /// hang off them by fixed joints.
+  std::map<std::string, Place> linkPlaces(const Chain& chain, const Robot& robot) const {
+    std::map<std::string, Place> places;
+    std::set<std::string> chain_joints;
+    Place place;
+    places[chain.root->name] = place;
+    int moving = -1;
+    for (const urdf::JointConstSharedPtr& joint : chain.joints) {
+      chain_joints.insert(joint->name);
+      if (joint->type != urdf::Joint::FIXED) {
+        place = Place{UrdfBody::kLink, ++moving, Eigen::Isometry3d::Identity()};
+      } else {
+        if (place.body == UrdfBody::kLink && place.joint == robot.dof() - 1) {
+          place.body = UrdfBody::kTool;
+        }
+        place.T_body_link = place.T_body_link * pose(*joint);
+      }
+      places[joint->child_link_name] = place;
+    }
+    std::vector<std::string> stack;
+    for (const auto& named : places) stack.push_back(named.first);
+    while (!stack.empty()) {
+      const urdf::LinkConstSharedPtr link = model_.getLink(stack.back());
+      const Place parent = places.at(stack.back());
+      stack.pop_back();
+      for (const urdf::JointSharedPtr& joint : link->child_joints) {
+        if (joint->type != urdf::Joint::FIXED || chain_joints.count(joint->name)) continue;
+        Place child = parent;
+        if (child.body == UrdfBody::kBase) child.body = UrdfBody::kEnvironment;
+        child.T_body_link = child.T_body_link * pose(*joint);
+        places[joint->child_link_name] = child;
+        stack.push_back(joint->child_link_name);
+      }
+    }
+    const Eigen::Isometry3d T_flange_last = robot.T_last_flange.inverse();
+    for (auto& named : places) {
+      if (named.second.body != UrdfBody::kTool) continue;
+      named.second.joint = -1;
+      named.second.T_body_link = T_flange_last * named.second.T_body_link;
+    }
+    return places;
+  }
+
+  /// Why the chain does not carry `link` (one that linkPlaces() did not place): below the root,
+  /// a link that fixed joints do not tie to the chain moves with a joint outside it.
+  std::string notCarried(const Chain& chain, const urdf::Link& link) const {
+    const std::string chain_name =
+        "the chain from link '" + chain.root->name + "' to link '" + chain.tip->name + "'";
+    urdf::JointConstSharedPtr moving;  // the nearest moving joint above the link
+    for (urdf::LinkConstSharedPtr current = model_.getLink(link.name); current;) {
+      if (current->name == chain.root->name) {
+        if (moving) {
+          return "it moves with joint '" + moving->name + "', which is not in " + chain_name;
+        }
+        break;
+      }
+      if (!current->parent_joint) break;
+      if (!moving && current->parent_joint->type != urdf::Joint::FIXED) {
+        moving = current->parent_joint;
+      }
+      current = model_.getLink(current->parent_joint->parent_link_name);
+    }
+    return "it is not below root link '" + chain.root->name + "' of " + chain_name;
+  }
+
+  /// One `<collision>` element of a link at `place`.
+  UrdfCollision collisionElement(const urdf::Link& link, int element,
+                                 const urdf::Collision& collision, const Place& place) const {
+    const std::string label = "link '" + link.name + "' <collision> " + std::to_string(element);
+    UrdfCollision out;
+    out.link = link.name;
+    out.element = element;
+    out.body = place.body;
+    out.joint = place.joint;
+    out.T_body_geometry = place.T_body_link * pose(collision.origin, label);
+    if (!collision.geometry) fail(label + ": has no geometry");
+    const urdf::Geometry& geometry = *collision.geometry;
+    switch (geometry.type) {
+      case urdf::Geometry::SPHERE:
+        out.type = UrdfGeometry::kSphere;
+        out.radius =
+            size(static_cast<const urdf::Sphere&>(geometry).radius, label, "sphere radius");
+        break;
+      case urdf::Geometry::BOX: {
+        out.type = UrdfGeometry::kBox;
+        const urdf::Vector3& dim = static_cast<const urdf::Box&>(geometry).dim;
+        out.size = {size(dim.x, label, "box size x"), size(dim.y, label, "box size y"),
+                    size(dim.z, label, "box size z")};
+        break;
+      }
+      case urdf::Geometry::CYLINDER: {
+        out.type = UrdfGeometry::kCylinder;
+        const auto& cylinder = static_cast<const urdf::Cylinder&>(geometry);
+        out.radius = size(cylinder.radius, label, "cylinder radius");
+        out.length = size(cylinder.length, label, "cylinder length");
+        break;
+      }
+      case urdf::Geometry::MESH: {
+        out.type = UrdfGeometry::kMesh;
+        const auto& mesh = static_cast<const urdf::Mesh&>(geometry);
+        if (mesh.filename.empty()) fail(label + ": mesh has no filename");
+        out.filename = mesh.filename;
+        out.scale = {size(mesh.scale.x, label, "mesh scale x"),
+                     size(mesh.scale.y, label, "mesh scale y"),
+                     size(mesh.scale.z, label, "mesh scale z")};
+        break;
+      }
+      default:
+        fail(label + ": unknown geometry type");
+    }
+    return out;
+  }
+
+  /// `value` when it is a finite number in (0, 1e9]. \throws mcws::Error naming `what`.
+  double size(double value, const std::string& label, const std::string& what) const {
+    if (!std::isfinite(value) || value <= 0.0 || value > YamlReader::kLargestNumber) {
+      fail(label + ": " + what + " " + shortest(value) + " must be a number > 0 (at most 1e9)");
+    }
+    return value;
+  }
+
   [[noreturn]] void fail(const std::string& what) const { throw Error(source_ + ": " + what); }
 
   urdf::LinkConstSharedPtr link(const std::string& name, const std::string& role) const {
@@ -362,37 +525,42 @@ class ChainReader {
   }
 
   urdf::LinkConstSharedPtr singleLeaf(const urdf::LinkConstSharedPtr& root) const {
-    std::vector<std::string> leaves;
-    urdf::LinkConstSharedPtr leaf;
-    std::vector<urdf::LinkConstSharedPtr> stack{root};
+    // Leaves that only fixed joints lead to (objects fixed to the base) end no chain: they count
+    // only when there is no other leaf, so that the message is then the missing moving joint.
+    std::vector<urdf::LinkConstSharedPtr> leaves, fixed_leaves;
+    std::vector<std::pair<urdf::LinkConstSharedPtr, bool>> stack{{root, false}};  // link, moved
     while (!stack.empty()) {
-      const urdf::LinkConstSharedPtr current = stack.back();
+      const auto [current, moved] = stack.back();
       stack.pop_back();
-      if (current->child_links.empty()) {
-        leaves.push_back(current->name);
-        leaf = current;
+      if (current->child_links.empty()) (moved ? leaves : fixed_leaves).push_back(current);
+      for (const auto& child : current->child_links) {
+        stack.emplace_back(child, moved || child->parent_joint->type != urdf::Joint::FIXED);
       }
-      for (const auto& child : current->child_links) stack.push_back(child);
     }
+    if (leaves.empty()) leaves = fixed_leaves;
     if (leaves.size() != 1) {
       std::string list;
-      for (const std::string& name : leaves) list += (list.empty() ? "" : ", ") + name;
+      for (const auto& leaf : leaves) list += (list.empty() ? "" : ", ") + leaf->name;
       fail("link '" + root->name + "' has " + std::to_string(leaves.size()) +
            " leaf links below it (" + list + "); choose the tip link");
     }
-    return leaf;
+    return leaves.front();
   }
 
   Eigen::Isometry3d pose(const urdf::Joint& joint) const {
-    const urdf::Pose& p = joint.parent_to_joint_origin_transform;
+    return pose(joint.parent_to_joint_origin_transform, "joint '" + joint.name + "'");
+  }
+
+  /// The transform of an `<origin>`; `label` names its element in messages.
+  Eigen::Isometry3d pose(const urdf::Pose& p, const std::string& label) const {
     const double numbers[] = {p.position.x, p.position.y, p.position.z, p.rotation.x,
                               p.rotation.y, p.rotation.z, p.rotation.w};
     for (double value : numbers) {
-      if (!std::isfinite(value)) fail("joint '" + joint.name + "': origin is not finite");
+      if (!std::isfinite(value)) fail(label + ": origin is not finite");
     }
     for (double value : {p.position.x, p.position.y, p.position.z}) {
       if (std::abs(value) > YamlReader::kLargestNumber) {
-        fail("joint '" + joint.name + "': origin coordinate " + shortest(value) +
+        fail(label + ": origin coordinate " + shortest(value) +
              " is out of range (at most 1e9 in size)");
       }
     }
@@ -478,7 +646,26 @@ Robot parseRobotUrdf(const std::string& text, const std::string& source,
                      const UrdfChainOptions& options) {
   checkUrdfSize(text.size(), source);
   const urdf::ModelInterfaceSharedPtr model = parseModel(text, source);
-  return ChainReader(*model, source).read(options);
+  const ChainReader reader(*model, source);
+  return reader.robot(reader.chain(options));
+}
+
+UrdfRobotGeometry parseRobotUrdfGeometry(const std::string& text, const std::string& source,
+                                         const UrdfChainOptions& options) {
+  checkUrdfSize(text.size(), source);
+  std::vector<std::string> logged;
+  const urdf::ModelInterfaceSharedPtr model = parseModel(text, source, &logged);
+  if (!logged.empty()) {  // urdfdom skipped an element it could not read
+    std::string what;
+    for (const std::string& message : logged) what += (what.empty() ? "" : "; ") + message;
+    throw Error(source + ": unsupported or malformed element: " + oneLine(what));
+  }
+  const ChainReader reader(*model, source);
+  const ChainReader::Chain chain = reader.chain(options);
+  UrdfRobotGeometry out;
+  out.robot = reader.robot(chain);
+  out.collisions = reader.collisions(chain, out.robot);
+  return out;
 }
 
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
@@ -486,6 +673,13 @@ Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (!ec) checkUrdfSize(bytes, path);
   return parseRobotUrdf(readTextFile(path, "robot file"), path, options);
+}
+
+UrdfRobotGeometry loadRobotUrdfGeometry(const std::string& path, const UrdfChainOptions& options) {
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec) checkUrdfSize(bytes, path);
+  return parseRobotUrdfGeometry(readTextFile(path, "robot file"), path, options);
 }
 
 }  // namespace mcws

@@ -2,8 +2,10 @@
 /// \file
 /// \brief Serial chains read from URDF files (urdfdom) into the mcws::Robot model.
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mcws/kinematics/robot.h"
 
@@ -22,7 +24,9 @@ struct UrdfChainOptions {
   /// First link of the chain; its frame is the world frame. Empty: the tree's root link.
   std::string root_link;
   /// Last link of the chain; its frame is the tool frame. Empty: the one leaf below root_link
-  /// (an error naming the leaves when there are several).
+  /// that a moving joint leads to (an error naming the leaves when there are several); leaves
+  /// that only fixed joints lead to, objects fixed to the base, are passed over unless there is
+  /// no other.
   std::string tip_link;
 };
 
@@ -53,5 +57,67 @@ Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options = {
 /// \param source name used in messages (usually the file name).
 Robot parseRobotUrdf(const std::string& text, const std::string& source,
                      const UrdfChainOptions& options = {});
+
+/// \brief The body of a chain that carries a URDF link (see UrdfCollision).
+enum class UrdfBody {
+  kBase,         ///< the root link, and the links fixed to it on the way to the first moving joint
+  kLink,         ///< a link that moves with one joint of the chain
+  kTool,         ///< fixed below the last moving joint, on the way to the tip link or below it
+  kEnvironment,  ///< fixed to the base off the chain: an object that stays in the world frame
+};
+
+/// \brief Kind of a URDF collision geometry.
+enum class UrdfGeometry { kSphere, kBox, kCylinder, kMesh };
+
+/// \brief One `<collision>` element of a URDF link, placed on the body of the chain that carries
+/// it. Lengths in metres, as in the file.
+struct UrdfCollision {
+  std::string link;  ///< the URDF link that holds the element
+  int element{1};    ///< 1-based among that link's `<collision>` elements
+  UrdfBody body{UrdfBody::kBase};
+  int joint{-1};  ///< kLink: index (0-based) of the joint whose link carries the element
+  /// Frame of the geometry (the link frame moved by the element's `<origin>`) in its body's frame
+  /// [m]: the root link's frame (the robot's base frame) for kBase and kEnvironment, link `joint`'s
+  /// frame (ChainPoses::T_world_link[joint]) for kLink, the flange frame (the tip link's frame) for
+  /// kTool.
+  Eigen::Isometry3d T_body_geometry{Eigen::Isometry3d::Identity()};
+  UrdfGeometry type{UrdfGeometry::kSphere};
+  double radius{0.0};                              ///< sphere, cylinder [m]
+  double length{0.0};                              ///< cylinder, along z of its frame [m]
+  Eigen::Vector3d size{Eigen::Vector3d::Zero()};   ///< box edges [m]
+  std::string filename;                            ///< mesh, as written in the file
+  Eigen::Vector3d scale{Eigen::Vector3d::Ones()};  ///< mesh, per axis
+};
+
+/// \brief A chain of a URDF file and the `<collision>` elements of the links it carries.
+struct UrdfRobotGeometry {
+  Robot robot;  ///< as loadRobotUrdf()
+  std::vector<UrdfCollision> collisions;
+};
+
+/// \brief Reads the chain of a URDF file (as loadRobotUrdf()) and places each `<collision>`
+/// element of its links on the body of the chain that carries it.
+///
+/// A link is carried by the body that its path of fixed joints leads to: the links on the chain
+/// from the root link to the first moving joint belong to the base; the child link of moving
+/// joint i, and the links fixed below it, to link i; the links after the last moving joint's child
+/// on the way to the tip link, and the links fixed below them, to the tool (so a flange or tool
+/// link's geometry is the tool, placed in the flange frame); the other links fixed to the base
+/// (branches off the chain that no joint moves) are environment objects.
+/// \param path a `.urdf` file.
+/// \param options root and tip links, as loadRobotUrdf().
+/// \throws mcws::Error as loadRobotUrdf(), and one line naming the file and the link for: an
+///   error urdfdom logs and would skip (an unknown geometry such as `<capsule>`, a malformed
+///   `scale`), a `<collision>` on a link the chain does not carry (moved by a joint outside the
+///   chain, or not below the root link), a radius, length, box edge or mesh scale that is not a
+///   finite number > 0, an origin that is not finite or larger than 1e9 in size.
+UrdfRobotGeometry loadRobotUrdfGeometry(const std::string& path,
+                                        const UrdfChainOptions& options = {});
+
+/// \brief As loadRobotUrdfGeometry(), from the URDF text.
+/// \param text the XML text.
+/// \param source name used in messages (usually the file name).
+UrdfRobotGeometry parseRobotUrdfGeometry(const std::string& text, const std::string& source,
+                                         const UrdfChainOptions& options = {});
 
 }  // namespace mcws
