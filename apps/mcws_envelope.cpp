@@ -1,8 +1,10 @@
 // mcws_envelope: the workspace envelope of a 3-D cloud as a closed, outward-oriented triangle mesh
 // (PLY, STL or VTK) enclosing the volume mcws_measure gives.
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "common/app.h"
 #include "common/cloud_io.h"
@@ -35,7 +37,7 @@ pinches itself are filled ("filled_volume"): a few per mille on uniform and refi
 plain joint-space samples, whose edge is sparse, filling also closes concave parts (a warning
 above 1 %): refine such clouds first (mcws_boundary, mcws_refine).
 Binary PLY, binary STL or ASCII VTK by the --output extension; pcl_viewer shows .ply and .vtk,
-MeshLab all three. Lengths in the cloud's unit or --unit (the file's too). --json: "volume"
+MeshLab all three; --plot a shaded PNG from two views (gnuplot). Lengths in the cloud's unit or --unit (the file's too). --json: "volume"
 (enclosed by the mesh), "measure_volume" (mcws_measure's), "uncorrected" (the kept tetrahedra's),
 "filled_volume", "area", "offset", the counts, "euler_characteristic" (V - E + F: 2 for a surface
 like a sphere's, 0 for a torus's) and "closed_and_oriented" (every edge in two triangles, once
@@ -45,6 +47,7 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("input", "workspace cloud (PCD), 3-D");
   cli.addValue("output", "mesh file: .ply, .stl or .vtk");
   app::declareRegionFlags(cli);
+  cli.addValue("plot", "PNG: the mesh shaded, from two views (gnuplot)");
   app::declareUnitFlag(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -59,7 +62,7 @@ int main(int argc, char** argv) {
     const std::string input = cli.required("input"), output = cli.required("output");
     const MeshFormat format = app::asUsageError("output", [&] { return meshFormatOf(output); });
     MeasureOptions options = app::readRegionOptions(cli);
-    app::checkOutputs({{"output", output}}, {{"input", input}});
+    app::checkOutputs({{"output", output}, {"plot", cli.text("plot", "")}}, {{"input", input}});
     const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
 
     app::Progress clock("mcws_envelope", "points");
@@ -81,10 +84,19 @@ int main(int argc, char** argv) {
     const Envelope envelope = workspaceEnvelope(points, options);
     TriangleSurface shown = envelope.mesh;
     for (auto& v : shown.vertices) v *= units.length(1.0);
+    // Both files complete under temporary names before either gets its own.
     io::AtomicFile file(output);
     writeSurface(shown, format, "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
                  file.stream());
+    std::optional<io::AtomicFile> picture;
+    if (cli.has("plot")) {
+      const std::string png = renderEnvelopePng(
+          shown, std::filesystem::path(input).filename().string(), units.lengthName());
+      picture.emplace(cli.required("plot"));
+      picture->write(png.data(), png.size());
+    }
     file.commit();
+    if (picture) picture->commit();
 
     const SurfaceTopology topology = surfaceTopology(envelope.mesh);
     const std::string volume = units.volumeName();

@@ -58,7 +58,7 @@ area=$(refined_measure deicing_xz_50k "--fix theta3=0" "--plane xz")
 volume=$(refined_measure deicing_3d_50k "" "")
 # The envelope of the refined 3-D cloud as a mesh (MeshLab, pcl_viewer), in cm and in metres.
 "$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none \
-  --output "$out/deicing_envelope.ply" >/dev/null
+  --output "$out/deicing_envelope.ply" --plot "$out/deicing_envelope.png" >/dev/null
 "$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none --unit m \
   --output "$out/deicing_envelope_m.stl" --json >"$out/.deicing_envelope.json.tmp"
 mv "$out/.deicing_envelope.json.tmp" "$out/deicing_envelope.json"
@@ -86,7 +86,7 @@ mv "$out/.rehearsal_3.txt.tmp" "$out/rehearsal_3.txt"
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
   deicing_xz_boundary.png deicing_3d_50k_boundary.pcd deicing_3d_boundary.png deicing_envelope.ply \
-  deicing_envelope_m.stl deicing_envelope.json; do echo "  $out/$f"; done
+  deicing_envelope.png deicing_envelope_m.stl deicing_envelope.json; do echo "  $out/$f"; done
 # Relative error [%] of a measure against its closed form (BENCHMARKS.md: the area is known to
 # +-1.5 cm^2, 0.009 %, the volume to +-200 cm^3, 0.01 %).
 relative_error() {  # value, closed form

@@ -3,9 +3,14 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <pcl/common/common.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -64,6 +69,31 @@ TEST_F(EnvelopeApp, RefinedDeicingCloudGivesAClosedMeshWithTheMeasuredVolume) {
   ASSERT_EQ(metres.exit_code, 0) << metres.err;
   EXPECT_NEAR(Json::parse(metres.out)["volume"].get<double>(),
               envelope["volume"].get<double>() * 1e-6, 1e-12);
+}
+
+TEST_F(EnvelopeApp, PictureShowsTheEnvelopesSideViewWithTheCloudsProportions) {
+  const std::string png = dir_->file("envelope.png");
+  const test::RunResult r = test::run(kEnvelope + " --input " + refined_ + " --output " +
+                                      dir_->file("p.ply") + " --correction none --plot " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The right panel looks along y with equal axis scales: the shaded mesh spans the cloud's x
+  // and z extents.
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(refined_, cloud), 0);
+  pcl::PointXYZ lo, hi;
+  pcl::getMinMax3D(cloud, lo, hi);
+  const test::PngImage image(png);
+  const test::PixelBox right{image.width() / 2, image.width() - 1, 0, image.height() - 1};
+  const test::PixelBox mesh = image.box(
+      [](test::Rgb c) {
+        const int r = c >> 16 & 0xff, b = c & 0xff;
+        return b > r + 40;  // the mesh's blue, lit or shaded; axes and text are grey
+      },
+      right);
+  ASSERT_FALSE(mesh.empty());
+  const double expected = (hi.x - lo.x) / (hi.z - lo.z);
+  EXPECT_NEAR(static_cast<double>(mesh.width()) / mesh.height() / expected, 1.0, 0.08)
+      << mesh.width() << " x " << mesh.height() << " px";
 }
 
 TEST_F(EnvelopeApp, PlainJointSamplesGetTheWarningToRefine) {

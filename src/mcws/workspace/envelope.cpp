@@ -5,10 +5,13 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <tuple>
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/io/gnuplot.h"
 
 namespace mcws {
 namespace {
@@ -227,6 +230,42 @@ void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::
       writeVtk(surface, comment, out);
       break;
   }
+}
+
+std::string renderEnvelopePng(const TriangleSurface& surface, const std::string& title,
+                              const std::string& unit) {
+  if (surface.triangles.empty()) throw Error("envelope picture: the surface has no triangles");
+  io::ScratchDir dir;
+  const std::string data = dir.file("triangles.dat"), png = dir.file("envelope.png");
+  {
+    std::ofstream out(data);
+    out.precision(7);
+    for (const auto& t : surface.triangles) {  // gnuplot's polygons: corners, blank lines between
+      for (const std::uint32_t k : t) {
+        const Eigen::Vector3d& v = surface.vertices[k];
+        out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+      }
+      out << "\n\n";
+    }
+    if (!out) throw Error("envelope picture: writing the triangles failed");
+  }
+  std::ostringstream gp;
+  const std::string polygons = "splot " + io::gnuplotQuoted(data) +
+                               " with polygons fs solid 1.0 noborder fc rgb '#5b8fc9' notitle\n";
+  gp << "set terminal pngcairo noenhanced size 1400,700 font 'Sans,11'\n"
+     << "set output " << io::gnuplotQuoted(png) << "\n"
+     << "set multiplot layout 1,2 title "
+     << io::gnuplotQuoted(title + ": workspace envelope, " +
+                          std::to_string(surface.triangles.size()) + " triangles")
+     << "\nset view equal xyz\nset xyplane 0\nunset colorbox\n"
+     << "set pm3d depthorder lighting primary 0.55 specular 0.25\n"
+     << "set xlabel " << io::gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "
+     << io::gnuplotQuoted("y [" + unit + "]") << "\nset zlabel "
+     << io::gnuplotQuoted("z [" + unit + "]") << " rotate parallel\n"
+     << "set title 'from the front left, above'\nset view 60, 30\n"
+     << polygons << "set title 'from the side (along +y)'\nset view 90, 0\n"
+     << polygons << "unset multiplot\n";
+  return io::runGnuplot(dir, gp.str(), png);
 }
 
 }  // namespace mcws

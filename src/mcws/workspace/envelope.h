@@ -78,4 +78,10 @@ MeshFormat meshFormatOf(const std::string& path);
 void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::string& comment,
                   std::FILE* out);
 
+/// \brief A shaded picture of the surface from two views (front-left from above, and from the
+/// side along -y), drawn by gnuplot (pm3d lighting on the triangles), axes in `unit`.
+/// \return the PNG's bytes. \throws mcws::Error when gnuplot fails or the surface is empty.
+std::string renderEnvelopePng(const TriangleSurface& surface, const std::string& title,
+                              const std::string& unit);
+
 }  // namespace mcws
