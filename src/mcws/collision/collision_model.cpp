@@ -12,6 +12,7 @@
 #include <set>
 
 #include "mcws/core/error.h"
+#include "mcws/core/file_name.h"
 #include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
 
@@ -241,8 +242,7 @@ std::string urdfMeshPath(const std::string& filename, const std::string& source,
   }
   std::filesystem::path file = path;
   if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
-  std::string extension = file.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = lowercaseExtension(file);
   if (extension != ".stl" && extension != ".obj") {
     throw Error(where + ": mesh '" + filename +
                 "': " + (extension.empty() ? std::string("a file without extension") : extension) +
@@ -451,8 +451,7 @@ TriangleMesh loadMesh(const std::string& path, double scale) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw Error("'" + path + "': file does not exist");
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string extension = lowercaseExtension(path);
   if (extension != ".stl" && extension != ".obj")
     throw Error("'" + path + "': not an STL or OBJ file (by its extension)");
   pcl::PolygonMesh polygons;

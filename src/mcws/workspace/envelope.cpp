@@ -1,7 +1,6 @@
 #include "mcws/workspace/envelope.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/core/file_name.h"
 #include "mcws/io/gnuplot.h"
 
 namespace mcws {
@@ -208,9 +208,7 @@ Envelope workspaceEnvelope(const pcl::PointCloud<pcl::PointXYZ>& points,
 }
 
 MeshFormat meshFormatOf(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lowercaseExtension(path);
   if (extension == ".ply") return MeshFormat::kPly;
   if (extension == ".stl") return MeshFormat::kStl;
   if (extension == ".vtk") return MeshFormat::kVtk;
