@@ -47,14 +47,16 @@ sample t_torch_only "$torch_only" tool
 "$bin/mcws_select" --input "$out/t_torch_only.pcd" --label 2 --output "$out/t_torch.pcd"
 "$bin/mcws_select" --input "$out/t_all.pcd" --label 1,2 --output "$out/t_collisions.pcd"
 
-plot() {  # plot CLOUD PNG TITLE
+plot() {  # plot CLOUD PNG TITLE [plot_cloud.sh flags...]
   "$root/scripts/plot_cloud.sh" --input "$out/$1.pcd" --output "$out/$2.png" --view 3d \
-    --unit mm --title "$3"
+    --unit mm --title "$3" "${@:4}"
 }
-plot p_free fig3_p_free "TA1400: P points (flange), collision-free samples"
-plot t_free fig4_t_free "TA1400: T points (torch tip), collision-free samples"
-plot t_torch fig5_t_torch "TA1400: torch-arm collision region (T points)"
-plot t_collisions fig6_t_all "TA1400: collisions of links and torch (T points)"
+plot p_free fig3_p_free "TA1400: P points (flange), collision-free samples" --color z --label samples
+plot t_free fig4_t_free "TA1400: T points (torch tip), collision-free samples" --color z --label samples
+plot t_torch fig5_t_torch "TA1400: torch-arm collision region (T points)" --color z --label samples
+# Fig. 6 by collision label (t_all's codes: 1 any link-link collision, 2 the torch alone)
+plot t_collisions fig6_t_all "TA1400: collisions of links and torch (T points)" --color label \
+  --color-names 1=link-link,2=torch-arm
 
 volume() { "$bin/mcws_measure" --input "$out/$1.pcd" --json | sed 's/.*"volume":\([^,}]*\).*/\1/'; }
 v_all=$(volume t_all)
