@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <list>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -12,18 +13,21 @@
 #include "common/units.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
 
 namespace {
 
 using namespace mcws;
 
+constexpr double kDegree = M_PI / 180.0;
 constexpr std::size_t kProgressPoints = 200000;  ///< larger inputs report their phases on stderr
 /// A filled volume above this share of the kept tetrahedra's gets a warning (Envelope::filled).
 constexpr double kFilledWarning = 0.01;
 
 constexpr char kUsage[] =
-    "mcws_envelope --input CLOUD.pcd --output ENVELOPE.ply|.stl|.vtk [options]";
+    "mcws_envelope --input CLOUD.pcd [--output ENVELOPE.ply|.stl|.vtk] [--plot VIEWS.png]\n"
+    "              [--drawing RANGE.png|.svg] [options]";
 
 constexpr char kSummary[] =
     R"(The envelope of the region a 3-D workspace cloud samples, as a closed triangle mesh, every
@@ -37,7 +41,14 @@ pinches itself are filled ("filled_volume"): a few per mille on uniform and refi
 plain joint-space samples, whose edge is sparse, filling also closes concave parts (a warning
 above 1 %): refine such clouds first (mcws_boundary, mcws_refine).
 Binary PLY, binary STL or ASCII VTK by the --output extension; pcl_viewer shows .ply and .vtk,
-MeshLab all three; --plot a shaded PNG from two views (gnuplot). Lengths in the cloud's unit or --unit (the file's too). --json: "volume"
+MeshLab all three; --plot a shaded PNG from two views (gnuplot). Lengths in the cloud's unit or
+--unit (the files' too).
+--drawing: the working range as a datasheet draws it, PNG or SVG (gnuplot): the side view is the
+section of the envelope by the vertical plane through the first joint's axis (the base z axis)
+at --azimuth, with the reach in front of and behind the axis and the highest and lowest point;
+the top view is the projection on the horizontal plane with the maximum and minimum reach and
+the angle swept at full reach (where the outline is within 5 % of the maximum reach). The
+numbers go into the JSON under "drawing". --json: "volume"
 (enclosed by the mesh), "measure_volume" (mcws_measure's), "uncorrected" (the kept tetrahedra's),
 "filled_volume", "area", "offset", the counts, "euler_characteristic" (V - E + F: 2 for a surface
 like a sphere's, 0 for a torus's) and "closed_and_oriented" (every edge in two triangles, once
@@ -46,6 +57,8 @@ each way).)";
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("input", "workspace cloud (PCD), 3-D");
   cli.addValue("output", "mesh file: .ply, .stl or .vtk");
+  cli.addValue("drawing", "datasheet drawing (side and top view with dimensions): .png or .svg");
+  cli.addValue("azimuth", "drawing: direction of the side view's plane from +x [deg] (default 0)");
   app::declareRegionFlags(cli);
   cli.addValue("plot", "PNG: the mesh shaded, from two views (gnuplot)");
   app::declareUnitFlag(cli);
@@ -59,10 +72,20 @@ int main(int argc, char** argv) {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
-    const std::string input = cli.required("input"), output = cli.required("output");
-    const MeshFormat format = app::asUsageError("output", [&] { return meshFormatOf(output); });
+    const std::string input = cli.required("input"), output = cli.text("output", "");
+    const std::string drawing_file = cli.text("drawing", "");
+    if (output.empty() && drawing_file.empty() && !cli.has("plot"))
+      throw app::UsageError("give at least one of --output, --plot and --drawing");
+    MeshFormat format{};
+    if (!output.empty()) format = app::asUsageError("output", [&] { return meshFormatOf(output); });
+    DrawingFormat drawing_format{};
+    if (!drawing_file.empty())
+      drawing_format = app::asUsageError("drawing", [&] { return drawingFormatOf(drawing_file); });
+    const double azimuth = app::parseNumber(cli.text("azimuth", "0"), "azimuth") * kDegree;
     MeasureOptions options = app::readRegionOptions(cli);
-    app::checkOutputs({{"output", output}, {"plot", cli.text("plot", "")}}, {{"input", input}});
+    app::checkOutputs(
+        {{"output", output}, {"plot", cli.text("plot", "")}, {"drawing", drawing_file}},
+        {{"input", input}});
     const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
 
     app::Progress clock("mcws_envelope", "points");
@@ -84,50 +107,87 @@ int main(int argc, char** argv) {
     const Envelope envelope = workspaceEnvelope(points, options);
     TriangleSurface shown = envelope.mesh;
     for (auto& v : shown.vertices) v *= units.length(1.0);
-    // Both files complete under temporary names before either gets its own.
-    io::AtomicFile file(output);
-    writeSurface(shown, format, "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
-                 file.stream());
-    std::optional<io::AtomicFile> picture;
-    if (cli.has("plot")) {
-      const std::string png = renderEnvelopePng(
-          shown, std::filesystem::path(input).filename().string(), units.lengthName());
-      picture.emplace(cli.required("plot"));
-      picture->write(png.data(), png.size());
+    const std::string name = std::filesystem::path(input).filename().string();
+    std::optional<EnvelopeDrawing> drawing;
+    if (!drawing_file.empty()) {
+      drawing = app::asUsageError("azimuth", [&] { return envelopeDrawing(shown, azimuth); });
     }
-    file.commit();
-    if (picture) picture->commit();
+    // Every file complete under a temporary name before any gets its own.
+    std::list<io::AtomicFile> files;
+    if (!output.empty()) {
+      files.emplace_back(output);
+      writeSurface(shown, format,
+                   "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
+                   files.back().stream());
+    }
+    if (cli.has("plot")) {
+      const std::string png = renderEnvelopePng(shown, name, units.lengthName());
+      files.emplace_back(cli.required("plot"));
+      files.back().write(png.data(), png.size());
+    }
+    if (drawing) {
+      const std::string bytes =
+          renderEnvelopeDrawing(*drawing, drawing_format, name, units.lengthName());
+      files.emplace_back(drawing_file);
+      files.back().write(bytes.data(), bytes.size());
+    }
+    for (auto& file : files) file.commit();
 
     const SurfaceTopology topology = surfaceTopology(envelope.mesh);
     const std::string volume = units.volumeName();
-    const nlohmann::json out{{"input", input},
-                             {"output", output},
-                             {"volume", units.volume(envelope.volume)},
-                             {"measure_volume", units.volume(envelope.measure.measure)},
-                             {"uncorrected", units.volume(envelope.measure.uncorrected)},
-                             {"area", units.area(envelope.area)},
-                             {"offset", units.length(envelope.offset)},
-                             {"alpha", options.alpha_factor},
-                             {"correction", options.edge_correction ? "efron" : "none"},
-                             {"points", envelope.measure.points},
-                             {"vertices", topology.vertices},
-                             {"triangles", topology.triangles},
-                             {"edges", topology.edges},
-                             {"euler_characteristic", topology.euler_characteristic},
-                             {"closed_and_oriented", topology.closedAndOriented()},
-                             {"non_manifold_edges", topology.non_manifold_edges},
-                             {"filled_volume", units.volume(envelope.filled)},
-                             {"seconds", clock.seconds()},
-                             {"length_unit", units.lengthName()},
-                             {"units",
-                              {{"volume", volume},
-                               {"measure_volume", volume},
-                               {"uncorrected", volume},
-                               {"area", units.areaName()},
-                               {"offset", units.lengthName()},
-                               {"filled_volume", volume},
-                               {"alpha", "local spacings"},
-                               {"seconds", "s"}}}};
+    nlohmann::json out{{"input", input},
+                       {"output", output.empty() ? nlohmann::json() : nlohmann::json(output)},
+                       {"volume", units.volume(envelope.volume)},
+                       {"measure_volume", units.volume(envelope.measure.measure)},
+                       {"uncorrected", units.volume(envelope.measure.uncorrected)},
+                       {"area", units.area(envelope.area)},
+                       {"offset", units.length(envelope.offset)},
+                       {"alpha", options.alpha_factor},
+                       {"correction", options.edge_correction ? "efron" : "none"},
+                       {"points", envelope.measure.points},
+                       {"vertices", topology.vertices},
+                       {"triangles", topology.triangles},
+                       {"edges", topology.edges},
+                       {"euler_characteristic", topology.euler_characteristic},
+                       {"closed_and_oriented", topology.closedAndOriented()},
+                       {"non_manifold_edges", topology.non_manifold_edges},
+                       {"filled_volume", units.volume(envelope.filled)},
+                       {"seconds", clock.seconds()},
+                       {"length_unit", units.lengthName()},
+                       {"units",
+                        {{"volume", volume},
+                         {"measure_volume", volume},
+                         {"uncorrected", volume},
+                         {"area", units.areaName()},
+                         {"offset", units.lengthName()},
+                         {"filled_volume", volume},
+                         {"alpha", "local spacings"},
+                         {"seconds", "s"}}}};
+    if (drawing) {
+      const EnvelopeSection& side = drawing->side;
+      const EnvelopeTopView& top = drawing->top;
+      const auto deg = [](double radians) { return radians / kDegree; };
+      out["drawing"] = {{"file", drawing_file},
+                        {"azimuth", deg(side.azimuth)},
+                        {"section_area", side.area},
+                        {"front_reach", side.front_reach},
+                        {"back_reach", side.back_reach},
+                        {"section_highest", side.highest},
+                        {"section_lowest", side.lowest},
+                        {"max_reach", top.max_reach},
+                        {"min_reach", top.min_reach},
+                        {"swept_angle", deg(top.sweep)},
+                        {"sweep_from", deg(top.sweep_from)},
+                        {"sweep_to", deg(top.sweep_to)},
+                        {"highest", drawing->highest},
+                        {"lowest", drawing->lowest}};
+      for (const char* key : {"front_reach", "back_reach", "section_highest", "section_lowest",
+                              "max_reach", "min_reach", "highest", "lowest"})
+        out["units"][std::string("drawing.") + key] = units.lengthName();
+      out["units"]["drawing.section_area"] = units.areaName();
+      for (const char* key : {"azimuth", "swept_angle", "sweep_from", "sweep_to"})
+        out["units"][std::string("drawing.") + key] = "deg";
+    }
     if (envelope.filled > kFilledWarning * envelope.measure.uncorrected) {
       std::cerr << "mcws_envelope: warning: making the surface a closed 2-manifold filled "
                 << app::shortNumber(100.0 * envelope.filled / envelope.measure.uncorrected)
@@ -139,10 +199,20 @@ int main(int argc, char** argv) {
     } else {
       std::cout.precision(10);
       std::cout << "volume " << out["volume"].get<double>() << " " << volume << "\n";
+      if (drawing) {
+        const std::string unit = " " + units.lengthName();
+        const auto& d = out["drawing"];
+        std::cout << "max reach " << d["max_reach"].get<double>() << unit << ", min reach "
+                  << d["min_reach"].get<double>() << unit << ", highest "
+                  << d["highest"].get<double>() << unit << ", lowest " << d["lowest"].get<double>()
+                  << unit << ", swept " << d["swept_angle"].get<double>() << " deg\n";
+      }
       std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000)
                 << " ms : " << topology.triangles << " triangles, " << topology.vertices
                 << " vertices" << (topology.closedAndOriented() ? "" : ", surface touches itself")
-                << "] -> " << output << "\n";
+                << "] ->";
+      for (const auto& file : files) std::cerr << " " << file.path();
+      std::cerr << "\n";
     }
     return app::kExitOk;
   });

@@ -31,16 +31,17 @@ mv "$out/.deicing_xz.json.tmp" "$out/deicing_xz.json"
   --output "$out/deicing_3d.pcd" --json >"$out/.deicing_3d.json.tmp"
 mv "$out/.deicing_3d.json.tmp" "$out/deicing_3d.json"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_xz.pcd" --output "$out/deicing_xz.png" \
-  --view xz --unit cm --title "De-icing arm: workspace in the X-Z plane (6000 samples)"
+  --view xz --unit cm --label samples \
+  --title "De-icing arm: workspace in the X-Z plane (6000 samples)"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_3d.pcd" --output "$out/deicing_3d.png" \
-  --view 3d --unit cm --title "De-icing arm: 3-D workspace (6000 samples)"
+  --view 3d --unit cm --color z --label samples --title "De-icing arm: 3-D workspace (6000 samples)"
 
 # Fig. 13 of Yin, Wang & Yu 2010: the X-Z boundary from 100000 samples.
 "$bin/mcws_sample" --robot "$robot" --samples 100000 --seed 1 --fix theta3=0 \
   --output "$out/deicing_xz_100k.pcd"
 "$bin/mcws_boundary" --input "$out/deicing_xz_100k.pcd" --plane xz --output "$out/deicing_xz_boundary.pcd"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_xz_100k.pcd" --overlay "$out/deicing_xz_boundary.pcd" \
-  --output "$out/deicing_xz_boundary.png" --view xz --unit cm \
+  --output "$out/deicing_xz_boundary.png" --view xz --unit cm --label samples --overlay-label boundary \
   --title "De-icing arm: X-Z workspace boundary (100000 samples)"
 
 # Area and volume: 50000 samples, their boundary, 50000 refined samples near it (mcws_refine),
@@ -56,14 +57,17 @@ refined_measure() {  # name, sample flags, boundary flags
 }
 area=$(refined_measure deicing_xz_50k "--fix theta3=0" "--plane xz")
 volume=$(refined_measure deicing_3d_50k "" "")
-# The envelope of the refined 3-D cloud as a mesh (MeshLab, pcl_viewer), in cm and in metres.
+# The envelope of the refined 3-D cloud as a mesh (MeshLab, pcl_viewer), in cm and in metres,
+# and the working range drawn as a datasheet draws it (side and top view with dimensions).
 "$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none \
-  --output "$out/deicing_envelope.ply" --plot "$out/deicing_envelope.png" >/dev/null
+  --output "$out/deicing_envelope.ply" --plot "$out/deicing_envelope.png" \
+  --drawing "$out/deicing_range.png" --json >"$out/.deicing_range.json.tmp"
+mv "$out/.deicing_range.json.tmp" "$out/deicing_range.json"
 "$bin/mcws_envelope" --input "$out/deicing_3d_50k_refined.pcd" --correction none --unit m \
   --output "$out/deicing_envelope_m.stl" --json >"$out/.deicing_envelope.json.tmp"
 mv "$out/.deicing_envelope.json.tmp" "$out/deicing_envelope.json"
 "$root/scripts/plot_cloud.sh" --input "$out/deicing_3d_50k_boundary.pcd" \
-  --output "$out/deicing_3d_boundary.png" --view 3d --unit cm \
+  --output "$out/deicing_3d_boundary.png" --view 3d --unit cm --color z --label boundary \
   --title "De-icing arm: boundary of the 3-D workspace (50000 samples)"
 
 # The maintenance-arm patent: the arm's path robust to base sway, validated on 10000 fresh base
@@ -86,7 +90,8 @@ mv "$out/.rehearsal_3.txt.tmp" "$out/rehearsal_3.txt"
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
   deicing_xz_boundary.png deicing_3d_50k_boundary.pcd deicing_3d_boundary.png deicing_envelope.ply \
-  deicing_envelope.png deicing_envelope_m.stl deicing_envelope.json; do echo "  $out/$f"; done
+  deicing_envelope.png deicing_envelope_m.stl deicing_envelope.json deicing_range.png \
+  deicing_range.json; do echo "  $out/$f"; done
 # Relative error [%] of a measure against its closed form (BENCHMARKS.md: the area is known to
 # +-1.5 cm^2, 0.009 %, the volume to +-200 cm^3, 0.01 %).
 relative_error() {  # value, closed form
@@ -101,6 +106,9 @@ json_number() { sed "s/.*\"$1\":\([^,}]*\).*/\1/" "$2"; }  # one number from a J
 echo "  envelope mesh: $(json_number triangles "$out/deicing_envelope.json") triangles enclosing" \
   "$(json_number volume "$out/deicing_envelope.json") m^3, closed and oriented:" \
   "$(json_number closed_and_oriented "$out/deicing_envelope.json")"
+range_number() { printf "%.${2}f" "$(json_number "$1" "$out/deicing_range.json")"; }
+echo "  working range: reach $(range_number max_reach 2) cm (eq. (1): 120), highest" \
+  "$(range_number highest 2) cm (105.36), swept $(range_number swept_angle 1) deg (120)"
 echo "mcws: planning under base sway (the maintenance-arm patent) written to $out:"
 for f in maintenance4_path.csv maintenance4_plan.txt planar2_path.csv planar2_cspace.png \
   planar2_offsets.png; do echo "  $out/$f"; done

@@ -1,5 +1,6 @@
 // mcws_envelope through its command line: the de-icing arm's refined cloud gives a closed,
-// oriented mesh enclosing mcws_measure's volume; plain joint samples get the warning; bad input.
+// oriented mesh enclosing mcws_measure's volume; plain joint samples get the warning; the
+// datasheet drawing's numbers against eq. (1) of seed 000 and the TA1400's D-H table; bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -7,9 +8,13 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "deicing_region.h"
 #include "png_image.h"
 #include "test_support.h"
 
@@ -107,6 +112,73 @@ TEST_F(EnvelopeApp, PlainJointSamplesGetTheWarningToRefine) {
   EXPECT_THAT(r.err, HasSubstr("refine the cloud"));
 }
 
+TEST_F(EnvelopeApp, DrawingOfTheDeicingArmAgreesWithEquationOne) {
+  // Eq. (1): the reach is a1 + a2 = 50 + 70 cm at t1 = t2 = 0; the highest point
+  // a1 sin 45 + a2 = 105.355 cm (t1 = 45, t1 + t2 = 90 deg), the lowest its mirror; behind the
+  // yaw axis a1 cos 45 + a2 cos 135 = -14.142 cm; t3 sweeps 120 degrees; the section through the
+  // yaw axis at any t3 in range is the X-Z region, 16352.5 cm^2 (tests/deicing_region.h).
+  const double highest = 50.0 * std::sqrt(0.5) + 70.0, behind = 20.0 * std::sqrt(0.5);
+  const double area = test::integrateDeicing(0.1).area;
+  for (const char* azimuth : {"0", "30"}) {
+    const std::string svg = dir_->file(std::string("range") + azimuth + ".svg");
+    const test::RunResult r =
+        test::run(kEnvelope + " --input " + refined_ + " --correction none --drawing " + svg +
+                  " --azimuth " + azimuth + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Json d = Json::parse(r.out)["drawing"];
+    SCOPED_TRACE(std::string("azimuth ") + azimuth);
+    EXPECT_NEAR(d["max_reach"].get<double>() / 120.0, 1.0, 0.002);
+    EXPECT_NEAR(d["front_reach"].get<double>() / 120.0, 1.0, 0.005);
+    EXPECT_NEAR(d["highest"].get<double>() / highest, 1.0, 0.002);
+    EXPECT_NEAR(d["lowest"].get<double>() / -highest, 1.0, 0.002);
+    EXPECT_NEAR(d["back_reach"].get<double>() / behind, 1.0, 0.05);
+    EXPECT_NEAR(d["section_area"].get<double>() / area, 1.0, 0.02);
+    EXPECT_LT(d["min_reach"].get<double>(), 0.5);  // the arm reaches its own yaw axis
+    EXPECT_NEAR(d["swept_angle"].get<double>(), 120.0, 1.0);
+    EXPECT_NEAR(d["sweep_from"].get<double>(), -60.0, 1.0);
+    EXPECT_NEAR(d["sweep_to"].get<double>(), 60.0, 1.0);
+    EXPECT_EQ(Json::parse(r.out)["units"]["drawing.max_reach"], "cm");
+    EXPECT_EQ(Json::parse(r.out)["units"]["drawing.section_area"], "cm^2");
+    EXPECT_EQ(Json::parse(r.out)["units"]["drawing.swept_angle"], "deg");
+    EXPECT_TRUE(Json::parse(r.out)["output"].is_null());  // no mesh asked for, none written
+    std::ifstream in(svg);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_THAT(text, HasSubstr("</svg>"));
+    EXPECT_THAT(text, HasSubstr(" cm</text>"));  // dimensions carry their unit
+  }
+}
+
+TEST_F(EnvelopeApp, DrawingOfTheTa1400WristCentreAgreesWithItsDhTable) {
+  // The P point (wrist centre) of seed 002's Table 1 in the arm's plane: the shoulder is
+  // a1 = 150 mm out, the upper arm a2 = 560, the forearm |(a3, d4)| = |(130, 600)| = 613.92 mm.
+  // Reach a1 + a2 + 613.92 (theta2 = 0, theta3 = -77.8 deg); highest a2 + 613.92 (theta2 =
+  // -90); lowest -(a2 sin 50 + 613.92) at theta2's limit of 50 deg.
+  const double forearm = std::hypot(130.0, 600.0);
+  test::TempDir here;
+  const std::string robot = " --robot " + test::robotPath("ta1400") + " --point flange";
+  const std::string plain = here.file("p.pcd"), rim = here.file("rim.pcd"),
+                    refined = here.file("r.pcd");
+  ASSERT_EQ(test::run(kSample + robot + " --samples 30000 --output " + plain).exit_code, 0);
+  ASSERT_EQ(test::run(kBoundary + " --input " + plain + " --output " + rim).exit_code, 0);
+  ASSERT_EQ(test::run(kRefine + robot + " --input " + rim + " --cloud " + plain +
+                      " --samples 30000 --output " + refined)
+                .exit_code,
+            0);
+  const test::RunResult r =
+      test::run(kEnvelope + " --input " + refined + " --correction none --drawing " +
+                here.file("ta.png") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json d = Json::parse(r.out)["drawing"];
+  EXPECT_EQ(Json::parse(r.out)["length_unit"], "mm");
+  EXPECT_NEAR(d["max_reach"].get<double>() / (150.0 + 560.0 + forearm), 1.0, 0.001);
+  EXPECT_NEAR(d["front_reach"].get<double>() / (150.0 + 560.0 + forearm), 1.0, 0.002);
+  EXPECT_NEAR(d["highest"].get<double>() / (560.0 + forearm), 1.0, 0.001);
+  EXPECT_NEAR(d["lowest"].get<double>() / -(560.0 * std::sin(50.0 * M_PI / 180) + forearm), 1.0,
+              0.001);
+  EXPECT_LT(d["min_reach"].get<double>(), 5.0);  // the wrist passes over the first axis
+  EXPECT_TRUE(std::filesystem::exists(here.file("ta.png")));
+}
+
 TEST_F(EnvelopeApp, BadInputWritesNothing) {
   test::TempDir nothing;
   const std::string out = " --output " + nothing.file("e.ply");
@@ -125,6 +197,12 @@ TEST_F(EnvelopeApp, BadInputWritesNothing) {
   test::expectToolFailure(kEnvelope, "--input " + flat + out, 1, "the cloud is flat", nothing);
   test::expectToolFailure(kEnvelope, "--input " + nothing.file("missing.pcd") + out, 1,
                           "missing.pcd", nothing);
+  test::expectToolFailure(kEnvelope, "--input " + refined_ + " --drawing " + nothing.file("d.pdf"),
+                          2, "(.png or .svg)", nothing);
+  test::expectToolFailure(kEnvelope, "--input " + refined_, 2, "--drawing", nothing);
+  test::expectToolFailure(
+      kEnvelope, "--input " + refined_ + " --drawing " + nothing.file("d.png") + " --azimuth east",
+      2, "--azimuth", nothing);
   EXPECT_EQ(test::run(kEnvelope + " --help").exit_code, 0);
 }
 

@@ -1,7 +1,10 @@
 // The workspace envelope mesh (mcws_envelope): its volume, area and topology against closed forms
 // on hand-built solids, the envelope of a uniform ball against the ball and delaunayMeasure(),
-// and its files read back by PCL's VTK-based reader.
+// its files read back by PCL's VTK-based reader, and its datasheet views (section and top view)
+// against the octahedron's hand-worked sections and projections.
 #include "mcws/workspace/envelope.h"
+
+#include "mcws/workspace/drawing.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -10,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 
 #include "mcws/core/error.h"
@@ -116,15 +120,137 @@ TEST(WorkspaceEnvelope, FilesReadBackWithTheirVerticesAndTriangles) {
     pcl::PolygonMesh mesh;
     ASSERT_GT(pcl::io::loadPolygonFile(path, mesh), 0) << name;
     EXPECT_EQ(mesh.polygons.size(), 8u) << name;
-    pcl::PointCloud<pcl::PointXYZ> points;
-    pcl::fromPCLPointCloud2(mesh.cloud, points);
     // STL repeats each corner per triangle (VTK's reader may merge them); the corners are
-    // the octahedron's vertices either way.
-    for (const auto& p : points) EXPECT_NEAR(p.getVector3fMap().norm(), 1.5f, 1e-6f) << name;
-    EXPECT_GE(points.size(), 6u) << name;
+    // the octahedron's vertices either way. The floats are read from the blob itself: a
+    // pcl::PointCloud<PointXYZ> made here would, under AddressSanitizer, bring Eigen's own
+    // aligned allocator into libpcl_io's resize (Eigen switches allocators under ASan) and PCL
+    // would free that memory with its own.
+    const std::size_t points = mesh.cloud.width * mesh.cloud.height;
+    ASSERT_GE(points, 6u) << name;
+    ASSERT_GE(mesh.cloud.fields.size(), 3u) << name;
+    for (std::size_t i = 0; i < points; ++i) {
+      float xyz[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        const pcl::PCLPointField& field = mesh.cloud.fields[axis];
+        ASSERT_EQ(field.name, std::string(1, static_cast<char>('x' + axis))) << name;
+        std::memcpy(&xyz[axis], &mesh.cloud.data[i * mesh.cloud.point_step + field.offset],
+                    sizeof(float));
+      }
+      EXPECT_NEAR(std::sqrt(xyz[0] * xyz[0] + xyz[1] * xyz[1] + xyz[2] * xyz[2]), 1.5f, 1e-6f)
+          << name;
+    }
   }
   EXPECT_THROW(meshFormatOf("envelope.obj"), Error);
   EXPECT_EQ(meshFormatOf("ENVELOPE.PLY"), MeshFormat::kPly);
+}
+
+TEST(EnvelopeDrawing, SectionsOfAnOctahedronThroughItsAxis) {
+  // Vertices on the axes at 1.5: the plane y = 0 holds four of them (they count as in front of
+  // it) and cuts the square |s| + |z| <= 1.5, area 4.5, counter-clockwise.
+  const TriangleSurface s = octahedron(1.5);
+  const EnvelopeSection front = envelopeSection(s, 0.0);
+  ASSERT_EQ(front.loops.size(), 1u);
+  EXPECT_NEAR(front.area, 4.5, 1e-12);
+  EXPECT_NEAR(front.front_reach, 1.5, 1e-12);
+  EXPECT_NEAR(front.back_reach, 1.5, 1e-12);
+  EXPECT_NEAR(front.highest, 1.5, 1e-12);
+  EXPECT_NEAR(front.lowest, -1.5, 1e-12);
+  // At 45 degrees: |x| + |y| <= 1.5 - |z| along (1, 1) / sqrt 2 reaches s = (1.5 - |z|) / sqrt 2,
+  // a rhombus of area 4.5 / sqrt 2.
+  const EnvelopeSection diagonal = envelopeSection(s, M_PI / 4);
+  ASSERT_EQ(diagonal.loops.size(), 1u);
+  EXPECT_NEAR(diagonal.area, 4.5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(diagonal.front_reach, 1.5 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(diagonal.back_reach, 1.5 / std::sqrt(2.0), 1e-12);
+  // Turned inside out the loop runs clockwise: a hole.
+  TriangleSurface inside_out = s;
+  for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
+  EXPECT_NEAR(envelopeSection(inside_out, 0.3).area, -envelopeSection(s, 0.3).area, 1e-12);
+}
+
+TEST(EnvelopeDrawing, TwoBodiesGiveTwoLoopsAndAMissedOrOpenSurfaceIsRefused) {
+  TriangleSurface two = octahedron(1.0);
+  const std::size_t n = two.vertices.size();
+  for (std::size_t i = 0; i < n; ++i)
+    two.vertices.push_back(two.vertices[i] + Eigen::Vector3d(-5, 0, 0));
+  for (std::size_t i = 0, m = two.triangles.size(); i < m; ++i) {
+    auto t = two.triangles[i];
+    for (auto& k : t) k += static_cast<std::uint32_t>(n);
+    two.triangles.push_back(t);
+  }
+  const EnvelopeSection section = envelopeSection(two, 0.0);
+  EXPECT_EQ(section.loops.size(), 2u);
+  EXPECT_NEAR(section.area, 2 * 2.0, 1e-12);  // two squares |s - c| + |z| <= 1
+  EXPECT_NEAR(section.back_reach, 6.0, 1e-12);
+  EXPECT_NEAR(section.front_reach, 1.0, 1e-12);
+  // Moved off the axis along y by 2, the plane y = 0 misses it.
+  TriangleSurface away = octahedron(1.0);
+  for (auto& v : away.vertices) v.y() += 2.0;
+  EXPECT_THROW(envelopeSection(away, 0.0), Error);
+  TriangleSurface open = octahedron(1.0);
+  open.triangles.pop_back();
+  EXPECT_THROW(envelopeSection(open, 0.0), Error);
+}
+
+TEST(EnvelopeDrawing, TopViewOfAnOctahedronOnAndOffTheAxis) {
+  const int bins = 360;
+  const double bin = 2 * M_PI / bins;
+  // On the axis: the projection is the square |x| + |y| <= 1.5 around it, so every ray starts
+  // inside and leaves at 1.5 / (|cos a| + |sin a|).
+  const EnvelopeTopView on = envelopeTopView(octahedron(1.5), bins);
+  ASSERT_EQ(on.outer.size(), static_cast<std::size_t>(bins));
+  double max_reach = 0.0;
+  for (int k = 0; k < bins; ++k) {
+    const double a = -M_PI + (k + 0.5) * bin;
+    const double expected = 1.5 / (std::abs(std::cos(a)) + std::abs(std::sin(a)));
+    EXPECT_NEAR(on.outer[k], expected, 1e-12) << k;
+    EXPECT_EQ(on.inner[k], 0.0) << k;
+    max_reach = std::max(max_reach, expected);
+  }
+  EXPECT_NEAR(on.max_reach, max_reach, 1e-12);
+  EXPECT_EQ(on.min_reach, 0.0);
+  // Off the axis, centred at (3, 0): rays within atan(1/2) of +x meet the square
+  // |x - 3| + |y| <= 1.5 between 1.5 / (cos a - |sin a|) and 4.5 / (cos a + |sin a|).
+  TriangleSurface shifted = octahedron(1.5);
+  for (auto& v : shifted.vertices) v.x() += 3.0;
+  const EnvelopeTopView off = envelopeTopView(shifted, bins);
+  int full = 0;
+  max_reach = 0.0;
+  for (int k = 0; k < bins; ++k) {
+    const double a = -M_PI + (k + 0.5) * bin;
+    if (std::abs(a) >= std::atan(0.5)) {
+      EXPECT_TRUE(std::isnan(off.outer[k])) << k;
+      continue;
+    }
+    const double c = std::cos(a), s = std::abs(std::sin(a));
+    EXPECT_NEAR(off.inner[k], 1.5 / (c - s), 1e-12) << k;
+    EXPECT_NEAR(off.outer[k], 4.5 / (c + s), 1e-12) << k;
+    max_reach = std::max(max_reach, 4.5 / (c + s));
+  }
+  for (int k = 0; k < bins; ++k) {
+    const double a = -M_PI + (k + 0.5) * bin;
+    full += std::abs(a) < std::atan(0.5) &&
+            4.5 / (std::cos(a) + std::abs(std::sin(a))) >= kFullReachShare * max_reach;
+  }
+  EXPECT_NEAR(off.min_reach, 1.5 / (std::cos(0.5 * bin) - std::sin(0.5 * bin)), 1e-12);
+  EXPECT_NEAR(off.sweep, full * bin, 1e-12);
+  EXPECT_NEAR(off.sweep_from, -0.5 * off.sweep, 1e-12);  // symmetric about +x
+  EXPECT_NEAR(off.sweep_to, 0.5 * off.sweep, 1e-12);
+  EXPECT_THROW(envelopeTopView(shifted, 4), Error);
+}
+
+TEST(EnvelopeDrawing, PngAndSvgFilesAndTheirNames) {
+  const EnvelopeDrawing drawing = envelopeDrawing(octahedron(1.5), 0.0, 72);
+  EXPECT_NEAR(drawing.highest, 1.5, 1e-12);
+  EXPECT_NEAR(drawing.lowest, -1.5, 1e-12);
+  const std::string png = renderEnvelopeDrawing(drawing, DrawingFormat::kPng, "octahedron", "m");
+  EXPECT_EQ(png.rfind("\x89PNG", 0), 0u);
+  const std::string svg = renderEnvelopeDrawing(drawing, DrawingFormat::kSvg, "octahedron", "m");
+  EXPECT_NE(svg.find("<svg"), std::string::npos);
+  EXPECT_NE(svg.find("1.50 m"), std::string::npos);  // a dimension with its unit
+  EXPECT_EQ(drawingFormatOf("range.SVG"), DrawingFormat::kSvg);
+  EXPECT_EQ(drawingFormatOf("range.png"), DrawingFormat::kPng);
+  EXPECT_THROW(drawingFormatOf("range.pdf"), Error);
 }
 
 }  // namespace

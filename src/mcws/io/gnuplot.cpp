@@ -35,7 +35,8 @@ std::string gnuplotQuoted(const std::string& text) {
   return out + "'";
 }
 
-std::string runGnuplot(const ScratchDir& dir, const std::string& script, const std::string& png) {
+std::string runGnuplot(const ScratchDir& dir, const std::string& script,
+                       const std::string& picture) {
   const std::string script_path = dir.file("plot.gp"), log = dir.file("gnuplot.log");
   std::ofstream(script_path, std::ios::binary) << script;
   int spawn_errno = 0;
@@ -44,8 +45,11 @@ std::string runGnuplot(const ScratchDir& dir, const std::string& script, const s
     throw Error(std::string("cannot run gnuplot (package gnuplot-nox): ") +
                 std::strerror(spawn_errno));
   }
-  const std::string bytes = readFile(png);
-  if (status != 0 || bytes.rfind("\x89PNG", 0) != 0) {
+  const std::string bytes = readFile(picture);
+  const bool svg = picture.size() >= 4 && picture.compare(picture.size() - 4, 4, ".svg") == 0;
+  const bool complete =
+      svg ? bytes.find("</svg>") != std::string::npos : bytes.rfind("\x89PNG", 0) == 0;
+  if (status != 0 || !complete) {
     // Lines of blanks and carets are gnuplot's pointers at the bad spot of the line before.
     const std::string message = lastLine(readFile(log), " \t^");
     throw Error("gnuplot failed (exit " + std::to_string(status) + ")" +

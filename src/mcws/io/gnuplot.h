@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// \brief PNG pictures drawn by gnuplot (Debian package gnuplot-nox), run as a child process.
+/// \brief PNG and SVG pictures drawn by gnuplot (Debian package gnuplot-nox), run as a child
+/// process.
 
 #include <filesystem>
 #include <string>
@@ -26,10 +27,11 @@ class ScratchDir {
 /// \brief A string as a gnuplot single-quoted literal (newlines dropped).
 std::string gnuplotQuoted(const std::string& text);
 
-/// \brief Runs gnuplot on `script`, which must write a PNG to `png` (e.g. with `set terminal
-/// pngcairo` and `set output`), both files in `dir`.
-/// \return the PNG file's bytes.
+/// \brief Runs gnuplot on `script`, which must write a PNG, or an SVG when the name ends in
+/// ".svg", to `picture` (e.g. with `set terminal pngcairo` and `set output`), both files in `dir`.
+/// \return the picture file's bytes.
 /// \throws mcws::Error when gnuplot is missing or fails (with its last message line).
-std::string runGnuplot(const ScratchDir& dir, const std::string& script, const std::string& png);
+std::string runGnuplot(const ScratchDir& dir, const std::string& script,
+                       const std::string& picture);
 
 }  // namespace mcws::io

@@ -1,0 +1,347 @@
+#include "mcws/workspace/drawing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <utility>
+
+#include "mcws/core/error.h"
+#include "mcws/core/file_name.h"
+#include "mcws/io/gnuplot.h"
+
+namespace mcws {
+namespace {
+
+constexpr double kPi = M_PI;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+using Edge = std::pair<std::uint32_t, std::uint32_t>;  // smaller vertex index first
+
+Edge undirected(std::uint32_t a, std::uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+
+/// An angle in (-pi, pi].
+double wrapAngle(double a) {
+  a = std::remainder(a, 2.0 * kPi);
+  return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+double degrees(double radians) { return radians * 180.0 / kPi; }
+
+/// The section's cut of one edge crossing the plane, the same from both of its triangles.
+Eigen::Vector2d cutPoint(const TriangleSurface& surface, const std::vector<double>& height, Edge e,
+                         const Eigen::Vector3d& along) {
+  const double t = height[e.first] / (height[e.first] - height[e.second]);
+  const Eigen::Vector3d p =
+      surface.vertices[e.first] + t * (surface.vertices[e.second] - surface.vertices[e.first]);
+  return {p.dot(along), p.z()};
+}
+
+/// Updates the nearest and farthest distances of the bins whose centre rays cross the projected
+/// segment p-q (horizontal coordinates).
+void crossBins(const Eigen::Vector2d& p, const Eigen::Vector2d& q, EnvelopeTopView& view) {
+  const Eigen::Vector2d pq = q - p;
+  if (pq.squaredNorm() == 0.0) return;
+  const double ap = std::atan2(p.y(), p.x()), delta = wrapAngle(std::atan2(q.y(), q.x()) - ap);
+  const double start = delta >= 0.0 ? ap : ap + delta, span = std::abs(delta);
+  const int bins = static_cast<int>(view.outer.size());
+  // First bin centre at or after `start`: centres are at -pi + (k + 1/2) bin.
+  const int first = static_cast<int>(std::ceil((start + kPi) / view.bin - 0.5));
+  for (int m = 0; m <= bins; ++m) {
+    const int k = ((first + m) % bins + bins) % bins;
+    const double centre = -kPi + (k + 0.5) * view.bin;
+    if (wrapAngle(centre - start) > span + 1e-12 || (m > 0 && (first + m) % bins == first % bins))
+      break;
+    const Eigen::Vector2d ray(std::cos(centre), std::sin(centre));
+    const double denominator = ray.x() * pq.y() - ray.y() * pq.x();
+    if (denominator == 0.0) continue;  // the ray runs along the segment: its ends count elsewhere
+    const double r = std::max(0.0, (p.x() * pq.y() - p.y() * pq.x()) / denominator);
+    view.inner[k] = std::isnan(view.inner[k]) ? r : std::min(view.inner[k], r);
+    view.outer[k] = std::isnan(view.outer[k]) ? r : std::max(view.outer[k], r);
+  }
+}
+
+/// Whether the projected triangle a, b, c holds the axis (the origin) strictly inside.
+bool coversAxis(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const auto side = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    return u.x() * v.y() - u.y() * v.x();
+  };
+  const double s1 = side(a, b), s2 = side(b, c), s3 = side(c, a);
+  return (s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0);
+}
+
+/// The longest run of full-reach bins around the circle: first bin and length.
+std::pair<int, int> longestRun(const std::vector<bool>& full) {
+  const int n = static_cast<int>(full.size());
+  if (std::all_of(full.begin(), full.end(), [](bool f) { return f; })) return {0, n};
+  int start = 0;
+  while (full[start]) ++start;  // a bin that is not full: no run wraps past it
+  std::pair<int, int> best{0, 0};
+  for (int m = 1, run = 0; m <= n; ++m) {
+    const int k = (start + m) % n;
+    if (full[k]) {
+      ++run;
+      if (run > best.second) best = {(k - run + 1 + n) % n, run};
+    } else {
+      run = 0;
+    }
+  }
+  return best;
+}
+
+std::string number(double value) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(std::abs(value) >= 100.0 ? 1 : 2);
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+EnvelopeSection envelopeSection(const TriangleSurface& surface, double azimuth) {
+  EnvelopeSection section;
+  section.azimuth = azimuth;
+  const Eigen::Vector3d along(std::cos(azimuth), std::sin(azimuth), 0.0);
+  const Eigen::Vector3d normal(-std::sin(azimuth), std::cos(azimuth), 0.0);
+  std::vector<double> height(surface.vertices.size());
+  for (std::size_t i = 0; i < height.size(); ++i) height[i] = surface.vertices[i].dot(normal);
+  const auto ahead = [&](std::uint32_t v) { return height[v] >= 0.0; };  // on the plane: ahead
+
+  // Each crossing triangle gives one segment, from the cut of its edge that leaves the part
+  // behind the plane to the cut of the edge that enters it: the boundary of the surface behind
+  // the plane, counter-clockwise in (s, z) for an outward-oriented surface.
+  std::map<Edge, Edge> next;  // a segment's first cut edge -> its second
+  for (const auto& t : surface.triangles) {
+    Edge leaving{0, 0}, entering{0, 0};
+    int cuts = 0;
+    for (int i = 0; i < 3; ++i) {
+      const std::uint32_t u = t[i], v = t[(i + 1) % 3];
+      if (ahead(u) == ahead(v)) continue;
+      (ahead(v) ? leaving : entering) = undirected(u, v);
+      ++cuts;
+    }
+    if (cuts == 2 && !next.emplace(leaving, entering).second)
+      throw Error("section: the surface is not closed and oriented where the plane cuts it");
+  }
+  if (next.empty()) {
+    throw Error("section: the vertical plane at azimuth " + number(degrees(azimuth)) +
+                " deg misses the envelope");
+  }
+  while (!next.empty()) {
+    std::vector<Eigen::Vector2d> loop;
+    const Edge first = next.begin()->first;
+    Edge edge = first;
+    for (auto at = next.find(edge); at != next.end(); at = next.find(edge)) {
+      loop.push_back(cutPoint(surface, height, at->first, along));
+      edge = at->second;
+      next.erase(at);
+    }
+    if (edge != first) {
+      throw Error(
+          "section: the cut does not close (the surface is not closed where the plane "
+          "cuts it)");
+    }
+    double twice = 0.0;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Eigen::Vector2d &a = loop[i], &b = loop[(i + 1) % loop.size()];
+      twice += a.x() * b.y() - a.y() * b.x();
+    }
+    section.area += 0.5 * twice;
+    section.loops.push_back(std::move(loop));
+  }
+  section.front_reach = -std::numeric_limits<double>::infinity();
+  section.highest = -std::numeric_limits<double>::infinity();
+  section.lowest = std::numeric_limits<double>::infinity();
+  for (const auto& loop : section.loops) {
+    for (const auto& p : loop) {
+      section.front_reach = std::max(section.front_reach, p.x());
+      section.back_reach = std::max(section.back_reach, -p.x());
+      section.highest = std::max(section.highest, p.y());
+      section.lowest = std::min(section.lowest, p.y());
+    }
+  }
+  return section;
+}
+
+EnvelopeTopView envelopeTopView(const TriangleSurface& surface, int bins) {
+  if (bins < 8) throw Error("top view: at least 8 azimuth bins, not " + std::to_string(bins));
+  if (surface.triangles.empty()) throw Error("top view: the surface has no triangles");
+  EnvelopeTopView view;
+  view.bin = 2.0 * kPi / bins;
+  view.inner.assign(bins, kNaN);
+  view.outer.assign(bins, kNaN);
+  bool axis_covered = false;
+  for (const auto& t : surface.triangles) {
+    const Eigen::Vector2d a = surface.vertices[t[0]].head<2>(),
+                          b = surface.vertices[t[1]].head<2>(),
+                          c = surface.vertices[t[2]].head<2>();
+    crossBins(a, b, view);
+    crossBins(b, c, view);
+    crossBins(c, a, view);
+    axis_covered = axis_covered || coversAxis(a, b, c);
+  }
+  if (axis_covered) {  // every ray starts inside the projection
+    for (double& r : view.inner) r = 0.0;
+  }
+  view.max_reach = 0.0;
+  view.min_reach = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < bins; ++k) {
+    if (std::isnan(view.outer[k])) continue;
+    view.max_reach = std::max(view.max_reach, view.outer[k]);
+    view.min_reach = std::min(view.min_reach, view.inner[k]);
+  }
+  std::vector<bool> full(bins);
+  for (int k = 0; k < bins; ++k)
+    full[k] = !std::isnan(view.outer[k]) && view.outer[k] >= kFullReachShare * view.max_reach;
+  const auto [first, length] = longestRun(full);
+  view.sweep = length * view.bin;
+  view.sweep_from = length == bins ? -kPi : wrapAngle(-kPi + first * view.bin);
+  view.sweep_to = length == bins ? kPi : wrapAngle(view.sweep_from + view.sweep);
+  return view;
+}
+
+EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface, double azimuth, int bins) {
+  EnvelopeDrawing drawing;
+  drawing.top = envelopeTopView(surface, bins);
+  drawing.side = envelopeSection(surface, azimuth);
+  drawing.highest = -std::numeric_limits<double>::infinity();
+  drawing.lowest = std::numeric_limits<double>::infinity();
+  for (const auto& v : surface.vertices) {
+    drawing.highest = std::max(drawing.highest, v.z());
+    drawing.lowest = std::min(drawing.lowest, v.z());
+  }
+  return drawing;
+}
+
+DrawingFormat drawingFormatOf(const std::string& path) {
+  const std::string extension = lowercaseExtension(path);
+  if (extension == ".png") return DrawingFormat::kPng;
+  if (extension == ".svg") return DrawingFormat::kSvg;
+  throw Error(path + ": not a drawing file name this tool writes (.png or .svg)");
+}
+
+std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat format,
+                                  const std::string& title, const std::string& unit) {
+  const EnvelopeSection& side = drawing.side;
+  const EnvelopeTopView& top = drawing.top;
+  io::ScratchDir dir;
+  const std::string section_data = dir.file("section.dat"), top_data = dir.file("top.dat"),
+                    outline_data = dir.file("outline.dat"),
+                    picture = dir.file(format == DrawingFormat::kPng ? "d.png" : "d.svg");
+  {
+    std::ofstream out(section_data);
+    out.precision(8);
+    for (const auto& loop : side.loops) {
+      for (const auto& p : loop) out << p.x() << ' ' << p.y() << '\n';
+      out << loop.front().x() << ' ' << loop.front().y() << "\n\n";
+    }
+    std::ofstream fill(top_data), outline(outline_data);
+    fill.precision(8);
+    outline.precision(8);
+    const int bins = static_cast<int>(top.outer.size());
+    for (int k = 0; k < bins; ++k) {  // each bin a quadrilateral from inner to outer distance
+      if (std::isnan(top.outer[k])) {
+        outline << '\n';
+        continue;
+      }
+      const double a0 = -kPi + k * top.bin, a1 = a0 + top.bin, ac = a0 + 0.5 * top.bin;
+      for (const auto& [r, a] : {std::pair{top.inner[k], a0}, std::pair{top.outer[k], a0},
+                                 std::pair{top.outer[k], a1}, std::pair{top.inner[k], a1}})
+        fill << r * std::cos(a) << ' ' << r * std::sin(a) << '\n';
+      fill << "\n";
+      outline << top.outer[k] * std::cos(ac) << ' ' << top.outer[k] * std::sin(ac) << '\n';
+    }
+    if (!out || !fill || !outline) throw Error("drawing: writing the data files failed");
+  }
+  const auto length = [&](double value) { return number(value) + " " + unit; };
+  const double width = side.front_reach + side.back_reach;
+  const double tall = side.highest - side.lowest, gap = 0.08 * std::max(width, tall);
+  std::ostringstream gp;
+  gp << (format == DrawingFormat::kPng
+             ? "set terminal pngcairo noenhanced size 1600,800 font 'Sans,11'\n"
+             : "set terminal svg noenhanced size 1600,800 font 'Sans,11'\n")
+     << "set output " << io::gnuplotQuoted(picture) << "\n"
+     << "set multiplot layout 1,2 title "
+     << io::gnuplotQuoted(title + ": working range (lengths in " + unit + ")") << "\n"
+     << "set size ratio -1\nset grid lc rgb '#dddddd'\nunset key\n"
+     << "set style fill transparent solid 0.35 noborder\n";
+  // Side view: the section, the axis, reach in front and behind, highest and lowest point.
+  const double level = side.lowest - gap, right = side.front_reach + gap;
+  gp << "set title "
+     << io::gnuplotQuoted("side view: section through the first joint's axis at " +
+                          number(degrees(side.azimuth)) + " deg")
+     << "\nset xlabel " << io::gnuplotQuoted("horizontal distance from the axis [" + unit + "]")
+     << "\nset ylabel " << io::gnuplotQuoted("z [" + unit + "]") << "\n"
+     << "set xrange [" << -side.back_reach - 2 * gap << ":" << right + 2.5 * gap << "]\n"
+     << "set yrange [" << level - gap << ":" << side.highest + gap << "]\n"
+     << "set arrow 1 from 0," << level - gap << " to 0," << side.highest + gap
+     << " nohead dt '-.' lc rgb '#555555'\n"
+     << "set arrow 2 from 0," << level << " to " << side.front_reach << "," << level
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 1 " << io::gnuplotQuoted(length(side.front_reach)) << " at "
+     << 0.5 * side.front_reach << "," << level + 0.25 * gap << " center\n"
+     << "set arrow 3 from " << right << ",0 to " << right << "," << side.highest
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 2 " << io::gnuplotQuoted(length(side.highest)) << " at " << right + 0.15 * gap
+     << "," << 0.5 * side.highest << " left\n"
+     << "set arrow 4 from " << right << ",0 to " << right << "," << side.lowest
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 3 " << io::gnuplotQuoted(length(side.lowest)) << " at " << right + 0.15 * gap
+     << "," << 0.5 * side.lowest << " left\n"
+     << "set arrow 5 from 0,0 to " << right + 0.5 * gap << ",0 nohead dt 3 lc rgb '#555555'\n"
+     << "set arrow 6 from " << side.front_reach << "," << side.lowest << " to " << right + 0.5 * gap
+     << "," << side.lowest << " nohead dt 3 lc rgb '#555555'\n"
+     << "set arrow 7 from " << side.front_reach << "," << side.highest << " to "
+     << right + 0.5 * gap << "," << side.highest << " nohead dt 3 lc rgb '#555555'\n";
+  if (side.back_reach > 0.0) {
+    gp << "set arrow 8 from " << -side.back_reach << "," << level << " to 0," << level
+       << " heads size screen 0.008,20 lw 1.5\n"
+       << "set label 4 " << io::gnuplotQuoted(length(side.back_reach)) << " at "
+       << -0.5 * side.back_reach << "," << level - 0.45 * gap << " center\n";
+  }
+  gp << "set label 5 " << io::gnuplotQuoted("section area " + number(side.area) + " " + unit + "^2")
+     << " at graph 0.02, graph 0.97 left\n"
+     << "plot " << io::gnuplotQuoted(section_data)
+     << " with filledcurves closed lc rgb '#5b8fc9', '' with lines lw 1.5 lc rgb '#1f4e8c'\n"
+     << "unset arrow\nunset label\n";
+  // Top view: the projection, the swept arc at full reach, maximum and minimum reach.
+  const double reach = top.max_reach, middle = top.sweep_from + 0.5 * top.sweep;
+  const double margin = 0.12 * reach;
+  gp << "set title 'top view: projection on the horizontal plane'\n"
+     << "set xlabel " << io::gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "
+     << io::gnuplotQuoted("y [" + unit + "]") << "\n"
+     << "set xrange [" << -reach - margin << ":" << reach + margin << "]\n"
+     << "set yrange [" << -reach - margin << ":" << reach + margin << "]\n"
+     << "set arrow 1 from 0,0 to " << reach * std::cos(middle) << "," << reach * std::sin(middle)
+     << " head size screen 0.01,20 lw 1.5\n"
+     << "set label 1 " << io::gnuplotQuoted("R " + length(reach)) << " at "
+     << 0.6 * reach * std::cos(middle) << "," << 0.6 * reach * std::sin(middle)
+     << " center offset 0,1\n"
+     << "set label 2 "
+     << io::gnuplotQuoted("max reach " + length(reach) + ", min reach " + length(top.min_reach))
+     << " at graph 0.02, graph 0.97 left\n"
+     << "set label 3 "
+     << io::gnuplotQuoted("swept at full reach " + number(degrees(top.sweep)) + " deg")
+     << " at graph 0.02, graph 0.93 left\n"
+     << "set label 4 "
+     << io::gnuplotQuoted("highest " + length(drawing.highest) + ", lowest " +
+                          length(drawing.lowest))
+     << " at graph 0.02, graph 0.89 left\n";
+  if (top.sweep < 2.0 * kPi) {
+    for (const double a : {top.sweep_from, top.sweep_to}) {
+      gp << "set arrow from 0,0 to " << 1.08 * reach * std::cos(a) << ","
+         << 1.08 * reach * std::sin(a) << " nohead dt '-.' lc rgb '#555555'\n";
+    }
+  }
+  gp << "set object 1 circle at 0,0 size " << reach << " arc [" << degrees(top.sweep_from) << ":"
+     << degrees(top.sweep_from + top.sweep) << "] fs empty border lc rgb '#555555' dt 2\n"
+     << "plot " << io::gnuplotQuoted(top_data) << " with filledcurves closed lc rgb '#5b8fc9', "
+     << io::gnuplotQuoted(outline_data) << " with lines lw 1.5 lc rgb '#1f4e8c'\n"
+     << "unset multiplot\n";
+  return io::runGnuplot(dir, gp.str(), picture);
+}
+
+}  // namespace mcws

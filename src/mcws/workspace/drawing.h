@@ -1,0 +1,81 @@
+#pragma once
+/// \file
+/// \brief Datasheet drawings of a workspace envelope: the side view (the section in a vertical
+/// plane through the first joint's axis) and the top view (the projection on the horizontal
+/// plane), with the numbers industrial robot datasheets give.
+///
+/// The first joint's axis is the base frame's z axis through its origin: joint 1 of a D-H chain
+/// turns about z0, and the seed robots' URDFs put their first joint there too.
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "mcws/workspace/measure.h"
+
+namespace mcws {
+
+/// \brief The section of a closed surface by the vertical half-planes at `azimuth` and at
+/// `azimuth` + pi, i.e. by the whole vertical plane through the z axis in that direction.
+struct EnvelopeSection {
+  double azimuth{0.0};  ///< direction of +s, from +x towards +y [rad]
+  /// Closed polygons in (s, z): s the signed horizontal distance from the axis along the azimuth
+  /// (negative behind the axis). Counter-clockwise around the region, clockwise around its holes
+  /// (seen with s to the right and z up), for an outward-oriented surface.
+  std::vector<std::vector<Eigen::Vector2d>> loops;
+  double area{0.0};         ///< enclosed by the loops, holes subtracted [length unit^2]
+  double front_reach{0.0};  ///< largest s [length unit]
+  double back_reach{0.0};   ///< largest -s (0 when the section stays in front) [length unit]
+  double highest{0.0}, lowest{0.0};  ///< largest and smallest z [length unit]
+};
+
+/// \brief The section of `surface` (closed, outward-oriented) by the vertical plane through the
+/// z axis at `azimuth` [rad]. Vertices on the plane count as in front of it (a symbolic
+/// perturbation), so every crossing edge is cut once and the cuts chain into closed loops.
+/// \throws mcws::Error when the plane misses the surface or the surface is not closed there.
+EnvelopeSection envelopeSection(const TriangleSurface& surface, double azimuth);
+
+/// \brief The projection of a surface on the horizontal plane, seen from the z axis: for each of
+/// `bins` equal azimuth bins (the first centred on -pi + bin / 2) the nearest and farthest
+/// horizontal distance from the axis at which the ray from the axis through the bin's centre
+/// meets the projection (exact for the triangles: a ray meets a projected triangle in a segment
+/// whose ends lie on its edges, or start at the axis when the triangle covers it).
+struct EnvelopeTopView {
+  double bin{0.0};                   ///< angular width of a bin [rad]
+  std::vector<double> inner, outer;  ///< per bin [length unit]; NaN where the ray misses
+  double max_reach{0.0};             ///< largest outer distance [length unit]
+  double min_reach{0.0};             ///< smallest inner distance [length unit]
+  /// The swept arc at full reach: the longest run of bins (around the circle) whose outer
+  /// distance is at least kFullReachShare of max_reach; from and to in (-pi, pi] [rad], counter-
+  /// clockwise; width 2 pi when every bin reaches.
+  double sweep_from{0.0}, sweep_to{0.0}, sweep{0.0};
+};
+
+/// \brief Share of the maximum reach that counts as full reach for EnvelopeTopView's sweep.
+constexpr double kFullReachShare = 0.95;
+
+/// \brief The top view of `surface` in `bins` azimuth bins.
+/// \throws mcws::Error when bins < 8 or the surface is empty.
+EnvelopeTopView envelopeTopView(const TriangleSurface& surface, int bins = 720);
+
+/// \brief A datasheet drawing: side view at an azimuth, top view, the extreme heights.
+struct EnvelopeDrawing {
+  EnvelopeSection side;
+  EnvelopeTopView top;
+  double highest{0.0}, lowest{0.0};  ///< of the whole envelope [length unit]
+};
+EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface, double azimuth, int bins = 720);
+
+/// \brief Picture formats of renderEnvelopeDrawing().
+enum class DrawingFormat { kPng, kSvg };
+/// \brief The format a file name's extension names (.png or .svg, any case).
+/// \throws mcws::Error naming the file for any other extension.
+DrawingFormat drawingFormatOf(const std::string& path);
+
+/// \brief The two views side by side with dimension lines (reach in front and behind the axis,
+/// highest and lowest point, maximum and minimum reach, the swept angle), drawn by gnuplot;
+/// lengths in `unit`. \return the file's bytes. \throws mcws::Error when gnuplot fails.
+std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat format,
+                                  const std::string& title, const std::string& unit);
+
+}  // namespace mcws
