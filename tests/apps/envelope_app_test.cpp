@@ -28,20 +28,27 @@ const std::string kEnvelope = MCWS_ENVELOPE_EXE, kSample = MCWS_SAMPLE_EXE,
                   kBoundary = MCWS_BOUNDARY_EXE, kRefine = MCWS_REFINE_EXE,
                   kMeasure = MCWS_MEASURE_EXE;
 
+/// Samples `robot` (its --robot and --point flags), extracts the boundary and refines near it
+/// with as many samples again: the plain cloud, the rim and the refined cloud in `dir`.
+void sampleAndRefine(const std::string& robot, const std::string& samples, const test::TempDir& dir,
+                     const std::string& plain, const std::string& refined) {
+  const std::string rim = dir.file("rim.pcd");
+  ASSERT_EQ(test::run(kSample + robot + " --samples " + samples + " --output " + plain).exit_code,
+            0);
+  ASSERT_EQ(test::run(kBoundary + " --input " + plain + " --output " + rim).exit_code, 0);
+  ASSERT_EQ(test::run(kRefine + robot + " --input " + rim + " --cloud " + plain + " --samples " +
+                      samples + " --output " + refined)
+                .exit_code,
+            0);
+}
+
 class EnvelopeApp : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new test::TempDir;
     plain_ = dir_->file("plain.pcd");
     refined_ = dir_->file("refined.pcd");
-    const std::string robot = " --robot " + test::robotPath("deicing");
-    const std::string rim = dir_->file("rim.pcd");
-    ASSERT_EQ(test::run(kSample + robot + " --samples 20000 --output " + plain_).exit_code, 0);
-    ASSERT_EQ(test::run(kBoundary + " --input " + plain_ + " --output " + rim).exit_code, 0);
-    ASSERT_EQ(test::run(kRefine + robot + " --input " + rim + " --cloud " + plain_ +
-                        " --samples 20000 --output " + refined_)
-                  .exit_code,
-              0);
+    sampleAndRefine(" --robot " + test::robotPath("deicing"), "20000", *dir_, plain_, refined_);
   }
   static void TearDownTestSuite() { delete dir_; }
   static test::TempDir* dir_;
@@ -156,14 +163,8 @@ TEST_F(EnvelopeApp, DrawingOfTheTa1400WristCentreAgreesWithItsDhTable) {
   const double forearm = std::hypot(130.0, 600.0);
   test::TempDir here;
   const std::string robot = " --robot " + test::robotPath("ta1400") + " --point flange";
-  const std::string plain = here.file("p.pcd"), rim = here.file("rim.pcd"),
-                    refined = here.file("r.pcd");
-  ASSERT_EQ(test::run(kSample + robot + " --samples 30000 --output " + plain).exit_code, 0);
-  ASSERT_EQ(test::run(kBoundary + " --input " + plain + " --output " + rim).exit_code, 0);
-  ASSERT_EQ(test::run(kRefine + robot + " --input " + rim + " --cloud " + plain +
-                      " --samples 30000 --output " + refined)
-                .exit_code,
-            0);
+  const std::string refined = here.file("r.pcd");
+  ASSERT_NO_FATAL_FAILURE(sampleAndRefine(robot, "30000", here, here.file("p.pcd"), refined));
   const test::RunResult r =
       test::run(kEnvelope + " --input " + refined + " --correction none --drawing " +
                 here.file("ta.png") + " --json");
