@@ -20,10 +20,10 @@ struct Envelope {
   double volume{0.0};     ///< enclosed by `mesh` [length unit^3]
   double area{0.0};       ///< of `mesh` [length unit^2]
   double offset{0.0};     ///< outward offset of the alpha surface [length unit] (see below)
-  /// Volume the surface encloses beyond the kept tetrahedra before the offset: the cavities and
-  /// pinches filled to make it a 2-manifold [length unit^3]. A few per mille on a cloud whose edge
-  /// is sampled about as densely as its inside; more where the edge is sparse (plain joint-space
-  /// samples of an arm: refine them), where filling pinches closes concave parts.
+  /// Net volume the repairs that make the surface a 2-manifold add to the kept tetrahedra before
+  /// the offset: cavities and the smaller sides of pinches kept (+), the smaller parts of the
+  /// region that touch the rest at a single vertex dropped (-) [length unit^3]. Well under a per
+  /// mille on uniform, refined and plain joint-space clouds alike.
   double filled{0.0};
   /// Whether the surface is a closed 2-manifold (the filling converged).
   bool manifold{false};

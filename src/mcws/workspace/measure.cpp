@@ -235,18 +235,29 @@ std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& d
 /// round fills every singularity it finds; two are usual).
 constexpr int kFillRounds = 16;
 
-/// Whether the cells around vertex v that are kept (info != 0) form one group and the dropped
-/// ones another, each connected through the facets through v: the kept region's boundary near v
-/// is then one disk.
+/// Volume of a finite cell, infinite for an infinite one: the weight by which the repairs below
+/// choose the part of a singularity to leave as it is (the largest, or the one open to the
+/// outside).
 template <typename Delaunay>
-bool singleFan(const Delaunay& dt, typename Delaunay::Vertex_handle v,
-               std::vector<typename Delaunay::Cell_handle>& cells) {
+double cellWeight(const Delaunay& dt, typename Delaunay::Cell_handle c) {
+  if (dt.is_infinite(c)) return std::numeric_limits<double>::infinity();
+  return std::abs(CGAL::volume(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(),
+                               c->vertex(3)->point()));
+}
+
+/// The cells around vertex v (in `cells`) grouped by whether they are kept (info != 0), each
+/// group connected through the facets through v; `group[a]` is cell a's group. The kept
+/// region's boundary near v is one disk when there is at most one group of each kind.
+template <typename Delaunay>
+void fansAround(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+                std::vector<typename Delaunay::Cell_handle>& cells,
+                std::vector<std::size_t>& group) {
   cells.clear();
   dt.incident_cells(v, std::back_inserter(cells));
-  std::vector<std::size_t> parent(cells.size());
-  std::iota(parent.begin(), parent.end(), 0);
+  group.resize(cells.size());
+  std::iota(group.begin(), group.end(), 0);
   auto root = [&](std::size_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    while (group[a] != a) a = group[a] = group[group[a]];
     return a;
   };
   for (std::size_t a = 0; a < cells.size(); ++a) {
@@ -256,14 +267,36 @@ bool singleFan(const Delaunay& dt, typename Delaunay::Vertex_handle v,
       const auto n = cells[a]->neighbor(i);
       if ((n->info() != 0) != (cells[a]->info() != 0)) continue;
       const auto b = std::find(cells.begin(), cells.end(), n) - cells.begin();
-      parent[root(a)] = root(static_cast<std::size_t>(b));
+      group[root(a)] = root(static_cast<std::size_t>(b));
     }
   }
-  std::size_t kept_groups = 0, dropped_groups = 0;
+  for (std::size_t a = 0; a < cells.size(); ++a) group[a] = root(a);
+}
+
+/// Of the groups of `cells` (by `group`) that are kept (`kept`) or dropped, all but the heaviest
+/// by cellWeight(), appended to `out`. \return the number of such groups.
+template <typename Delaunay>
+std::size_t lighterGroups(const Delaunay& dt,
+                          const std::vector<typename Delaunay::Cell_handle>& cells,
+                          const std::vector<std::size_t>& group, bool kept,
+                          std::vector<typename Delaunay::Cell_handle>& out) {
+  std::vector<double> weight(cells.size(), 0.0);
+  std::size_t groups = 0, heaviest = cells.size();
   for (std::size_t a = 0; a < cells.size(); ++a) {
-    if (root(a) == a) ++(cells[a]->info() != 0 ? kept_groups : dropped_groups);
+    if ((cells[a]->info() != 0) != kept) continue;
+    groups += group[a] == a;
+    weight[group[a]] += cellWeight(dt, cells[a]);
   }
-  return kept_groups <= 1 && dropped_groups <= 1;
+  for (std::size_t a = 0; a < cells.size(); ++a) {
+    if ((cells[a]->info() != 0) != kept || group[a] != a) continue;
+    if (heaviest == cells.size() || weight[a] > weight[heaviest]) heaviest = a;
+  }
+  if (groups > 1) {
+    for (std::size_t a = 0; a < cells.size(); ++a) {
+      if ((cells[a]->info() != 0) == kept && group[a] != heaviest) out.push_back(cells[a]);
+    }
+  }
+  return groups;
 }
 
 /// Keeps (info 2) the dropped cells no path of dropped cells connects to the infinite ones.
@@ -294,19 +327,25 @@ void fillCavities(Delaunay& dt) {
   }
 }
 
-/// Makes the kept tetrahedra's boundary a closed 2-manifold by also keeping (info 2) the dropped
-/// finite cells it would enclose or pinch, round by round: cavities (dropped cells no path of
-/// dropped cells connects to the infinite ones, fillCavities()), then every dropped cell around
-/// an edge or a vertex where the kept region touches itself. Each round decides from the flags
-/// as they were at its start, so the result does not depend on the order the cells are listed
-/// in. \return false when singularities remain after kFillRounds rounds.
+/// Makes the kept tetrahedra's boundary a closed 2-manifold, round by round, changing as little
+/// volume as it can: cavities (dropped cells no path of dropped cells connects to the infinite
+/// ones) are kept (info 2, fillCavities()); around an edge where the kept region touches itself
+/// (several runs of kept cells) every run of dropped cells but the heaviest (the one open to the
+/// outside, else the largest) is kept; around a vertex with several groups of dropped cells
+/// likewise, and where several groups of kept cells meet at a vertex across one group of dropped
+/// ones, every kept group but the largest is dropped. Each round decides from the flags as they
+/// were at its start, so the result does not depend on the order the cells are listed in; a cell
+/// one round fills is not dropped again. \return false when singularities remain after
+/// kFillRounds rounds.
 template <typename Delaunay>
 bool fillForSurface(Delaunay& dt) {
   using Cell = typename Delaunay::Cell_handle;
-  std::vector<Cell> around, fill;
+  std::vector<Cell> around, fill, drop;
+  std::vector<std::size_t> group;
   for (int round = 0; round < kFillRounds; ++round) {
     fillCavities(dt);
     fill.clear();
+    drop.clear();
     std::vector<typename Delaunay::Vertex_handle> singular;
     for (const Cell c : dt.finite_cell_handles()) {
       if (!c->info()) continue;
@@ -322,14 +361,23 @@ bool fillForSurface(Delaunay& dt) {
             do {
               around.push_back(circ);
             } while (++circ != done);
-            std::size_t changes = 0;
-            for (std::size_t a = 0; a < around.size(); ++a) {
-              changes += (around[a]->info() != 0) != (around[(a + 1) % around.size()]->info() != 0);
+            const std::size_t n = around.size();
+            std::size_t changes = 0, start = 0;
+            for (std::size_t a = 0; a < n; ++a) {
+              if ((around[a]->info() != 0) != (around[(a + 1) % n]->info() != 0)) {
+                ++changes;
+                if (around[(a + 1) % n]->info() == 0) start = (a + 1) % n;  // a dropped run
+              }
             }
             if (changes <= 2) continue;
-            for (const Cell a : around) {
-              if (!a->info() && !dt.is_infinite(a)) fill.push_back(a);
+            group.assign(n, 0);
+            for (std::size_t m = 0, run = start; m < n; ++m) {  // runs from a run's first cell
+              const std::size_t a = (start + m) % n;
+              if (m > 0 && (around[a]->info() != 0) != (around[(a + n - 1) % n]->info() != 0))
+                run = a;
+              group[a] = run;
             }
+            lighterGroups(dt, around, group, false, fill);
           }
           singular.push_back(c->vertex(j));
         }
@@ -339,13 +387,19 @@ bool fillForSurface(Delaunay& dt) {
     std::sort(singular.begin(), singular.end());
     singular.erase(std::unique(singular.begin(), singular.end()), singular.end());
     for (const auto v : singular) {
-      if (singleFan(dt, v, around)) continue;
-      for (const Cell a : around) {
-        if (!a->info() && !dt.is_infinite(a)) fill.push_back(a);
-      }
+      fansAround(dt, v, around, group);
+      if (lighterGroups(dt, around, group, false, fill) <= 1)
+        lighterGroups(dt, around, group, true, drop);
     }
-    if (fill.empty()) return true;
+    fill.erase(
+        std::remove_if(fill.begin(), fill.end(), [&](const Cell a) { return dt.is_infinite(a); }),
+        fill.end());
+    drop.erase(
+        std::remove_if(drop.begin(), drop.end(), [](const Cell a) { return a->info() == 2; }),
+        drop.end());
+    if (fill.empty() && drop.empty()) return true;
     for (const Cell a : fill) a->info() = 2;
+    for (const Cell a : drop) a->info() = 0;
   }
   return false;
 }

@@ -35,7 +35,7 @@ struct RegionMeasure {
   /// in the order of the distinct input positions, triangles sorted: the same for any thread
   /// count.
   TriangleSurface surface;
-  /// Whether filling the cavities and the pinches of the kept region (within a few rounds) made
+  /// Whether repairing the cavities and the pinches of the kept region (within a few rounds) made
   /// `surface` a closed 2-manifold.
   bool surface_is_manifold{false};
 };
