@@ -22,7 +22,7 @@ using namespace mcws;
 
 constexpr double kDegree = M_PI / 180.0;
 constexpr std::size_t kProgressPoints = 200000;  ///< larger inputs report their phases on stderr
-/// A filled volume above this share of the kept tetrahedra's gets a warning (Envelope::filled).
+/// A repair volume above this share of the kept tetrahedra's gets a warning (Envelope::filled).
 constexpr double kFilledWarning = 0.01;
 
 constexpr char kUsage[] =
@@ -36,18 +36,19 @@ triangle counter-clockwise seen from outside: the surface of the tetrahedra mcws
 outward along the vertex normals by the band the samples miss along the edge (the Efron
 correction of mcws_measure; the offset is fitted so that the mesh encloses mcws_measure's
 volume). With --correction none (refined clouds) the alpha surface as it is.
-To make it a closed 2-manifold, interior cavities and the dropped tetrahedra where the region
-pinches itself are filled ("filled_volume"): a few per mille on uniform and refined clouds. On
-plain joint-space samples, whose edge is sparse, filling also closes concave parts (a warning
-above 1 %): refine such clouds first (mcws_boundary, mcws_refine).
+To make it a closed 2-manifold, interior cavities are filled and where the region pinches
+itself along an edge or at a vertex the smaller side is filled (or, where parts of it touch at
+one vertex only, the smaller parts dropped): "filled_volume", the net change, is well under a
+per mille (a warning above 1 %).
 Binary PLY, binary STL or ASCII VTK by the --output extension; pcl_viewer shows .ply and .vtk,
 MeshLab all three; --plot a shaded PNG from two views (gnuplot). Lengths in the cloud's unit or
 --unit (the files' too).
 --drawing: the working range as a datasheet draws it, PNG or SVG (gnuplot): the side view is the
 section of the envelope by the vertical plane through the first joint's axis (the base z axis)
 at --azimuth, with the reach in front of and behind the axis and the highest and lowest point;
-the top view is the projection on the horizontal plane with the maximum and minimum reach and
-the angle swept at full reach (where the outline is within 5 % of the maximum reach). The
+the top view is the projection of the samples on the horizontal plane (the mesh would bridge
+narrow joint-limit gaps) with the maximum and minimum reach and the angle swept at full reach
+(where the outline is within 10 % of the maximum reach). The
 numbers go into the JSON under "drawing". --json: "volume"
 (enclosed by the mesh), "measure_volume" (mcws_measure's), "uncorrected" (the kept tetrahedra's),
 "filled_volume", "area", "offset", the counts, "euler_characteristic" (V - E + F: 2 for a surface
@@ -110,7 +111,10 @@ int main(int argc, char** argv) {
     const std::string name = std::filesystem::path(input).filename().string();
     std::optional<EnvelopeDrawing> drawing;
     if (!drawing_file.empty()) {
-      drawing = app::asUsageError("azimuth", [&] { return envelopeDrawing(shown, azimuth); });
+      pcl::PointCloud<pcl::PointXYZ> samples = points;
+      for (auto& p : samples) p.getVector3fMap() *= static_cast<float>(units.length(1.0));
+      drawing =
+          app::asUsageError("azimuth", [&] { return envelopeDrawing(shown, samples, azimuth); });
     }
     // Every file complete under a temporary name before any gets its own.
     std::list<io::AtomicFile> files;
@@ -188,10 +192,10 @@ int main(int argc, char** argv) {
       for (const char* key : {"azimuth", "swept_angle", "sweep_from", "sweep_to"})
         out["units"][std::string("drawing.") + key] = "deg";
     }
-    if (envelope.filled > kFilledWarning * envelope.measure.uncorrected) {
-      std::cerr << "mcws_envelope: warning: making the surface a closed 2-manifold filled "
+    if (std::abs(envelope.filled) > kFilledWarning * envelope.measure.uncorrected) {
+      std::cerr << "mcws_envelope: warning: making the surface a closed 2-manifold changed "
                 << app::shortNumber(100.0 * envelope.filled / envelope.measure.uncorrected)
-                << " % of the volume (concave parts the sparse edge pinches off); refine the cloud "
+                << " % of the volume; a sparse edge pinches the region often: refine the cloud "
                    "(mcws_boundary, mcws_refine) and use --correction none\n";
     }
     if (cli.has("json")) {

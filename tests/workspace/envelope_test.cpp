@@ -1,7 +1,7 @@
 // The workspace envelope mesh (mcws_envelope): its volume, area and topology against closed forms
 // on hand-built solids, the envelope of a uniform ball against the ball and delaunayMeasure(),
-// its files read back by PCL's VTK-based reader, and its datasheet views (section and top view)
-// against the octahedron's hand-worked sections and projections.
+// its files read back by PCL's VTK-based reader, and its datasheet views against hand-worked
+// examples (the octahedron's sections, fans of samples seen from above).
 #include "mcws/workspace/envelope.h"
 
 #include "mcws/workspace/drawing.h"
@@ -208,55 +208,74 @@ TEST(EnvelopeDrawing, TwoBodiesGiveTwoLoopsAndAMissedOrOpenSurfaceIsRefused) {
   EXPECT_THROW(envelopeSection(open, 0.0), Error);
 }
 
-TEST(EnvelopeDrawing, TopViewOfAnOctahedronOnAndOffTheAxis) {
-  const int bins = 360;
-  const double bin = 2 * M_PI / bins;
-  // On the axis: the projection is the square |x| + |y| <= 1.5 around it, so every ray starts
-  // inside and leaves at 1.5 / (|cos a| + |sin a|).
-  const EnvelopeTopView on = envelopeTopView(octahedron(1.5), bins);
-  ASSERT_EQ(on.outer.size(), static_cast<std::size_t>(bins));
-  double max_reach = 0.0;
-  for (int k = 0; k < bins; ++k) {
-    const double a = -M_PI + (k + 0.5) * bin;
-    const double expected = 1.5 / (std::abs(std::cos(a)) + std::abs(std::sin(a)));
-    EXPECT_NEAR(on.outer[k], expected, 1e-12) << k;
-    EXPECT_EQ(on.inner[k], 0.0) << k;
-    max_reach = std::max(max_reach, expected);
+/// Points at distances `radii` from the z axis at whole degrees from `from` up to `to`
+/// (counter-clockwise, wrapping past 180): the centres of 1-degree bins.
+void addFan(pcl::PointCloud<pcl::PointXYZ>& cloud, int from, int to,
+            std::initializer_list<double> radii) {
+  for (int d = from; d != to; d = d == 179 ? -180 : d + 1) {
+    const double a = d * M_PI / 180.0;
+    for (const double r : radii)
+      cloud.push_back(pcl::PointXYZ(r * std::cos(a), r * std::sin(a), 0.1f * d));
   }
-  EXPECT_NEAR(on.max_reach, max_reach, 1e-12);
-  EXPECT_EQ(on.min_reach, 0.0);
-  // Off the axis, centred at (3, 0): rays within atan(1/2) of +x meet the square
-  // |x - 3| + |y| <= 1.5 between 1.5 / (cos a - |sin a|) and 4.5 / (cos a + |sin a|).
-  TriangleSurface shifted = octahedron(1.5);
-  for (auto& v : shifted.vertices) v.x() += 3.0;
-  const EnvelopeTopView off = envelopeTopView(shifted, bins);
-  int full = 0;
-  max_reach = 0.0;
-  for (int k = 0; k < bins; ++k) {
-    const double a = -M_PI + (k + 0.5) * bin;
-    if (std::abs(a) >= std::atan(0.5)) {
-      EXPECT_TRUE(std::isnan(off.outer[k])) << k;
-      continue;
+}
+
+TEST(EnvelopeDrawing, TopViewOfSamplesBinByBin) {
+  const double degree = M_PI / 180.0;
+  // A fan from -30 to 44 degrees between 2 and 5, its bin at 10 degrees reaching only 4.2 (less
+  // than 90 % of 5), and one sample 1.5 behind the axis.
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  addFan(cloud, -30, 10, {2.0, 3.3, 5.0});
+  addFan(cloud, 10, 11, {2.0, 4.2});
+  addFan(cloud, 11, 45, {2.0, 5.0});
+  addFan(cloud, 179, -180, {1.5});
+  const EnvelopeTopView view = sampleTopView(cloud, 360);
+  ASSERT_EQ(view.outer.size(), 360u);
+  for (int k = 0; k < 360; ++k) {
+    const int d = k - 180;  // bin k is centred on d degrees
+    if (d >= -30 && d < 45) {
+      EXPECT_NEAR(view.inner[k], 2.0, 1e-6) << d;
+      EXPECT_NEAR(view.outer[k], d == 10 ? 4.2 : 5.0, 1e-6) << d;
+    } else if (d == 179) {
+      EXPECT_NEAR(view.outer[k], 1.5, 1e-6);
+    } else {
+      EXPECT_TRUE(std::isnan(view.outer[k]) && std::isnan(view.inner[k])) << d;
     }
-    const double c = std::cos(a), s = std::abs(std::sin(a));
-    EXPECT_NEAR(off.inner[k], 1.5 / (c - s), 1e-12) << k;
-    EXPECT_NEAR(off.outer[k], 4.5 / (c + s), 1e-12) << k;
-    max_reach = std::max(max_reach, 4.5 / (c + s));
   }
-  for (int k = 0; k < bins; ++k) {
-    const double a = -M_PI + (k + 0.5) * bin;
-    full += std::abs(a) < std::atan(0.5) &&
-            4.5 / (std::cos(a) + std::abs(std::sin(a))) >= kFullReachShare * max_reach;
-  }
-  EXPECT_NEAR(off.min_reach, 1.5 / (std::cos(0.5 * bin) - std::sin(0.5 * bin)), 1e-12);
-  EXPECT_NEAR(off.sweep, full * bin, 1e-12);
-  EXPECT_NEAR(off.sweep_from, -0.5 * off.sweep, 1e-12);  // symmetric about +x
-  EXPECT_NEAR(off.sweep_to, 0.5 * off.sweep, 1e-12);
-  EXPECT_THROW(envelopeTopView(shifted, 4), Error);
+  EXPECT_NEAR(view.max_reach, 5.0, 1e-6);
+  EXPECT_NEAR(view.min_reach, 1.5, 1e-6);
+  // The longest run at full reach is -30..9 (40 bins, 39 degrees centre to centre), the 4.2 bin
+  // cutting off 11..44 (34 bins).
+  EXPECT_NEAR(view.sweep, 39 * degree, 1e-12);
+  EXPECT_NEAR(view.sweep_from, -30 * degree, 1e-12);
+  EXPECT_NEAR(view.sweep_to, 9 * degree, 1e-12);
+
+  // A run across +-180 degrees (150 up to -151), and the whole circle.
+  pcl::PointCloud<pcl::PointXYZ> back;
+  addFan(back, 150, -150, {1.0});
+  addFan(back, 0, 10, {0.5});
+  const EnvelopeTopView behind = sampleTopView(back, 360);
+  EXPECT_NEAR(behind.sweep, 59 * degree, 1e-12);
+  EXPECT_NEAR(behind.sweep_from, 150 * degree, 1e-12);
+  EXPECT_NEAR(behind.sweep_to, -151 * degree, 1e-12);
+  pcl::PointCloud<pcl::PointXYZ> ring;
+  addFan(ring, -180, 179, {3.0});
+  addFan(ring, 179, -180, {3.0});
+  const EnvelopeTopView round = sampleTopView(ring, 360);
+  EXPECT_NEAR(round.sweep, 2 * M_PI, 1e-12);
+  EXPECT_NEAR(round.sweep_from, -M_PI, 1e-12);
+  EXPECT_NEAR(round.sweep_to, M_PI, 1e-12);
+
+  EXPECT_THROW(sampleTopView(cloud, 4), Error);
+  pcl::PointCloud<pcl::PointXYZ> none;
+  none.push_back(pcl::PointXYZ(std::nanf(""), 0.0f, 0.0f));
+  EXPECT_THROW(sampleTopView(none, 360), Error);
 }
 
 TEST(EnvelopeDrawing, PngAndSvgFilesAndTheirNames) {
-  const EnvelopeDrawing drawing = envelopeDrawing(octahedron(1.5), 0.0, 72);
+  pcl::PointCloud<pcl::PointXYZ> corners;
+  for (const auto& v : octahedron(1.5).vertices)
+    corners.push_back(pcl::PointXYZ(v.x(), v.y(), v.z()));
+  const EnvelopeDrawing drawing = envelopeDrawing(octahedron(1.5), corners, 0.0, 72);
   EXPECT_NEAR(drawing.highest, 1.5, 1e-12);
   EXPECT_NEAR(drawing.lowest, -1.5, 1e-12);
   const std::string png = renderEnvelopeDrawing(drawing, DrawingFormat::kPng, "octahedron", "m");

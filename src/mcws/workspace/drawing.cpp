@@ -39,39 +39,6 @@ Eigen::Vector2d cutPoint(const TriangleSurface& surface, const std::vector<doubl
   return {p.dot(along), p.z()};
 }
 
-/// Updates the nearest and farthest distances of the bins whose centre rays cross the projected
-/// segment p-q (horizontal coordinates).
-void crossBins(const Eigen::Vector2d& p, const Eigen::Vector2d& q, EnvelopeTopView& view) {
-  const Eigen::Vector2d pq = q - p;
-  if (pq.squaredNorm() == 0.0) return;
-  const double ap = std::atan2(p.y(), p.x()), delta = wrapAngle(std::atan2(q.y(), q.x()) - ap);
-  const double start = delta >= 0.0 ? ap : ap + delta, span = std::abs(delta);
-  const int bins = static_cast<int>(view.outer.size());
-  // First bin centre at or after `start`: centres are at -pi + (k + 1/2) bin.
-  const int first = static_cast<int>(std::ceil((start + kPi) / view.bin - 0.5));
-  for (int m = 0; m <= bins; ++m) {
-    const int k = ((first + m) % bins + bins) % bins;
-    const double centre = -kPi + (k + 0.5) * view.bin;
-    if (wrapAngle(centre - start) > span + 1e-12 || (m > 0 && (first + m) % bins == first % bins))
-      break;
-    const Eigen::Vector2d ray(std::cos(centre), std::sin(centre));
-    const double denominator = ray.x() * pq.y() - ray.y() * pq.x();
-    if (denominator == 0.0) continue;  // the ray runs along the segment: its ends count elsewhere
-    const double r = std::max(0.0, (p.x() * pq.y() - p.y() * pq.x()) / denominator);
-    view.inner[k] = std::isnan(view.inner[k]) ? r : std::min(view.inner[k], r);
-    view.outer[k] = std::isnan(view.outer[k]) ? r : std::max(view.outer[k], r);
-  }
-}
-
-/// Whether the projected triangle a, b, c holds the axis (the origin) strictly inside.
-bool coversAxis(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-  const auto side = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-    return u.x() * v.y() - u.y() * v.x();
-  };
-  const double s1 = side(a, b), s2 = side(b, c), s3 = side(c, a);
-  return (s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0);
-}
-
 /// The longest run of full-reach bins around the circle: first bin and length.
 std::pair<int, int> longestRun(const std::vector<bool>& full) {
   const int n = static_cast<int>(full.size());
@@ -166,26 +133,22 @@ EnvelopeSection envelopeSection(const TriangleSurface& surface, double azimuth) 
   return section;
 }
 
-EnvelopeTopView envelopeTopView(const TriangleSurface& surface, int bins) {
+EnvelopeTopView sampleTopView(const pcl::PointCloud<pcl::PointXYZ>& points, int bins) {
   if (bins < 8) throw Error("top view: at least 8 azimuth bins, not " + std::to_string(bins));
-  if (surface.triangles.empty()) throw Error("top view: the surface has no triangles");
   EnvelopeTopView view;
   view.bin = 2.0 * kPi / bins;
   view.inner.assign(bins, kNaN);
   view.outer.assign(bins, kNaN);
-  bool axis_covered = false;
-  for (const auto& t : surface.triangles) {
-    const Eigen::Vector2d a = surface.vertices[t[0]].head<2>(),
-                          b = surface.vertices[t[1]].head<2>(),
-                          c = surface.vertices[t[2]].head<2>();
-    crossBins(a, b, view);
-    crossBins(b, c, view);
-    crossBins(c, a, view);
-    axis_covered = axis_covered || coversAxis(a, b, c);
+  bool any = false;
+  for (const auto& p : points) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+    const double x = p.x, y = p.y, r = std::hypot(x, y);
+    const int k = static_cast<int>(std::lround((std::atan2(y, x) + kPi) / view.bin)) % bins;
+    view.inner[k] = std::isnan(view.inner[k]) ? r : std::min(view.inner[k], r);
+    view.outer[k] = std::isnan(view.outer[k]) ? r : std::max(view.outer[k], r);
+    any = true;
   }
-  if (axis_covered) {  // every ray starts inside the projection
-    for (double& r : view.inner) r = 0.0;
-  }
+  if (!any) throw Error("top view: no finite points");
   view.max_reach = 0.0;
   view.min_reach = std::numeric_limits<double>::infinity();
   for (int k = 0; k < bins; ++k) {
@@ -197,15 +160,19 @@ EnvelopeTopView envelopeTopView(const TriangleSurface& surface, int bins) {
   for (int k = 0; k < bins; ++k)
     full[k] = !std::isnan(view.outer[k]) && view.outer[k] >= kFullReachShare * view.max_reach;
   const auto [first, length] = longestRun(full);
-  view.sweep = length * view.bin;
+  // From the first bin's centre to the last's: samples at a joint limit lie on a centre, not
+  // on either side of a bin edge by rounding.
+  view.sweep = length == bins ? 2.0 * kPi : (length - 1) * view.bin;
   view.sweep_from = length == bins ? -kPi : wrapAngle(-kPi + first * view.bin);
   view.sweep_to = length == bins ? kPi : wrapAngle(view.sweep_from + view.sweep);
   return view;
 }
 
-EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface, double azimuth, int bins) {
+EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface,
+                                const pcl::PointCloud<pcl::PointXYZ>& points, double azimuth,
+                                int bins) {
   EnvelopeDrawing drawing;
-  drawing.top = envelopeTopView(surface, bins);
+  drawing.top = sampleTopView(points, bins);
   drawing.side = envelopeSection(surface, azimuth);
   drawing.highest = -std::numeric_limits<double>::infinity();
   drawing.lowest = std::numeric_limits<double>::infinity();
@@ -247,7 +214,7 @@ std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat 
         outline << '\n';
         continue;
       }
-      const double a0 = -kPi + k * top.bin, a1 = a0 + top.bin, ac = a0 + 0.5 * top.bin;
+      const double ac = -kPi + k * top.bin, a0 = ac - 0.5 * top.bin, a1 = ac + 0.5 * top.bin;
       for (const auto& [r, a] : {std::pair{top.inner[k], a0}, std::pair{top.outer[k], a0},
                                  std::pair{top.outer[k], a1}, std::pair{top.inner[k], a1}})
         fill << r * std::cos(a) << ' ' << r * std::sin(a) << '\n';

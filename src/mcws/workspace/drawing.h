@@ -7,6 +7,9 @@
 /// The first joint's axis is the base frame's z axis through its origin: joint 1 of a D-H chain
 /// turns about z0, and the seed robots' URDFs put their first joint there too.
 
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -35,36 +38,41 @@ struct EnvelopeSection {
 /// \throws mcws::Error when the plane misses the surface or the surface is not closed there.
 EnvelopeSection envelopeSection(const TriangleSurface& surface, double azimuth);
 
-/// \brief The projection of a surface on the horizontal plane, seen from the z axis: for each of
-/// `bins` equal azimuth bins (the first centred on -pi + bin / 2) the nearest and farthest
-/// horizontal distance from the axis at which the ray from the axis through the bin's centre
-/// meets the projection (exact for the triangles: a ray meets a projected triangle in a segment
-/// whose ends lie on its edges, or start at the axis when the triangle covers it).
+/// \brief The projection of the samples on the horizontal plane, seen from the z axis: for each
+/// of `bins` equal azimuth bins (bin k centred on -pi + k bin) the nearest and farthest
+/// horizontal distance from the axis of the samples in it.
+///
+/// From the samples rather than the envelope mesh: the mesh bridges gaps narrower than its
+/// alpha balls, such as the few degrees a first joint of +-170 deg leaves behind the robot, where
+/// the sparse far edge of the region has wide alpha balls; the samples leave such a gap empty.
 struct EnvelopeTopView {
   double bin{0.0};                   ///< angular width of a bin [rad]
-  std::vector<double> inner, outer;  ///< per bin [length unit]; NaN where the ray misses
+  std::vector<double> inner, outer;  ///< per bin [length unit]; NaN where no sample lies
   double max_reach{0.0};             ///< largest outer distance [length unit]
   double min_reach{0.0};             ///< smallest inner distance [length unit]
   /// The swept arc at full reach: the longest run of bins (around the circle) whose outer
-  /// distance is at least kFullReachShare of max_reach; from and to in (-pi, pi] [rad], counter-
-  /// clockwise; width 2 pi when every bin reaches.
+  /// distance is at least kFullReachShare of max_reach, from its first bin's centre to its last's
+  /// (counter-clockwise, in (-pi, pi]) [rad]; 2 pi when every bin reaches.
   double sweep_from{0.0}, sweep_to{0.0}, sweep{0.0};
 };
 
 /// \brief Share of the maximum reach that counts as full reach for EnvelopeTopView's sweep.
-constexpr double kFullReachShare = 0.95;
+constexpr double kFullReachShare = 0.9;
 
-/// \brief The top view of `surface` in `bins` azimuth bins.
-/// \throws mcws::Error when bins < 8 or the surface is empty.
-EnvelopeTopView envelopeTopView(const TriangleSurface& surface, int bins = 720);
+/// \brief The top view of the samples in `bins` azimuth bins (non-finite points skipped).
+/// \throws mcws::Error when bins < 8 or no point is finite.
+EnvelopeTopView sampleTopView(const pcl::PointCloud<pcl::PointXYZ>& points, int bins = 360);
 
-/// \brief A datasheet drawing: side view at an azimuth, top view, the extreme heights.
+/// \brief A datasheet drawing: the side view of the envelope at an azimuth, the top view of the
+/// samples (in the same length unit), the envelope's extreme heights.
 struct EnvelopeDrawing {
   EnvelopeSection side;
   EnvelopeTopView top;
   double highest{0.0}, lowest{0.0};  ///< of the whole envelope [length unit]
 };
-EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface, double azimuth, int bins = 720);
+EnvelopeDrawing envelopeDrawing(const TriangleSurface& surface,
+                                const pcl::PointCloud<pcl::PointXYZ>& points, double azimuth,
+                                int bins = 360);
 
 /// \brief Picture formats of renderEnvelopeDrawing().
 enum class DrawingFormat { kPng, kSvg };
