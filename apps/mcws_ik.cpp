@@ -1,4 +1,5 @@
 // mcws_ik: inverse kinematics of one tool pose: the joint vector, iterations and residual.
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,8 @@ length unit, angles in rad; roll pitch yaw are fixed-axis angles, R = Rz(yaw) Ry
 --matrix takes the 4x4 pose row by row; a rotation printed with few decimals
 (|R^T R - I| <= 1e-3) is replaced by the nearest rotation. With --free-roll only the tool point
 and the direction of the tool's z axis count (orientation_error is then the angle between the
-tool's z axis and the target's). Exits 1 when no solution is found
+tool's z axis and the target's). The plain output is the joint values under a '#' line naming
+their units, then the iterations and the errors with theirs. Exits 1 when no solution is found
 within the tolerances.)";
 
 void declareFlags(app::CommandLine& cli) {
@@ -86,8 +88,19 @@ Error noSolution(const Robot& robot, const IkResult& result, const IkOptions& op
   return Error(msg.str());
 }
 
+/// "rad" when every joint's value is in rad, else each joint's unit: "rad, rad, rad, cm".
+std::string jointUnitsText(const Robot& robot) {
+  const std::vector<std::string> units = app::jointUnits(robot);
+  if (std::all_of(units.begin(), units.end(), [&](const auto& u) { return u == units.front(); }))
+    return units.front();
+  std::string text;
+  for (const std::string& unit : units) text += (text.empty() ? "" : ", ") + unit;
+  return text + " (joint by joint)";
+}
+
 void printSolution(const Robot& robot, const IkResult& result, const IkOptions& options) {
   const char* unit = unitName(robot.length_unit);
+  std::printf("# joint values q in %s\n", jointUnitsText(robot).c_str());
   std::printf("q:");
   for (int i = 0; i < robot.dof(); ++i) std::printf(" %.9f", result.q[i]);
   std::printf("\niterations: %d (%d start%s)\nposition error: %.3g %s\n", result.iterations,

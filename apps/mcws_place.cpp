@@ -232,7 +232,8 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       std::cout << json.dump() << "\n";
     } else {
-      std::cerr << "offset x y z [" << unit << "]   map share   IK share\n";
+      std::cerr << "offset x y z [" << unit << "]   map share   IK share   (fractions of the "
+                << targets.size() << " targets)\n";
       for (const BaseCandidate& c : candidates) {
         std::cerr << std::setw(8) << c.offset.x() << ' ' << std::setw(8) << c.offset.y() << ' '
                   << std::setw(8) << c.offset.z() << "   " << std::setw(9) << c.map_share << "   "

@@ -159,8 +159,9 @@ void runMap(const app::CommandLine& cli, const Robot& robot,
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << map.size()
-              << " voxels, mean D " << summary["mean_reachability"].get<double>() << "] -> "
-              << output << "\n";
+              << " voxels of edge " << grid.resolution << " " << unit << ", mean D "
+              << summary["mean_reachability"].get<double>() << " (fraction of the "
+              << map.bins().size() << " orientation bins)] -> " << output << "\n";
   }
 }
 

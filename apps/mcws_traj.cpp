@@ -25,9 +25,11 @@ constexpr char kUsage[] =
 constexpr char kSummary[] =
     R"(Plans a joint-space move from --from to --to: the quintic blend of Liu, Han, Xu & Li 2021 (zero velocity and
 acceleration at both ends) or the cubic (zero end velocity); with --via, a cubic spline through
-the via points, reached at equal intervals, at rest at both ends. Writes CSV: t, joint positions,
-velocities (_vel), accelerations (_acc), tool x y z. Joint values in rad and the robot's length
-unit, time in s. The whole move is checked against the joint limits (and --max-velocity). With
+the via points, reached at equal intervals, at rest at both ends. Writes CSV, each column named
+with its unit: t_s, joint positions (j1_rad, or a prismatic joint's in the robot's length unit),
+velocities (j1_rad_per_s), accelerations (j1_rad_per_s2), tool x_mm y_mm z_mm (the robot's
+length unit). Joint values in rad and the robot's length unit, time in s. The whole move is
+checked against the joint limits (and --max-velocity). With
 --to-pose instead of --to, the tool moves on a straight line (orientation by slerp, timed by the
 profile) from its pose at --from to that pose, each sample solved by IK seeded with the previous
 one; a sample without a solution, or a joint jump (another IK branch), stops it with an error

@@ -80,7 +80,8 @@ TEST(IkApp, PoseFlagRoundTrip) {
 TEST(IkApp, TextOutputNamesUnits) {
   const test::RunResult r = test::run(kIk + kInspection + kPapersMatrix);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out.rfind("q: ", 0), 0u) << r.out;
+  // The joint values under a '#' line naming their unit (as mcws_fk's matrix).
+  EXPECT_EQ(r.out.rfind("# joint values q in rad\nq: ", 0), 0u) << r.out;
   EXPECT_THAT(r.out, HasSubstr("iterations: "));
   EXPECT_THAT(r.out, HasSubstr(" mm\n"));
   EXPECT_THAT(r.out, HasSubstr("orientation error: "));

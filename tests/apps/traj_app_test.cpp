@@ -49,21 +49,21 @@ TEST(TrajApp, ThePapersQuinticMoveHasClosedFormEndsAndPeaks) {
   EXPECT_THAT(r.err, HasSubstr("1001 samples"));
   const test::Csv csv = readCsv(out);
   ASSERT_EQ(csv.header.size(), 1u + 18u + 3u);
-  EXPECT_EQ(csv.header[0], "t");
-  EXPECT_EQ(csv.header[1], "j1");
-  EXPECT_EQ(csv.header[7], "j1_vel");
-  EXPECT_EQ(csv.header[13], "j1_acc");
-  EXPECT_EQ(csv.header[19], "x");
+  EXPECT_EQ(csv.header[0], "t_s");
+  EXPECT_EQ(csv.header[1], "j1_rad");
+  EXPECT_EQ(csv.header[7], "j1_rad_per_s");
+  EXPECT_EQ(csv.header[13], "j1_rad_per_s2");
+  EXPECT_EQ(csv.header[19], "x_mm");
   ASSERT_EQ(csv.rows.size(), 1001u);
   EXPECT_DOUBLE_EQ(csv.last()[0], 10.0);
   for (int j = 0; j < 6; ++j) {
-    const std::string name = "j" + std::to_string(j + 1);
+    const std::string name = "j" + std::to_string(j + 1) + "_rad";
     EXPECT_NEAR(csv.rows.front()[1 + j], 0.0, kCsvTol);
     EXPECT_NEAR(csv.last()[1 + j], kSeedGoal[j], kCsvTol);
     EXPECT_NEAR(csv.last()[7 + j], 0.0, kCsvTol);   // at rest
     EXPECT_NEAR(csv.last()[13 + j], 0.0, kCsvTol);  // no jerk at the stop
     // Peak velocity 1.875 D / T at t = 5 s (row 500).
-    EXPECT_NEAR(csv.max(name + "_vel", true), 1.875 * std::abs(kSeedGoal[j]) / 10, kCsvTol);
+    EXPECT_NEAR(csv.max(name + "_per_s", true), 1.875 * std::abs(kSeedGoal[j]) / 10, kCsvTol);
     EXPECT_NEAR(std::abs(csv.rows[500][7 + j]), 1.875 * std::abs(kSeedGoal[j]) / 10, kCsvTol);
   }
   // Tool position: the last row is mcws_fk's pose at the goal.

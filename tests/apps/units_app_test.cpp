@@ -17,7 +17,8 @@ using Json = nlohmann::json;
 const std::string kSample = MCWS_SAMPLE_EXE, kBoundary = MCWS_BOUNDARY_EXE,
                   kMeasure = MCWS_MEASURE_EXE, kRefine = MCWS_REFINE_EXE, kSelect = MCWS_SELECT_EXE,
                   kFk = MCWS_FK_EXE, kIk = MCWS_IK_EXE, kCollide = MCWS_COLLIDE_EXE,
-                  kTraj = MCWS_TRAJ_EXE, kPlan = MCWS_PLAN_EXE;
+                  kTraj = MCWS_TRAJ_EXE, kPlan = MCWS_PLAN_EXE, kReach = MCWS_REACH_EXE,
+                  kPlace = MCWS_PLACE_EXE;
 
 Json runJson(const std::string& command) {
   const test::RunResult r = test::run(command);
@@ -181,6 +182,73 @@ TEST_F(UnitsApp, IkCollideTrajAndPlanNameTheirUnits) {
                             "/planar2.yaml --json --output " + dir_->file("p.csv"));
   EXPECT_EQ(plan["length_unit"], "cm");
   EXPECT_EQ(plan["units"]["time"], "s");
+}
+
+// Plain output (issue 16, section 1): every printed number names its unit, or says what it
+// counts or that it is a fraction.
+
+TEST_F(UnitsApp, IkPlainOutputNamesEachJointsUnit) {
+  // The de-icing arm: three revolute joints and the telescopic forearm a2 in the robot's cm.
+  const test::RunResult r = test::run(kIk + " --robot " + test::robotPath("deicing") +
+                                      " --pose '60 25 20 0 0 0' --position-only");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("# joint values q in rad, rad, rad, cm (joint by joint)\nq: ", 0), 0u)
+      << r.out;
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("\nposition error: [-+.e0-9]+ cm\n"));
+}
+
+TEST_F(UnitsApp, TrajCsvNamesTheUnitOfEveryColumn) {
+  const std::string csv = dir_->file("deicing_traj.csv");
+  const test::RunResult r = test::run(kTraj + " --robot " + test::robotPath("deicing") +
+                                      " --from '0 0 0 30' --to '0.2 0.1 0.3 40' --duration 1" +
+                                      " --rate 10 --output " + csv);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("11 samples, tool path [.0-9]+ cm] -> "));
+  const test::Csv table = test::parseCsv(test::readFile(csv));
+  EXPECT_EQ(table.header,
+            (std::vector<std::string>{
+                "t_s", "theta3_rad", "theta1_rad", "theta2_rad", "a2_cm", "theta3_rad_per_s",
+                "theta1_rad_per_s", "theta2_rad_per_s", "a2_cm_per_s", "theta3_rad_per_s2",
+                "theta1_rad_per_s2", "theta2_rad_per_s2", "a2_cm_per_s2", "x_cm", "y_cm", "z_cm"}));
+  ASSERT_EQ(table.rows.size(), 11u);
+  EXPECT_DOUBLE_EQ(table.last()[table.column("a2_cm")], 40.0);
+}
+
+TEST_F(UnitsApp, PlanReportSaysWhatDAndPAreMeasuredIn) {
+  const test::RunResult r =
+      test::run(kPlan + " --scenario " + std::string(MCWS_SCENARIOS_DIR) +
+                "/planar2.yaml --validation-poses 0 --output " + dir_->file("p_plain.csv"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out,
+              HasSubstr("\nunits: lengths cm, angles rad, times s; D = sqrt(sum (s_i dq_i)^2)"
+                        " with s = 1/rad, 1/rad (dimensionless, as are D0, w and the "
+                        "scores); P, the threshold and the free and collision rates are "
+                        "fractions in [0, 1];"));
+  EXPECT_THAT(r.out, ::testing::ContainsRegex("base offset [-.0-9]+ cm along the line"));
+}
+
+TEST_F(UnitsApp, ReachMapSummaryGivesTheVoxelEdgeAndWhatDIsAFractionOf) {
+  const test::RunResult r =
+      test::run(kReach + " --robot " + test::robotPath("inspection6") +
+                " --resolution 20cm --samples 100000 --output " + dir_->file("map.pcd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The inspection arm's unit is mm: 20 cm is a 200 mm voxel; 200 directions x 1 roll bin.
+  EXPECT_THAT(r.err, ::testing::ContainsRegex(
+                         " ms : [0-9]+ voxels of edge 200 mm, mean D 0?\\.[0-9]+ \\(fraction "
+                         "of the 200 orientation bins\\)] -> "));
+}
+
+TEST_F(UnitsApp, PlaceTableSaysTheSharesAreFractionsOfTheTargets) {
+  const test::RunResult r = test::run(
+      kPlace + " --robot " + test::robotPath("maintenance4") + " --standoff 2cm --targets " +
+      std::string(MCWS_ROBOTS_DIR) + "/maintenance4_damper_targets.pcd" +
+      " --along '-80 -40 40' --resolution 4cm --samples 100000 --confirm 1 --output " +
+      dir_->file("bases.pcd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("offset x y z [cm]   map share   IK share   (fractions of the 15 "
+                               "targets)\n"));
+  EXPECT_THAT(r.err, ::testing::ContainsRegex("best: move the base by \\([- 0-9]+\\) cm: "
+                                              "[0-9]+ of 15 targets reached"));
 }
 
 }  // namespace

@@ -49,7 +49,10 @@ TEST(TrajectoryCsv, HeaderNamesJointsAndEveryRowHoldsStateAndToolPosition) {
   std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "t,shoulder,slide,shoulder_vel,slide_vel,shoulder_acc,slide_acc,x,y,z");
+  // Each column's unit in its name: rad for the revolute joint, the robot's cm for the slide.
+  EXPECT_EQ(line,
+            "t_s,shoulder_rad,slide_cm,shoulder_rad_per_s,slide_cm_per_s,shoulder_rad_per_s2,"
+            "slide_cm_per_s2,x_cm,y_cm,z_cm");
   int rows = 0;
   while (std::getline(lines, line)) {
     const std::vector<double> v = numbers(line);

@@ -192,9 +192,10 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
       << ", w = " << problem.score.weight << ", threshold " << problem.threshold << " on "
       << (problem.threshold_on_whole_path ? "the whole-path free fraction" : "P") << "\n"
-      << "units: lengths " << length_unit << ", angles rad; D = " << scenario.distance_unit
-      << "; P is the patent's mean of segment free rates, not the probability that the whole "
-         "path is free\n";
+      << "units: lengths " << length_unit << ", angles rad, times s; D = " << scenario.distance_unit
+      << " (dimensionless, as are D0, w and the scores); P, the threshold and the free and "
+         "collision rates are fractions in [0, 1]; P is the patent's mean of segment free rates, "
+         "not the probability that the whole path is free\n";
   for (std::size_t r = 0; r < result.rounds.size(); ++r) {
     const PlanningRound& round = result.rounds[r];
     out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit

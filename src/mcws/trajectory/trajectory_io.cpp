@@ -42,11 +42,17 @@ void writeTrajectoryCsv(const Robot& robot, const SampledTrajectory& tr,
                         const std::function<void(const std::string&, std::size_t)>& sink,
                         std::size_t rows) {
   const Eigen::MatrixXd xyz = toolPositions(robot, tr);
-  std::string out = "t";
-  for (const char* suffix : {"", "_vel", "_acc"}) {
-    for (const Joint& joint : robot.joints) out += "," + joint.name + suffix;
+  // Every column named with its unit, as the behaviour timeline's: t_s, j1_rad, j1_rad_per_s,
+  // j1_rad_per_s2 (a prismatic joint's in the length unit), x_mm.
+  const std::string length = unitName(robot.length_unit);
+  std::string out = "t_s";
+  for (const char* per : {"", "_per_s", "_per_s2"}) {
+    for (const Joint& joint : robot.joints) {
+      out += "," + joint.name + "_" + (joint.type == JointType::kRevolute ? "rad" : length) + per;
+    }
   }
-  out += ",x,y,z\n";
+  for (const char* axis : {"x", "y", "z"}) out += "," + std::string(axis) + "_" + length;
+  out += "\n";
   char number[32];
   auto put = [&](double value) {
     std::snprintf(number, sizeof number, ",%.12g", value);

@@ -18,9 +18,10 @@ Eigen::MatrixXd toolPositions(const Robot& robot, const SampledTrajectory& traje
 
 /// \brief The trajectory as CSV: a header line, then one line per sample.
 ///
-/// Columns: `t` [s]; one per joint position, named by the joint (`j1`, ...) [rad | length unit];
-/// the velocities `j1_vel`, ... [per s]; the accelerations `j1_acc`, ... [per s^2]; the tool
-/// position `x`, `y`, `z` [length unit]. Numbers with 12 significant digits.
+/// Columns, each name ending in its unit: `t_s` [s]; one per joint position, named by the joint
+/// and its unit (`j1_rad`, or `slide_cm` for a prismatic joint in a cm robot); the velocities
+/// `j1_rad_per_s`, ... [per s]; the accelerations `j1_rad_per_s2`, ... [per s^2]; the tool
+/// position `x_mm`, `y_mm`, `z_mm` [length unit of the robot]. Numbers with 12 significant digits.
 /// \throws mcws::Error when the trajectory does not fit the robot.
 std::string trajectoryCsv(const Robot& robot, const SampledTrajectory& trajectory);
 
