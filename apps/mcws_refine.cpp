@@ -8,6 +8,7 @@
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
+#include "mcws/distributed/sample_writer.h"
 #include "mcws/workspace/refine.h"
 
 namespace {
@@ -23,7 +24,13 @@ boundary point (pinned by mcws_sample --fix) keep it. With --cloud, the output i
 followed by the new samples: the refined cloud to pass to mcws_boundary and mcws_measure. Same
 --seed, same output, for any --threads. A cloud whose header records the robot it was made from
 (name and SHA-256 of the robot file, as mcws_sample writes it) must come from the --robot file;
-the output records that robot.)";
+the output records that robot.
+
+Under mpirun (-np K, MPI builds) each process computes a contiguous block of the new samples and
+writes it at its place in one PCD file (MPI-IO; rank 0 alone reads --cloud and writes it), which
+appears, byte for byte the file of one process, when every process has finished; a failed or
+killed process leaves no output. --threads is then per process (0: the cores shared among the
+processes on a machine).)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
   cli.addValue("robot", "robot description the cloud was sampled from (.yaml or .urdf)");
@@ -44,7 +51,9 @@ void declareFlags(mcws::app::CommandLine& cli) {
 
 int main(int argc, char** argv) {
   using namespace mcws;
-  return app::run("mcws_refine", [&] {
+  distributed::Processes processes(argc, argv);
+  const int code = app::run("mcws_refine", [&] {
+    processes.require();
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -57,7 +66,7 @@ int main(int argc, char** argv) {
     if (!(options.spread > 0.0 && options.spread <= 1.0))
       throw app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
     options.point = app::readPoint(cli);
-    const int threads = app::readThreads(cli);
+    const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
                                              {"input", cli.required("input")},
@@ -73,36 +82,47 @@ int main(int argc, char** argv) {
     }
     const auto boundary = app::loadCloud(cli.required("input"));
     const RefineSampler sampler(robot, *boundary, options);
-    const auto refined = cli.has("cloud") ? app::loadCloud(cli.required("cloud"))
-                                          : std::make_shared<app::WorkspaceCloud>();
-    const std::size_t kept = refined->size();
-    refined->resize(kept + samples);
-    app::Progress progress("mcws_refine", "samples");
-    generateInChunks(sampler, samples, refined->data() + kept, threads,
-                     [&](std::size_t done, std::size_t total) { progress.update(done, total); });
-    pcl::Indices all(refined->size());
-    std::iota(all.begin(), all.end(), 0);
-    app::saveCloud(*refined, all, output, provenance);
+    // Several processes: rank 0 alone holds the copied cloud and writes it.
+    const bool holds_cloud = cli.has("cloud") && processes.rank() == 0;
+    const auto refined = holds_cloud ? app::loadCloud(cli.required("cloud"))
+                                     : std::make_shared<app::WorkspaceCloud>();
+    const std::size_t kept = processes.broadcast(static_cast<std::uint64_t>(refined->size()));
+    app::Progress progress("mcws_refine", "samples");  // rank 0 reports its block
+    const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
+    if (processes.distributed()) {
+      distributed::writeSamplesTogether(processes, sampler, samples, output, threads, report,
+                                        provenance, refined->data(), kept);
+    } else {
+      refined->resize(kept + samples);
+      generateInChunks(sampler, samples, refined->data() + kept, threads, report);
+      pcl::Indices all(refined->size());
+      std::iota(all.begin(), all.end(), 0);
+      app::saveCloud(*refined, all, output, provenance);
+    }
+    if (processes.rank() != 0) return app::kExitOk;  // rank 0 reports for all
 
     if (cli.has("json")) {
       nlohmann::json summary{{"robot", robot.name},
                              {"boundary_points", boundary->size()},
                              {"samples", samples},
                              {"copied", kept},
-                             {"points", refined->size()},
+                             {"points", kept + samples},
                              {"spread", options.spread},
                              {"length_unit", unitName(robot.length_unit)},
                              {"pinned", sampler.pinnedJoints()},
                              {"seed", options.seed},
                              {"output", output},
+                             {"processes", processes.size()},
                              {"seconds", progress.seconds()},
                              {"units", {{"spread", "joint ranges"}, {"seconds", "s"}}}};
       std::cout << summary.dump() << "\n";
     } else {
       std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << samples
                 << " new samples near " << boundary->size() << " boundary points, "
-                << refined->size() << " points] -> " << output << "\n";
+                << kept + samples << " points] -> " << output << "\n";
     }
     return app::kExitOk;
   });
+  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
+  return code;
 }

@@ -13,6 +13,7 @@
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/collision/collision_sampler.h"
+#include "mcws/distributed/sample_writer.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/workspace/sampler.h"
 
@@ -38,7 +39,12 @@ product of the singular values of the Jacobian at the recorded point, and sigma_
 --quality-task position measures the point's velocity only (manipulability in length unit^n; a
 planar 2R arm's is l1 l2 |sin q2|); full measures the whole twist with the velocity rows divided
 by --length L (dimensionless). The default is full with L = the chain's length (the sum of its
-offsets) for arms with six or more joints, position for fewer.)";
+offsets) for arms with six or more joints, position for fewer.
+
+Under mpirun (-np K, MPI builds) each process computes a contiguous block of the sample indices
+and writes it at its place in one binary PCD file (MPI-IO), which appears, byte for byte the
+file of one process, when every process has finished; a failed or killed process leaves no
+output. --threads is then per process (0: the cores shared among the processes on a machine).)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("robot", "robot description (.yaml or .urdf)");
@@ -132,7 +138,9 @@ nlohmann::json labelSummary(const SampleSummary& result, std::size_t samples) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return app::run("mcws_sample", [&] {
+  distributed::Processes processes(argc, argv);
+  const int code = app::run("mcws_sample", [&] {
+    processes.require();
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -140,7 +148,7 @@ int main(int argc, char** argv) {
     const auto samples = static_cast<std::size_t>(app::parseInteger(
         cli.text("samples", "6000"), "samples", 1, std::numeric_limits<int>::max()));
     const std::uint64_t seed = app::readSeed(cli);
-    const int threads = app::readThreads(cli);
+    const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     const SamplePoint point = app::readPoint(cli);
     if (cli.has("robot") == cli.has("shape"))
@@ -150,22 +158,34 @@ int main(int argc, char** argv) {
       throw app::UsageError("--fix, --point, --collision and --quality need --robot");
     if (!cli.has("quality") && (cli.has("quality-task") || cli.has("length")))
       throw app::UsageError("--quality-task and --length need --quality");
+    if (processes.distributed() && cli.has("ascii"))
+      throw app::UsageError("--ascii: several processes write binary PCD only");
     app::checkOutputs({{"output", output}}, {{"robot", cli.text("robot", "")}});
 
     const Source source = cli.has("robot") ? robotSource(cli, seed, point) : shapeSource(cli, seed);
-    app::Progress progress("mcws_sample", "samples");
+    app::Progress progress("mcws_sample", "samples");  // rank 0 reports its block
     const auto format = cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary;
     const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
     std::optional<io::ScopedProvenance> provenance;  // for the writer inside writeSamples()
     if (source.provenance) provenance.emplace(*source.provenance);
-    const SampleSummary result =
-        source.quality ? writeSamples(*source.quality, samples, output, format, threads, report)
-                       : writeSamples(*source.generator, samples, output, format, threads, report);
+    SampleSummary result;
+    if (processes.distributed()) {
+      result = source.quality ? distributed::writeSamplesTogether(processes, *source.quality,
+                                                                  samples, output, threads, report)
+                              : distributed::writeSamplesTogether(processes, *source.generator,
+                                                                  samples, output, threads, report);
+    } else {
+      result = source.quality
+                   ? writeSamples(*source.quality, samples, output, format, threads, report)
+                   : writeSamples(*source.generator, samples, output, format, threads, report);
+    }
+    if (processes.rank() != 0) return app::kExitOk;  // rank 0 reports for all
 
     nlohmann::json summary = source.summary;
     summary["output"] = output;
     summary["points"] = result.points;
     summary["seed"] = seed;
+    summary["processes"] = processes.size();
     summary["seconds"] = progress.seconds();
     if (source.checker) summary["labels"] = labelSummary(result, samples);
     summary["bbox"] = {{"min", {result.min.x(), result.min.y(), result.min.z()}},
@@ -182,4 +202,6 @@ int main(int argc, char** argv) {
     }
     return app::kExitOk;
   });
+  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
+  return code;
 }

@@ -26,6 +26,8 @@ packages=(
   time                          # /usr/bin/time -v in the benchmark scripts
   libpng-dev                    # the tests decode the tools' PNG pictures (tests/png_image.h)
   libssl-dev                    # SHA-256 of the robot file recorded in every cloud (libcrypto)
+  libopenmpi-dev openmpi-bin    # mpirun -np K mcws_sample / mcws_refine: MPI and MPI-IO
+  procps                        # pgrep: the test that kills one process of an MPI run
   clang-14 libclang-rt-14-dev   # libFuzzer targets of fuzz/ (scripts/run_fuzzers.sh)
 )
 

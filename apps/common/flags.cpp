@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <thread>
 #include <utility>
 
 #include "mcws/kinematics/robot_urdf.h"
@@ -45,6 +46,12 @@ std::uint64_t readSeed(const CommandLine& cli, std::uint64_t fallback) {
 
 int readThreads(const CommandLine& cli, int minimum) {
   return static_cast<int>(parseInteger(cli.text("threads", "0"), "threads", minimum, kMaxThreads));
+}
+
+int threadsPerProcess(int requested, const distributed::Processes& processes) {
+  if (requested > 0 || processes.localSize() <= 1) return requested;
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  return std::max(1, cores / processes.localSize());
 }
 
 SamplePoint readPoint(const CommandLine& cli) {

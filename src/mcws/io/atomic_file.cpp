@@ -232,6 +232,14 @@ void AtomicFile::linkTempFile() {
   unnamed_ = false;
 }
 
+const std::string& AtomicFile::temporaryPath() {
+  if (write_through_) {
+    throw Error("cannot write '" + path_ + "' from several processes: it is not a regular file");
+  }
+  if (unnamed_) linkTempFile();
+  return temp_path_;
+}
+
 void AtomicFile::commit() {
   const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
   if (!flushed) {

@@ -54,6 +54,12 @@ class AtomicFile {
   void write(const void* data, std::size_t size);
   /// \brief Flushes, closes and gives the file the target's name. \throws mcws::Error on failure.
   void commit();
+  /// \brief Gives the file its temporary name now (if it has none yet) and returns it, so that
+  /// other processes (the MPI ranks of mcws/distributed) can open and write it before commit().
+  /// The name is removed as any temporary name is: on destruction without commit() and on the
+  /// signals above. \throws mcws::Error for a device, FIFO or socket (no name to share) or when
+  /// the name cannot be made.
+  const std::string& temporaryPath();
   /// \brief Target path, as given.
   const std::string& path() const { return path_; }
 

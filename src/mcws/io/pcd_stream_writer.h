@@ -22,6 +22,66 @@ namespace mcws::io {
 /// \brief PCD encoding.
 enum class PcdFormat { kBinary, kAscii };
 
+/// \brief How pcl::PCDWriter lays out points of type PointT: the header it generates and the
+/// binary records it packs (the fields in order, padding left out), shared by the writers of
+/// this file and of mcws/distributed.
+template <typename PointT>
+class PcdRecordLayout {
+ public:
+  PcdRecordLayout() {
+    for (const pcl::PCLPointField& field : pcl::getFields<PointT>()) {
+      if (field.name != "_") fields_.push_back(field);
+    }
+    // Fields that follow each other in memory are copied as one run.
+    for (const pcl::PCLPointField& field : fields_) {
+      const std::size_t size =
+          pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
+      if (!runs_.empty() && runs_.back().offset + runs_.back().size == field.offset) {
+        runs_.back().size += size;
+      } else {
+        runs_.push_back({field.offset, size});
+      }
+      record_size_ += size;
+    }
+  }
+
+  /// \brief The fields written, in order.
+  const std::vector<pcl::PCLPointField>& fields() const { return fields_; }
+  /// \brief Bytes of one binary record.
+  std::size_t recordSize() const { return record_size_; }
+
+  /// \brief PCL's header for `points` points (at most INT_MAX), with the provenance comment
+  /// after its first line: `provenance`, else that of the ScopedProvenance alive on this thread.
+  std::string header(std::size_t points, PcdFormat format,
+                     const std::optional<CloudProvenance>& provenance) const {
+    const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
+    std::string text = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
+                       (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
+    const std::optional<CloudProvenance> robot = provenance ? provenance : scopedProvenance();
+    if (robot) text.insert(text.find('\n') + 1, provenanceComment(*robot) + "\n");
+    return text;
+  }
+
+  /// \brief Packs `count` points as binary records into `out` (count * recordSize() bytes).
+  void pack(const PointT* points, std::size_t count, char* out) const {
+    for (std::size_t i = 0; i < count; ++i) {
+      const char* point = reinterpret_cast<const char*>(&points[i]);
+      for (const Run& run : runs_) {
+        std::memcpy(out, point + run.offset, run.size);
+        out += run.size;
+      }
+    }
+  }
+
+ private:
+  struct Run {
+    std::size_t offset, size;  ///< bytes in the point struct
+  };
+  std::vector<pcl::PCLPointField> fields_;
+  std::vector<Run> runs_;
+  std::size_t record_size_{0};
+};
+
 /// \brief Streams points of type PointT into a PCD file whose point count is known up front.
 ///
 /// The header is PCL's own (pcl::PCDWriter::generateHeader), and binary data is packed exactly as
@@ -45,25 +105,7 @@ class PcdStreamWriter {
     if (points > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
       throw Error("cannot write '" + path + "': a PCD file holds at most 2^31-1 points");
     }
-    for (const pcl::PCLPointField& field : pcl::getFields<PointT>()) {
-      if (field.name != "_") fields_.push_back(field);
-    }
-    // Fields that follow each other in memory are copied as one run.
-    for (const pcl::PCLPointField& field : fields_) {
-      const std::size_t size =
-          pcl::getFieldSize(field.datatype) * std::max<std::uint32_t>(field.count, 1);
-      if (!runs_.empty() && runs_.back().offset + runs_.back().size == field.offset) {
-        runs_.back().size += size;
-      } else {
-        runs_.push_back({field.offset, size});
-      }
-      record_size_ += size;
-    }
-    const pcl::PointCloud<PointT> shape;  // the header reads only its viewpoint
-    std::string header = pcl::PCDWriter::generateHeader<PointT>(shape, static_cast<int>(points)) +
-                         (format == PcdFormat::kBinary ? "DATA binary\n" : "DATA ascii\n");
-    const std::optional<CloudProvenance> robot = provenance ? provenance : scopedProvenance();
-    if (robot) header.insert(header.find('\n') + 1, provenanceComment(*robot) + "\n");
+    const std::string header = layout_.header(points, format, provenance);
     file_.write(header.data(), header.size());
   }
 
@@ -74,15 +116,8 @@ class PcdStreamWriter {
     }
     buffer_.clear();
     if (format_ == PcdFormat::kBinary) {
-      buffer_.resize(count * record_size_);
-      char* out = buffer_.data();
-      for (std::size_t i = 0; i < count; ++i) {
-        const char* point = reinterpret_cast<const char*>(&points[i]);
-        for (const Run& run : runs_) {
-          std::memcpy(out, point + run.offset, run.size);
-          out += run.size;
-        }
-      }
+      buffer_.resize(count * layout_.recordSize());
+      layout_.pack(points, count, buffer_.data());
     } else {
       for (std::size_t i = 0; i < count; ++i)
         appendAscii(reinterpret_cast<const char*>(&points[i]));
@@ -105,7 +140,7 @@ class PcdStreamWriter {
   void appendAscii(const char* point) {
     char text[64];
     bool first = true;
-    for (const pcl::PCLPointField& field : fields_) {
+    for (const pcl::PCLPointField& field : layout_.fields()) {
       const std::size_t size = pcl::getFieldSize(field.datatype);
       for (std::uint32_t k = 0; k < std::max<std::uint32_t>(field.count, 1); ++k) {
         const char* value = point + field.offset + k * size;
@@ -147,14 +182,8 @@ class PcdStreamWriter {
     buffer_.push_back('\n');
   }
 
-  struct Run {
-    std::size_t offset, size;  ///< bytes in the point struct
-  };
-
   AtomicFile file_;
-  std::vector<pcl::PCLPointField> fields_;
-  std::vector<Run> runs_;
-  std::size_t record_size_{0};
+  PcdRecordLayout<PointT> layout_;
   std::size_t declared_{0};
   std::size_t written_{0};
   PcdFormat format_;

@@ -173,19 +173,20 @@ pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std
 }
 
 template <typename PointT>
-SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::size_t n,
-                           const std::string& path, io::PcdFormat format, int threads,
-                           const std::function<void(std::size_t, std::size_t)>& progress) {
-  io::PcdStreamWriter<PointT> writer(path, n, format);
+SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
+                            std::uint64_t last, int threads, const ChunkSink<PointT>& sink,
+                            const std::function<void(std::size_t, std::size_t)>& progress) {
   SampleSummary summary;
   summary.min.setConstant(std::numeric_limits<double>::infinity());
   summary.max.setConstant(-std::numeric_limits<double>::infinity());
+  const std::uint64_t n = last > first ? last - first : 0;
 
   // Two buffers: the next chunk is computed while the previous one is being written.
   std::vector<PointT, Eigen::aligned_allocator<PointT>> buffers[2];
   std::future<void> pending;
-  for (std::size_t begin = 0, chunk = 0; begin < n; begin += kChunk, ++chunk) {
-    const std::size_t count = std::min(kChunk, n - begin);
+  for (std::uint64_t begin = first, chunk = 0; begin < last; begin += kChunk, ++chunk) {
+    const std::size_t count =
+        static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, last - begin));
     auto& buffer = buffers[chunk % 2];
     buffer.resize(count);
     generateParallel(generator, begin, count, buffer.data(), threads);
@@ -205,12 +206,27 @@ SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::si
     }
     if (pending.valid()) pending.get();  // rethrows a write error
     pending = std::async(std::launch::async,
-                         [&writer, &buffer, count] { writer.write(buffer.data(), count); });
-    if (progress) progress(begin + count, n);
+                         [&sink, &buffer, begin, count] { sink(begin, buffer.data(), count); });
+    if (progress)
+      progress(static_cast<std::size_t>(begin - first + count), static_cast<std::size_t>(n));
   }
   if (pending.valid()) pending.get();
+  summary.points = static_cast<std::size_t>(n);
+  return summary;
+}
+
+template <typename PointT>
+SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::size_t n,
+                           const std::string& path, io::PcdFormat format, int threads,
+                           const std::function<void(std::size_t, std::size_t)>& progress) {
+  io::PcdStreamWriter<PointT> writer(path, n, format);
+  SampleSummary summary = streamSamples<PointT>(
+      generator, 0, n, threads,
+      [&writer](std::uint64_t, const PointT* points, std::size_t count) {
+        writer.write(points, count);
+      },
+      progress);
   writer.commit();
-  summary.points = n;
   if (n == 0) summary.min = summary.max = Eigen::Vector3d::Zero();
   return summary;
 }
@@ -219,6 +235,12 @@ template void generateParallel(const BasicPointGenerator<WorkspacePoint>&, std::
                                std::size_t, WorkspacePoint*, int);
 template void generateParallel(const BasicPointGenerator<QualityPoint>&, std::uint64_t, std::size_t,
                                QualityPoint*, int);
+template SampleSummary streamSamples(const BasicPointGenerator<WorkspacePoint>&, std::uint64_t,
+                                     std::uint64_t, int, const ChunkSink<WorkspacePoint>&,
+                                     const std::function<void(std::size_t, std::size_t)>&);
+template SampleSummary streamSamples(const BasicPointGenerator<QualityPoint>&, std::uint64_t,
+                                     std::uint64_t, int, const ChunkSink<QualityPoint>&,
+                                     const std::function<void(std::size_t, std::size_t)>&);
 template SampleSummary writeSamples(const BasicPointGenerator<WorkspacePoint>&, std::size_t,
                                     const std::string&, io::PcdFormat, int,
                                     const std::function<void(std::size_t, std::size_t)>&);

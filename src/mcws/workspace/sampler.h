@@ -159,6 +159,21 @@ struct SampleSummary {
   std::map<std::uint32_t, std::size_t> label_counts;  ///< points per label value
 };
 
+/// \brief Receives the chunks of streamSamples(): (index of the chunk's first sample, its
+/// points, their number).
+template <typename PointT>
+using ChunkSink = std::function<void(std::uint64_t, const PointT*, std::size_t)>;
+
+/// \brief Samples first .. last-1 chunk by chunk (memory: two chunks), each split across
+/// `threads` threads (0: all cores), handing each chunk to `sink` on a second thread while the
+/// next one is computed; returns their summary (with no points, a bounding box of +inf .. -inf).
+/// \param progress called after each chunk with (samples done, last - first); may be empty.
+/// PointT: WorkspacePoint or QualityPoint. Rethrows what `sink` throws.
+template <typename PointT>
+SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
+                            std::uint64_t last, int threads, const ChunkSink<PointT>& sink,
+                            const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 /// \brief Streams samples 0 .. n-1 into a PCD file chunk by chunk (memory: two chunks), so
 /// clouds larger than memory can be written; the file appears only when complete.
 /// \param progress called after each chunk with (points done, n); may be empty.

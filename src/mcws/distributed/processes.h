@@ -1,0 +1,115 @@
+#pragma once
+/// \file
+/// \brief The processes of one run: the MPI world when the tool was started by `mpirun` (and
+/// built with MPI), else this process alone; and the files they write together.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mcws::distributed {
+
+/// \brief Whether MPI support was built in (CMake option MCWS_WITH_MPI, on when MPI is found).
+bool builtWithMpi();
+
+/// \brief Whether this process was started by an MPI launcher (`mpirun`, `mpiexec`, `srun`): it
+/// sees the launcher's environment (OMPI_COMM_WORLD_SIZE, PMI_SIZE, PMIX_RANK).
+bool launchedByMpi();
+
+/// \brief A run's processes and the collective operations the tools need.
+///
+/// Made at the start of main(). Started by an MPI launcher, it initialises MPI (and finalises it
+/// when destroyed); otherwise, and always in a build without MPI, it is one process of rank 0
+/// and every operation is the identity, so a tool's single-process run does not touch MPI at
+/// all. The constructor does not throw: a launch on several processes of a build without MPI is
+/// reported by require(), inside the tool's error handling.
+class Processes {
+ public:
+  Processes(int& argc, char**& argv);
+  ~Processes();
+  Processes(const Processes&) = delete;
+  Processes& operator=(const Processes&) = delete;
+
+  /// \brief \throws mcws::Error when the launcher started several processes but this build has
+  /// no MPI (each would write the whole output on its own), or when the processes were given
+  /// different arguments (`mpirun -np 1 ... : -np 1 ...` with other flags: their parts would not
+  /// fit together).
+  void require() const;
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  /// \brief More than one process.
+  bool distributed() const { return size_ > 1; }
+  /// \brief The processes on this machine (1 without MPI): tools share its cores among them.
+  int localSize() const { return local_size_; }
+
+  /// \brief Ends every process of the run with exit code `code` (MPI_Abort); returns only when
+  /// the run is not distributed. For a failure on one rank: the launcher ends the others with
+  /// SIGTERM, on which their temporary files are removed (io::AtomicFile).
+  void abortAll(int code) const;
+
+  /// \brief Waits for every process.
+  void barrier() const;
+  /// \brief Rank 0's `text`, on every process.
+  std::string broadcast(const std::string& text) const;
+  /// \brief Rank 0's `value`, on every process.
+  std::uint64_t broadcast(std::uint64_t value) const;
+  /// \brief Element-wise sums, minima and maxima over the processes, in place.
+  void sum(std::vector<std::uint64_t>& values) const;
+  void min(std::vector<double>& values) const;
+  void max(std::vector<double>& values) const;
+  /// \brief Every process's `values`, concatenated in rank order, on every process.
+  std::vector<std::uint64_t> gather(const std::vector<std::uint64_t>& values) const;
+
+ private:
+  int rank_{0};
+  int size_{1};
+  int local_size_{1};
+  bool initialized_{false};    ///< MPI_Init was called here
+  int launched_size_{1};       ///< the size the launcher announced
+  bool same_arguments_{true};  ///< every process was given this one's arguments
+};
+
+/// \brief The contiguous share [begin, end) of n items (sample indices) of process `rank` of
+/// `size`: the first n % size processes take one more.
+struct Block {
+  std::uint64_t begin{0}, end{0};
+  std::uint64_t size() const { return end - begin; }
+};
+Block blockOf(std::uint64_t n, int rank, int size);
+
+/// \brief One output file that every process writes its part of, at byte offsets (MPI-IO), and
+/// that appears whole when every process has finished, or not at all.
+///
+/// Rank 0 makes an io::AtomicFile for `path` and gives it its temporary name, which every process
+/// opens; commit() closes it on every process and rank 0 renames it onto `path`. A run that fails
+/// or is killed leaves no output: a process that fails ends the run (Processes::abortAll()), and
+/// rank 0, ended by the launcher with SIGTERM, removes the temporary name. On one process the
+/// writes go straight to the io::AtomicFile (pwrite). The path must name a regular file (or a new
+/// one): a device or FIFO cannot be written at offsets by several processes.
+class SharedFile {
+ public:
+  /// \brief Collective. \throws mcws::Error naming the path when it cannot be written.
+  SharedFile(const Processes& processes, const std::string& path);
+  ~SharedFile();
+  SharedFile(const SharedFile&) = delete;
+  SharedFile& operator=(const SharedFile&) = delete;
+
+  /// \brief Writes `size` bytes at byte `offset` (independent of the other processes).
+  /// \throws mcws::Error naming the path on a write error.
+  void writeAt(std::uint64_t offset, const void* data, std::size_t size);
+  /// \brief Collective: closes the file everywhere, then rank 0 gives it its name; returns when
+  /// the file is there. \throws mcws::Error naming the path on failure.
+  void commit();
+
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Impl;
+  const Processes& processes_;
+  std::string path_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace mcws::distributed

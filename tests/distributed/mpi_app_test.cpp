@@ -1,0 +1,162 @@
+// mcws_sample and mcws_refine under mpirun (issue 18, section 1): the file of K processes is byte
+// for byte the file of one, for any K and thread count; a process that fails or is killed ends
+// the run with a non-zero exit code and leaves no output, not even a temporary file.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string kSample = MCWS_SAMPLE_EXE, kRefine = MCWS_REFINE_EXE,
+                  kBoundary = MCWS_BOUNDARY_EXE;
+
+/// `mpirun -np K` with what this machine needs: more processes than cores, and root in a
+/// container.
+std::string mpirun(int processes) {
+  return std::string(MCWS_MPIEXEC) + " -np " + std::to_string(processes) + " --oversubscribe" +
+         (::geteuid() == 0 ? " --allow-run-as-root" : "");
+}
+
+/// Runs `args` on one process without mpirun and under mpirun on 1, 2 and 3 processes (each with
+/// its own thread count), and expects the same bytes every time.
+void expectSameFileOnAnyProcessCount(const std::string& tool, const std::string& args) {
+  test::TempDir dir;
+  const std::string alone = dir.file("alone.pcd");
+  const test::RunResult one = test::run(tool + " " + args + " --threads 1 --output " + alone);
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const std::string expected = test::readFile(alone);
+  ASSERT_GT(expected.size(), 1000u);
+  for (const int k : {1, 2, 3}) {
+    const std::string out = dir.file("np" + std::to_string(k) + ".pcd");
+    const test::RunResult r = test::run(mpirun(k) + " " + tool + " " + args + " --threads " +
+                                        std::to_string(4 - k) + " --output " + out + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(test::readFile(out) == expected) << tool << " " << args << " on " << k;
+    // One process (rank 0) reports, for the whole run.
+    const auto summary = nlohmann::json::parse(r.out);
+    EXPECT_EQ(summary["processes"], k);
+  }
+  EXPECT_EQ(dir.fileCount(), 4u);  // no temporary file left beside them
+}
+
+TEST(MpiSample, ShapeCloudIsTheSameOnAnyProcessCount) {
+  expectSameFileOnAnyProcessCount(kSample, "--shape ball --samples 300001 --seed 4");
+}
+
+TEST(MpiSample, CollisionLabelledCloudIsTheSame) {
+  expectSameFileOnAnyProcessCount(
+      kSample, "--robot " + test::robotPath("ta1400") + " --collision --samples 20000");
+}
+
+TEST(MpiSample, QualityCloudIsTheSame) {
+  expectSameFileOnAnyProcessCount(
+      kSample, "--robot " + test::robotPath("inspection6") + " --quality --samples 20000");
+}
+
+TEST(MpiSample, SummaryCountsEveryProcessesSamples) {
+  test::TempDir dir;
+  const test::RunResult one =
+      test::run(kSample + " --robot " + test::robotPath("ta1400") +
+                " --collision --samples 30000 --json --output " + dir.file("a.pcd"));
+  const test::RunResult three =
+      test::run(mpirun(3) + " " + kSample + " --robot " + test::robotPath("ta1400") +
+                " --collision --samples 30000 --json --output " + dir.file("b.pcd"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(three.exit_code, 0) << three.err;
+  auto a = nlohmann::json::parse(one.out), b = nlohmann::json::parse(three.out);
+  // The labels are counted on each process and added; the box is joined.
+  EXPECT_EQ(a["labels"], b["labels"]);
+  EXPECT_EQ(a["bbox"], b["bbox"]);
+  EXPECT_EQ(b["points"], 30000);
+  EXPECT_GT(b["labels"]["link-link"]["count"].get<int>(), 0);
+}
+
+TEST(MpiRefine, RefinedCloudIsTheSameOnAnyProcessCount) {
+  test::TempDir dir;
+  const std::string robot = test::robotPath("deicing");
+  const std::string cloud = dir.file("cloud.pcd"), rim = dir.file("rim.pcd");
+  ASSERT_EQ(
+      test::run(kSample + " --robot " + robot + " --samples 20000 --output " + cloud).exit_code, 0);
+  ASSERT_EQ(test::run(kBoundary + " --input " + cloud + " --output " + rim).exit_code, 0);
+  // With --cloud: rank 0 copies the cloud, every process its block of the new samples.
+  expectSameFileOnAnyProcessCount(
+      kRefine, "--robot " + robot + " --input " + rim + " --cloud " + cloud + " --samples 30001");
+  expectSameFileOnAnyProcessCount(
+      kRefine, "--robot " + robot + " --input " + rim + " --samples 30001 --spread 0.05 --seed 9");
+}
+
+TEST(MpiFailure, DifferentArgumentsOnTheProcessesAreRefused) {
+  test::TempDir dir;
+  const std::string out = dir.file("x.pcd");
+  const test::RunResult r =
+      test::run(std::string(MCWS_MPIEXEC) + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
+                " --oversubscribe -np 1 " + kSample + " --shape ball --samples 1000 --output " +
+                out + " : -np 1 " + kSample + " --shape ball --samples 2000 --output " + out);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.err, HasSubstr("mcws_sample: the 2 processes were not all given the same"));
+  EXPECT_EQ(dir.fileCount(), 0u);
+}
+
+TEST(MpiFailure, BadInputOnOneProcessLeavesNoOutput) {
+  // The same command line, but process 1 runs in a directory whose robot file is broken (a node
+  // with a stale copy): it fails after process 0 has started writing.
+  test::TempDir good, bad, out;
+  test::writeFile(good.file("r.yaml"), test::readFile(test::robotPath("deicing")));
+  test::writeFile(bad.file("r.yaml"), "name: [broken\n");
+  const std::string args = " --robot r.yaml --samples 2000000 --output " + out.file("x.pcd");
+  const test::RunResult r =
+      test::run(std::string(MCWS_MPIEXEC) + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
+                " --oversubscribe -np 1 --wdir " + good.file("") + " " + kSample + args +
+                " : -np 1 --wdir " + bad.file("") + " " + kSample + args);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("mcws_sample: --robot: r.yaml:2: YAML syntax"));
+  EXPECT_EQ(out.fileCount(), 0u);
+}
+
+TEST(MpiFailure, KilledProcessLeavesNoOutput) {
+  // Process 1 is killed (SIGKILL) once the temporary file exists; the launcher ends process 0,
+  // which removes it. Mesh collision checks keep the run going for seconds.
+  test::TempDir out, scratch;
+  const std::string script = scratch.file("kill.sh");
+  test::writeFile(script, mpirun(2) + " " + kSample + " --robot " + test::robotPath("ta1400_mesh") +
+                              " --collision --samples 4000000 --threads 1 --output " +
+                              out.file("k.pcd") +
+                              " &\n"
+                              "run=$!\n"
+                              "for i in $(seq 600); do\n"  // up to 30 s for the temporary file
+                              "  [ -n \"$(ls -A " +
+                              out.file("") +
+                              ")\" ] && break; sleep 0.05\n"
+                              "done\n"
+                              "for p in $(pgrep -f " +
+                              out.file("k.pcd") +
+                              "); do\n"
+                              "  tr '\\0' '\\n' < /proc/$p/environ 2>/dev/null |"
+                              " grep -qx OMPI_COMM_WORLD_RANK=1 && kill -9 $p\n"
+                              "done\n"
+                              "wait $run\n");
+  const test::RunResult r = test::run("bash " + script);
+  EXPECT_NE(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("exited on signal 9"));
+  EXPECT_EQ(out.fileCount(), 0u);
+}
+
+TEST(MpiFailure, AsciiIsRefusedOnSeveralProcesses) {
+  test::TempDir dir;
+  const test::RunResult r =
+      test::run(mpirun(2) + " " + kSample + " --shape disk --samples 100 --ascii --output " +
+                dir.file("a.pcd"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("mcws_sample: --ascii: several processes write binary PCD only"));
+  EXPECT_EQ(dir.fileCount(), 0u);
+}
+
+}  // namespace
+}  // namespace mcws
