@@ -1,6 +1,7 @@
 // mcws_reach: the reachability map of a robot (Zacharias, Borst & Hirzinger 2007; ROS Reuleaux):
 // Monte Carlo joint samples through forward kinematics into position voxels x orientation bins.
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -14,8 +15,10 @@
 #include "common/reach_args.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
+#include "mcws/distributed/processes.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
+#include "mcws/reach/reach_checkpoint.h"
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_plot.h"
 #include "mcws/reach/reach_study.h"
@@ -47,6 +50,19 @@ the inspection arm at 10 cm and 200 directions, every IK-reachable voxel-bin pai
 is marked and the mean of D moves by less than 1 % when the samples are doubled; 1e7 gives a
 first look.
 
+Under mpirun (-np K, MPI builds) each process fills the map of its contiguous block of sample
+indices; the maps are merged along a binary tree into rank 0 (counts add, bins unite, the best
+manipulability is the larger), which writes every output: the same map, byte for byte, as one
+process's. Memory per process: its map and one received map. --threads is then per process
+(0: the cores shared among the processes on a machine).
+
+With --checkpoint FILE a long run saves its progress: each process writes its map so far to
+FILE (FILE.0, FILE.1, ... under mpirun) after every --checkpoint-every of its samples. Killed or
+interrupted, the same command run again continues from each process's last checkpoint and gives
+the same map as an uninterrupted run (merging is exact); a checkpoint of another run (other
+robot file, grid, samples, seed, process count) is refused. The files are removed when the
+outputs are written.
+
 With --targets, a reach study instead (as ROS-Industrial REACH): each target (a point and a
 surface normal from a pcl::PointNormal PCD, or a CSV: see --targets) is solved by inverse
 kinematics from --ik-starts starting joint vectors, and the best solution kept: collision-free
@@ -69,6 +85,10 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("halfcut", "PNG: the slab through y = 0 coloured by D");
   cli.addValue("histogram", "PNG: histogram of D");
   cli.addSwitch("collision", "count only collision-free samples (needs collision: geometry)");
+  cli.addValue("checkpoint",
+               "save the map so far to FILE (FILE.RANK under mpirun) every --checkpoint-every "
+               "samples; a rerun of the same command continues from it; removed at the end");
+  cli.addValue("checkpoint-every", "samples per process between checkpoints (default 100000000)");
   app::declareStudyFlags(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -83,13 +103,14 @@ struct PendingFile {
 };
 
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
-void runMap(const app::CommandLine& cli, const Robot& robot,
-            const io::CloudProvenance& provenance) {
+void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProvenance& provenance,
+            const distributed::Processes& processes) {
   const std::string output = cli.required("output");
   app::checkOutputs({{"output", output},
                      {"map", cli.text("map", "")},
                      {"halfcut", cli.text("halfcut", "")},
-                     {"histogram", cli.text("histogram", "")}},
+                     {"histogram", cli.text("histogram", "")},
+                     {"checkpoint", cli.text("checkpoint", "")}},
                     {{"robot", cli.required("robot")}});
   const ReachGrid grid = app::readReachGrid(cli, robot);
   ReachSampling sampling = app::readReachSampling(cli, robot);
@@ -101,11 +122,68 @@ void runMap(const app::CommandLine& cli, const Robot& robot,
     sampling.collision = checker.get();
   }
 
-  app::Progress progress("mcws_reach", "samples");
-  const ReachMap map =
-      buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
-        progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
-      });
+  sampling.threads = app::threadsPerProcess(sampling.threads, processes);
+  const distributed::Block block =
+      distributed::blockOf(samples, processes.rank(), processes.size());
+  sampling.first += block.begin;
+  sampling.samples = block.size();
+
+  app::Progress progress("mcws_reach", "samples");  // rank 0 reports its block
+  const auto report = [&](std::uint64_t done, std::uint64_t all) {
+    if (processes.rank() == 0)
+      progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
+  };
+  std::optional<ReachCheckpoint> checkpoint;
+  std::uint64_t resumed = 0;
+  if (cli.has("checkpoint")) {
+    checkpoint = ReachCheckpoint{
+        processes.distributed()
+            ? cli.required("checkpoint") + "." + std::to_string(processes.rank())
+            : cli.required("checkpoint"),
+        static_cast<std::uint64_t>(app::parseInteger(cli.text("checkpoint-every", "100000000"),
+                                                     "checkpoint-every", 1,
+                                                     std::numeric_limits<std::int64_t>::max())),
+        nlohmann::json{{"robot", robot.name},
+                       {"robot_sha256", provenance.sha256},
+                       {"resolution", grid.resolution},
+                       {"orientations", grid.directions},
+                       {"rolls", grid.rolls},
+                       {"samples", samples},
+                       {"seed", sampling.seed},
+                       {"collision", cli.has("collision")},
+                       {"manipulability", app::qualitySummary(sampling.quality, robot)},
+                       {"with_manipulability", sampling.manipulability},
+                       {"processes", processes.size()},
+                       {"rank", processes.rank()}}
+            .dump()};
+  } else if (cli.has("checkpoint-every")) {
+    throw app::UsageError("--checkpoint-every needs --checkpoint");
+  }
+  ReachMap map = checkpoint
+                     ? buildReachMapInPieces(robot, grid, sampling, *checkpoint, report, &resumed)
+                     : buildReachMap(robot, grid, sampling, report);
+  std::vector<std::uint64_t> resumed_all{resumed};
+  processes.sum(resumed_all);
+  if (processes.distributed()) {
+    distributed::reduceToFirst(
+        processes,
+        [&] {
+          std::ostringstream bytes;
+          map.write(bytes, "{}");
+          return bytes.str();
+        },
+        [&](const std::string& bytes) {
+          std::istringstream in(bytes);
+          map.merge(ReachMap::read(in, "the map of another process"));
+        });
+    map.sort();
+  }
+  // Every checkpoint stays until rank 0 has written the outputs (a failure there keeps them).
+  const auto removeCheckpoint = [&] {
+    processes.barrier();
+    if (checkpoint) std::filesystem::remove(checkpoint->path);
+  };
+  if (processes.rank() != 0) return removeCheckpoint();  // rank 0 writes and reports for all
   if (map.size() == 0) throw Error("no sample counted: every sample collides");
 
   const std::string unit = unitName(robot.length_unit);
@@ -121,6 +199,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot,
       {"samples", samples},
       {"samples_counted", map.samples()},
       {"seed", sampling.seed},
+      {"processes", processes.size()},
+      {"resumed_samples", resumed_all[0]},
       {"voxels", map.size()},
       {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
       {"occupied_volume_unit", unit + "^3"},
@@ -154,6 +234,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot,
   for (PendingFile* file : {&halfcut, &histogram, &map_file}) {
     if (file->file) file->file->commit();
   }
+  removeCheckpoint();
   summary["seconds"] = progress.seconds();
   if (cli.has("json")) {
     std::cout << summary.dump() << "\n";
@@ -238,20 +319,26 @@ void runStudy(const app::CommandLine& cli, const Robot& robot,
 }  // namespace
 
 int main(int argc, char** argv) {
-  return app::run("mcws_reach", [&] {
+  distributed::Processes processes(argc, argv);
+  const int code = app::run("mcws_reach", [&] {
+    processes.require();
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const Robot robot = app::readRobot(cli);
     const io::CloudProvenance provenance = app::robotProvenance(robot);  // recorded in the PCD
     if (cli.has("targets")) {
+      if (processes.distributed())
+        throw app::UsageError("--targets: a reach study runs on one process (no mpirun)");
       runStudy(cli, robot, provenance);
     } else {
       for (const char* flag : {"approach-tolerance", "ik-starts", "no-collision", "standoff"}) {
         if (cli.has(flag)) throw app::UsageError(std::string("--") + flag + " needs --targets");
       }
-      runMap(cli, robot, provenance);
+      runMap(cli, robot, provenance, processes);
     }
     return app::kExitOk;
   });
+  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
+  return code;
 }

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "test_support.h"
@@ -15,7 +17,7 @@ namespace {
 using ::testing::HasSubstr;
 
 const std::string kSample = MCWS_SAMPLE_EXE, kRefine = MCWS_REFINE_EXE,
-                  kBoundary = MCWS_BOUNDARY_EXE;
+                  kBoundary = MCWS_BOUNDARY_EXE, kReach = MCWS_REACH_EXE;
 
 /// `mpirun -np K` with what this machine needs: more processes than cores, and root in a
 /// container.
@@ -90,6 +92,72 @@ TEST(MpiRefine, RefinedCloudIsTheSameOnAnyProcessCount) {
       kRefine, "--robot " + robot + " --input " + rim + " --cloud " + cloud + " --samples 30001");
   expectSameFileOnAnyProcessCount(
       kRefine, "--robot " + robot + " --input " + rim + " --samples 30001 --spread 0.05 --seed 9");
+}
+
+/// mcws_reach on one process and on 2 and 3 under mpirun: the same map (PCD and binary map).
+void expectSameMapOnAnyProcessCount(const std::string& args) {
+  test::TempDir dir;
+  const auto outputs = [&](const std::string& name) {
+    return " --output " + dir.file(name + ".pcd") + " --map " + dir.file(name + ".bin");
+  };
+  const test::RunResult one = test::run(kReach + " " + args + " --threads 1" + outputs("one"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  for (const int k : {2, 3}) {
+    const std::string name = "np" + std::to_string(k);
+    const test::RunResult r =
+        test::run(mpirun(k) + " " + kReach + " " + args + outputs(name) + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(test::readFile(dir.file(name + ".pcd")) == test::readFile(dir.file("one.pcd")));
+    EXPECT_TRUE(test::readFile(dir.file(name + ".bin")) == test::readFile(dir.file("one.bin")));
+    EXPECT_EQ(nlohmann::json::parse(r.out)["processes"], k);
+  }
+  EXPECT_EQ(dir.fileCount(), 6u);
+}
+
+TEST(MpiReach, MapIsTheSameOnAnyProcessCount) {
+  // Counts add, bins unite, the best manipulability is the larger: merged along the tree.
+  expectSameMapOnAnyProcessCount("--robot " + test::robotPath("inspection6") +
+                                 " --resolution 10cm --samples 1000003");
+}
+
+TEST(MpiReach, CollisionFreeMapIsTheSame) {
+  expectSameMapOnAnyProcessCount(
+      "--robot " + test::robotPath("ta1400") +
+      " --collision --resolution 100 --orientations 50 --samples 200000");
+}
+
+TEST(MpiReach, KilledRunContinuesFromItsCheckpoints) {
+  // The run is stopped (SIGTERM to mpirun) once both processes have saved a checkpoint; the same
+  // command run again continues from them and gives the map of an uninterrupted run, and a run
+  // of another seed refuses them.
+  test::TempDir dir, scratch;
+  const std::string args = " --robot " + test::robotPath("inspection6") +
+                           " --resolution 10cm --samples 6000000 --checkpoint-every 100000";
+  const test::RunResult one = test::run(kReach + args + " --output " + dir.file("one.pcd") +
+                                        " --checkpoint " + dir.file("solo"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const std::string run = mpirun(2) + " " + kReach + args + " --output " + dir.file("two.pcd") +
+                          " --checkpoint " + dir.file("ck");
+  test::writeFile(scratch.file("stop.sh"),
+                  run + " &\nlauncher=$!\nfor i in $(seq 600); do\n  [ -e " + dir.file("ck.0") +
+                      " ] && [ -e " + dir.file("ck.1") +
+                      " ] && break; sleep 0.05\ndone\nkill -TERM $launcher\nwait $launcher\n");
+  const test::RunResult stopped = test::run("bash " + scratch.file("stop.sh"));
+  ASSERT_NE(stopped.exit_code, 0) << "the run ended before it was stopped: make it longer";
+  EXPECT_FALSE(std::filesystem::exists(dir.file("two.pcd")));
+  ASSERT_TRUE(std::filesystem::exists(dir.file("ck.0")));
+  // Another run (another seed) does not take these checkpoints, and leaves them as they are.
+  const std::string saved = test::readFile(dir.file("ck.1"));
+  const test::RunResult other = test::run(run + " --seed 2");
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_THAT(other.err, HasSubstr("is of another run"));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("two.pcd")));
+  EXPECT_TRUE(test::readFile(dir.file("ck.1")) == saved);
+  const test::RunResult resumed = test::run(run + " --json");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_GT(nlohmann::json::parse(resumed.out)["resumed_samples"].get<std::uint64_t>(), 0u);
+  EXPECT_TRUE(test::readFile(dir.file("two.pcd")) == test::readFile(dir.file("one.pcd")));
+  EXPECT_EQ(dir.fileCount(), 2u);  // the checkpoints are gone
 }
 
 TEST(MpiFailure, DifferentArgumentsOnTheProcessesAreRefused) {

@@ -135,6 +135,8 @@ void Processes::abortAll(int code) const {
   std::cerr.flush();
 #ifdef MCWS_HAVE_MPI
   MPI_Abort(MPI_COMM_WORLD, code);
+#else
+  (void)code;  // without MPI there is never more than one process
 #endif
 }
 
@@ -201,6 +203,52 @@ std::vector<std::uint64_t> Processes::gather(const std::vector<std::uint64_t>& v
   }
 #endif
   return values;
+}
+
+void Processes::send(int to, const std::string& bytes) const {
+#ifdef MCWS_HAVE_MPI
+  std::uint64_t length = bytes.size();
+  MPI_Send(&length, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
+  for (std::size_t at = 0; at < bytes.size(); at += kMaxPiece) {
+    const std::size_t piece = std::min(kMaxPiece, bytes.size() - at);
+    MPI_Send(bytes.data() + at, static_cast<int>(piece), MPI_BYTE, to, 0, MPI_COMM_WORLD);
+  }
+#else
+  (void)to;
+  (void)bytes;
+  throw Error("no other process to send to in a build without MPI");
+#endif
+}
+
+std::string Processes::receive(int from) const {
+#ifdef MCWS_HAVE_MPI
+  std::uint64_t length = 0;
+  MPI_Recv(&length, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::string bytes(length, '\0');
+  for (std::size_t at = 0; at < bytes.size(); at += kMaxPiece) {
+    const std::size_t piece = std::min(kMaxPiece, bytes.size() - at);
+    MPI_Recv(bytes.data() + at, static_cast<int>(piece), MPI_BYTE, from, 0, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+  }
+  return bytes;
+#else
+  (void)from;
+  throw Error("no other process to receive from in a build without MPI");
+#endif
+}
+
+void reduceToFirst(const Processes& processes, const std::function<std::string()>& encode,
+                   const std::function<void(const std::string&)>& merge) {
+  const int rank = processes.rank();
+  for (int step = 1; step < processes.size(); step *= 2) {
+    if (rank % (2 * step) == step) {
+      processes.send(rank - step, encode());
+      return;
+    }
+    if (rank % (2 * step) == 0 && rank + step < processes.size()) {
+      merge(processes.receive(rank + step));
+    }
+  }
 }
 
 Block blockOf(std::uint64_t n, int rank, int size) {

@@ -4,6 +4,7 @@
 /// built with MPI), else this process alone; and the files they write together.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,6 +62,10 @@ class Processes {
   void max(std::vector<double>& values) const;
   /// \brief Every process's `values`, concatenated in rank order, on every process.
   std::vector<std::uint64_t> gather(const std::vector<std::uint64_t>& values) const;
+  /// \brief Sends `bytes` to process `to` (any length), which must receive() them.
+  void send(int to, const std::string& bytes) const;
+  /// \brief The bytes process `from` sends.
+  std::string receive(int from) const;
 
  private:
   int rank_{0};
@@ -70,6 +75,15 @@ class Processes {
   int launched_size_{1};       ///< the size the launcher announced
   bool same_arguments_{true};  ///< every process was given this one's arguments
 };
+
+/// \brief Combines a value held by every process into rank 0's, along a binary tree: in round
+/// s = 1, 2, 4, ... process r with r mod 2s = s sends `encode()` to r - s, which passes it to
+/// `merge`; a process that has sent is done. log2(K) rounds, each process receiving at most that
+/// many values and holding one received value at a time. The result is rank 0's value after its
+/// merges; `merge` must not depend on the order it sees the values in (the tree fixes that order
+/// anyway, for a given K). On one process it does nothing.
+void reduceToFirst(const Processes& processes, const std::function<std::string()>& encode,
+                   const std::function<void(const std::string&)>& merge);
 
 /// \brief The contiguous share [begin, end) of n items (sample indices) of process `rank` of
 /// `size`: the first n % size processes take one more.
