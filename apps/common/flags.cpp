@@ -1,5 +1,7 @@
 #include "common/flags.h"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -49,8 +51,13 @@ int readThreads(const CommandLine& cli, int minimum) {
 }
 
 int threadsPerProcess(int requested, const distributed::Processes& processes) {
-  if (requested > 0 || processes.localSize() <= 1) return requested;
+  if (requested > 0 || !processes.distributed()) return requested;
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  // A launcher that binds each process to its cores (Open MPI does for up to 2 processes) says
+  // how many this one has.
+  cpu_set_t allowed;
+  if (::sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) < cores)
+    return std::max(1, CPU_COUNT(&allowed));
   return std::max(1, cores / processes.localSize());
 }
 
