@@ -53,7 +53,8 @@ first look.
 Under mpirun (-np K, MPI builds) each process fills the map of its contiguous block of sample
 indices; the maps are merged along a binary tree into rank 0 (counts add, bins unite, the best
 manipulability is the larger), which writes every output: the same map, byte for byte, as one
-process's. Memory per process: its map and one received map. --threads is then per process
+process's. Memory per process: its map, its encoded copy while sending, or one received map
+(encoded and read) while merging. --threads is then per process
 (0: the cores shared among the processes on a machine).
 
 With --checkpoint FILE a long run saves its progress: each process writes its map so far to
@@ -104,7 +105,7 @@ struct PendingFile {
 
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
 void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProvenance& provenance,
-            const distributed::Processes& processes) {
+            distributed::Processes& processes) {
   const std::string output = cli.required("output");
   app::checkOutputs({{"output", output},
                      {"map", cli.text("map", "")},
@@ -159,6 +160,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   } else if (cli.has("checkpoint-every")) {
     throw app::UsageError("--checkpoint-every needs --checkpoint");
   }
+  // A bad flag or file on any process ends them all here; so does another robot file.
+  processes.setUpDone({{"robot", provenance.sha256}});
   ReachMap map = checkpoint
                      ? buildReachMapInPieces(robot, grid, sampling, *checkpoint, report, &resumed)
                      : buildReachMap(robot, grid, sampling, report);
@@ -181,7 +184,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   // Every checkpoint stays until rank 0 has written the outputs (a failure there keeps them).
   const auto removeCheckpoint = [&] {
     processes.barrier();
-    if (checkpoint) std::filesystem::remove(checkpoint->path);
+    std::error_code ignored;  // a checkpoint left behind is only refused or reused later
+    if (checkpoint) std::filesystem::remove(checkpoint->path, ignored);
   };
   if (processes.rank() != 0) return removeCheckpoint();  // rank 0 writes and reports for all
   if (map.size() == 0) throw Error("no sample counted: every sample collides");
@@ -320,8 +324,7 @@ void runStudy(const app::CommandLine& cli, const Robot& robot,
 
 int main(int argc, char** argv) {
   distributed::Processes processes(argc, argv);
-  const int code = app::run("mcws_reach", [&] {
-    processes.require();
+  return app::run("mcws_reach", processes, [&] {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -339,6 +342,4 @@ int main(int argc, char** argv) {
     }
     return app::kExitOk;
   });
-  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
-  return code;
 }

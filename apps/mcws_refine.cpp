@@ -9,6 +9,7 @@
 #include "common/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/distributed/sample_writer.h"
+#include "mcws/io/provenance.h"
 #include "mcws/workspace/refine.h"
 
 namespace {
@@ -52,8 +53,7 @@ void declareFlags(mcws::app::CommandLine& cli) {
 int main(int argc, char** argv) {
   using namespace mcws;
   distributed::Processes processes(argc, argv);
-  const int code = app::run("mcws_refine", [&] {
-    processes.require();
+  return app::run("mcws_refine", processes, [&] {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -86,6 +86,9 @@ int main(int argc, char** argv) {
     const bool holds_cloud = cli.has("cloud") && processes.rank() == 0;
     const auto refined = holds_cloud ? app::loadCloud(cli.required("cloud"))
                                      : std::make_shared<app::WorkspaceCloud>();
+    // A bad flag or file on any process ends them all here; so do other robot or input files.
+    processes.setUpDone(
+        {{"robot", provenance.sha256}, {"input", io::sha256OfFile(cli.required("input"))}});
     const std::size_t kept = processes.broadcast(static_cast<std::uint64_t>(refined->size()));
     app::Progress progress("mcws_refine", "samples");  // rank 0 reports its block
     const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
@@ -123,6 +126,4 @@ int main(int argc, char** argv) {
     }
     return app::kExitOk;
   });
-  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
-  return code;
 }

@@ -139,8 +139,7 @@ nlohmann::json labelSummary(const SampleSummary& result, std::size_t samples) {
 
 int main(int argc, char** argv) {
   distributed::Processes processes(argc, argv);
-  const int code = app::run("mcws_sample", [&] {
-    processes.require();
+  return app::run("mcws_sample", processes, [&] {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
@@ -163,6 +162,12 @@ int main(int argc, char** argv) {
     app::checkOutputs({{"output", output}}, {{"robot", cli.text("robot", "")}});
 
     const Source source = cli.has("robot") ? robotSource(cli, seed, point) : shapeSource(cli, seed);
+    // A bad flag or file on any process ends them all here; so does another robot file.
+    if (source.provenance) {
+      processes.setUpDone({{"robot", source.provenance->sha256}});
+    } else {
+      processes.setUpDone();
+    }
     app::Progress progress("mcws_sample", "samples");  // rank 0 reports its block
     const auto format = cli.has("ascii") ? io::PcdFormat::kAscii : io::PcdFormat::kBinary;
     const auto report = [&](std::size_t done, std::size_t total) { progress.update(done, total); };
@@ -202,6 +207,4 @@ int main(int argc, char** argv) {
     }
     return app::kExitOk;
   });
-  if (code != app::kExitOk) processes.abortAll(code);  // one failure ends every process
-  return code;
 }

@@ -39,26 +39,73 @@ std::string& givenFlags() {
 
 }  // namespace
 
-int run(const char* program, const std::function<int()>& body) {
+namespace {
+
+/// run()'s body with the error line returned in `message` (with its newline) instead of printed.
+int runCapturing(const char* program, const std::function<int()>& body, std::string& message) {
   try {
     return body();
+  } catch (const distributed::OtherProcessFailed& e) {
+    return e.code;  // reported by the process that failed
   } catch (const std::bad_alloc&) {
     const std::string activity = Activity::takeFailed();
-    std::cerr << program << ": out of memory"
-              << (activity.empty() ? std::string() : " while " + activity)
-              << (givenFlags().empty() ? std::string() : " (given: " + givenFlags() + ")")
-              << ": a file or flag asks for more than this machine has\n";
+    message = std::string(program) + ": out of memory" +
+              (activity.empty() ? std::string() : " while " + activity) +
+              (givenFlags().empty() ? std::string() : " (given: " + givenFlags() + ")") +
+              ": a file or flag asks for more than this machine has\n";
     return kExitFailure;
   } catch (const UsageError& e) {
-    std::cerr << program << ": " << escapeControlBytes(e.what()) << " (see --help)\n";
+    message = std::string(program) + ": " + escapeControlBytes(e.what()) + " (see --help)\n";
     return kExitUsage;
   } catch (const po::error& e) {
-    std::cerr << program << ": " << escapeControlBytes(e.what()) << " (see --help)\n";
+    message = std::string(program) + ": " + escapeControlBytes(e.what()) + " (see --help)\n";
     return kExitUsage;
   } catch (const std::exception& e) {
-    std::cerr << program << ": " << escapeControlBytes(e.what()) << "\n";
+    message = std::string(program) + ": " + escapeControlBytes(e.what()) + "\n";
     return kExitFailure;
   }
+}
+
+}  // namespace
+
+int run(const char* program, const std::function<int()>& body) {
+  std::string message;
+  const int code = runCapturing(program, body, message);
+  std::cerr << message;
+  return code;
+}
+
+int run(const char* program, distributed::Processes& processes, const std::function<int()>& body) {
+  std::string message;
+  const int code = runCapturing(
+      program,
+      [&] {
+        processes.require();
+        return body();
+      },
+      message);
+  if (!processes.distributed()) {
+    std::cerr << message;
+    return code;
+  }
+  if (!processes.setUpAgreed()) {
+    if (code == kExitOk) return code;  // --help: no process went further
+    // Failed in its set-up: the others agree on it at the end of theirs, and the first process
+    // that failed reports.
+    const distributed::Agreement agreement = processes.agreeOnSetUp(code);
+    if (processes.rank() == agreement.first_failed) std::cerr << message;
+    processes.barrier();  // the launcher ends the run at the first exit: report first
+    return agreement.code;
+  }
+  if (processes.setUpFailed()) {  // found at the agreement: the process it names reports
+    if (processes.rank() == processes.setUpFirstFailed()) std::cerr << message;
+    processes.barrier();
+    return code;
+  }
+  // Failed on its own after the set-up: it reports, and ends every process.
+  std::cerr << message;
+  if (code != kExitOk) processes.abortAll(code);
+  return code;
 }
 
 CommandLine::CommandLine(std::string usage, std::string summary)

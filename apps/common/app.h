@@ -16,6 +16,8 @@
 
 #include "mcws/core/error.h"
 
+#include "mcws/distributed/processes.h"
+
 namespace mcws::app {
 
 namespace po = boost::program_options;
@@ -40,6 +42,13 @@ std::string escapeControlBytes(const std::string& text);
 /// memory (std::bad_alloc, which names nothing) is reported with the innermost Activity and the
 /// flags given: "out of memory while reading --input 'a.pcd' (given: --input a.pcd --radius 2)".
 int run(const char* program, const std::function<int()>& body);
+
+/// \brief run() for a tool that may run on several processes (mpirun): `body` calls
+/// processes.setUpDone() once its command line and inputs are read. A failure before that point
+/// (a bad flag, a bad file, on any process) is agreed on there: the first process that failed
+/// prints its one line and every process returns the worst exit code. A failure after it is
+/// printed by the process it happened on, which ends every process (Processes::abortAll()).
+int run(const char* program, distributed::Processes& processes, const std::function<int()>& body);
 
 /// \brief Names what a tool is doing while the object lives, e.g. "reading --input 'a.pcd'", for
 /// the message of run() when memory runs out. Activities nest; header-only so that the loaders'

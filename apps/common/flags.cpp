@@ -56,9 +56,10 @@ int threadsPerProcess(int requested, const distributed::Processes& processes) {
   // A launcher that binds each process to its cores (Open MPI does for up to 2 processes) says
   // how many this one has.
   cpu_set_t allowed;
+  const int shared = std::max(1, cores / processes.localSize());
   if (::sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) < cores)
-    return std::max(1, CPU_COUNT(&allowed));
-  return std::max(1, cores / processes.localSize());
+    return std::max(1, std::min(CPU_COUNT(&allowed), shared));  // bound to a socket: still shared
+  return shared;
 }
 
 SamplePoint readPoint(const CommandLine& cli) {

@@ -26,6 +26,26 @@ std::string mpirun(int processes) {
          (::geteuid() == 0 ? " --allow-run-as-root" : "");
 }
 
+/// Lines of `err` from the tool itself (the launcher adds its own banner of dashes and words).
+int toolLines(const std::string& err, const std::string& tool) {
+  int lines = 0;
+  std::size_t at = 0;
+  while ((at = err.find(tool + ": ", at)) != std::string::npos) {
+    lines += at == 0 || err[at - 1] == '\n';
+    at += tool.size();
+  }
+  return lines;
+}
+
+/// Two processes started from one command line but in two directories (two nodes' views of
+/// "r.yaml"), each running `tool args`.
+std::string twoDirectories(const std::string& first, const std::string& second,
+                           const std::string& tool, const std::string& args) {
+  return std::string(MCWS_MPIEXEC) + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
+         " --oversubscribe -np 1 --wdir " + first + " " + tool + args + " : -np 1 --wdir " +
+         second + " " + tool + args;
+}
+
 /// Runs `args` on one process without mpirun and under mpirun on 1, 2 and 3 processes (each with
 /// its own thread count), and expects the same bytes every time.
 void expectSameFileOnAnyProcessCount(const std::string& tool, const std::string& args) {
@@ -131,16 +151,18 @@ TEST(MpiReach, KilledRunContinuesFromItsCheckpoints) {
   // command run again continues from them and gives the map of an uninterrupted run, and a run
   // of another seed refuses them.
   test::TempDir dir, scratch;
-  const std::string args = " --robot " + test::robotPath("inspection6") +
-                           " --resolution 10cm --samples 6000000 --checkpoint-every 100000";
-  const test::RunResult one = test::run(kReach + args + " --output " + dir.file("one.pcd") +
-                                        " --checkpoint " + dir.file("solo"));
+  const std::string args =
+      " --robot " + test::robotPath("inspection6") + " --resolution 10cm --samples 12000000";
+  const test::RunResult one =
+      test::run(kReach + args + " --output " + dir.file("one.pcd") + " --map " +
+                dir.file("one.bin") + " --checkpoint " + dir.file("solo"));
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const std::string run = mpirun(2) + " " + kReach + args + " --output " + dir.file("two.pcd") +
-                          " --checkpoint " + dir.file("ck");
+                          " --checkpoint " + dir.file("ck"),
+                    every = " --checkpoint-every 100000";
   test::writeFile(scratch.file("stop.sh"),
-                  run + " &\nlauncher=$!\nfor i in $(seq 600); do\n  [ -e " + dir.file("ck.0") +
-                      " ] && [ -e " + dir.file("ck.1") +
+                  run + every + " &\nlauncher=$!\nfor i in $(seq 600); do\n  [ -e " +
+                      dir.file("ck.0") + " ] && [ -e " + dir.file("ck.1") +
                       " ] && break; sleep 0.05\ndone\nkill -TERM $launcher\nwait $launcher\n");
   const test::RunResult stopped = test::run("bash " + scratch.file("stop.sh"));
   ASSERT_NE(stopped.exit_code, 0) << "the run ended before it was stopped: make it longer";
@@ -148,16 +170,19 @@ TEST(MpiReach, KilledRunContinuesFromItsCheckpoints) {
   ASSERT_TRUE(std::filesystem::exists(dir.file("ck.0")));
   // Another run (another seed) does not take these checkpoints, and leaves them as they are.
   const std::string saved = test::readFile(dir.file("ck.1"));
-  const test::RunResult other = test::run(run + " --seed 2");
+  const test::RunResult other = test::run(run + every + " --seed 2");
   EXPECT_EQ(other.exit_code, 1);
   EXPECT_THAT(other.err, HasSubstr("is of another run"));
   EXPECT_FALSE(std::filesystem::exists(dir.file("two.pcd")));
   EXPECT_TRUE(test::readFile(dir.file("ck.1")) == saved);
-  const test::RunResult resumed = test::run(run + " --json");
+  // Resumed with pieces of another size: the merge is exact, so the map is the same.
+  const test::RunResult resumed =
+      test::run(run + " --checkpoint-every 300000 --map " + dir.file("two.bin") + " --json");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_GT(nlohmann::json::parse(resumed.out)["resumed_samples"].get<std::uint64_t>(), 0u);
   EXPECT_TRUE(test::readFile(dir.file("two.pcd")) == test::readFile(dir.file("one.pcd")));
-  EXPECT_EQ(dir.fileCount(), 2u);  // the checkpoints are gone
+  EXPECT_TRUE(test::readFile(dir.file("two.bin")) == test::readFile(dir.file("one.bin")));
+  EXPECT_EQ(dir.fileCount(), 4u);  // the checkpoints are gone
 }
 
 TEST(MpiFailure, DifferentArgumentsOnTheProcessesAreRefused) {
@@ -167,25 +192,44 @@ TEST(MpiFailure, DifferentArgumentsOnTheProcessesAreRefused) {
       test::run(std::string(MCWS_MPIEXEC) + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
                 " --oversubscribe -np 1 " + kSample + " --shape ball --samples 1000 --output " +
                 out + " : -np 1 " + kSample + " --shape ball --samples 2000 --output " + out);
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("mcws_sample: the 2 processes were not all given the same"));
+  EXPECT_EQ(toolLines(r.err, "mcws_sample"), 1) << r.err;  // both failed; the first reports
   EXPECT_EQ(dir.fileCount(), 0u);
 }
 
 TEST(MpiFailure, BadInputOnOneProcessLeavesNoOutput) {
   // The same command line, but process 1 runs in a directory whose robot file is broken (a node
-  // with a stale copy): it fails after process 0 has started writing.
+  // with a stale copy): it fails in its set-up, and process 0, whose set-up went well, ends
+  // with it at the set-up agreement, before any output is opened.
   test::TempDir good, bad, out;
   test::writeFile(good.file("r.yaml"), test::readFile(test::robotPath("deicing")));
   test::writeFile(bad.file("r.yaml"), "name: [broken\n");
-  const std::string args = " --robot r.yaml --samples 2000000 --output " + out.file("x.pcd");
   const test::RunResult r =
-      test::run(std::string(MCWS_MPIEXEC) + (::geteuid() == 0 ? " --allow-run-as-root" : "") +
-                " --oversubscribe -np 1 --wdir " + good.file("") + " " + kSample + args +
-                " : -np 1 --wdir " + bad.file("") + " " + kSample + args);
+      test::run(twoDirectories(good.file(""), bad.file(""), kSample,
+                               " --robot r.yaml --samples 2000000 --output " + out.file("x.pcd")));
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_THAT(r.err, HasSubstr("mcws_sample: --robot: r.yaml:2: YAML syntax"));
+  EXPECT_EQ(toolLines(r.err, "mcws_sample"), 1) << r.err;
   EXPECT_EQ(out.fileCount(), 0u);
+}
+
+TEST(MpiFailure, AnotherRobotOnOneProcessIsRefused) {
+  // Both robot files are good, but they differ: the blocks would mix two robots in one file.
+  test::TempDir first, second, out;
+  test::writeFile(first.file("r.yaml"), test::readFile(test::robotPath("deicing")));
+  test::writeFile(second.file("r.yaml"), test::readFile(test::robotPath("planar2")));
+  for (const std::string& tool : {kSample, kReach}) {
+    const std::string name = tool == kSample ? "mcws_sample" : "mcws_reach";
+    const std::string extra = tool == kReach ? " --resolution 5" : "";
+    const test::RunResult r = test::run(
+        twoDirectories(first.file(""), second.file(""), tool,
+                       " --robot r.yaml --samples 1000 --output " + out.file("x.pcd") + extra));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(name + ": --robot: the processes did not all read the same"));
+    EXPECT_EQ(toolLines(r.err, name), 1) << r.err;
+    EXPECT_EQ(out.fileCount(), 0u);
+  }
 }
 
 TEST(MpiFailure, KilledProcessLeavesNoOutput) {
@@ -223,6 +267,7 @@ TEST(MpiFailure, AsciiIsRefusedOnSeveralProcesses) {
                 dir.file("a.pcd"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("mcws_sample: --ascii: several processes write binary PCD only"));
+  EXPECT_EQ(toolLines(r.err, "mcws_sample"), 1) << r.err;
   EXPECT_EQ(dir.fileCount(), 0u);
 }
 

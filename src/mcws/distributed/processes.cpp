@@ -20,9 +20,18 @@
 namespace mcws::distributed {
 namespace {
 
+/// What launchers put in the environment of the processes they start: Open MPI's mpirun, MPICH's
+/// Hydra (and Intel MPI), PMIx-based launchers such as Slurm's srun --mpi=pmix.
+constexpr const char* kSizeVariables[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"};
+constexpr const char* kRankVariables[] = {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"};
+
+/// Values Processes::setUpDone() compares between the processes, at most: the agreement is one
+/// collective of a fixed size, whichever process calls it from where.
+constexpr std::size_t kMaxSame = 4;
+
 /// The number of processes the launcher announced in the environment, 1 when none.
 int announcedSize() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"}) {
+  for (const char* name : kSizeVariables) {
     if (const char* value = std::getenv(name)) {
       const long size = std::strtol(value, nullptr, 10);
       if (size >= 1 && size <= std::numeric_limits<int>::max()) return static_cast<int>(size);
@@ -31,16 +40,20 @@ int announcedSize() {
   return 1;
 }
 
-#ifdef MCWS_HAVE_MPI
-/// FNV-1a hash of the arguments after the program's name, each ended by a zero byte.
-std::uint64_t argumentsHash(int argc, char** argv) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (int k = 1; k < argc; ++k) {
-    for (const char* c = argv[k];; ++c) {
-      hash = (hash ^ static_cast<unsigned char>(*c)) * 1099511628211ull;
-      if (!*c) break;
-    }
+/// FNV-1a hash of bytes, continued from `hash`.
+std::uint64_t fnv1a(const char* bytes, std::size_t size,
+                    std::uint64_t hash = 14695981039346656037ull) {
+  for (std::size_t k = 0; k < size; ++k) {
+    hash = (hash ^ static_cast<unsigned char>(bytes[k])) * 1099511628211ull;
   }
+  return hash;
+}
+
+#ifdef MCWS_HAVE_MPI
+/// Hash of the arguments after the program's name, each with its terminating zero byte.
+std::uint64_t argumentsHash(int argc, char** argv) {
+  std::uint64_t hash = fnv1a("", 0);
+  for (int k = 1; k < argc; ++k) hash = fnv1a(argv[k], std::strlen(argv[k]) + 1, hash);
   return hash;
 }
 
@@ -74,7 +87,10 @@ bool builtWithMpi() {
 }
 
 bool launchedByMpi() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK"}) {
+  for (const char* name : kSizeVariables) {
+    if (std::getenv(name)) return true;
+  }
+  for (const char* name : kRankVariables) {
     if (std::getenv(name)) return true;
   }
   return false;
@@ -123,11 +139,60 @@ void Processes::require() const {
                 " processes, but this build has no MPI support (MCWS_WITH_MPI=OFF or MPI not "
                 "found): run it without mpirun, or rebuild with MPI");
   }
+  if (initialized_ && launched_size_ > 1 && size_ != launched_size_) {
+    throw Error("started as " + std::to_string(launched_size_) + " processes, but MPI sees " +
+                std::to_string(size_) +
+                ": the launcher is not the one of the MPI library this tool was built with");
+  }
   if (!same_arguments_) {
     throw Error("the " + std::to_string(size_) +
                 " processes were not all given the same arguments: start them with one command "
                 "line (mpirun -np K TOOL FLAGS)");
   }
+}
+
+void Processes::setUpDone(const std::vector<std::pair<std::string, std::string>>& same) {
+  if (same.size() > kMaxSame) throw Error("setUpDone: at most 4 values to compare");
+  std::vector<std::uint64_t> hashes(2 * kMaxSame, std::numeric_limits<std::uint64_t>::max());
+  for (std::size_t k = 0; k < same.size(); ++k) {
+    const std::uint64_t hash = fnv1a(same[k].second.data(), same[k].second.size());
+    hashes[2 * k] = hash;
+    hashes[2 * k + 1] = ~hash;  // the largest hash as the smallest complement: one MIN
+  }
+  const Agreement agreement = agree(0, hashes);
+  if (agreement.code != 0) throw OtherProcessFailed{agreement.code};
+  for (std::size_t k = 0; k < same.size(); ++k) {
+    const std::uint64_t hash = fnv1a(same[k].second.data(), same[k].second.size());
+    if (hashes[2 * k] == hash && ~hashes[2 * k + 1] == hash) continue;
+    agreement_ = {0, 1};  // rank 0 reports, every process exits with 1
+    if (rank_ != 0) throw OtherProcessFailed{1};
+    throw Error("--" + same[k].first +
+                ": the processes did not all read the same file (a different copy on some "
+                "node?): every process must see the same inputs");
+  }
+}
+
+Agreement Processes::agreeOnSetUp(int code) {
+  // The same number of values as setUpDone()'s, none of which lowers a minimum.
+  std::vector<std::uint64_t> none(2 * kMaxSame, std::numeric_limits<std::uint64_t>::max());
+  return agree(code, none);
+}
+
+Agreement Processes::agree(int code, std::vector<std::uint64_t>& hashes) {
+  // One MIN over: the failing rank (size when none), the largest code as the smallest
+  // complement, and the hashes.
+  std::vector<std::uint64_t> values{
+      static_cast<std::uint64_t>(code != 0 ? rank_ : size_),
+      std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(code)};
+  values.insert(values.end(), hashes.begin(), hashes.end());
+#ifdef MCWS_HAVE_MPI
+  if (distributed()) allReduce(values, MPI_UINT64_T, MPI_MIN);
+#endif
+  agreement_ = {static_cast<int>(values[0]),
+                static_cast<int>(std::numeric_limits<std::uint64_t>::max() - values[1])};
+  std::copy(values.begin() + 2, values.end(), hashes.begin());
+  agreed_ = true;
+  return agreement_;
 }
 
 void Processes::abortAll(int code) const {
@@ -161,6 +226,17 @@ std::string Processes::broadcast(const std::string& text) const {
 std::uint64_t Processes::broadcast(std::uint64_t value) const {
 #ifdef MCWS_HAVE_MPI
   if (distributed()) MPI_Bcast(&value, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+#endif
+  return value;
+}
+
+bool Processes::allTrue(bool value) const {
+#ifdef MCWS_HAVE_MPI
+  if (distributed()) {
+    int all = value ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    return all == 1;
+  }
 #endif
   return value;
 }
@@ -327,15 +403,21 @@ void SharedFile::writeAt(std::uint64_t offset, const void* data, std::size_t siz
 }
 
 void SharedFile::commit() {
+  bool closed = true;
+  std::string failure;
 #ifdef MCWS_HAVE_MPI
   if (processes_.distributed()) {
     const int code = MPI_File_close(&impl_->handle);
-    if (code != MPI_SUCCESS) {
-      throw Error("cannot write '" + path_ + "' on process " + std::to_string(processes_.rank()) +
-                  ": " + mpiMessage(code));
-    }
+    closed = code == MPI_SUCCESS;
+    if (!closed) failure = mpiMessage(code);
   }
 #endif
+  // The name is given only when every process has closed its part.
+  if (!processes_.allTrue(closed)) {
+    throw Error("cannot write '" + path_ + "': " +
+                (closed ? "another process could not finish its part"
+                        : "process " + std::to_string(processes_.rank()) + ": " + failure));
+  }
   if (processes_.rank() == 0) impl_->file->commit();
   processes_.barrier();  // every process returns with the file in place
 }

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mcws::distributed {
@@ -17,6 +18,18 @@ bool builtWithMpi();
 /// \brief Whether this process was started by an MPI launcher (`mpirun`, `mpiexec`, `srun`): it
 /// sees the launcher's environment (OMPI_COMM_WORLD_SIZE, PMI_SIZE, PMIX_RANK).
 bool launchedByMpi();
+
+/// \brief Thrown by Processes::setUpDone() on the processes whose set-up went well when another
+/// process's failed: that one reports; these end with its exit code, silently.
+struct OtherProcessFailed {
+  int code;
+};
+
+/// \brief What the processes agreed on at the end of their set-up.
+struct Agreement {
+  int first_failed;  ///< the lowest rank whose set-up failed (size() when none)
+  int code;          ///< the largest exit code (0 when none failed)
+};
 
 /// \brief A run's processes and the collective operations the tools need.
 ///
@@ -45,6 +58,23 @@ class Processes {
   /// \brief The processes on this machine (1 without MPI): tools share its cores among them.
   int localSize() const { return local_size_; }
 
+  /// \brief Collective, once, when a tool has read its command line and inputs: the point where
+  /// a failure of any process's set-up becomes every process's (app::run). `same` lists
+  /// (flag, value) pairs that must be equal on every process (the SHA-256 of the robot file, of
+  /// an input cloud): a stale copy on one node would mix two robots in one output.
+  /// \throws OtherProcessFailed when another process's set-up failed; when a `same` value
+  ///   differs, mcws::Error "--FLAG: the processes did not all read the same file ..." on rank 0
+  ///   and OtherProcessFailed{1} on the others.
+  void setUpDone(const std::vector<std::pair<std::string, std::string>>& same = {});
+  /// \brief Collective: this process's side of the set-up agreement, with its exit code (0: its
+  /// set-up went well). Called by setUpDone(), and by app::run() for a process whose set-up
+  /// threw.
+  Agreement agreeOnSetUp(int code);
+  /// \brief Whether the set-up agreement has taken place, and whether some set-up failed there.
+  bool setUpAgreed() const { return agreed_; }
+  bool setUpFailed() const { return agreed_ && agreement_.code != 0; }
+  int setUpFirstFailed() const { return agreement_.first_failed; }
+
   /// \brief Ends every process of the run with exit code `code` (MPI_Abort); returns only when
   /// the run is not distributed. For a failure on one rank: the launcher ends the others with
   /// SIGTERM, on which their temporary files are removed (io::AtomicFile).
@@ -52,6 +82,8 @@ class Processes {
 
   /// \brief Waits for every process.
   void barrier() const;
+  /// \brief Whether `value` is true on every process.
+  bool allTrue(bool value) const;
   /// \brief Rank 0's `text`, on every process.
   std::string broadcast(const std::string& text) const;
   /// \brief Rank 0's `value`, on every process.
@@ -68,12 +100,17 @@ class Processes {
   std::string receive(int from) const;
 
  private:
+  /// The agreement's collective: `code` and `hashes` in, the minimum of `hashes` out.
+  Agreement agree(int code, std::vector<std::uint64_t>& hashes);
+
   int rank_{0};
   int size_{1};
   int local_size_{1};
   bool initialized_{false};    ///< MPI_Init was called here
   int launched_size_{1};       ///< the size the launcher announced
   bool same_arguments_{true};  ///< every process was given this one's arguments
+  bool agreed_{false};         ///< agreeOnSetUp() has run
+  Agreement agreement_{0, 0};
 };
 
 /// \brief Combines a value held by every process into rank 0's, along a binary tree: in round
