@@ -274,6 +274,31 @@ TEST(RobotUrdf, RefusesTextThatCouldHideNestingFromTheCount) {
   EXPECT_EQ(parseRobotUrdf(planarWithToolContent("<x>caf\xC3\xA9</x>"), "ok").dof(), 3);
 }
 
+TEST(RobotUrdf, RefusesAPercentThatUrdfdomWouldTakeForAPrintfFormat) {
+  // urdfdom 3.0 passed "Unable to parse component [0%1n=] ..." to printf as the format: a
+  // crash (found by the robot_urdf fuzzer).
+  EXPECT_EQ(errorOf(replace(kPlanar, "xyz=\"0.1 0 0\"", "xyz=\"0%1n= 0 0.5\"")),
+            "bad.urdf: line 14: attribute xyz=\"0%1n= 0 0.5\" holds a '%', which no URDF number "
+            "or name needs (urdfdom would misread it)");
+  // The same '%' written as a character reference, in another attribute, with single quotes.
+  EXPECT_THAT(errorOf(replace(kPlanar, "<link name=\"tool\"/>",
+                              "<link name='tool'><visual><geometry><sphere radius='&#x025;s'/>"
+                              "</geometry></visual></link>")),
+              HasSubstr("bad.urdf: line 4: attribute radius=\"&#x025;s\" holds a '%'"));
+  EXPECT_THAT(errorOf(replace(kPlanar, "name=\"j1\"", "name=\"j&#0037;s\"")),
+              HasSubstr("attribute name=\"j&#0037;s\" holds a '%'"));
+  // A mesh's file name may hold one; other references are untouched.
+  EXPECT_EQ(parseRobotUrdf(replace(kPlanar, "<link name=\"tool\"/>",
+                                   "<link name='tool'><visual><geometry><mesh "
+                                   "filename='tool%20v2.stl'/></geometry></visual></link>"),
+                           "ok")
+                .dof(),
+            3);
+  EXPECT_EQ(
+      parseRobotUrdf(replace(kPlanar, "name=\"planar\"", "name=\"pl&#38;&#x26;nar\""), "ok").dof(),
+      3);
+}
+
 TEST(RobotUrdf, RefusesAFileLargerThan64MiB) {
   test::TempDir dir;
   const std::string path = dir.file("huge.urdf");

@@ -85,6 +85,53 @@ std::size_t startTagEnd(const std::string& text, std::size_t at) {
   return text.size();
 }
 
+/// True when an attribute value, as TinyXML decodes it, holds a '%': a '%' itself or a numeric
+/// character reference to it (`&#37;`, `&#x25;`, with any leading zeros).
+bool decodesToPercent(const std::string& value) {
+  if (value.find('%') != std::string::npos) return true;
+  for (std::size_t at = value.find("&#"); at != std::string::npos; at = value.find("&#", at + 2)) {
+    std::size_t i = at + 2;
+    const bool hex = i < value.size() && (value[i] == 'x' || value[i] == 'X');
+    if (hex) ++i;
+    while (i < value.size() && value[i] == '0') ++i;
+    if (value.compare(i, 3, hex ? "25;" : "37;") == 0) return true;
+  }
+  return false;
+}
+
+/// \brief Throws if an attribute of the start tag from `at` to `end` (its '>') holds a '%',
+/// except a mesh's `filename`.
+///
+/// urdfdom 3.0 hands some messages that quote the file's text to console_bridge as the printf
+/// format itself (a pose's xyz or rpy, a box's size, a radius, a length, a mass, an inertia, a
+/// material's name and rgba), so "%n" or "%s" in them crashes the parser. No URDF number or name
+/// needs a '%'; a file name may, and urdfdom quotes it only through "%s".
+void checkNoPercentInAttributes(const std::string& text, std::size_t at, std::size_t end,
+                                const std::string& source) {
+  std::size_t i = at + 1;
+  while (i < end && !isXmlSpace(text[i])) ++i;  // the element's name
+  for (;;) {
+    while (i < end && isXmlSpace(text[i])) ++i;
+    const std::size_t name_at = i;
+    while (i < end && !isXmlSpace(text[i]) && text[i] != '=' && text[i] != '/') ++i;
+    const std::string name = text.substr(name_at, i - name_at);
+    while (i < end && isXmlSpace(text[i])) ++i;
+    if (name.empty() || i >= end || text[i] != '=') return;  // TinyXML's own error, if any
+    ++i;
+    while (i < end && isXmlSpace(text[i])) ++i;
+    if (i >= end || (text[i] != '"' && text[i] != '\'')) return;
+    const std::size_t close = text.find(text[i], i + 1);
+    if (close == std::string::npos || close > end) return;
+    const std::string value = text.substr(i + 1, close - i - 1);
+    if (name != "filename" && decodesToPercent(value)) {
+      throw Error(source + ": line " + std::to_string(lineOf(text, i)) + ": attribute " + name +
+                  "=\"" + oneLine(value) +
+                  "\" holds a '%', which no URDF number or name needs (urdfdom would misread it)");
+    }
+    i = close + 1;
+  }
+}
+
 /// Throws unless every byte that TinyXML reads as the lead of a multi-byte UTF-8 character (0xC2
 /// to 0xF4) is followed by its continuation bytes (0x80 to 0xBF). TinyXML takes a lead's whole
 /// length without looking, so a cut-short character would swallow the '<' or quote after it and
@@ -148,7 +195,8 @@ void checkPlainDeclaration(const std::string& text, std::size_t at, const std::s
 /// up to the point where the parser stops at an error. Two places where TinyXML reads more than
 /// that would let a crafted file hide nesting from the count, so they are errors: a cut-short
 /// UTF-8 character (checkUtf8()) and a declaration with a '>' inside quotes
-/// (checkPlainDeclaration()).
+/// (checkPlainDeclaration()). Each start tag's attributes are checked on the way
+/// (checkNoPercentInAttributes()).
 /// \return the offset just after the first top-level `<robot ...>` tag, or npos.
 /// \throws mcws::Error "source: XML nested deeper than 1000 elements", or as the two checks.
 std::size_t checkXmlNesting(const std::string& text, const std::string& source) {
@@ -167,6 +215,7 @@ std::size_t checkXmlNesting(const std::string& text, const std::string& source) 
     } else if (isAsciiLetter(next) || next == '_' || static_cast<unsigned char>(next) >= 127) {
       const std::size_t end = startTagEnd(text, at);
       if (end == text.size()) break;
+      checkNoPercentInAttributes(text, at, end, source);
       if (text[end - 1] != '/') {
         if (++depth > kMaxUrdfNesting) {
           throw Error(source + ": XML nested deeper than " + std::to_string(kMaxUrdfNesting) +
