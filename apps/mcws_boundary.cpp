@@ -14,7 +14,9 @@
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
+#include "common/tiled_boundary.h"
 #include "common/units.h"
+#include "mcws/distributed/processes.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant/cloud_stages.h"
@@ -47,7 +49,12 @@ cloud's mean spacing and its extent in the plane, --auto-radius c such that c x 
 --adaptive k below the number of distinct points, --hull-depth in [0.1, 10] or 0.
 Flags' lengths are in the cloud's unit; --json gives the radius (for an adaptive radius, the
 median of the points' radii) and the mean spacing in the unit the cloud records (or --unit),
-named by "length_unit" and "units".)";
+named by "length_unit" and "units".
+--tiles N (orthant, fixed or adaptive radius, no hull depth) reads a binary PCD in pieces and
+finds the boundary one slab at a time: N slabs of equal width along the cloud's longest axis, each
+with a halo that holds every neighbour its points search (checked point by point, widened until it
+does), so the output is byte for byte the one of a run without --tiles, in memory bounded by the
+largest slab and halo. Under mpirun the processes share the slabs; --json then adds the halo.)";
 
 using Filter = OrthantBoundary<WorkspacePoint>;
 
@@ -101,6 +108,9 @@ void addFlags(app::CommandLine& cli) {
                "extremum: a larger gap inside a column is an inner boundary [length unit] "
                "(default: from the density)");
   cli.addValue("threads", "orthant: worker threads, 0 = all cores (default 0)");
+  cli.addValue("tiles",
+               "orthant: find the boundary in N slabs with halos, in bounded memory (binary PCD; "
+               "shared among mpirun's processes)");
   cli.addSwitch("tree-search",
                 "orthant: search every point in the kd-tree, not the cell grid (same result, "
                 "slower; for comparison)");
@@ -119,7 +129,7 @@ void rejectFlags(const app::CommandLine& cli, const std::string& method,
 }
 
 /// The filter's recommended settings, changed by the flags given.
-Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
+Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane, int threads) {
   rejectFlags(cli, "orthant", {"cell", "gap"});
   if (cli.has("radius") + cli.has("auto-radius") + cli.has("adaptive") > 1) {
     throw app::UsageError("give at most one of --radius, --auto-radius, --adaptive");
@@ -155,7 +165,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
     }
     boundary->setHullDepth(depth);
   }
-  boundary->setNumberOfThreads(app::readThreads(cli));
+  boundary->setNumberOfThreads(threads);
   boundary->setGridSearch(!cli.has("tree-search"));
   return {"orthant", plane, boundary, [boundary](const app::ResultUnits& units) {
             return lengths(
@@ -166,7 +176,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   rejectFlags(cli, "grid",
               {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "hull-depth",
-               "threads", "gap", "tree-search"});
+               "threads", "gap", "tree-search", "tiles"});
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(app::parsePositive(cli.required("cell"), "cell"));
@@ -182,7 +192,7 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   rejectFlags(cli, "extremum",
               {"radius", "auto-radius", "adaptive", "outer-radius", "min-gap", "hull-depth",
-               "threads", "tree-search"});
+               "threads", "tree-search", "tiles"});
   if (plane == BoundaryPlane::k3D) {
     throw app::UsageError("--method extremum works in a plane: give --plane xy, xz or yz");
   }
@@ -201,13 +211,13 @@ Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
 }
 
 /// The method named by --method (default orthant), set up from its flags.
-Method methodFromFlags(const app::CommandLine& cli) {
+Method methodFromFlags(const app::CommandLine& cli, int threads) {
   const BoundaryPlane plane = app::readPlane(cli);
   const std::string name =
       app::parseChoice(cli.text("method", "orthant"), "method", {"orthant", "grid", "extremum"});
   if (name == "grid") return gridMethod(cli, plane);
   if (name == "extremum") return extremumMethod(cli, plane);
-  return orthantMethod(cli, plane);
+  return orthantMethod(cli, plane, threads);
 }
 
 /// Usage error unless --flag's value lies in [low, high] ((low, high] with `open_low`), `unit`
@@ -317,15 +327,147 @@ void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
     throw;
   }
 }
+
+/// Prints the run's summary: one JSON object with --json, else a line on stderr.
+void report(const app::CommandLine& cli, nlohmann::json summary, const app::ResultUnits& units,
+            const app::Progress& clock) {
+  summary["length_unit"] = units.lengthName();
+  summary["units"]["seconds"] = "s";
+  if (cli.has("json")) {
+    std::cout << summary.dump() << "\n";
+  } else {
+    std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000)
+              << " ms : " << summary["boundary"] << " of " << summary["points"]
+              << " points on the boundary] -> " << summary["output"].get<std::string>() << "\n";
+  }
+}
+
+/// The common part of both summaries.
+nlohmann::json summaryOf(const app::CommandLine& cli, const Method& method, std::uint64_t points,
+                         std::uint64_t boundary, const app::Progress& clock) {
+  return {{"input", cli.required("input")},
+          {"output", cli.required("output")},
+          {"method", method.name},
+          {"plane", boundaryPlaneName(method.plane)},
+          {"points", points},
+          {"boundary", boundary},
+          {"seconds", clock.seconds()}};
+}
+
+/// --tiles: the boundary slab by slab (app::tiledBoundary()), the outputs written by rank 0 in
+/// one more pass over the input.
+int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
+  const std::string input = cli.required("input"), output = cli.required("output");
+  const int tiles = static_cast<int>(app::parseInteger(cli.required("tiles"), "tiles", 1, 100000));
+  const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
+  const Method method = methodFromFlags(cli, threads);
+  if (method.name != "orthant") throw app::UsageError("--tiles works with --method orthant");
+  if (cli.has("auto-radius")) {
+    throw app::UsageError(
+        "--auto-radius needs the whole cloud's spacing: with --tiles give --radius or --adaptive");
+  }
+  const auto& prototype = static_cast<const Filter&>(*method.filter);
+  if (prototype.getHullDepth() > 0.0) {
+    throw app::UsageError(
+        "--tiles: the hull-depth stage looks past the neighbourhood of a point; give "
+        "--hull-depth 0 with --plane");
+  }
+  if (processes.rank() == 0) checkOutputs(cli);
+  const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
+  app::Progress clock("mcws_boundary", "slabs");
+  app::PcdPointReader reader(input);
+  const app::FileSummary file = app::summarizeFile(reader, method.plane);
+  file.range.check(input);
+  requireRegionPoints(file.cloud, input);
+  if (method.plane == BoundaryPlane::k3D) app::requireVolume(file.range, input);
+  app::asUsageError("plane", [&] { requirePlaneFits(file.cloud, input); });
+  CloudSummary region = file.cloud;
+  if (needsSpacing(cli)) {
+    // The spacing of a uniform cloud in the bounding box: the ranges of the length flags only.
+    double measure = 1.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (method.plane == BoundaryPlane::k3D || axis == planeAxes(method.plane)[0] ||
+          axis == planeAxes(method.plane)[1])
+        measure *= std::max(region.extent[axis], 1e-3 * region.largest);
+    }
+    region.spacing = std::pow(measure / static_cast<double>(region.finite),
+                              1.0 / boundaryDimensions(method.plane));
+  }
+  checkFlagsAgainstCloud(cli, method, region);
+  processes.setUpDone({{"input", std::to_string(reader.size()) + " points"}});
+
+  const auto make = [&] {
+    return std::static_pointer_cast<Filter>(methodFromFlags(cli, threads).filter);
+  };
+  const app::TiledBoundary found =
+      app::tiledBoundary(reader, file, tiles, make, threads, processes, clock);
+  if (processes.rank() != 0) return app::kExitOk;
+
+  const bool with_interior = cli.has("interior");
+  const std::uint64_t interior = file.cloud.finite - found.kept;
+  io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
+                                                    reader.provenance());
+  std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;
+  if (with_interior) {
+    interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary,
+                          reader.provenance());
+  }
+  app::WorkspaceCloud piece, kept, rest;
+  constexpr std::size_t kPiece = std::size_t{1} << 20;
+  for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
+    reader.read(first,
+                static_cast<std::size_t>(std::min<std::uint64_t>(kPiece, reader.size() - first)),
+                piece);
+    kept.clear();
+    rest.clear();
+    for (std::size_t k = 0; k < piece.size(); ++k) {
+      if (found.boundary[first + k]) {
+        kept.push_back(piece[k]);
+      } else if (with_interior && pcl::isFinite(piece[k])) {
+        rest.push_back(piece[k]);
+      }
+    }
+    boundary_file.write(kept.data(), kept.size());
+    if (with_interior) interior_file->write(rest.data(), rest.size());
+  }
+  boundary_file.commit();
+  if (with_interior) {
+    try {
+      interior_file->commit();
+    } catch (...) {
+      std::remove(output.c_str());  // all or nothing
+      throw;
+    }
+  }
+
+  nlohmann::json summary = summaryOf(cli, method, reader.size(), found.kept, clock);
+  summary.update(lengths(
+      {{"radius", prototype.getRadiusMode() == RadiusMode::kFixed ? prototype.getRadiusSearch()
+                                                                  : found.median_radius},
+       {"halo", found.largest_halo}},
+      units));
+  summary["tiles"] = tiles;
+  summary["processes"] = processes.size();
+  summary["largest_tile_points"] = found.largest_tile;
+  summary["reloaded_tiles"] = found.reloaded_tiles;
+  if (with_interior) summary["interior"] = interior;
+  report(cli, summary, units, clock);
+  return app::kExitOk;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  return app::run("mcws_boundary", [&] {
+  distributed::Processes processes(argc, argv);
+  return app::run("mcws_boundary", processes, [&] {
     app::CommandLine cli(kUsage, kSummary);
     addFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
+    if (cli.has("tiles")) return runTiled(cli, processes);
+    if (processes.distributed()) {
+      throw app::UsageError("several processes (mpirun) share a boundary only with --tiles N");
+    }
     const std::string input = cli.required("input"), output = cli.required("output");
-    const Method method = methodFromFlags(cli);
+    const Method method = methodFromFlags(cli, app::readThreads(cli));
     checkOutputs(cli);
     const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
 
@@ -342,23 +484,10 @@ int main(int argc, char** argv) {
     method.filter->filter(kept);
     saveOutputs(cli, *cloud, kept, *method.filter->getRemovedIndices(), interior);
 
-    nlohmann::json summary = {{"input", input},
-                              {"output", output},
-                              {"method", method.name},
-                              {"plane", boundaryPlaneName(method.plane)},
-                              {"points", cloud->size()},
-                              {"boundary", kept.size()},
-                              {"seconds", clock.seconds()}};
+    nlohmann::json summary = summaryOf(cli, method, cloud->size(), kept.size(), clock);
     summary.update(method.parameters(units));
-    summary["length_unit"] = units.lengthName();
-    summary["units"]["seconds"] = "s";
     if (cli.has("interior")) summary["interior"] = interior.size();
-    if (cli.has("json")) {
-      std::cout << summary.dump() << "\n";
-    } else {
-      std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000) << " ms : " << kept.size()
-                << " of " << cloud->size() << " points on the boundary] -> " << output << "\n";
-    }
+    report(cli, summary, units, clock);
     return app::kExitOk;
   });
 }

@@ -5,6 +5,7 @@
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cfloat>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "common/app.h"
@@ -490,26 +492,52 @@ std::string describe(std::uint8_t datatype, std::uint32_t count) {
 /// Rejects clouds whose finite coordinates the float geometry cannot handle (see kMaxCoordinate
 /// and kMinExtent).
 void requireRepresentable(const WorkspaceCloud& cloud, const std::string& path) {
-  float largest = 0.0f;
-  Eigen::Array3f min = Eigen::Array3f::Constant(std::numeric_limits<float>::max());
-  Eigen::Array3f max = -min;
-  for (const auto& p : cloud) {
-    if (!pcl::isFinite(p)) continue;
-    largest = std::max(largest, p.getArray3fMap().abs().maxCoeff());
-    min = min.min(p.getArray3fMap());
-    max = max.max(p.getArray3fMap());
+  CoordinateRange range;
+  range.add(cloud);
+  range.check(path);
+}
+
+/// Throws unless the header declares points with fields x, y and z.
+void requirePointsWithXyz(const PcdHeader& header, const std::string& path) {
+  if (header.points == 0) throw Error(path + ": the cloud has no points");
+  for (const char* axis : {"x", "y", "z"}) {
+    bool found = false;
+    for (const PcdField& f : header.fields) found = found || f.name == axis;
+    if (!found) throw Error(path + ": has no field '" + axis + "'");
   }
-  if (largest > kMaxCoordinate) {
-    throw Error(
-        path + ": coordinates up to " + threeDigits(largest) +
-        " are beyond what the geometry can represent (|x| <= " + threeDigits(kMaxCoordinate) + ")");
+}
+
+/// Throws when a field of WorkspacePoint (x y z q1..q8 label) has another type or count in
+/// `fields` (PCL would read it as 0).
+void requireWorkspaceFieldTypes(const std::vector<pcl::PCLPointField>& fields,
+                                const std::string& path) {
+  for (const pcl::PCLPointField& wanted : pcl::getFields<WorkspacePoint>()) {
+    const auto field = std::find_if(fields.begin(), fields.end(),
+                                    [&](const auto& f) { return f.name == wanted.name; });
+    if (field == fields.end()) continue;
+    if (field->datatype != wanted.datatype || field->count != wanted.count) {
+      throw Error(path + ": field '" + field->name + "' is " +
+                  describe(field->datatype, field->count) + ", not the " +
+                  describe(wanted.datatype, wanted.count) +
+                  " it is read as (PCL would read every value as 0)");
+    }
   }
-  const float extent = (max - min).maxCoeff();
-  if (extent > 0.0f && extent < kMinExtent) {
-    throw Error(path + ": the points span only " + threeDigits(extent) +
-                ", too little for the geometry to resolve (an extent >= " +
-                threeDigits(kMinExtent) + ", or all points at one place)");
-  }
+}
+
+/// PCL's field of a header's field at byte `offset` of the record.
+pcl::PCLPointField pclField(const PcdField& f, std::uint32_t offset) {
+  static const std::map<std::pair<char, std::uint64_t>, std::uint8_t> kTypes = {
+      {{'I', 1}, pcl::PCLPointField::INT8},    {{'I', 2}, pcl::PCLPointField::INT16},
+      {{'I', 4}, pcl::PCLPointField::INT32},   {{'I', 8}, pcl::PCLPointField::INT64},
+      {{'U', 1}, pcl::PCLPointField::UINT8},   {{'U', 2}, pcl::PCLPointField::UINT16},
+      {{'U', 4}, pcl::PCLPointField::UINT32},  {{'U', 8}, pcl::PCLPointField::UINT64},
+      {{'F', 4}, pcl::PCLPointField::FLOAT32}, {{'F', 8}, pcl::PCLPointField::FLOAT64}};
+  pcl::PCLPointField field;
+  field.name = f.name;
+  field.offset = offset;
+  field.datatype = kTypes.at({f.type, f.size});  // readHeader() admits only these
+  field.count = static_cast<std::uint32_t>(f.count);
+  return field;
 }
 
 /// The size of the cloud file `path` [byte]. \throws mcws::Error when it is missing, not a regular
@@ -537,12 +565,7 @@ pcl::PCLPointCloud2 loadPcd(const std::string& path) {
   const Activity reading("reading '" + path + "'");
   const std::uint64_t file_size = cloudFileSize(path);
   const PcdHeader header = readHeader(path, file_size);
-  if (header.points == 0) throw Error(path + ": the cloud has no points");
-  for (const char* axis : {"x", "y", "z"}) {
-    bool found = false;
-    for (const PcdField& f : header.fields) found = found || f.name == axis;
-    if (!found) throw Error(path + ": has no field '" + axis + "'");
-  }
+  requirePointsWithXyz(header, path);
   if (header.data == "ascii") {
     checkAsciiData(path, header);
   } else {
@@ -560,17 +583,7 @@ pcl::PCLPointCloud2 loadPcd(const std::string& path) {
 
 WorkspaceCloud::Ptr loadCloud(const std::string& path) {
   const pcl::PCLPointCloud2 blob = loadPcd(path);
-  for (const pcl::PCLPointField& wanted : pcl::getFields<WorkspacePoint>()) {
-    const int k = pcl::getFieldIndex(blob, wanted.name);
-    if (k < 0) continue;
-    const pcl::PCLPointField& field = blob.fields[static_cast<std::size_t>(k)];
-    if (field.datatype != wanted.datatype || field.count != wanted.count) {
-      throw Error(path + ": field '" + field.name + "' is " +
-                  describe(field.datatype, field.count) + ", not the " +
-                  describe(wanted.datatype, wanted.count) +
-                  " it is read as (PCL would read every value as 0)");
-    }
-  }
+  requireWorkspaceFieldTypes(blob.fields, path);
   auto cloud = std::make_shared<WorkspaceCloud>();
   const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // missing q/label fields are fine
@@ -582,19 +595,14 @@ WorkspaceCloud::Ptr loadCloud(const std::string& path) {
 }
 
 void requireVolume(const WorkspaceCloud& cloud, const std::string& path) {
-  Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
-  Eigen::Vector3f max = -min;
-  std::size_t finite = 0;
-  for (const auto& p : cloud) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      continue;
-    }
-    min = min.cwiseMin(p.getVector3fMap());
-    max = max.cwiseMax(p.getVector3fMap());
-    ++finite;
-  }
-  if (finite == 0) throw Error(path + ": the cloud has no finite points");
-  const Eigen::Vector3f extent = max - min;
+  CoordinateRange range;
+  range.add(cloud);
+  requireVolume(range, path);
+}
+
+void requireVolume(const CoordinateRange& range, const std::string& path) {
+  const Eigen::Vector3f extent = range.extent().matrix();
+  if (!(extent.minCoeff() >= 0.0f)) throw Error(path + ": the cloud has no finite points");
   const char* axis = "xyz";
   for (int k = 0; k < 3; ++k) {
     if (!(extent[k] > 1e-6f * extent.maxCoeff())) {
@@ -637,6 +645,79 @@ void saveCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const s
     writer.write(chunk.data(), chunk.size());
   }
   writer.commit();
+}
+
+void CoordinateRange::add(const WorkspaceCloud& cloud) {
+  for (const auto& p : cloud) {
+    if (!pcl::isFinite(p)) continue;
+    largest_ = std::max(largest_, p.getArray3fMap().abs().maxCoeff());
+    min_ = min_.min(p.getArray3fMap());
+    max_ = max_.max(p.getArray3fMap());
+  }
+}
+
+void CoordinateRange::check(const std::string& path) const {
+  if (largest_ > kMaxCoordinate) {
+    throw Error(
+        path + ": coordinates up to " + threeDigits(largest_) +
+        " are beyond what the geometry can represent (|x| <= " + threeDigits(kMaxCoordinate) + ")");
+  }
+  const float extent = (max_ - min_).maxCoeff();
+  if (extent > 0.0f && extent < kMinExtent) {
+    throw Error(path + ": the points span only " + threeDigits(extent) +
+                ", too little for the geometry to resolve (an extent >= " +
+                threeDigits(kMinExtent) + ", or all points at one place)");
+  }
+}
+
+PcdPointReader::PcdPointReader(const std::string& path) : path_(path) {
+  const Activity reading("reading '" + path + "'");
+  const std::uint64_t file_size = cloudFileSize(path);
+  const PcdHeader header = readHeader(path, file_size);
+  requirePointsWithXyz(header, path);
+  if (header.data != "binary") {
+    throw Error(path + ": DATA " + header.data +
+                ", but a cloud read in pieces must be DATA binary (as every mcws tool writes; "
+                "pcl_convert_pcd_ascii_binary FILE OUT 1 converts one)");
+  }
+  checkBinaryData(path, header, file_size);
+  std::uint32_t offset = 0;
+  for (const PcdField& f : header.fields) {
+    fields_.push_back(pclField(f, offset));
+    offset += static_cast<std::uint32_t>(f.size * f.count);
+  }
+  requireWorkspaceFieldTypes(fields_, path);
+  point_step_ = offset;
+  points_ = header.points;
+  data_offset_ = header.data_offset;
+  provenance_ = header.provenance;
+  in_.open(path, std::ios::binary);
+  if (!in_) throw Error(path + ": cannot read the file");
+}
+
+void PcdPointReader::read(std::uint64_t first, std::size_t count, WorkspaceCloud& out) {
+  if (first > points_ || count > points_ - first) {
+    throw Error(path_ + ": points " + std::to_string(first) + " to " +
+                std::to_string(first + count) + " are beyond its " + std::to_string(points_));
+  }
+  pcl::PCLPointCloud2 blob;
+  blob.fields = fields_;
+  blob.width = static_cast<std::uint32_t>(count);
+  blob.height = 1;
+  blob.point_step = point_step_;
+  blob.row_step = static_cast<std::uint32_t>(count * point_step_);
+  blob.is_dense = false;
+  blob.data.resize(count * point_step_);
+  in_.seekg(static_cast<std::streamoff>(data_offset_ + first * point_step_));
+  if (!in_.read(reinterpret_cast<char*>(blob.data.data()),
+                static_cast<std::streamsize>(blob.data.size()))) {
+    throw Error(path_ + ": cannot read points " + std::to_string(first) + " to " +
+                std::to_string(first + count) + " (the file changed while it was read?)");
+  }
+  const pcl::console::VERBOSITY_LEVEL level = pcl::console::getVerbosityLevel();
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // missing q/label fields are fine
+  pcl::fromPCLPointCloud2(blob, out);
+  pcl::console::setVerbosityLevel(level);
 }
 
 }  // namespace mcws::app

@@ -4,6 +4,8 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <fstream>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -61,9 +63,53 @@ void requireSameRobot(const std::string& flag, const std::string& path,
 ///   finite points span more than 0 and less than 1e-19 (their squares underflow).
 WorkspaceCloud::Ptr loadCloud(const std::string& path);
 
+/// \brief The range of a cloud's finite coordinates, gathered piece by piece, to check as
+/// loadCloud() checks a whole cloud.
+class CoordinateRange {
+ public:
+  void add(const WorkspaceCloud& cloud);
+  /// \throws mcws::Error naming `path` as loadCloud() does for coordinates beyond 1e18 or an
+  ///   extent below 1e-19.
+  void check(const std::string& path) const;
+  /// \brief The extent of the finite coordinates (negative when there were none).
+  Eigen::Array3f extent() const { return max_ - min_; }
+
+ private:
+  float largest_{0.0f};
+  Eigen::Array3f min_{Eigen::Array3f::Constant(std::numeric_limits<float>::max())};
+  Eigen::Array3f max_{-Eigen::Array3f::Constant(std::numeric_limits<float>::max())};
+};
+
+/// \brief Reads the points of a binary PCD file piece by piece, for clouds larger than memory:
+/// the header and the data's size checked as loadPcd() checks them, the pieces converted to
+/// WorkspacePoint as loadCloud() converts a whole cloud. Coordinates are not checked here:
+/// gather them in a CoordinateRange.
+class PcdPointReader {
+ public:
+  /// \throws mcws::Error naming the file as loadCloud() does, and for ascii or compressed data.
+  explicit PcdPointReader(const std::string& path);
+  /// \brief The number of points in the file.
+  std::uint64_t size() const { return points_; }
+  /// \brief The robot the header records, if any.
+  const std::optional<io::CloudProvenance>& provenance() const { return provenance_; }
+  /// \brief Points [first, first + count) into `out` (resized).
+  /// \throws mcws::Error when they lie beyond the file or cannot be read.
+  void read(std::uint64_t first, std::size_t count, WorkspaceCloud& out);
+
+ private:
+  std::string path_;
+  std::vector<pcl::PCLPointField> fields_;
+  std::uint32_t point_step_{0};
+  std::uint64_t points_{0}, data_offset_{0};
+  std::optional<io::CloudProvenance> provenance_;
+  std::ifstream in_;
+};
+
 /// \brief Checks that a cloud spans a volume: a flat cloud (one extent zero) has every point on
 /// its 3-D boundary, which is never what was meant. \throws mcws::Error suggesting --plane.
 void requireVolume(const WorkspaceCloud& cloud, const std::string& path);
+/// \brief requireVolume() for a cloud read in pieces.
+void requireVolume(const CoordinateRange& range, const std::string& path);
 
 /// \brief Saves the points `indices` of `cloud` as binary PCD, atomically, recording
 /// `provenance` in the header: pass that of the robot (robotProvenance()), or that of the input

@@ -242,5 +242,73 @@ TEST_F(BoundaryApp, ExtremumMethodKeepsTwoPointsPerColumn) {
   EXPECT_EQ(json["boundary"], 80);
 }
 
+/// Runs `args` without and with --tiles (each count in `tiles`), with --interior, and expects
+/// both outputs byte for byte the same. Returns the last tiled run's JSON.
+nlohmann::json expectTilesChangeNothing(const std::string& args, std::initializer_list<int> tiles) {
+  test::TempDir dir;
+  const test::RunResult whole = test::run(kBoundary + " " + args + " --output " +
+                                          dir.file("b.pcd") + " --interior " + dir.file("i.pcd"));
+  EXPECT_EQ(whole.exit_code, 0) << whole.err;
+  const std::string boundary = test::readFile(dir.file("b.pcd")),
+                    interior = test::readFile(dir.file("i.pcd"));
+  nlohmann::json last;
+  for (const int t : tiles) {
+    const std::string name = "t" + std::to_string(t);
+    const test::RunResult r =
+        test::run(kBoundary + " " + args + " --tiles " + std::to_string(t) + " --json --output " +
+                  dir.file(name + ".pcd") + " --interior " + dir.file(name + "i.pcd"));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(test::readFile(dir.file(name + ".pcd")) == boundary) << args << " in " << t;
+    EXPECT_TRUE(test::readFile(dir.file(name + "i.pcd")) == interior) << args << " in " << t;
+    last = nlohmann::json::parse(r.out);
+    EXPECT_EQ(last["tiles"], t);
+    EXPECT_EQ(last["boundary"].get<std::size_t>() + last["interior"].get<std::size_t>() +
+                  (args.find("nan") != std::string::npos ? 3u : 0u),
+              last["points"].get<std::size_t>());
+  }
+  return last;
+}
+
+TEST_F(BoundaryApp, TilesGiveTheBytesOfTheWholeCloud) {
+  // Adaptive radius in 3-D (the default), one to many slabs, NaN points among them.
+  const nlohmann::json ball = expectTilesChangeNothing(
+      "--input " + withExtraPoints(ball_, NAN, 3, "ball_nan.pcd"), {1, 3, 7});
+  // The halo holds at least the reach of the points near a wall: 2 d_16, about 0.2 here.
+  EXPECT_GT(ball["halo"].get<double>(), 0.1);
+  EXPECT_LT(ball["largest_tile_points"].get<int>(), 20003);
+  // A fixed radius with the outer stage; a plane without the hull-depth stage.
+  expectTilesChangeNothing("--input " + ball_ + " --radius 0.15 --outer-radius 0.2", {5});
+  expectTilesChangeNothing("--input " + disk_ + " --plane xy --hull-depth 0", {4});
+}
+
+TEST_F(BoundaryApp, TilesWidenTheHaloWhereTheCloudIsSparse) {
+  // An arm's samples crowd near the axes and thin out at the rim: the k-th neighbour reaches
+  // far there, and slabs are loaded again with a wider halo.
+  const std::string arm = inputs_.file("arm.pcd");
+  ASSERT_EQ(test::run(kSample + " --robot " + test::robotPath("inspection6") +
+                      " --samples 20000 --output " + arm)
+                .exit_code,
+            0);
+  const nlohmann::json r = expectTilesChangeNothing("--input " + arm, {6});
+  EXPECT_GT(r["reloaded_tiles"].get<int>(), 0);
+}
+
+TEST_F(BoundaryApp, TilesRefuseWhatNeedsTheWholeCloud) {
+  const std::string to = " --output " + out();
+  expectFailure("--input " + ball_ + " --tiles 3 --method grid" + to, 2,
+                "--tiles does not apply to --method grid");
+  expectFailure("--input " + ball_ + " --tiles 3 --auto-radius 2" + to, 2,
+                "--auto-radius needs the whole cloud's spacing");
+  expectFailure("--input " + disk_ + " --tiles 3 --plane xy" + to, 2, "give --hull-depth 0");
+  expectFailure("--input " + ball_ + " --tiles 0" + to, 2, "--tiles");
+  // A cloud read in pieces must be binary.
+  pcl::PointCloud<WorkspacePoint> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(ball_, cloud), 0);
+  const std::string ascii = inputs_.file("ascii.pcd");
+  ASSERT_EQ(pcl::io::savePCDFileASCII(ascii, cloud), 0);
+  expectFailure("--input " + ascii + " --tiles 3" + to, 1,
+                ascii + ": DATA ascii, but a cloud read in pieces must be DATA binary");
+}
+
 }  // namespace
 }  // namespace mcws

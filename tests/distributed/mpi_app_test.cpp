@@ -114,6 +114,35 @@ TEST(MpiRefine, RefinedCloudIsTheSameOnAnyProcessCount) {
       kRefine, "--robot " + robot + " --input " + rim + " --samples 30001 --spread 0.05 --seed 9");
 }
 
+TEST(MpiBoundary, TiledBoundaryIsTheSameOnAnyProcessCount) {
+  // The slabs shared among the processes, their flags gathered on rank 0, which writes.
+  test::TempDir dir;
+  const std::string cloud = dir.file("arm.pcd");
+  ASSERT_EQ(test::run(kSample + " --robot " + test::robotPath("inspection6") +
+                      " --samples 30000 --output " + cloud)
+                .exit_code,
+            0);
+  const std::string args = "--input " + cloud;
+  const test::RunResult whole =
+      test::run(kBoundary + " " + args + " --output " + dir.file("b.pcd"));
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  for (const int k : {1, 2, 3}) {
+    const std::string out = dir.file("np" + std::to_string(k) + ".pcd");
+    const test::RunResult r = test::run(mpirun(k) + " " + kBoundary + " " + args +
+                                        " --tiles 5 --threads 1 --json --output " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(test::readFile(out) == test::readFile(dir.file("b.pcd"))) << k;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["processes"], k);
+  }
+  // Without --tiles the whole cloud is one process's work: refused on two, nothing written.
+  const test::RunResult two =
+      test::run(mpirun(2) + " " + kBoundary + " " + args + " --output " + dir.file("x.pcd"));
+  EXPECT_EQ(two.exit_code, 2);
+  EXPECT_EQ(toolLines(two.err, "mcws_boundary"), 1) << two.err;
+  EXPECT_THAT(two.err, HasSubstr("share a boundary only with --tiles N"));
+  EXPECT_EQ(dir.fileCount(), 5u);
+}
+
 /// mcws_reach on one process and on 2 and 3 under mpirun: the same map (PCD and binary map).
 void expectSameMapOnAnyProcessCount(const std::string& args) {
   test::TempDir dir;

@@ -149,35 +149,61 @@ double planeSpacing(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane) {
   return meanSpacing(uniquePositions(projected, position_of), boundaryDimensions(plane));
 }
 
+/// \brief CloudSummary gathered piece by piece (a cloud read from a file in pieces), without the
+/// spacing; summarizeCloud() for a cloud in memory.
+class CloudSummarizer {
+ public:
+  explicit CloudSummarizer(BoundaryPlane plane) { s_.plane = plane; }
+
+  /// \brief Counts the points of `cloud` (non-finite ones counted and skipped).
+  template <typename PointT>
+  void add(const pcl::PointCloud<PointT>& cloud) {
+    s_.points += cloud.size();
+    const std::array<int, 2> axes = planeAxes(s_.plane);
+    for (const PointT& p : cloud) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
+      ++s_.finite;
+      const Eigen::Array3d q(p.x, p.y, p.z);
+      lo_ = lo_.min(q);
+      hi_ = hi_.max(q);
+      if (distinct_.full()) continue;
+      if (s_.plane == BoundaryPlane::k3D) {
+        distinct_.add(p.x, p.y, p.z);
+      } else {
+        distinct_.add(p.data[axes[0]], p.data[axes[1]], 0.0f);
+      }
+    }
+  }
+
+  /// \brief The summary of the points added so far.
+  CloudSummary summary() const {
+    CloudSummary s = s_;
+    s.distinct = distinct_.count();
+    if (s.finite == 0) return s;
+    const std::array<int, 2> axes = planeAxes(s.plane);
+    s.extent = (hi_ - lo_).matrix();
+    s.largest = s.plane == BoundaryPlane::k3D ? s.extent.maxCoeff()
+                                              : std::max(s.extent[axes[0]], s.extent[axes[1]]);
+    return s;
+  }
+  /// \brief The finite points' lowest x, y and z (infinite before any).
+  Eigen::Vector3d low() const { return lo_.matrix(); }
+
+ private:
+  CloudSummary s_;
+  Eigen::Array3d lo_{Eigen::Array3d::Constant(std::numeric_limits<double>::infinity())};
+  Eigen::Array3d hi_{-Eigen::Array3d::Constant(std::numeric_limits<double>::infinity())};
+  DistinctCounter distinct_;
+};
+
 /// \brief CloudSummary of any cloud with x, y, z (non-finite points counted and skipped).
 template <typename PointT>
 CloudSummary summarizeCloud(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane,
                             SummaryDetail detail = SummaryDetail::kCounts) {
-  CloudSummary s;
-  s.plane = plane;
-  s.points = cloud.size();
-  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  const std::array<int, 2> axes = planeAxes(plane);
-  DistinctCounter distinct;
-  for (const PointT& p : cloud) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
-    ++s.finite;
-    const Eigen::Array3d q(p.x, p.y, p.z);
-    lo = lo.min(q);
-    hi = hi.max(q);
-    if (distinct.full()) continue;
-    if (plane == BoundaryPlane::k3D) {
-      distinct.add(p.x, p.y, p.z);
-    } else {
-      distinct.add(p.data[axes[0]], p.data[axes[1]], 0.0f);
-    }
-  }
-  s.distinct = distinct.count();
-  if (s.finite == 0) return s;
-  s.extent = (hi - lo).matrix();
-  s.largest = plane == BoundaryPlane::k3D ? s.extent.maxCoeff()
-                                          : std::max(s.extent[axes[0]], s.extent[axes[1]]);
-  if (detail == SummaryDetail::kSpacing) s.spacing = planeSpacing(cloud, plane);
+  CloudSummarizer summarizer(plane);
+  summarizer.add(cloud);
+  CloudSummary s = summarizer.summary();
+  if (s.finite > 0 && detail == SummaryDetail::kSpacing) s.spacing = planeSpacing(cloud, plane);
   return s;
 }
 

@@ -113,6 +113,8 @@ class OrthantBoundary : public pcl::FilterIndices<PointT> {
     adaptive_scale_ = scale;
   }
   RadiusMode getRadiusMode() const { return radius_mode_; }
+  /// \brief The adaptive radius's scale s.
+  double getAdaptiveScale() const { return adaptive_scale_; }
   /// \brief The adaptive radius's k: as set, or the recommended one for the plane.
   int getAdaptiveNeighbours() const {
     return adaptive_k_.value_or(boundaryDimensions(plane_) == 2 ? kRecommendedNeighbours2D
