@@ -95,11 +95,23 @@ class PcdPointReader {
   /// \brief Points [first, first + count) into `out` (resized).
   /// \throws mcws::Error when they lie beyond the file or cannot be read.
   void read(std::uint64_t first, std::size_t count, WorkspaceCloud& out);
+  /// \brief Of points [first, first + count), those with finite x, y, z whose coordinate
+  /// `axis` (0 x, 1 y, 2 z) lies in [from, to] into `out`, and their indices in the file into
+  /// `index` (both resized). Only these are converted, so that picking a slab costs little more
+  /// than reading the bytes.
+  void readWithin(std::uint64_t first, std::size_t count, int axis, double from, double to,
+                  WorkspaceCloud& out, std::vector<std::uint64_t>& index);
 
  private:
+  /// The bytes of points [first, first + count) into the start of blob_.data.
+  void readBytes(std::uint64_t first, std::size_t count);
+  /// Converts the first `count` records of blob_.data to `out`, as loadCloud() does.
+  void convert(std::size_t count, WorkspaceCloud& out);
+
   std::string path_;
-  std::vector<pcl::PCLPointField> fields_;
+  pcl::PCLPointCloud2 blob_;  ///< the file's fields; its data, the last piece read
   std::uint32_t point_step_{0};
+  std::uint32_t xyz_offset_[3]{0, 0, 0};  ///< bytes into a record of x, y, z (float)
   std::uint64_t points_{0}, data_offset_{0};
   std::optional<io::CloudProvenance> provenance_;
   std::ifstream in_;

@@ -20,20 +20,19 @@ constexpr std::size_t kPiece = std::size_t{1} << 20;
 /// Points whose radius makes the median: about this many, spread through the file.
 constexpr std::uint64_t kRadiusSamples = 1000;
 
+/// The number of points of the piece from `first`.
+std::size_t pieceSize(const PcdPointReader& reader, std::uint64_t first) {
+  return static_cast<std::size_t>(std::min<std::uint64_t>(kPiece, reader.size() - first));
+}
+
 /// Calls `visit(first, piece)` for the file's points in pieces of kPiece, in order.
 template <typename Visit>
 void forEachPiece(PcdPointReader& reader, Visit visit) {
   WorkspaceCloud piece;
   for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
-    reader.read(first,
-                static_cast<std::size_t>(std::min<std::uint64_t>(kPiece, reader.size() - first)),
-                piece);
+    reader.read(first, pieceSize(reader, first), piece);
     visit(first, piece);
   }
-}
-
-bool finite(const WorkspacePoint& p) {
-  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
 
 /// The slabs: `tiles` of equal width along `axis` from `low`.
@@ -70,17 +69,15 @@ LoadedTile loadTile(PcdPointReader& reader, const Slabs& slabs, int t, double ha
   tile.to = slabs.upper(t) + halo;
   if (tile.from <= slabs.low) tile.from = -std::numeric_limits<double>::infinity();
   if (tile.to >= slabs.high) tile.to = std::numeric_limits<double>::infinity();
-  forEachPiece(reader, [&](std::uint64_t first, const WorkspaceCloud& piece) {
-    for (std::size_t k = 0; k < piece.size(); ++k) {
-      const WorkspacePoint& p = piece[k];
-      if (!finite(p)) continue;
-      const double v = p.data[slabs.axis];
-      if (v < tile.from || v > tile.to) continue;
-      tile.cloud.push_back(p);
-      tile.index.push_back(first + k);
-      tile.own.push_back(slabs.tileOf(p.data[slabs.axis]) == t);
-    }
-  });
+  WorkspaceCloud piece;
+  std::vector<std::uint64_t> index;
+  for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
+    reader.readWithin(first, pieceSize(reader, first), slabs.axis, tile.from, tile.to, piece,
+                      index);
+    tile.cloud.insert(tile.cloud.end(), piece.begin(), piece.end());
+    tile.index.insert(tile.index.end(), index.begin(), index.end());
+    for (const WorkspacePoint& p : piece) tile.own.push_back(slabs.tileOf(p.data[slabs.axis]) == t);
+  }
   return tile;
 }
 

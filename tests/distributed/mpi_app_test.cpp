@@ -261,6 +261,40 @@ TEST(MpiFailure, AnotherRobotOnOneProcessIsRefused) {
   }
 }
 
+TEST(MpiFailure, FailureAfterSetUpEndsEveryProcessWithItsCode) {
+  // The planar arm inside a solid cage: every sample collides, which rank 0 finds after the
+  // merge, while rank 1 waits for it: the run ends with rank 0's code and one line, nothing left.
+  test::TempDir dir, out;
+  std::string caged = test::readFile(test::robotPath("planar2"));
+  caged += "    - {name: cage, type: box, size: [500, 500, 500], xyz: [0, 0, 0]}\n";
+  test::writeFile(dir.file("caged.yaml"), caged);
+  const test::RunResult r =
+      test::run(mpirun(2) + " " + kReach + " --robot " + dir.file("caged.yaml") +
+                " --resolution 5 --collision" + " --samples 20000 --threads 1 --output " +
+                out.file("m.pcd") + " --map " + out.file("m.bin"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("mcws_reach: no sample counted: every sample collides"));
+  EXPECT_EQ(toolLines(r.err, "mcws_reach"), 1) << r.err;
+  EXPECT_EQ(out.fileCount(), 0u);
+}
+
+TEST(MpiFailure, BadCloudThatRankZeroAloneReadsIsOneLine) {
+  // mcws_refine --cloud is read by rank 0 alone; its failure is agreed on at the set-up.
+  test::TempDir dir, out;
+  const std::string robot = test::robotPath("deicing");
+  const std::string rim = dir.file("rim.pcd");
+  ASSERT_EQ(test::run(kSample + " --robot " + robot + " --samples 2000 --output " + rim).exit_code,
+            0);
+  test::writeFile(dir.file("bad.pcd"), "not a cloud\n");
+  const test::RunResult r =
+      test::run(mpirun(2) + " " + kRefine + " --robot " + robot + " --input " + rim + " --cloud " +
+                dir.file("bad.pcd") + " --samples 1000 --output " + out.file("x.pcd"));
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("mcws_refine: " + dir.file("bad.pcd")));
+  EXPECT_EQ(toolLines(r.err, "mcws_refine"), 1) << r.err;
+  EXPECT_EQ(out.fileCount(), 0u);
+}
+
 TEST(MpiFailure, KilledProcessLeavesNoOutput) {
   // Process 1 is killed (SIGKILL) once the temporary file exists; the launcher ends process 0,
   // which removes it. Mesh collision checks keep the run going for seconds.
