@@ -412,12 +412,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
     interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary,
                           reader.provenance());
   }
-  app::WorkspaceCloud piece, kept, rest;
-  constexpr std::size_t kPiece = std::size_t{1} << 20;
-  for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
-    reader.read(first,
-                static_cast<std::size_t>(std::min<std::uint64_t>(kPiece, reader.size() - first)),
-                piece);
+  app::WorkspaceCloud kept, rest;
+  app::forEachPiece(reader, [&](std::uint64_t first, const app::WorkspaceCloud& piece) {
     kept.clear();
     rest.clear();
     for (std::size_t k = 0; k < piece.size(); ++k) {
@@ -429,7 +425,7 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
     }
     boundary_file.write(kept.data(), kept.size());
     if (with_interior) interior_file->write(rest.data(), rest.size());
-  }
+  });
   boundary_file.commit();
   if (with_interior) {
     try {

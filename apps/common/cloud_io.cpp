@@ -162,7 +162,9 @@ std::string valueProblem(const std::string& text, const PcdField& field) {
 /// the line.
 class HeaderChecker {
  public:
-  HeaderChecker(const std::string& path, PcdHeader& header) : path_(path), header_(header) {}
+  /// \param in_memory the cloud will be loaded whole by PCL, whose cloud holds at most 4 GiB.
+  HeaderChecker(const std::string& path, PcdHeader& header, bool in_memory)
+      : path_(path), header_(header), in_memory_(in_memory) {}
 
   /// Checks the header line `number`: text (no control bytes, no blank around the words), a
   /// comment or a keyword in its place with values that agree with the lines before.
@@ -331,7 +333,7 @@ class HeaderChecker {
            " is not WIDTH x HEIGHT = " + std::to_string(width_) + " x " + std::to_string(height_));
     }
     const std::uint64_t point_size = header_.pointSize();
-    if (point_size > kMaxDataBytes || header_.points > kMaxDataBytes / point_size) {
+    if (in_memory_ && (point_size > kMaxDataBytes || header_.points > kMaxDataBytes / point_size)) {
       fail("POINTS " + std::to_string(header_.points) + " of " + std::to_string(point_size) +
            " bytes exceed the 4 GiB of a PCL cloud");
     }
@@ -347,6 +349,7 @@ class HeaderChecker {
 
   const std::string& path_;
   PcdHeader& header_;
+  bool in_memory_;
   int number_{0};
   std::size_t next_{0};  ///< index of the first keyword that may follow
   std::uint64_t width_{0}, height_{0};
@@ -354,14 +357,15 @@ class HeaderChecker {
 
 /// Reads and checks the header of the PCD file `path` (of `file_size` bytes), up to and with
 /// its DATA line.
-PcdHeader readHeader(const std::string& path, std::uint64_t file_size) {
+/// The checked header of `path`; `in_memory` as HeaderChecker's.
+PcdHeader readHeader(const std::string& path, std::uint64_t file_size, bool in_memory) {
   std::ifstream in(path, std::ios::binary);
   std::string head(std::min(file_size, kMaxHeaderBytes), '\0');
   if (!in.read(head.data(), static_cast<std::streamsize>(head.size()))) {
     throw Error(path + ": cannot read the file");
   }
   PcdHeader header;
-  HeaderChecker checker(path, header);
+  HeaderChecker checker(path, header, in_memory);
   std::size_t begin = 0;
   for (int number = 1; header.data.empty(); ++number) {
     const std::size_t end = head.find('\n', begin);
@@ -564,7 +568,7 @@ std::string describeRobot(const io::CloudProvenance& p) {
 pcl::PCLPointCloud2 loadPcd(const std::string& path) {
   const Activity reading("reading '" + path + "'");
   const std::uint64_t file_size = cloudFileSize(path);
-  const PcdHeader header = readHeader(path, file_size);
+  const PcdHeader header = readHeader(path, file_size, true);
   requirePointsWithXyz(header, path);
   if (header.data == "ascii") {
     checkAsciiData(path, header);
@@ -614,7 +618,7 @@ void requireVolume(const CoordinateRange& range, const std::string& path) {
 }
 
 std::optional<io::CloudProvenance> readProvenance(const std::string& path) {
-  return readHeader(path, cloudFileSize(path)).provenance;
+  return readHeader(path, cloudFileSize(path), false).provenance;
 }
 
 io::CloudProvenance robotProvenance(const Robot& robot) {
@@ -673,7 +677,7 @@ void CoordinateRange::check(const std::string& path) const {
 PcdPointReader::PcdPointReader(const std::string& path) : path_(path) {
   const Activity reading("reading '" + path + "'");
   const std::uint64_t file_size = cloudFileSize(path);
-  const PcdHeader header = readHeader(path, file_size);
+  const PcdHeader header = readHeader(path, file_size, false);  // read in pieces
   requirePointsWithXyz(header, path);
   if (header.data != "binary") {
     throw Error(path + ": DATA " + header.data +

@@ -4,6 +4,7 @@
 
 #include <pcl/io/pcd_io.h>
 
+#include <algorithm>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -80,7 +81,8 @@ class CoordinateRange {
   Eigen::Array3f max_{-Eigen::Array3f::Constant(std::numeric_limits<float>::max())};
 };
 
-/// \brief Reads the points of a binary PCD file piece by piece, for clouds larger than memory:
+/// \brief Reads the points of a binary PCD file piece by piece, for clouds larger than memory (and
+/// than the 4 GiB of a PCL cloud):
 /// the header and the data's size checked as loadPcd() checks them, the pieces converted to
 /// WorkspacePoint as loadCloud() converts a whole cloud. Coordinates are not checked here:
 /// gather them in a CoordinateRange.
@@ -90,6 +92,11 @@ class PcdPointReader {
   explicit PcdPointReader(const std::string& path);
   /// \brief The number of points in the file.
   std::uint64_t size() const { return points_; }
+  /// \brief Points per piece: 2^20, fewer for records so long that a piece would pass 64 MiB.
+  std::size_t piecePoints() const {
+    return std::max<std::size_t>(
+        1, std::min<std::size_t>(std::size_t{1} << 20, (std::size_t{64} << 20) / point_step_));
+  }
   /// \brief The robot the header records, if any.
   const std::optional<io::CloudProvenance>& provenance() const { return provenance_; }
   /// \brief Points [first, first + count) into `out` (resized).

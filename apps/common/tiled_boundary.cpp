@@ -15,25 +15,8 @@
 namespace mcws::app {
 namespace {
 
-/// Points read from the file at once.
-constexpr std::size_t kPiece = std::size_t{1} << 20;
 /// Points whose radius makes the median: about this many, spread through the file.
 constexpr std::uint64_t kRadiusSamples = 1000;
-
-/// The number of points of the piece from `first`.
-std::size_t pieceSize(const PcdPointReader& reader, std::uint64_t first) {
-  return static_cast<std::size_t>(std::min<std::uint64_t>(kPiece, reader.size() - first));
-}
-
-/// Calls `visit(first, piece)` for the file's points in pieces of kPiece, in order.
-template <typename Visit>
-void forEachPiece(PcdPointReader& reader, Visit visit) {
-  WorkspaceCloud piece;
-  for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
-    reader.read(first, pieceSize(reader, first), piece);
-    visit(first, piece);
-  }
-}
 
 /// The slabs: `tiles` of equal width along `axis` from `low`.
 struct Slabs {
@@ -71,9 +54,10 @@ LoadedTile loadTile(PcdPointReader& reader, const Slabs& slabs, int t, double ha
   if (tile.to >= slabs.high) tile.to = std::numeric_limits<double>::infinity();
   WorkspaceCloud piece;
   std::vector<std::uint64_t> index;
-  for (std::uint64_t first = 0; first < reader.size(); first += kPiece) {
-    reader.readWithin(first, pieceSize(reader, first), slabs.axis, tile.from, tile.to, piece,
-                      index);
+  const std::size_t piece_points = reader.piecePoints();
+  for (std::uint64_t first = 0; first < reader.size(); first += piece_points) {
+    reader.readWithin(first, std::min<std::uint64_t>(piece_points, reader.size() - first),
+                      slabs.axis, tile.from, tile.to, piece, index);
     tile.cloud.insert(tile.cloud.end(), piece.begin(), piece.end());
     tile.index.insert(tile.index.end(), index.begin(), index.end());
     for (const WorkspacePoint& p : piece) tile.own.push_back(slabs.tileOf(p.data[slabs.axis]) == t);
@@ -187,6 +171,16 @@ struct Found {
 };
 
 }  // namespace
+
+void forEachPiece(PcdPointReader& reader,
+                  const std::function<void(std::uint64_t, const WorkspaceCloud&)>& visit) {
+  WorkspaceCloud piece;
+  const std::size_t piece_points = reader.piecePoints();
+  for (std::uint64_t first = 0; first < reader.size(); first += piece_points) {
+    reader.read(first, std::min<std::uint64_t>(piece_points, reader.size() - first), piece);
+    visit(first, piece);
+  }
+}
 
 FileSummary summarizeFile(PcdPointReader& reader, BoundaryPlane plane) {
   FileSummary file;

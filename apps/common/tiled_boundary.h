@@ -58,6 +58,11 @@ TiledBoundary tiledBoundary(
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
     const distributed::Processes& processes, Progress& progress);
 
+/// \brief Calls `visit(first, piece)` for the file's points in pieces
+/// (PcdPointReader::piecePoints()), in order.
+void forEachPiece(PcdPointReader& reader,
+                  const std::function<void(std::uint64_t, const WorkspaceCloud&)>& visit);
+
 /// \brief One pass over the file: the CloudSummary of its points in `plane` (counts, extents)
 /// and the range of its coordinates, for the checks loadCloud() and summarizeCloud() make.
 FileSummary summarizeFile(PcdPointReader& reader, BoundaryPlane plane);
