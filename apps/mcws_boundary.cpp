@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -51,10 +52,11 @@ Flags' lengths are in the cloud's unit; --json gives the radius (for an adaptive
 median of the points' radii) and the mean spacing in the unit the cloud records (or --unit),
 named by "length_unit" and "units".
 --tiles N (orthant, fixed or adaptive radius, no hull depth) reads a binary PCD in pieces and
-finds the boundary one slab at a time: N slabs of equal width along the cloud's longest axis, each
+finds the boundary one slab at a time: N slabs of equal width along the cloud's longest axis (in
+the plane), each
 with a halo that holds every neighbour its points search (checked point by point, widened until it
 does), so the output is byte for byte the one of a run without --tiles, in memory bounded by the
-largest slab and halo. Under mpirun the processes share the slabs; --json then adds the halo.)";
+largest slab and halo (and a byte a point for the flags). Under mpirun the processes share the slabs; --json then adds the halo.)";
 
 using Filter = OrthantBoundary<WorkspacePoint>;
 
@@ -394,7 +396,16 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
                               1.0 / boundaryDimensions(method.plane));
   }
   checkFlagsAgainstCloud(cli, method, region);
-  processes.setUpDone({{"input", std::to_string(reader.size()) + " points"}});
+  if (region.finite > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw Error(input + ": " + std::to_string(region.finite) +
+                " finite points, more than the 2^31 - 1 a PCD output holds");
+  }
+  // The same file on every process: its size and what the first pass saw of it.
+  std::ostringstream seen;
+  seen.precision(17);
+  seen << reader.size() << " points, " << region.finite << " finite, low " << file.low.transpose()
+       << ", extent " << region.extent.transpose();
+  processes.setUpDone({{"input", seen.str()}});
 
   const auto make = [&] {
     return std::static_pointer_cast<Filter>(methodFromFlags(cli, threads).filter);

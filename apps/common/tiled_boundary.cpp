@@ -2,6 +2,8 @@
 
 #include <pcl/common/point_tests.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -14,6 +16,10 @@
 
 namespace mcws::app {
 namespace {
+
+/// Room a reach must leave to a loaded slab's wall, as a share of the slab axis's extent: covers
+/// the rounding of float coordinates and of the radius comparison d^2 < float(r^2).
+constexpr double kWallMargin = 1e-6;
 
 /// Points whose radius makes the median: about this many, spread through the file.
 constexpr std::uint64_t kRadiusSamples = 1000;
@@ -131,7 +137,7 @@ std::vector<double> reaches(const LoadedTile& tile, BoundaryPlane plane,
 double haloNeeded(const LoadedTile& tile, const Slabs& slabs, int t,
                   const std::vector<double>& reach) {
   if (std::isinf(tile.from) && std::isinf(tile.to)) return 0.0;  // the whole cloud is loaded
-  const double margin = 1e-6 * std::max(slabs.high - slabs.low, 1e-30);
+  const double margin = kWallMargin * std::max(slabs.high - slabs.low, 1e-30);
   double needed = 0.0;
   bool short_of = false;
   for (std::size_t i = 0; i < tile.cloud.size(); ++i) {
@@ -154,8 +160,9 @@ struct Found {
     std::string bytes(sizeof(std::uint64_t) + 8 * (kept.size() + radii.size()), '\0');
     const std::uint64_t n = kept.size();
     std::memcpy(bytes.data(), &n, sizeof n);
-    std::memcpy(bytes.data() + 8, kept.data(), 8 * kept.size());
-    std::memcpy(bytes.data() + 8 * (1 + kept.size()), radii.data(), 8 * radii.size());
+    if (!kept.empty()) std::memcpy(bytes.data() + 8, kept.data(), 8 * kept.size());
+    if (!radii.empty())
+      std::memcpy(bytes.data() + 8 * (1 + kept.size()), radii.data(), 8 * radii.size());
     return bytes;
   }
   void merge(const std::string& bytes) {
@@ -165,8 +172,9 @@ struct Found {
     const std::size_t more_radii = (bytes.size() - 8 * (1 + n)) / 8;
     kept.resize(old_kept + n);
     radii.resize(old_radii + more_radii);
-    std::memcpy(kept.data() + old_kept, bytes.data() + 8, 8 * n);
-    std::memcpy(radii.data() + old_radii, bytes.data() + 8 * (1 + n), 8 * more_radii);
+    if (n > 0) std::memcpy(kept.data() + old_kept, bytes.data() + 8, 8 * n);
+    if (more_radii > 0)
+      std::memcpy(radii.data() + old_radii, bytes.data() + 8 * (1 + n), 8 * more_radii);
   }
 };
 
@@ -205,10 +213,13 @@ TiledBoundary tiledBoundary(
   }
   const orthant::PointTestSettings test = reachSettings(*settings);
   const CloudSummary& summary = file.cloud;
+  if (threads <= 0) threads = omp_get_num_procs();  // as the filter resolves it
   const int dimensions = test.dimensions;
 
   Slabs slabs;
   slabs.tiles = tiles;
+  // The longest axis in the plane: a slab across another axis would not bound the neighbours.
+  slabs.axis = plane == BoundaryPlane::k3D ? 0 : planeAxes(plane)[0];
   for (int axis = 0; axis < 3; ++axis) {
     const bool in_plane =
         plane == BoundaryPlane::k3D || axis == planeAxes(plane)[0] || axis == planeAxes(plane)[1];
@@ -218,8 +229,8 @@ TiledBoundary tiledBoundary(
   slabs.high = slabs.low + summary.extent[slabs.axis];
   slabs.width = summary.extent[slabs.axis] / tiles;
 
-  // The first halo: the reach itself, or twice the typical reach in a uniform cloud of the
-  // summary's bounding box.
+  // The first halo: the reach itself with the margin haloNeeded() asks for, or 1.5 times the
+  // typical reach in a uniform cloud of the summary's bounding box.
   double measure = 1.0;
   for (int axis = 0; axis < 3; ++axis) {
     const bool in_plane =
@@ -229,7 +240,8 @@ TiledBoundary tiledBoundary(
   const double spacing = std::pow(
       measure / static_cast<double>(std::max<std::size_t>(summary.finite, 1)), 1.0 / dimensions);
   const double first_halo = test.adaptive ? 1.5 * orthant::typicalOuterRadius(test, spacing)
-                                          : 1.01 * test.outerRadius(test.radius);
+                                          : 1.01 * test.outerRadius(test.radius) +
+                                                2.0 * kWallMargin * (slabs.high - slabs.low);
 
   const std::uint64_t stride = std::max<std::uint64_t>(1, summary.points / kRadiusSamples);
   Found found;
@@ -239,6 +251,12 @@ TiledBoundary tiledBoundary(
   for (auto t = static_cast<int>(mine.begin); t < static_cast<int>(mine.end); ++t) {
     for (double halo = first_halo;;) {
       LoadedTile tile = loadTile(reader, slabs, t, halo);
+      if (tile.cloud.size() > static_cast<std::size_t>(std::numeric_limits<pcl::index_t>::max())) {
+        throw Error("slab " + std::to_string(t + 1) + " holds " +
+                    std::to_string(tile.cloud.size()) +
+                    " points with its halo, more than a PCL index reaches (2^31 - 1): give more "
+                    "--tiles");
+      }
       result.largest_tile = std::max<std::uint64_t>(result.largest_tile, tile.cloud.size());
       std::vector<float> radius;
       const std::vector<double> reach = reaches(tile, plane, test, threads, radius);

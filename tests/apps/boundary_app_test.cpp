@@ -282,6 +282,17 @@ TEST_F(BoundaryApp, TilesGiveTheBytesOfTheWholeCloud) {
   expectTilesChangeNothing("--input " + disk_ + " --plane xy --hull-depth 0", {4});
 }
 
+TEST_F(BoundaryApp, TilesCutAlongThePlanesLongestAxis) {
+  // A ball stretched to 3 along x, seen in the y-z plane: slabs across x would bound nothing
+  // there (every x projects onto the plane); they are cut along y or z.
+  pcl::PointCloud<WorkspacePoint> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(ball_, cloud), 0);
+  for (auto& p : cloud) p.x *= 3.0f;
+  const std::string stretched = inputs_.file("stretched.pcd");
+  ASSERT_EQ(pcl::io::savePCDFileBinary(stretched, cloud), 0);
+  expectTilesChangeNothing("--input " + stretched + " --plane yz --hull-depth 0", {4});
+}
+
 TEST_F(BoundaryApp, TilesWidenTheHaloWhereTheCloudIsSparse) {
   // An arm's samples crowd near the axes and thin out at the rim: the k-th neighbour reaches
   // far there, and slabs are loaded again with a wider halo.
