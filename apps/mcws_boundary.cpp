@@ -385,15 +385,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   app::asUsageError("plane", [&] { requirePlaneFits(file.cloud, input); });
   CloudSummary region = file.cloud;
   if (needsSpacing(cli)) {
-    // The spacing of a uniform cloud in the bounding box: the ranges of the length flags only.
-    double measure = 1.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      if (method.plane == BoundaryPlane::k3D || axis == planeAxes(method.plane)[0] ||
-          axis == planeAxes(method.plane)[1])
-        measure *= std::max(region.extent[axis], 1e-3 * region.largest);
-    }
-    region.spacing = std::pow(measure / static_cast<double>(region.finite),
-                              1.0 / boundaryDimensions(method.plane));
+    // The ranges of the length flags only: the whole cloud's spacing needs all of it.
+    region.spacing = app::boundingBoxSpacing(region);
   }
   checkFlagsAgainstCloud(cli, method, region);
   if (region.finite > static_cast<std::size_t>(std::numeric_limits<int>::max())) {

@@ -180,6 +180,17 @@ struct Found {
 
 }  // namespace
 
+double boundingBoxSpacing(const CloudSummary& cloud) {
+  double measure = 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const bool in_plane = cloud.plane == BoundaryPlane::k3D || axis == planeAxes(cloud.plane)[0] ||
+                          axis == planeAxes(cloud.plane)[1];
+    if (in_plane) measure *= std::max(cloud.extent[axis], 1e-3 * cloud.largest);
+  }
+  return std::pow(measure / static_cast<double>(std::max<std::size_t>(cloud.finite, 1)),
+                  1.0 / boundaryDimensions(cloud.plane));
+}
+
 void forEachPiece(PcdPointReader& reader,
                   const std::function<void(std::uint64_t, const WorkspaceCloud&)>& visit) {
   WorkspaceCloud piece;
@@ -214,7 +225,6 @@ TiledBoundary tiledBoundary(
   const orthant::PointTestSettings test = reachSettings(*settings);
   const CloudSummary& summary = file.cloud;
   if (threads <= 0) threads = omp_get_num_procs();  // as the filter resolves it
-  const int dimensions = test.dimensions;
 
   Slabs slabs;
   slabs.tiles = tiles;
@@ -231,14 +241,7 @@ TiledBoundary tiledBoundary(
 
   // The first halo: the reach itself with the margin haloNeeded() asks for, or 1.5 times the
   // typical reach in a uniform cloud of the summary's bounding box.
-  double measure = 1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const bool in_plane =
-        plane == BoundaryPlane::k3D || axis == planeAxes(plane)[0] || axis == planeAxes(plane)[1];
-    if (in_plane) measure *= std::max(summary.extent[axis], summary.largest * 1e-3);
-  }
-  const double spacing = std::pow(
-      measure / static_cast<double>(std::max<std::size_t>(summary.finite, 1)), 1.0 / dimensions);
+  const double spacing = boundingBoxSpacing(summary);
   const double first_halo = test.adaptive ? 1.5 * orthant::typicalOuterRadius(test, spacing)
                                           : 1.01 * test.outerRadius(test.radius) +
                                                 2.0 * kWallMargin * (slabs.high - slabs.low);

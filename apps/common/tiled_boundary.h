@@ -58,6 +58,11 @@ TiledBoundary tiledBoundary(
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
     const distributed::Processes& processes, Progress& progress);
 
+/// \brief The spacing of `cloud.finite` points spread evenly through its bounding box in its
+/// plane (an extent below 1e-3 of the largest counts as that much) [length unit]: what a tiled
+/// run knows of the spacing without the whole cloud's distinct positions.
+double boundingBoxSpacing(const CloudSummary& cloud);
+
 /// \brief Calls `visit(first, piece)` for the file's points in pieces
 /// (PcdPointReader::piecePoints()), in order.
 void forEachPiece(PcdPointReader& reader,
