@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "mcws/core/error.h"
@@ -58,13 +59,14 @@ TEST(DelaunayMeasure, StarLeaveOneOutCountsWhatRemovingEachVertexCounts) {
   // The brute force: remove every boundary vertex from the triangulation, locate its point, put
   // it back. The star method must count exactly the same vertices outside, on shapes with a
   // convex rim, a hole (annulus), corners (box) and 2-D and 3-D.
-  MeasureOptions brute;
+  MeasureOptions brute, star_options;
   brute.leave_one_out = LeaveOneOut::kRemoveAndReinsert;
+  star_options.shell = false;  // the same triangulation as the brute force, so the same sum
   for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
     for (const std::uint64_t seed : {1, 2}) {
       const auto cloud = shapeCloud(shape, 20000, seed);
       const int dims = shapeIsPlanar(shape) ? 2 : 3;
-      const RegionMeasure star = delaunayMeasure(cloud, dims, MeasureOptions());
+      const RegionMeasure star = delaunayMeasure(cloud, dims, star_options);
       const RegionMeasure removed = delaunayMeasure(cloud, dims, brute);
       EXPECT_GT(star.outside, 0u);
       EXPECT_EQ(star.outside, removed.outside) << static_cast<int>(shape) << " seed " << seed;
@@ -300,7 +302,8 @@ TEST(DelaunayMeasure, WithoutEdgeCorrectionTheMeasureIsTheKeptSimplicesTotal) {
   EXPECT_EQ(plain.uncorrected, corrected.uncorrected);
   EXPECT_EQ(plain.outside, 0u);
   EXPECT_GT(corrected.measure, plain.measure);  // the band along the edge, added back
-  EXPECT_EQ(phases, (std::vector<std::string>{"local spacing", "triangulation", "alpha test"}));
+  EXPECT_EQ(phases, (std::vector<std::string>{"local spacing", "exposed points", "triangulation",
+                                              "alpha test"}));
 }
 
 TEST(DelaunayMeasure, WithEverySimplexKeptTheBoundaryVerticesAreTheHullsCorners) {
@@ -329,6 +332,23 @@ TEST(DelaunayMeasure, WithEverySimplexKeptTheBoundaryVerticesAreTheHullsCorners)
   EXPECT_NEAR(volume.measure, 1.0, 1e-12);
 }
 
+/// Expects the shell's measure (MeasureOptions::shell) to be what triangulating every point gives.
+void expectShellMeasuresAsTheWhole(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dims,
+                                   double alpha, const std::string& name) {
+  MeasureOptions whole, shell;
+  whole.shell = false;
+  whole.alpha_factor = shell.alpha_factor = alpha;
+  const RegionMeasure all = delaunayMeasure(cloud, dims, whole);
+  const RegionMeasure part = delaunayMeasure(cloud, dims, shell);
+  // The kept total sums other simplices where the shell fills in for the left-out points: equal
+  // up to the rounding of each term of the sum (2^-62 of the bounding box's measure).
+  EXPECT_NEAR(part.uncorrected / all.uncorrected, 1.0, 1e-11) << name;
+  EXPECT_EQ(part.boundary_vertices, all.boundary_vertices) << name;
+  EXPECT_EQ(part.outside, all.outside) << name;
+  EXPECT_EQ(part.points, all.points) << name;
+  EXPECT_GT(part.outside, 0u) << name;
+}
+
 TEST(DelaunayMeasure, LatticeBallGivesTheSameMeasureForAnyThreadCount) {
   // A cubic lattice (spacing 0.3, so that volumes are not exact binary fractions and their sum
   // depends on its order) in a ball of 8 spacings: every cube of the lattice has eight
@@ -348,12 +368,47 @@ TEST(DelaunayMeasure, LatticeBallGivesTheSameMeasureForAnyThreadCount) {
   options.threads = 1;
   const RegionMeasure one = delaunayMeasure(lattice, 3, options);
   EXPECT_GT(one.outside, 0u);
+  expectShellMeasuresAsTheWhole(lattice, 3, 3.0, "lattice");  // ties broken alike in the shell
   EXPECT_NEAR(one.measure / (4.0 / 3.0 * M_PI * 512.0 * 0.027), 1.0, 0.1);
   for (int threads : {2, 3}) {
     options.threads = threads;
     const RegionMeasure many = delaunayMeasure(lattice, 3, options);
     EXPECT_EQ(many.measure, one.measure) << threads;
     EXPECT_EQ(many.uncorrected, one.uncorrected) << threads;
+    EXPECT_EQ(many.boundary_vertices, one.boundary_vertices) << threads;
+    EXPECT_EQ(many.outside, one.outside) << threads;
+  }
+}
+
+TEST(DelaunayMeasure, TheShellMeasuresWhatTriangulatingEveryPointMeasures) {
+  // Convex rims, a hole, corners, a ball with a spherical cavity inside, and alpha factors that
+  // leave from most to few points out of the shell.
+  for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
+    const auto cloud = shapeCloud(shape, 30000, 7);
+    for (const double alpha : {1.5, 3.0, 5.0}) {
+      expectShellMeasuresAsTheWhole(cloud, shapeIsPlanar(shape) ? 2 : 3, alpha,
+                                    std::to_string(static_cast<int>(shape)) + " alpha " +
+                                        std::to_string(alpha));
+    }
+  }
+  pcl::PointCloud<pcl::PointXYZ> hollow;
+  for (const auto& p : shapeCloud(Shape::kBall, 40000, 8)) {
+    if (p.getVector3fMap().norm() > 0.4f) hollow.push_back(p);
+  }
+  expectShellMeasuresAsTheWhole(hollow, 3, 3.0, "hollow ball");
+  const RegionMeasure m = delaunayMeasure(hollow, 3);
+  EXPECT_NEAR(m.measure / (4.0 / 3.0 * M_PI * (1.0 - 0.064)), 1.0, 0.01);  // the cavity is out
+}
+
+TEST(DelaunayMeasure, TheShellGivesTheSameMeasureForAnyThreadCount) {
+  const auto cloud = shapeCloud(Shape::kBall, 30000, 9);
+  MeasureOptions options;
+  options.threads = 1;
+  const RegionMeasure one = delaunayMeasure(cloud, 3, options);
+  for (const int threads : {2, 3}) {
+    options.threads = threads;
+    const RegionMeasure many = delaunayMeasure(cloud, 3, options);
+    EXPECT_EQ(many.measure, one.measure) << threads;
     EXPECT_EQ(many.boundary_vertices, one.boundary_vertices) << threads;
     EXPECT_EQ(many.outside, one.outside) << threads;
   }

@@ -10,6 +10,8 @@
 #include <omp.h>
 #include <tbb/global_control.h>
 
+#include <nanoflann.hpp>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <array>
@@ -24,6 +26,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/points/unique_positions.h"
+#include "mcws/workspace/exposed_points.h"
 #include "mcws/workspace/nearest_neighbours.h"
 
 namespace mcws {
@@ -104,6 +107,8 @@ class OrderFreeSum {
     shift_ = 61 - std::ilogb(bound);
   }
   void add(double term) { total_ += std::llround(std::ldexp(term, shift_)); }
+  /// Adds another sum of the same bound (partial sums of threads).
+  void add(const OrderFreeSum& other) { total_ += other.total_; }
   double value() const { return std::ldexp(static_cast<double>(total_), -shift_); }
 
  private:
@@ -516,6 +521,299 @@ std::size_t outsideByRemoval(Delaunay& dt,
   return outside;
 }
 
+/// Triangulates the points whose flag in `take` is set (all of them when `take` is empty), each
+/// vertex carrying its point's index in `points`.
+template <int D, typename Concurrency, typename Delaunay>
+void triangulate(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                 const std::vector<char>& take) {
+  std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!take.empty() && !take[i]) continue;
+    const pcl::PointXYZ& p = points[i];
+    if constexpr (D == 2) {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y), static_cast<std::uint32_t>(i));
+    } else {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y, p.z), static_cast<std::uint32_t>(i));
+    }
+  }
+  insertPoints<Concurrency>(dt, input);
+  if (dt.dimension() < D) {
+    throw Error(D == 2 ? "the points lie on a line: no area"
+                       : "the points lie in a plane: no volume");
+  }
+}
+
+/// The points left out of a shell triangulation (MeasureOptions::shell), in a kd-tree (nanoflann),
+/// to tell the shell's simplices that are simplices of every point's triangulation (no left-out
+/// point inside their circumsphere) from those that fill in for the left-out points. Points that
+/// join the shell later are removed from the searches, not from the tree.
+template <int D>
+class LeftOut {
+ public:
+  LeftOut(const pcl::PointCloud<pcl::PointXYZ>& points, const std::vector<char>& in_shell)
+      : slot_of_(points.size(), kNone),
+        adaptor_{coordinates_},
+        tree_(D, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (in_shell[i]) continue;
+      slot_of_[i] = static_cast<std::uint32_t>(index_.size());
+      coordinates_.push_back({points[i].x, points[i].y, points[i].z});
+      index_.push_back(static_cast<std::uint32_t>(i));
+    }
+    removed_.assign(index_.size(), 0);
+    tree_.buildIndex();
+  }
+
+  /// Point `i` of the cloud joins the shell: no longer searched.
+  void remove(std::uint32_t i) {
+    if (slot_of_[i] != kNone) removed_[slot_of_[i]] = 1;
+  }
+
+  /// Appends to `found` the left-out points inside the circumcircle (D = 2) or circumsphere
+  /// (D = 3) of finite simplex `s` of `dt`: all of them with `all`, else at most the first.
+  /// Exact (CGAL's perturbed in-sphere test, as the triangulation breaks ties) for the points near
+  /// the sphere. \return whether there is one.
+  template <typename Delaunay, typename Simplex>
+  bool inside(const Delaunay& dt, const Simplex& s, bool all,
+              std::vector<std::uint32_t>* found) const {
+    if (index_.empty()) return false;
+    const auto p = canonicalPoints<D>(s);
+    std::array<double, 3> centre{0.0, 0.0, 0.0};
+    double radius2 = 0.0;
+    if constexpr (D == 2) {
+      const auto c = CGAL::circumcenter(p[0], p[1], p[2]);
+      centre = {c.x(), c.y(), 0.0};
+      radius2 = CGAL::squared_distance(c, p[0]);
+    } else {
+      const auto c = CGAL::circumcenter(p[0], p[1], p[2], p[3]);
+      centre = {c.x(), c.y(), c.z()};
+      radius2 = CGAL::squared_distance(c, p[0]);
+    }
+    const double radius = std::sqrt(radius2);
+    // Slack for the float coordinates of the tree and the rounding of the centre.
+    const double slack = 1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]),
+                                                    std::abs(centre[2])}));
+    const std::array<float, 3> query{static_cast<float>(centre[0]), static_cast<float>(centre[1]),
+                                     static_cast<float>(centre[2])};
+    Nearest nearest{removed_};
+    tree_.findNeighbors(nearest, query.data(), nanoflann::SearchParams());
+    if (!nearest.full()) return false;  // every left-out point has joined
+    const double distance = std::sqrt(static_cast<double>(nearest.worstDist()));
+    if (distance > radius + slack) return false;
+    if (distance < radius - slack && !all) {
+      if (found) found->push_back(index_[nearest.slot]);
+      return true;
+    }
+    std::vector<std::pair<std::uint32_t, float>> near;
+    const double reach = radius + slack;
+    tree_.radiusSearch(query.data(), static_cast<float>(reach * reach), near,
+                       nanoflann::SearchParams(32, 0.0f, false));
+    bool any = false;
+    for (const auto& [k, d2] : near) {
+      if (removed_[k]) continue;
+      bool in = std::sqrt(static_cast<double>(d2)) < radius - slack;
+      if (!in) {
+        const auto& q = coordinates_[k];
+        if constexpr (D == 2) {
+          in = dt.side_of_oriented_circle(s, typename Delaunay::Point(q[0], q[1]), true) ==
+               CGAL::ON_POSITIVE_SIDE;
+        } else {
+          in = dt.side_of_sphere(s, typename Delaunay::Point(q[0], q[1], q[2]), true) ==
+               CGAL::ON_BOUNDED_SIDE;
+        }
+      }
+      if (!in) continue;
+      any = true;
+      if (found) found->push_back(index_[k]);
+      if (!all) break;
+    }
+    return any;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  struct Adaptor {
+    const std::vector<std::array<float, 3>>& points;
+    std::size_t kdtree_get_point_count() const { return points.size(); }
+    float kdtree_get_pt(std::size_t i, std::size_t axis) const { return points[i][axis]; }
+    template <typename Box>
+    bool kdtree_get_bbox(Box& /*box*/) const {
+      return false;
+    }
+  };
+  /// nanoflann result set: the nearest point not removed.
+  struct Nearest {
+    using DistanceType = float;
+    using IndexType = std::uint32_t;
+    const std::vector<char>& removed;
+    float best{std::numeric_limits<float>::max()};
+    std::uint32_t slot{kNone};
+    bool full() const { return slot != kNone; }
+    std::size_t size() const { return full() ? 1 : 0; }
+    float worstDist() const { return best; }
+    bool addPoint(float d2, std::uint32_t k) {
+      if (!removed[k] && d2 < best) {
+        best = d2;
+        slot = k;
+      }
+      return true;
+    }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>,
+                                                   Adaptor, D, std::uint32_t>;
+  std::vector<std::array<float, 3>> coordinates_;
+  std::vector<std::uint32_t> index_;    // the point's index in the whole cloud
+  std::vector<std::uint32_t> slot_of_;  // the point's place in the tree, by its index
+  std::vector<char> removed_;           // by place in the tree: joined the shell
+  Adaptor adaptor_;
+  Tree tree_;
+};
+
+/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
+template <int D, typename Delaunay>
+struct SimplexOf {
+  using Handle = typename Delaunay::Face_handle;
+};
+template <typename Delaunay>
+struct SimplexOf<3, Delaunay> {
+  using Handle = typename Delaunay::Cell_handle;
+};
+
+/// The finite simplices around vertex v, and the infinite ones with `infinite` (read-only, so
+/// threads may call it at once).
+template <int D, typename Delaunay>
+void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+                       std::vector<typename SimplexOf<D, Delaunay>::Handle>& out,
+                       bool infinite = false) {
+  out.clear();
+  if constexpr (D == 2) {
+    auto f = dt.incident_faces(v), done = f;
+    do {
+      out.push_back(f);
+    } while (++f != done);
+  } else {
+    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+  }
+  if (!infinite) {
+    out.erase(std::remove_if(out.begin(), out.end(),
+                             [&](const auto& s) { return dt.is_infinite(s); }),
+              out.end());
+  }
+}
+
+/// The area (D = 2) or volume (D = 3) of the region from the triangulation of the points an empty
+/// ball of alpha radius may touch (MeasureOptions::shell). A simplex the alpha test drops has an
+/// empty circumball wider than the alpha radius at each of its vertices, so all its vertices are
+/// exposed (exposedPoints()), and it is a simplex of the shell's triangulation too. The shell's
+/// triangulation covers the same hull, so the kept total is its finite simplices' total less the
+/// dropped ones: the shell's simplices with a left-out point in their circumsphere fill in for the
+/// whole triangulation's simplices there, all kept, whatever their size. The boundary vertices are
+/// the same; the leave-one-out test needs each one's star, which is the whole triangulation's when
+/// none of the star's simplices has a left-out point in its circumsphere. Where one has (a few
+/// dozen points of 10^6, where the shell is thinnest), those left-out points are inserted and the
+/// simplices around them tested again, until no star has one.
+template <int D, typename Concurrency = CGAL::Sequential_tag>
+RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
+                           const std::vector<double>& spacing, const MeasureOptions& options) {
+  using Delaunay = typename Simplices<D, Concurrency>::Delaunay;
+  using Simplex = typename SimplexOf<D, Delaunay>::Handle;
+  const double alpha_factor = options.alpha_factor;
+  const int threads = options.threads;
+  if (options.phase) options.phase("exposed points");
+  std::vector<double> reach(spacing.size());
+  for (std::size_t i = 0; i < spacing.size(); ++i) reach[i] = alpha_factor * spacing[i];
+  const std::vector<char> in_shell = exposedPoints(points, D, reach, threads).exposed;
+  reach = {};
+  LeftOut<D> left_out(points, in_shell);
+  if (options.phase) options.phase("triangulation");
+  Delaunay dt;
+  triangulate<D, Concurrency>(dt, points, in_shell);
+
+  if (options.phase) options.phase("alpha test");
+  // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).
+  const auto keep = [&](const Simplex& s) -> char {
+    return withinAlpha<D>(s, spacing, alpha_factor) || left_out.inside(dt, s, false, nullptr);
+  };
+  std::vector<Simplex> finite;
+  finite.reserve(D == 2 ? 2 * dt.number_of_vertices() : 7 * dt.number_of_vertices());
+  for (const auto s : allSimplices<D>(dt)) {
+    s->info() = 0;
+    if (!dt.is_infinite(s)) finite.push_back(s);
+  }
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
+    finite[i]->info() = keep(finite[i]);
+  }
+  std::vector<typename Delaunay::Vertex_handle> boundary;
+  std::vector<Simplex> around;
+  for (;;) {
+    boundary = boundaryVertices<D>(dt, points.size());
+    if (!options.edge_correction) break;
+    // Stars with a simplex that is not the whole triangulation's: its left-out points join.
+    std::vector<std::uint32_t> joining;
+#pragma omp parallel num_threads(threads)
+    {
+      std::vector<Simplex> star;
+      std::vector<std::uint32_t> found;
+#pragma omp for schedule(dynamic, 256)
+      for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
+        incidentSimplices<D>(dt, boundary[i], star);
+        for (const auto& s : star) {
+          if (s->info()) left_out.inside(dt, s, true, &found);
+        }
+      }
+#pragma omp critical
+      joining.insert(joining.end(), found.begin(), found.end());
+    }
+    if (joining.empty()) break;
+    std::sort(joining.begin(), joining.end());
+    joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
+    std::vector<typename Delaunay::Vertex_handle> joined;
+    for (const std::uint32_t k : joining) {
+      left_out.remove(k);
+      const pcl::PointXYZ& p = points[k];
+      typename Delaunay::Vertex_handle v;
+      if constexpr (D == 2) {
+        v = dt.insert(typename Delaunay::Point(p.x, p.y));
+      } else {
+        v = dt.insert(typename Delaunay::Point(p.x, p.y, p.z));
+      }
+      v->info() = k;
+      joined.push_back(v);
+    }
+    // Insertion replaces simplices by new ones around the inserted points; test those.
+    for (const auto v : joined) {
+      incidentSimplices<D>(dt, v, around, true);
+      for (const auto& s : around) s->info() = dt.is_infinite(s) ? 0 : keep(s);
+    }
+    finite.clear();  // some are gone
+    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
+  }
+  RegionMeasure result;
+  const double bound = boundingMeasure(points, D);
+  OrderFreeSum kept(bound);
+#pragma omp parallel num_threads(threads)
+  {
+    OrderFreeSum part(bound);  // not a copy of `kept`, which other threads may be adding to
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
+      if (finite[i]->info()) part.add(simplexMeasure<D>(finite[i]));
+    }
+#pragma omp critical
+    kept.add(part);
+  }
+  result.uncorrected = kept.value();
+  result.points = points.size();
+  result.triangulated = dt.number_of_vertices();
+  result.boundary_vertices = boundary.size();
+  if (options.edge_correction) {
+    if (options.phase) options.phase("edge correction");
+    result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads);
+  }
+  return result;
+}
+
 /// The area (D = 2) or volume (D = 3) of the region, on a triangulation built on all threads
 /// (3-D with `Concurrency` = CGAL::Parallel_tag, TBB) or on one (CGAL::Sequential_tag, which the
 /// remove-and-reinsert leave-one-out needs). CGAL breaks ties between cospherical points by a
@@ -527,24 +825,9 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
                             const std::vector<double>& spacing, const MeasureOptions& options) {
   using Delaunay = typename Simplices<D, Concurrency>::Delaunay;
   const double alpha_factor = options.alpha_factor;
-  std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> input;
-  input.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const pcl::PointXYZ& p = points[i];
-    if constexpr (D == 2) {
-      input.emplace_back(typename Delaunay::Point(p.x, p.y), static_cast<std::uint32_t>(i));
-    } else {
-      input.emplace_back(typename Delaunay::Point(p.x, p.y, p.z), static_cast<std::uint32_t>(i));
-    }
-  }
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
-  insertPoints<Concurrency>(dt, input);
-  input = {};  // the triangulation holds the points now
-  if (dt.dimension() < D) {
-    throw Error(D == 2 ? "the points lie on a line: no area"
-                       : "the points lie in a plane: no volume");
-  }
+  triangulate<D, Concurrency>(dt, points, {});
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
@@ -558,7 +841,7 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   result.uncorrected = kept.value();
   const auto boundary = boundaryVertices<D>(dt, points.size());
-  result.points = dt.number_of_vertices();
+  result.points = result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (options.edge_correction) {
     if (options.phase) options.phase("edge correction");
@@ -626,9 +909,18 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,
                                         static_cast<std::size_t>(resolved.threads));
   RegionMeasure result;
-  if (dimensions == 2) {
+  const bool star = options.leave_one_out == LeaveOneOut::kStar;
+  if (options.shell && star && !options.surface) {
+    if (dimensions == 2) {
+      result = measureShell<2>(*flat, spacing, resolved);
+    } else if (resolved.threads > 1) {
+      result = measureShell<3, CGAL::Parallel_tag>(*flat, spacing, resolved);
+    } else {
+      result = measureShell<3, CGAL::Sequential_tag>(*flat, spacing, resolved);
+    }
+  } else if (dimensions == 2) {
     result = measureRegion<2>(*flat, spacing, resolved);
-  } else if (resolved.threads > 1 && options.leave_one_out == LeaveOneOut::kStar) {
+  } else if (resolved.threads > 1 && star) {
     result = measureRegion<3, CGAL::Parallel_tag>(*flat, spacing, resolved);
   } else {
     result = measureRegion<3, CGAL::Sequential_tag>(*flat, spacing, resolved);

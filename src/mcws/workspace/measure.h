@@ -26,7 +26,8 @@ struct TriangleSurface {
 struct RegionMeasure {
   double measure{0.0};               ///< corrected area [unit^2] or volume [unit^3]
   double uncorrected{0.0};           ///< the kept simplices' total, before the edge correction
-  std::size_t points{0};             ///< distinct points triangulated
+  std::size_t points{0};             ///< distinct points
+  std::size_t triangulated{0};       ///< of those, the points triangulated (MeasureOptions::shell)
   std::size_t boundary_vertices{0};  ///< vertices between kept and dropped simplices
   std::size_t outside{0};            ///< boundary vertices outside the region of the other points
   double alpha_factor{0.0};
@@ -89,6 +90,15 @@ struct MeasureOptions {
   /// cores unless OMP_NUM_THREADS). The result does not depend on it. TBB's limit is process-wide
   /// while the call runs (concurrent calls share the smallest).
   int threads{0};
+  /// Triangulate only the points that an empty ball of alpha radius may touch (exposedPoints():
+  /// a shell a few spacings deep along the region's edges, 10-20 % of a 10^6-point ball, 2 % of
+  /// a disk) instead of every point. A simplex the alpha test drops has only such vertices, so it
+  /// is a simplex of the shell's triangulation too; the shell's other simplices, those that fill
+  /// in for the left-out points, are all kept. Same kept total (to the rounding of the per-simplex
+  /// sum, about 1e-12 of it), boundary vertices and leave-one-out count as triangulating every
+  /// point, in a fraction of the time and memory. Not with `surface` or
+  /// LeaveOneOut::kRemoveAndReinsert, which triangulate every point.
+  bool shell{true};
   /// 3-D: also return the boundary surface of the kept tetrahedra (RegionMeasure::surface).
   bool surface{false};
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge

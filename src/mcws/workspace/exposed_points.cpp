@@ -1,0 +1,230 @@
+#include "mcws/workspace/exposed_points.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+/// Cells of a grid per point at most (a uniform ball's grids have 3 to 10; a cloud that fills
+/// little of its bounding box gets coarser cells, and more of its points stay exposed).
+constexpr double kCellsPerPoint = 32.0;
+/// Share of the points whose radius may lie below the smallest class (they stay exposed): the
+/// smallest radius sets the cell edge, and a few unusually close neighbours should not make the
+/// grid finer for all.
+constexpr double kBelowSmallestClass = 0.01;
+/// Ratio of consecutive radius classes, and their number.
+constexpr double kClassRatio = 1.25;
+constexpr int kClasses = 8;
+/// Cells per smallest radius: finer cells bound the distance to the nearest point more tightly,
+/// but then a point's block of cells (kBlock) reaches less far; at 2 a uniform cloud's cell holds
+/// about 0.9 points.
+constexpr double kCellsPerRadius = 2.0;
+/// Relative margin on the cover radii, for the rounding of coordinates and distances.
+constexpr double kMargin = 1e-6;
+
+/// The grid: cells per axis (the third is 1 in 2-D), the cell edge and the low corner.
+struct Grid {
+  std::array<std::int64_t, 3> n{1, 1, 1};
+  double cell{0.0};
+  std::array<double, 3> lo{0.0, 0.0, 0.0};
+  std::size_t size() const { return static_cast<std::size_t>(n[0] * n[1] * n[2]); }
+  std::array<std::int64_t, 3> stride() const { return {1, n[0], n[0] * n[1]}; }
+};
+
+/// Replaces every cell by 1 when every cell of its line along `axis` within [a, b] of it is
+/// non-zero and within the grid, else by 0 (an erosion by a segment). Lines run on all threads.
+void erodeAlong(const Grid& grid, int axis, std::int64_t a, std::int64_t b,
+                std::vector<std::uint8_t>& values, int threads) {
+  const std::int64_t n = grid.n[axis], step = grid.stride()[axis];
+  const std::int64_t lines = static_cast<std::int64_t>(grid.size()) / n;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<std::int32_t> zeros(n + 1);  // zeros before each cell of the line
+#pragma omp for schedule(static)
+    for (std::int64_t line = 0; line < lines; ++line) {
+      // The line's first cell: `line` enumerates the other axes' indices.
+      const std::int64_t first = line % step + (line / step) * step * n;
+      zeros[0] = 0;
+      for (std::int64_t t = 0; t < n; ++t) zeros[t + 1] = zeros[t] + (values[first + t * step] == 0);
+      for (std::int64_t t = 0; t < n; ++t) {
+        const std::int64_t from = t + a, to = t + b;  // inclusive
+        values[first + t * step] = from >= 0 && to < n && zeros[to + 1] == zeros[from];
+      }
+    }
+  }
+}
+
+/// The grid of cells of edge `cell` over the cloud's bounding box [lo, hi], coarsened until it
+/// has at most `cap` cells.
+template <int D>
+Grid gridOver(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double cell,
+              double cap) {
+  Grid grid;
+  grid.lo = lo;
+  grid.cell = cell;
+  for (;;) {
+    double cells = 1.0;
+    for (int a = 0; a < D; ++a) cells *= std::floor((hi[a] - lo[a]) / grid.cell) + 1.0;
+    if (cells <= cap) break;
+    grid.cell *= std::max(std::pow(cells / cap, 1.0 / D), 1.0 + 1e-3);
+  }
+  for (int a = 0; a < D; ++a) {
+    grid.n[a] = static_cast<std::int64_t>(std::floor((hi[a] - lo[a]) / grid.cell)) + 1;
+  }
+  return grid;
+}
+
+/// Index of the cell that holds position p (clamped to the grid).
+template <int D>
+std::int64_t cellOf(const Grid& grid, const pcl::PointXYZ& p) {
+  const auto stride = grid.stride();
+  std::int64_t index = 0;
+  for (int a = 0; a < D; ++a) {
+    const auto k = static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell));
+    index += std::clamp<std::int64_t>(k, 0, grid.n[a] - 1) * stride[a];
+  }
+  return index;
+}
+
+/// Half-width of the block of cells each point bounds (2-D: 5 x 5; 3-D: 3 x 3 x 3): a block of a
+/// uniform cloud holds about 20 points, so it is empty once in millions.
+template <int D>
+constexpr int kBlock = D == 2 ? 2 : 1;
+
+/// For every cell, a bound on how far its positions may be from the nearest point: the least,
+/// over the points in its block of cells (kBlock), of the distance from the point to the cell's
+/// farthest corner (infinite where the block is empty). Rounded up, so a bound still.
+template <int D>
+std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid) {
+  constexpr int m = kBlock<D>;
+  std::vector<float> cover(grid.size(), std::numeric_limits<float>::infinity());
+  const auto stride = grid.stride();
+  for (const auto& p : cloud) {
+    std::array<std::int64_t, 3> k{0, 0, 0};
+    for (int a = 0; a < D; ++a) {
+      k[a] = std::clamp<std::int64_t>(
+          static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell)), 0,
+          grid.n[a] - 1);
+    }
+    // Per axis and neighbour offset: the squared distance to the cell's farther face.
+    std::array<std::array<double, 2 * m + 1>, 3> far2{};
+    for (int a = 0; a < D; ++a) {
+      for (int o = -m; o <= m; ++o) {
+        const double low = grid.lo[a] + static_cast<double>(k[a] + o) * grid.cell;
+        const double d = std::max(std::abs(p.data[a] - low), std::abs(low + grid.cell - p.data[a]));
+        far2[a][o + m] = d * d;
+      }
+    }
+    const int mz = D == 3 ? m : 0;
+    for (int dz = -mz; dz <= mz; ++dz) {
+      if (k[2] + dz < 0 || k[2] + dz >= grid.n[2]) continue;
+      for (int dy = -m; dy <= m; ++dy) {
+        if (k[1] + dy < 0 || k[1] + dy >= grid.n[1]) continue;
+        for (int dx = -m; dx <= m; ++dx) {
+          if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
+          const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
+          const auto bound = static_cast<float>(std::sqrt(d2) * (1.0 + kMargin));
+          float& c = cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
+          c = std::min(c, bound);
+        }
+      }
+    }
+  }
+  return cover;
+}
+
+template <int D>
+ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<double>& radius,
+                      int threads) {
+  const std::size_t points = cloud.size();
+  ExposedPoints result;
+  result.exposed.assign(points, 1);
+  result.count = points;
+  std::vector<double> finite;
+  finite.reserve(points);
+  for (const double r : radius) {
+    if (r > 0.0 && std::isfinite(r)) finite.push_back(r);
+  }
+  if (finite.empty() || points < 2) return result;
+  const std::size_t rank = static_cast<std::size_t>(kBelowSmallestClass * (finite.size() - 1));
+  std::nth_element(finite.begin(), finite.begin() + rank, finite.end());
+  const double smallest = finite[rank];
+  finite = {};
+  std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) {
+    lo[a] = std::numeric_limits<double>::infinity();
+    hi[a] = -lo[a];
+  }
+  for (const auto& p : cloud) {
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min<double>(lo[a], p.data[a]);
+      hi[a] = std::max<double>(hi[a], p.data[a]);
+    }
+  }
+  // One grid, cells of half the smallest radius but 1 %.
+  const double cap = std::max(kCellsPerPoint * static_cast<double>(points), 4096.0);
+  const Grid grid = gridOver<D>(lo, hi, smallest / kCellsPerRadius, cap);
+  result.cell = grid.cell;
+  const std::vector<float> cover = coverRadius<D>(cloud, grid);
+  std::vector<std::int64_t> cell_of(points);
+  for (std::size_t i = 0; i < points; ++i) cell_of[i] = cellOf<D>(grid, cloud[i]);
+  // The radius classes: r_j = r_0 1.25^j, r_0 the smallest radius but 1 %.
+  std::vector<int> class_of(points, -1);
+  std::array<bool, kClasses> used{};
+  for (std::size_t i = 0; i < points; ++i) {
+    const double r = radius[i];
+    if (!(r >= smallest && std::isfinite(r))) continue;
+    int j = std::min(kClasses - 1,
+                     static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio))));
+    // The rounding of the logarithm must not put a radius in a class above it.
+    while (j > 0 && smallest * std::pow(kClassRatio, j) > r) --j;
+    class_of[i] = j;
+    used[j] = true;
+  }
+  std::vector<std::uint8_t> covered(grid.size());
+  for (int j = 0; j < kClasses; ++j) {
+    if (!used[j]) continue;
+    const double r = smallest * std::pow(kClassRatio, j);
+    // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
+    // radius is below r (that point is not the one the ball's sphere passes through, at r).
+    for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r;
+    // A point is covered when every cell that the box [p - r, p + r] reaches is full; for any p
+    // in cell t, the box reaches from t + floor(-r / c) to t + 1 + floor(r / c) along each axis.
+    const auto a = static_cast<std::int64_t>(std::floor(-r / grid.cell));
+    const auto b = 1 + static_cast<std::int64_t>(std::floor(r / grid.cell));
+    for (int axis = 0; axis < D; ++axis) erodeAlong(grid, axis, a, b, covered, threads);
+    for (std::size_t i = 0; i < points; ++i) {
+      if (class_of[i] == j && covered[cell_of[i]]) {
+        result.exposed[i] = 0;
+        --result.count;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+ExposedPoints exposedPoints(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
+                            const std::vector<double>& radius, int threads) {
+  if (dimensions != 2 && dimensions != 3) {
+    throw Error("dimensions must be 2 or 3, got " + std::to_string(dimensions));
+  }
+  if (radius.size() != cloud.size()) {
+    throw Error("exposedPoints: " + std::to_string(radius.size()) + " radii for " +
+                std::to_string(cloud.size()) + " points");
+  }
+  if (threads <= 0) threads = omp_get_max_threads();
+  return dimensions == 2 ? exposed<2>(cloud, radius, threads) : exposed<3>(cloud, radius, threads);
+}
+
+}  // namespace mcws
