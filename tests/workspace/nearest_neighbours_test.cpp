@@ -53,6 +53,29 @@ TEST(KthNeighbour, MatchesBruteForceIn2DAnd3D) {
   }
 }
 
+TEST(KthNeighbour, MatchesBruteForceOnUnevenClouds) {
+  // The grid search on a Gaussian blob (dense core, sparse tails: many rings of cells far out),
+  // and the kd-tree where the grid does not fit: two tight clusters far apart (crowded cells) and
+  // points on a line (a box of no volume).
+  std::mt19937 rng(11);
+  std::normal_distribution<float> normal(0.0f, 1.0f);
+  pcl::PointCloud<pcl::PointXYZ> blob, clusters, line;
+  for (int i = 0; i < 3000; ++i) {
+    blob.push_back(pcl::PointXYZ(normal(rng), normal(rng), normal(rng)));
+    const float offset = i % 2 ? 1000.0f : 0.0f;
+    clusters.push_back(pcl::PointXYZ(offset + normal(rng), normal(rng), normal(rng)));
+    line.push_back(pcl::PointXYZ(normal(rng), 2.0f, 3.0f));
+  }
+  for (const auto* cloud : {&blob, &clusters, &line}) {
+    for (int dimensions : {2, 3}) {
+      const std::vector<float> d2 = kthNeighbourSquaredDistance(*cloud, dimensions, 8, 2);
+      for (std::size_t i = 0; i < cloud->size(); ++i) {
+        ASSERT_EQ(d2[i], bruteForce(*cloud, i, dimensions, 8)) << "point " << i;
+      }
+    }
+  }
+}
+
 TEST(KthNeighbour, CopiesAreNeighboursAtDistanceZero) {
   pcl::PointCloud<pcl::PointXYZ> cloud;
   for (int i = 0; i < 3; ++i) cloud.push_back(pcl::PointXYZ(0.0f, 0.0f, 0.0f));

@@ -100,9 +100,10 @@ std::int64_t cellOf(const Grid& grid, const pcl::PointXYZ& p) {
 template <int D>
 constexpr int kBlock = D == 2 ? 2 : 1;
 
-/// For every cell, a bound on how far its positions may be from the nearest point: the least,
-/// over the points in its block of cells (kBlock), of the distance from the point to the cell's
-/// farthest corner (infinite where the block is empty). Rounded up, so a bound still.
+/// For every cell, a bound on how far its positions may be from the nearest point, squared: the
+/// least, over the points in its block of cells (kBlock), of the squared distance from the point
+/// to the cell's farthest corner (infinite where the block is empty). Rounded up, so a bound
+/// still.
 template <int D>
 std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid) {
   constexpr int m = kBlock<D>;
@@ -132,7 +133,7 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, cons
         for (int dx = -m; dx <= m; ++dx) {
           if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
           const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
-          const auto bound = static_cast<float>(std::sqrt(d2) * (1.0 + kMargin));
+          const auto bound = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
           float& c = cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
           c = std::min(c, bound);
         }
@@ -196,7 +197,8 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
     const double r = smallest * std::pow(kClassRatio, j);
     // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
     // radius is below r (that point is not the one the ball's sphere passes through, at r).
-    for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r;
+    const auto r2 = static_cast<float>(r * r);
+    for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
     // A point is covered when every cell that the box [p - r, p + r] reaches is full; for any p
     // in cell t, the box reaches from t + floor(-r / c) to t + 1 + floor(r / c) along each axis.
     const auto a = static_cast<std::int64_t>(std::floor(-r / grid.cell));

@@ -745,50 +745,73 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
     finite[i]->info() = keep(finite[i]);
   }
-  std::vector<typename Delaunay::Vertex_handle> boundary;
-  std::vector<Simplex> around;
-  for (;;) {
-    boundary = boundaryVertices<D>(dt, points.size());
-    if (!options.edge_correction) break;
-    // Stars with a simplex that is not the whole triangulation's: its left-out points join.
-    std::vector<std::uint32_t> joining;
+  // Joins below replace only kept simplices (a dropped one has no left-out point in its
+  // circumsphere, and a simplex around a covered point is within its alpha limit), so the
+  // boundary vertices are final.
+  const auto boundary = boundaryVertices<D>(dt, points.size());
+  std::vector<Simplex> around, stars;
+  if (options.edge_correction) {
+    // The kept simplices of the boundary vertices' stars, each once (a simplex is in the stars
+    // of up to D + 1 vertices).
+    for (const auto v : boundary) {
+      incidentSimplices<D>(dt, v, around);
+      for (const auto& s : around) {
+        if (s->info()) stars.push_back(s);
+      }
+    }
+    std::vector<char> on_boundary(points.size(), 0);
+    for (const auto v : boundary) on_boundary[v->info()] = 1;
+    for (;;) {
+      // A star simplex with left-out points in its circumsphere is not the whole
+      // triangulation's: those points join.
+      std::sort(stars.begin(), stars.end());
+      stars.erase(std::unique(stars.begin(), stars.end()), stars.end());
+      std::vector<std::uint32_t> joining;
 #pragma omp parallel num_threads(threads)
-    {
-      std::vector<Simplex> star;
-      std::vector<std::uint32_t> found;
-#pragma omp for schedule(dynamic, 256)
-      for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
-        incidentSimplices<D>(dt, boundary[i], star);
-        for (const auto& s : star) {
-          if (s->info()) left_out.inside(dt, s, true, &found);
+      {
+        std::vector<std::uint32_t> found;
+#pragma omp for schedule(dynamic, 1024)
+        for (std::int64_t i = 0; i < static_cast<std::int64_t>(stars.size()); ++i) {
+          left_out.inside(dt, stars[i], true, &found);
+        }
+#pragma omp critical
+        joining.insert(joining.end(), found.begin(), found.end());
+      }
+      if (joining.empty()) break;
+      std::sort(joining.begin(), joining.end());
+      joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
+      std::vector<typename Delaunay::Vertex_handle> joined;
+      for (const std::uint32_t k : joining) {
+        left_out.remove(k);
+        const pcl::PointXYZ& p = points[k];
+        typename Delaunay::Vertex_handle v;
+        if constexpr (D == 2) {
+          v = dt.insert(typename Delaunay::Point(p.x, p.y));
+        } else {
+          v = dt.insert(typename Delaunay::Point(p.x, p.y, p.z));
+        }
+        v->info() = k;
+        joined.push_back(v);
+      }
+      // Insertion replaces simplices by new ones around the inserted points: test those, and
+      // check next the new ones in a boundary vertex's star (the others were checked).
+      stars.clear();
+      for (const auto v : joined) {
+        incidentSimplices<D>(dt, v, around, true);
+        for (const auto& s : around) {
+          s->info() = dt.is_infinite(s) ? 0 : keep(s);
+          if (!s->info()) continue;
+          for (int k = 0; k <= D; ++k) {
+            if (on_boundary[s->vertex(k)->info()]) {
+              stars.push_back(s);
+              break;
+            }
+          }
         }
       }
-#pragma omp critical
-      joining.insert(joining.end(), found.begin(), found.end());
+      finite.clear();  // some are gone
+      for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
     }
-    if (joining.empty()) break;
-    std::sort(joining.begin(), joining.end());
-    joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
-    std::vector<typename Delaunay::Vertex_handle> joined;
-    for (const std::uint32_t k : joining) {
-      left_out.remove(k);
-      const pcl::PointXYZ& p = points[k];
-      typename Delaunay::Vertex_handle v;
-      if constexpr (D == 2) {
-        v = dt.insert(typename Delaunay::Point(p.x, p.y));
-      } else {
-        v = dt.insert(typename Delaunay::Point(p.x, p.y, p.z));
-      }
-      v->info() = k;
-      joined.push_back(v);
-    }
-    // Insertion replaces simplices by new ones around the inserted points; test those.
-    for (const auto v : joined) {
-      incidentSimplices<D>(dt, v, around, true);
-      for (const auto& s : around) s->info() = dt.is_infinite(s) ? 0 : keep(s);
-    }
-    finite.clear();  // some are gone
-    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
   }
   RegionMeasure result;
   const double bound = boundingMeasure(points, D);
