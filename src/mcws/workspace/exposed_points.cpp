@@ -63,6 +63,79 @@ void erodeAlong(const Grid& grid, int axis, std::int64_t a, std::int64_t b,
   }
 }
 
+/// Erodes by the cross of 2 D + 1 cells (a cell and its face neighbours): a cell stays non-zero
+/// when it and its face neighbours, all within the grid, are. `scratch` is working memory.
+template <int D>
+void erodeCross(const Grid& grid, std::vector<std::uint8_t>& values,
+                std::vector<std::uint8_t>& scratch, int threads) {
+  scratch = values;
+  const auto stride = grid.stride();
+  const std::int64_t planes = grid.n[2] * grid.n[1];
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t plane = 0; plane < planes; ++plane) {
+    const std::int64_t y = plane % grid.n[1], z = plane / grid.n[1];
+    for (std::int64_t x = 0; x < grid.n[0]; ++x) {
+      const std::int64_t c = x * stride[0] + y * stride[1] + z * stride[2];
+      if (!scratch[c]) continue;
+      const std::array<std::int64_t, 3> at{x, y, z};
+      bool full = true;
+      for (int a = 0; a < D && full; ++a) {
+        full = at[a] > 0 && at[a] + 1 < grid.n[a] && scratch[c - stride[a]] && scratch[c + stride[a]];
+      }
+      values[c] = full;
+    }
+  }
+}
+
+/// The cells a point's test must find full, as offsets from its own cell: a box of half-width
+/// `box` cells followed by `cross` erosions by the cross (erodeCross), which together reach
+/// every cell that may meet a ball of radius rho cells around any position in the own cell and
+/// overreach a box of the ball's width in the diagonal directions by far less (the box alone
+/// reaches sqrt(D) times as far there).
+struct Element {
+  std::int64_t box{0};
+  int cross{0};
+};
+
+template <int D>
+Element elementFor(double rho) {
+  // Cell t + o may meet the ball when the gap between the cells, max(|o_i| - 1, 0) per axis, is
+  // shorter than rho: u below. A box of half-width A + 1 then a cross of B cover o when the
+  // part of u beyond A, summed over the axes, is at most B; of the (A, B) that cover every u,
+  // the one with the fewest offsets.
+  const auto top = static_cast<std::int64_t>(std::ceil(rho));
+  Element best;
+  double best_size = std::numeric_limits<double>::infinity();
+  for (std::int64_t box = 0; box <= top; ++box) {
+    std::int64_t cross = 0;
+    const std::int64_t uz = D == 3 ? top : 0;
+    for (std::int64_t u0 = 0; u0 <= top; ++u0)
+      for (std::int64_t u1 = 0; u1 <= top; ++u1)
+        for (std::int64_t u2 = 0; u2 <= uz; ++u2) {
+          if (static_cast<double>(u0 * u0 + u1 * u1 + u2 * u2) >= rho * rho) continue;
+          cross = std::max(cross, std::max<std::int64_t>(u0 - box, 0) +
+                                      std::max<std::int64_t>(u1 - box, 0) +
+                                      std::max<std::int64_t>(u2 - box, 0));
+        }
+    // The offsets o of the box of half-width box + 1 grown by a cross of `cross`.
+    const std::int64_t reach = box + 1 + cross, oz = D == 3 ? reach : 0;
+    double size = 0.0;
+    for (std::int64_t o0 = -reach; o0 <= reach; ++o0)
+      for (std::int64_t o1 = -reach; o1 <= reach; ++o1)
+        for (std::int64_t o2 = -oz; o2 <= oz; ++o2) {
+          const std::int64_t beyond = std::max<std::int64_t>(std::abs(o0) - box - 1, 0) +
+                                      std::max<std::int64_t>(std::abs(o1) - box - 1, 0) +
+                                      std::max<std::int64_t>(std::abs(o2) - box - 1, 0);
+          size += beyond <= cross;
+        }
+    if (size < best_size) {
+      best_size = size;
+      best = {box + 1, static_cast<int>(cross)};
+    }
+  }
+  return best;
+}
+
 /// The grid of cells of edge `cell` over the cloud's bounding box [lo, hi], coarsened until it
 /// has at most `cap` cells.
 template <int D>
@@ -105,17 +178,19 @@ constexpr int kBlock = D == 2 ? 2 : 1;
 /// to the cell's farthest corner (infinite where the block is empty). Rounded up, so a bound
 /// still.
 template <int D>
-std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid) {
+std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
+                               int threads) {
   constexpr int m = kBlock<D>;
   std::vector<float> cover(grid.size(), std::numeric_limits<float>::infinity());
   const auto stride = grid.stride();
-  for (const auto& p : cloud) {
+  auto cellIndex = [&](const pcl::PointXYZ& p, int a) {
+    return std::clamp<std::int64_t>(
+        static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell)), 0,
+        grid.n[a] - 1);
+  };
+  auto bound = [&](const pcl::PointXYZ& p) {
     std::array<std::int64_t, 3> k{0, 0, 0};
-    for (int a = 0; a < D; ++a) {
-      k[a] = std::clamp<std::int64_t>(
-          static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell)), 0,
-          grid.n[a] - 1);
-    }
+    for (int a = 0; a < D; ++a) k[a] = cellIndex(p, a);
     // Per axis and neighbour offset: the squared distance to the cell's farther face.
     std::array<std::array<double, 2 * m + 1>, 3> far2{};
     for (int a = 0; a < D; ++a) {
@@ -133,11 +208,37 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, cons
         for (int dx = -m; dx <= m; ++dx) {
           if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
           const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
-          const auto bound = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
+          const auto b = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
           float& c = cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
-          c = std::min(c, bound);
+          c = std::min(c, b);
         }
       }
+    }
+  };
+  // The points by slab of cells along the last axis, slabs at least 2 m + 1 cells thick: a point
+  // changes cells of its own slab and the two next to it, so the even slabs run side by side,
+  // then the odd ones (a minimum does not depend on the order it is taken in).
+  const int axis = D - 1;
+  const std::int64_t thick =
+      std::max<std::int64_t>(2 * m + 1, (grid.n[axis] + 4 * threads - 1) / (4 * threads));
+  const std::int64_t slabs = (grid.n[axis] + thick - 1) / thick;
+  std::vector<std::uint32_t> start(slabs + 1, 0), order(cloud.size());
+  std::vector<std::uint32_t> slab_of(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    slab_of[i] = static_cast<std::uint32_t>(cellIndex(cloud[i], axis) / thick);
+    ++start[slab_of[i] + 1];
+  }
+  for (std::int64_t k = 0; k < slabs; ++k) start[k + 1] += start[k];
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      order[next[slab_of[i]]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  for (const std::int64_t parity : {0, 1}) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::int64_t k = parity; k < slabs; k += 2) {
+      for (std::uint32_t j = start[k]; j < start[k + 1]; ++j) bound(cloud[order[j]]);
     }
   }
   return cover;
@@ -175,7 +276,7 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
   const double cap = std::max(kCellsPerPoint * static_cast<double>(points), 4096.0);
   const Grid grid = gridOver<D>(lo, hi, smallest / kCellsPerRadius, cap);
   result.cell = grid.cell;
-  const std::vector<float> cover = coverRadius<D>(cloud, grid);
+  const std::vector<float> cover = coverRadius<D>(cloud, grid, threads);
   std::vector<std::int64_t> cell_of(points);
   for (std::size_t i = 0; i < points; ++i) cell_of[i] = cellOf<D>(grid, cloud[i]);
   // The radius classes: r_j = r_0 1.25^j, r_0 the smallest radius but 1 %.
@@ -191,7 +292,7 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
     class_of[i] = j;
     used[j] = true;
   }
-  std::vector<std::uint8_t> covered(grid.size());
+  std::vector<std::uint8_t> covered(grid.size()), scratch;
   for (int j = 0; j < kClasses; ++j) {
     if (!used[j]) continue;
     const double r = smallest * std::pow(kClassRatio, j);
@@ -199,11 +300,12 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
     // radius is below r (that point is not the one the ball's sphere passes through, at r).
     const auto r2 = static_cast<float>(r * r);
     for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
-    // A point is covered when every cell that the box [p - r, p + r] reaches is full; for any p
-    // in cell t, the box reaches from t + floor(-r / c) to t + 1 + floor(r / c) along each axis.
-    const auto a = static_cast<std::int64_t>(std::floor(-r / grid.cell));
-    const auto b = 1 + static_cast<std::int64_t>(std::floor(r / grid.cell));
-    for (int axis = 0; axis < D; ++axis) erodeAlong(grid, axis, a, b, covered, threads);
+    // A point is covered when every cell that may meet the ball of radius r around it is full.
+    const Element element = elementFor<D>(r / grid.cell);
+    for (int axis = 0; axis < D; ++axis) {
+      erodeAlong(grid, axis, -element.box, element.box, covered, threads);
+    }
+    for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
     for (std::size_t i = 0; i < points; ++i) {
       if (class_of[i] == j && covered[cell_of[i]]) {
         result.exposed[i] = 0;
