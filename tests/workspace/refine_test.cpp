@@ -188,7 +188,8 @@ TEST(RefineSampler, RefinedDeicingVolumeWithAlphaFive) {
     EXPECT_NEAR(shell.uncorrected / all.uncorrected, 1.0, 1e-11) << efron;
     EXPECT_EQ(shell.boundary_vertices, all.boundary_vertices) << efron;
     EXPECT_EQ(shell.outside, all.outside) << efron;
-    EXPECT_LT(shell.triangulated, all.triangulated) << efron;
+    // Not trivially right: a large share is proven covered (55 % triangulated at alpha 5).
+    EXPECT_LT(shell.triangulated, all.triangulated * 3 / 4) << efron;
   }
 }
 

@@ -14,16 +14,19 @@
 namespace mcws {
 namespace {
 
-/// Cells of a grid per point at most (a uniform ball's grids have 3 to 10; a cloud that fills
-/// little of its bounding box gets coarser cells, and more of its points stay exposed).
-constexpr double kCellsPerPoint = 32.0;
+/// Cells of a grid per point in its box at most (a uniform ball's grid has about 1.5; a cloud
+/// that fills little of its bounding box gets coarser cells, and more of its points stay exposed).
+constexpr double kCellsPerPoint = 4.0;
 /// Share of the points whose radius may lie below the smallest class (they stay exposed): the
 /// smallest radius sets the cell edge, and a few unusually close neighbours should not make the
 /// grid finer for all.
 constexpr double kBelowSmallestClass = 0.01;
-/// Ratio of consecutive radius classes, and their number.
+/// Ratio of consecutive radius classes, and how many classes share a grid (their radii span a
+/// factor 2.4).
 constexpr double kClassRatio = 1.25;
-constexpr int kClasses = 8;
+constexpr int kClassesPerGrid = 4;
+/// Share of the points below which a grid's classes are not proven (they stay exposed).
+constexpr double kFewestOnAGrid = 0.02;
 /// Cells per smallest radius: finer cells bound the distance to the nearest point more tightly,
 /// but then a point's block of cells (kBlock) reaches less far; at 2 a uniform cloud's cell holds
 /// about 0.9 points.
@@ -178,7 +181,8 @@ constexpr int kBlock = D == 2 ? 2 : 1;
 /// to the cell's farthest corner (infinite where the block is empty). Rounded up, so a bound
 /// still.
 template <int D>
-std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
+std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                               const std::vector<std::uint32_t>& points, const Grid& grid,
                                int threads) {
   constexpr int m = kBlock<D>;
   std::vector<float> cover(grid.size(), std::numeric_limits<float>::infinity());
@@ -222,18 +226,16 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud, cons
   const std::int64_t thick =
       std::max<std::int64_t>(2 * m + 1, (grid.n[axis] + 4 * threads - 1) / (4 * threads));
   const std::int64_t slabs = (grid.n[axis] + thick - 1) / thick;
-  std::vector<std::uint32_t> start(slabs + 1, 0), order(cloud.size());
-  std::vector<std::uint32_t> slab_of(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    slab_of[i] = static_cast<std::uint32_t>(cellIndex(cloud[i], axis) / thick);
-    ++start[slab_of[i] + 1];
+  std::vector<std::uint32_t> start(slabs + 1, 0), order(points.size());
+  std::vector<std::uint32_t> slab_of(points.size());
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    slab_of[j] = static_cast<std::uint32_t>(cellIndex(cloud[points[j]], axis) / thick);
+    ++start[slab_of[j] + 1];
   }
   for (std::int64_t k = 0; k < slabs; ++k) start[k + 1] += start[k];
   {
     std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-      order[next[slab_of[i]]++] = static_cast<std::uint32_t>(i);
-    }
+    for (std::size_t j = 0; j < points.size(); ++j) order[next[slab_of[j]]++] = points[j];
   }
   for (const std::int64_t parity : {0, 1}) {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
@@ -261,55 +263,73 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
   std::nth_element(finite.begin(), finite.begin() + rank, finite.end());
   const double smallest = finite[rank];
   finite = {};
-  std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
-  for (int a = 0; a < D; ++a) {
-    lo[a] = std::numeric_limits<double>::infinity();
-    hi[a] = -lo[a];
-  }
-  for (const auto& p : cloud) {
-    for (int a = 0; a < D; ++a) {
-      lo[a] = std::min<double>(lo[a], p.data[a]);
-      hi[a] = std::max<double>(hi[a], p.data[a]);
-    }
-  }
-  // One grid, cells of half the smallest radius but 1 %.
-  const double cap = std::max(kCellsPerPoint * static_cast<double>(points), 4096.0);
-  const Grid grid = gridOver<D>(lo, hi, smallest / kCellsPerRadius, cap);
-  result.cell = grid.cell;
-  const std::vector<float> cover = coverRadius<D>(cloud, grid, threads);
-  std::vector<std::int64_t> cell_of(points);
-  for (std::size_t i = 0; i < points; ++i) cell_of[i] = cellOf<D>(grid, cloud[i]);
-  // The radius classes: r_j = r_0 1.25^j, r_0 the smallest radius but 1 %.
+  // Radius classes r_j = r_0 1.25^j from the smallest radius but 1 %, kClassesPerGrid to a
+  // grid: a grid's cells are half its smallest class's radius (a cloud's density may vary by
+  // orders of magnitude: refined clouds).
   std::vector<int> class_of(points, -1);
-  std::array<bool, kClasses> used{};
+  int classes = 0;
   for (std::size_t i = 0; i < points; ++i) {
     const double r = radius[i];
     if (!(r >= smallest && std::isfinite(r))) continue;
-    int j = std::min(kClasses - 1,
-                     static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio))));
+    int j = static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio)));
     // The rounding of the logarithm must not put a radius in a class above it.
     while (j > 0 && smallest * std::pow(kClassRatio, j) > r) --j;
     class_of[i] = j;
-    used[j] = true;
+    classes = std::max(classes, j + 1);
   }
-  std::vector<std::uint8_t> covered(grid.size()), scratch;
-  for (int j = 0; j < kClasses; ++j) {
-    if (!used[j]) continue;
-    const double r = smallest * std::pow(kClassRatio, j);
-    // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
-    // radius is below r (that point is not the one the ball's sphere passes through, at r).
-    const auto r2 = static_cast<float>(r * r);
-    for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
-    // A point is covered when every cell that may meet the ball of radius r around it is full.
-    const Element element = elementFor<D>(r / grid.cell);
-    for (int axis = 0; axis < D; ++axis) {
-      erodeAlong(grid, axis, -element.box, element.box, covered, threads);
+  const int grids = (classes + kClassesPerGrid - 1) / kClassesPerGrid;
+  std::vector<std::vector<std::uint32_t>> members(grids);
+  for (std::size_t i = 0; i < points; ++i) {
+    if (class_of[i] >= 0) members[class_of[i] / kClassesPerGrid].push_back(static_cast<std::uint32_t>(i));
+  }
+  std::vector<std::uint8_t> covered, scratch;
+  std::vector<std::uint32_t> nearby;
+  for (int g = 0; g < grids; ++g) {
+    // A grid whose points are a few scattered ones (the edge's, in a uniform cloud) is not worth
+    // its pass over the cloud: they stay exposed.
+    if (members[g].size() < kFewestOnAGrid * static_cast<double>(points)) continue;
+    const double low = smallest * std::pow(kClassRatio, g * kClassesPerGrid);
+    const double high = low * std::pow(kClassRatio, kClassesPerGrid);
+    // The grid spans the members' balls; every point in it bounds the cover radii.
+    std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::numeric_limits<double>::infinity();
+      hi[a] = -lo[a];
     }
-    for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
+    for (const std::uint32_t i : members[g]) {
+      for (int a = 0; a < D; ++a) {
+        lo[a] = std::min<double>(lo[a], cloud[i].data[a] - high);
+        hi[a] = std::max<double>(hi[a], cloud[i].data[a] + high);
+      }
+    }
+    nearby.clear();
     for (std::size_t i = 0; i < points; ++i) {
-      if (class_of[i] == j && covered[cell_of[i]]) {
-        result.exposed[i] = 0;
-        --result.count;
+      bool in = true;
+      for (int a = 0; a < D; ++a) in = in && cloud[i].data[a] >= lo[a] && cloud[i].data[a] <= hi[a];
+      if (in) nearby.push_back(static_cast<std::uint32_t>(i));
+    }
+    const double cap = std::max(kCellsPerPoint * static_cast<double>(nearby.size()), 4096.0);
+    const Grid grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
+    result.cell = result.cell == 0.0 ? grid.cell : std::min(result.cell, grid.cell);
+    const std::vector<float> cover = coverRadius<D>(cloud, nearby, grid, threads);
+    for (int j = g * kClassesPerGrid; j < std::min(classes, (g + 1) * kClassesPerGrid); ++j) {
+      const double r = smallest * std::pow(kClassRatio, j);
+      // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
+      // radius is below r (that point is not the one the ball's sphere passes through, at r).
+      const auto r2 = static_cast<float>(r * r);
+      covered.resize(grid.size());
+      for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
+      // A point is covered when every cell that may meet the ball of radius r around it is full.
+      const Element element = elementFor<D>(r / grid.cell);
+      for (int axis = 0; axis < D; ++axis) {
+        erodeAlong(grid, axis, -element.box, element.box, covered, threads);
+      }
+      for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
+      for (const std::uint32_t i : members[g]) {
+        if (class_of[i] == j && covered[cellOf<D>(grid, cloud[i])]) {
+          result.exposed[i] = 0;
+          --result.count;
+        }
       }
     }
   }
