@@ -32,14 +32,16 @@ struct ExposedPoints {
 /// 3^D block of neighbours holds at least two points is "full" (every position x in it has a
 /// point other than any given one within 2 sqrt(D) c < r, so a ball of radius r centred at x is
 /// not empty); point i is covered when every cube that the box of half-edge r around it reaches
-/// is full (the centres of the balls that touch it lie on the sphere of radius r around it). The
-/// radii are rounded down to classes (ratio 1.25 from the smallest radius but 1 %; a smaller
-/// radius is a stronger claim; the 1 % below stay exposed), each proven on a grid of its own with
-/// cells as coarse as its radius allows, the full cubes eroded by the class's box in separable
-/// passes: a few passes over each grid, not a search per point. A grid holds at most 32 cells per
-/// point: a cloud much sparser than its radii in most of its bounding box gets coarser cells and
-/// more exposed points. Exposed is never wrong, only cautious: a point of the convex hull, or
-/// near any face of the region (3 to 5 radii deep), is always exposed.
+/// is full (the centres of the balls that touch it lie on the sphere of radius r around it), a
+/// cell's cover radius being bounded by the points of the cells around it. The radii are rounded
+/// down to classes (ratio 1.25 from the smallest radius but 1 %; a smaller radius is a stronger
+/// claim; the 1 % below stay exposed); four classes share a grid with cells of half their
+/// smallest radius, over their points' balls, so a cloud whose spacing varies by orders of
+/// magnitude (refined clouds) gets cells to match; a grid for fewer than 2 % of the points is
+/// skipped (they stay exposed). The full cells are eroded by the cells a ball may meet (a box,
+/// then crosses) in separable passes: a few passes over each grid, not a search per point. A grid
+/// holds at most 4 cells per point in its box. Exposed is never wrong, only cautious: a point of
+/// the convex hull, or near any face of the region (2 to 4 radii deep), is always exposed.
 /// \param cloud the points, distinct positions; for dimensions = 2 the x-y plane (z ignored).
 /// \param dimensions 2 or 3.
 /// \param radius the radius for each point [length unit]; non-positive or non-finite: exposed.

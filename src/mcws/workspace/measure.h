@@ -55,8 +55,9 @@ struct RegionMeasure {
 /// N); for a convex hull V is exactly its vertex count. The correction assumes the density is
 /// uniform near the edge, as for the validation shapes; a cloud much sparser along its edge than
 /// inside (a projected ball, joint-space samples near the workspace's tips) comes out low, and
-/// refining the boundary is the remedy. \param points the region's points; for a planar region x
-/// and y hold the plane's coordinates
+/// refining the boundary is the remedy. By default only the points an empty ball of alpha radius
+/// may touch are triangulated, with the same result (MeasureOptions::shell).
+/// \param points the region's points; for a planar region x and y hold the plane's coordinates
 ///   and z is ignored (dimensions = 2).
 /// \param dimensions 2 (area) or 3 (volume).
 /// \param alpha_factor the circumradius limit in local spacings (> 0; 3 keeps every interior
