@@ -76,6 +76,28 @@ TEST_F(MeasureApp, SameVolumeForAnyThreadCount) {
   }
 }
 
+TEST_F(MeasureApp, TheShellMeasuresWhatEveryPointMeasures) {
+  // The default triangulates the shell of points an empty ball of alpha radius may touch;
+  // --triangulate all triangulates every point: the same area (to the rounding of the per-triangle
+  // sum) and counts, "triangulated" telling them apart.
+  nlohmann::json runs[2];
+  const char* modes[2] = {"shell", "all"};
+  for (int k = 0; k < 2; ++k) {
+    const test::RunResult r =
+        test::run(kMeasure + " --input " + disk_ + " --plane xy --json --triangulate " + modes[k]);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    runs[k] = nlohmann::json::parse(r.out);
+  }
+  const auto& shell = runs[0];
+  const auto& all = runs[1];
+  EXPECT_NEAR(shell["area"].get<double>() / all["area"].get<double>(), 1.0, 1e-11);
+  EXPECT_EQ(shell["boundary_vertices"], all["boundary_vertices"]);
+  EXPECT_EQ(shell["outside"], all["outside"]);
+  EXPECT_EQ(all["triangulated"], all["points"]);
+  // The disk of 50000 points is about 250 spacings across: its shell a small share.
+  EXPECT_LT(shell["triangulated"].get<double>(), 0.25 * shell["points"].get<double>());
+}
+
 TEST_F(MeasureApp, BadInput) {
   expectFailure("--input " + disk_ + " --plane xy --threads -1", 2, "--threads");
   expectFailure("--input " + disk_ + " --plane xy --method voxels", 2, "--method: 'voxels' is not");
@@ -94,6 +116,11 @@ TEST_F(MeasureApp, BadInput) {
                 "--correction: 'some' is not efron or none");
   expectFailure("--input " + disk_ + " --plane xy --leave-one-out exact", 2,
                 "--leave-one-out: 'exact' is not star or reinsert");
+  expectFailure("--input " + disk_ + " --plane xy --triangulate some", 2,
+                "--triangulate: 'some' is not shell or all");
+  expectFailure(
+      "--input " + disk_ + " --plane xy --boundary " + rim_ + " --method column --triangulate all",
+      2, "--triangulate does not apply to --method column");
   expectFailure("--input " + disk_, 1, "the cloud is flat (z extent 0)");
   expectFailure("--input " + dir_.file("none.pcd"), 1, "cloud file does not exist");
   expectFailure(

@@ -17,9 +17,8 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vertex = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
-using Delaunay =
-    CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_structure_3<
-                                          Vertex, CGAL::Delaunay_triangulation_cell_base_3<K>>>;
+using Delaunay = CGAL::Delaunay_triangulation_3<
+    K, CGAL::Triangulation_data_structure_3<Vertex, CGAL::Delaunay_triangulation_cell_base_3<K>>>;
 
 pcl::PointCloud<pcl::PointXYZ> shapeCloud(Shape shape, std::size_t n, std::uint64_t seed) {
   pcl::PointCloud<pcl::PointXYZ> cloud;
@@ -59,7 +58,8 @@ TEST(ExposedPoints, NoCoveredPointIsAVertexOfAnEmptyBallOfItsRadius) {
     for (const double factor : {3.0, 1.5, 0.0}) {
       std::vector<double> radius(cloud.size());
       for (std::size_t i = 0; i < cloud.size(); ++i) {
-        radius[i] = factor > 0.0 ? factor * spacing : (1.5 + 3.0 * ((i * 7919) % 1000) / 1000.0) * spacing;
+        radius[i] =
+            factor > 0.0 ? factor * spacing : (1.5 + 3.0 * ((i * 7919) % 1000) / 1000.0) * spacing;
       }
       const ExposedPoints flags = exposedPoints(cloud, 3, radius, 2);
       EXPECT_EQ(wronglyCovered(cloud, radius, flags), 0u) << factor;
@@ -86,7 +86,8 @@ TEST(ExposedPoints, ThePointsOnAnEmptyBallAreExposed) {
       for (int z = -14; z <= 14; ++z)
         if (x * x + y * y + z * z >= 16) lattice.push_back(pcl::PointXYZ(x, y, z));
   for (const double r : {4.0, 3.9}) {
-    const ExposedPoints flags = exposedPoints(lattice, 3, std::vector<double>(lattice.size(), r), 1);
+    const ExposedPoints flags =
+        exposedPoints(lattice, 3, std::vector<double>(lattice.size(), r), 1);
     for (std::size_t i = 0; i < lattice.size(); ++i) {
       const auto& p = lattice[i];
       const int far = std::abs(p.x) + std::abs(p.y) + std::abs(p.z);
@@ -106,7 +107,8 @@ TEST(ExposedPoints, TwoDimensionsIgnoreZAndRejectBadArguments) {
   auto cloud = shapeCloud(Shape::kDisk, 20000, 5);
   for (std::size_t i = 0; i < cloud.size(); ++i) cloud[i].z = static_cast<float>(i % 7);
   const double spacing = std::sqrt(M_PI / cloud.size());
-  const ExposedPoints flags = exposedPoints(cloud, 2, std::vector<double>(cloud.size(), 3 * spacing));
+  const ExposedPoints flags =
+      exposedPoints(cloud, 2, std::vector<double>(cloud.size(), 3 * spacing));
   std::size_t rim = 0, centre_covered = 0, centre = 0;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     const double r = std::hypot(cloud[i].x, cloud[i].y);

@@ -386,9 +386,9 @@ TEST(DelaunayMeasure, TheShellMeasuresWhatTriangulatingEveryPointMeasures) {
   for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
     const auto cloud = shapeCloud(shape, 30000, 7);
     for (const double alpha : {1.5, 3.0, 5.0}) {
-      expectShellMeasuresAsTheWhole(cloud, shapeIsPlanar(shape) ? 2 : 3, alpha,
-                                    std::to_string(static_cast<int>(shape)) + " alpha " +
-                                        std::to_string(alpha));
+      expectShellMeasuresAsTheWhole(
+          cloud, shapeIsPlanar(shape) ? 2 : 3, alpha,
+          std::to_string(static_cast<int>(shape)) + " alpha " + std::to_string(alpha));
     }
   }
   pcl::PointCloud<pcl::PointXYZ> hollow;

@@ -57,7 +57,8 @@ void erodeAlong(const Grid& grid, int axis, std::int64_t a, std::int64_t b,
       // The line's first cell: `line` enumerates the other axes' indices.
       const std::int64_t first = line % step + (line / step) * step * n;
       zeros[0] = 0;
-      for (std::int64_t t = 0; t < n; ++t) zeros[t + 1] = zeros[t] + (values[first + t * step] == 0);
+      for (std::int64_t t = 0; t < n; ++t)
+        zeros[t + 1] = zeros[t] + (values[first + t * step] == 0);
       for (std::int64_t t = 0; t < n; ++t) {
         const std::int64_t from = t + a, to = t + b;  // inclusive
         values[first + t * step] = from >= 0 && to < n && zeros[to + 1] == zeros[from];
@@ -83,7 +84,8 @@ void erodeCross(const Grid& grid, std::vector<std::uint8_t>& values,
       const std::array<std::int64_t, 3> at{x, y, z};
       bool full = true;
       for (int a = 0; a < D && full; ++a) {
-        full = at[a] > 0 && at[a] + 1 < grid.n[a] && scratch[c - stride[a]] && scratch[c + stride[a]];
+        full =
+            at[a] > 0 && at[a] + 1 < grid.n[a] && scratch[c - stride[a]] && scratch[c + stride[a]];
       }
       values[c] = full;
     }
@@ -213,7 +215,8 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
           if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
           const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
           const auto b = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
-          float& c = cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
+          float& c =
+              cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
           c = std::min(c, b);
         }
       }
@@ -247,8 +250,8 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
 }
 
 template <int D>
-ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<double>& radius,
-                      int threads) {
+ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                      const std::vector<double>& radius, int threads) {
   const std::size_t points = cloud.size();
   ExposedPoints result;
   result.exposed.assign(points, 1);
@@ -280,7 +283,8 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::ve
   const int grids = (classes + kClassesPerGrid - 1) / kClassesPerGrid;
   std::vector<std::vector<std::uint32_t>> members(grids);
   for (std::size_t i = 0; i < points; ++i) {
-    if (class_of[i] >= 0) members[class_of[i] / kClassesPerGrid].push_back(static_cast<std::uint32_t>(i));
+    if (class_of[i] >= 0)
+      members[class_of[i] / kClassesPerGrid].push_back(static_cast<std::uint32_t>(i));
   }
   std::vector<std::uint8_t> covered, scratch;
   std::vector<std::uint32_t> nearby;

@@ -592,8 +592,8 @@ class LeftOut {
     }
     const double radius = std::sqrt(radius2);
     // Slack for the float coordinates of the tree and the rounding of the centre.
-    const double slack = 1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]),
-                                                    std::abs(centre[2])}));
+    const double slack =
+        1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])}));
     const std::array<float, 3> query{static_cast<float>(centre[0]), static_cast<float>(centre[1]),
                                      static_cast<float>(centre[2])};
     Nearest nearest{removed_};
@@ -696,9 +696,9 @@ void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
     dt.incident_cells_threadsafe(v, std::back_inserter(out));
   }
   if (!infinite) {
-    out.erase(std::remove_if(out.begin(), out.end(),
-                             [&](const auto& s) { return dt.is_infinite(s); }),
-              out.end());
+    out.erase(
+        std::remove_if(out.begin(), out.end(), [&](const auto& s) { return dt.is_infinite(s); }),
+        out.end());
   }
 }
 

@@ -8,9 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
-#include <cstdint>
 #include <string>
 
 #include "mcws/core/error.h"
@@ -114,8 +114,8 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
     declined.insert(declined.end(), own.begin(), own.end());
   }
   if (!declined.empty()) {
-    const std::vector<float> tree = kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads,
-                                                    &declined);
+    const std::vector<float> tree =
+        kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, &declined);
     for (std::size_t j = 0; j < declined.size(); ++j) result[declined[j]] = tree[j];
   }
   return true;
