@@ -1,5 +1,9 @@
 #include "mcws/filters/cell_grid.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,6 +75,47 @@ std::size_t CellGrid::population(const pcl::PointXYZ& p) const {
 
 namespace {
 
+/// The candidates a k-nearest search keeps for the radius search after it: those with d^2 below
+/// this many times the previous point's k-th d^2. An adaptive radius of s d_k (s = 2: 4 d_k^2)
+/// then lies within them unless d_k^2 grew by more than 35 % from the previous point.
+constexpr float kNearHint = 5.4f;
+
+/// Writes to `out` the places k (in order) of the values with d2s[k] < bound, and returns how many
+/// there are; `out` must hold n + 3 entries. With SSE2, four at a time: the lanes below the bound
+/// as a 4-bit mask, their places from a table of the 16 masks, stored whole and advanced by the
+/// mask's count (a branch-free left-pack of places, which needs no byte shuffle).
+std::size_t compactBelow(const float* d2s, std::size_t n, float bound, std::uint32_t* out) {
+  std::size_t kept = 0, k = 0;
+#if defined(__SSE2__)
+  struct Table {
+    alignas(16) std::uint32_t lanes[16][4];
+    std::uint8_t count[16];
+    Table() : lanes{}, count{} {
+      for (unsigned mask = 0; mask < 16; ++mask) {
+        for (unsigned lane = 0; lane < 4; ++lane) {
+          if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
+        }
+      }
+    }
+  };
+  static const Table table;
+  const __m128 limit = _mm_set1_ps(bound);
+  for (; k + 4 <= n; k += 4) {
+    const int mask = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(d2s + k), limit));
+    const __m128i places =
+        _mm_add_epi32(_mm_set1_epi32(static_cast<int>(k)),
+                      _mm_load_si128(reinterpret_cast<const __m128i*>(table.lanes[mask])));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + kept), places);
+    kept += table.count[mask];
+  }
+#endif
+  for (; k < n; ++k) {
+    out[kept] = static_cast<std::uint32_t>(k);
+    kept += d2s[k] < bound;
+  }
+  return kept;
+}
+
 /// Squared distances from (px, py, pz) of `length` points in parallel arrays, and their slots
 /// `first`, `first` + 1, ...: as FLANN's L2_Simple computes them (float, query minus point, summed
 /// x, y, z in that order; q - p is exactly -(p - q)). Arrays that do not overlap: a vectorised
@@ -97,9 +142,10 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, Candidates& out) co
   const double r = reach * (1.0 + 1e-6) + cell_ * 1e-9;
   const Eigen::Vector3d q(p.x, p.y, dimensions_ == 3 ? p.z : 0.0f);
   auto cellAt = [&](double v, int axis) {
-    const double c = std::floor((v - origin_[axis]) / cell_);
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::clamp(c, -1.0, 1e15)), 0,
-                                    counts_[axis] - 1);
+    // Truncation is floor at and above 0, and below 0 both clamp to cell 0: the same cell
+    // without std::floor, which the x86-64 baseline (no SSE4.1) computes in a dozen instructions.
+    const double c = std::clamp((v - origin_[axis]) / cell_, -1.0, 1e15);
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(c), 0, counts_[axis] - 1);
   };
   auto gapTo = [&](std::int64_t c, int axis) {  // distance from q to cell c's slab
     const double lo = origin_[axis] + c * cell_, hi = lo + cell_;
@@ -140,6 +186,8 @@ bool CellGridSearch::gather(pcl::index_t i, double reach) {
     grid_.collect(cloud_[i], reach, candidates_);
     point_ = i;
     reach_ = reach;
+    near_count_ = 0;
+    near_bound_ = 0.0f;
   }
   return true;
 }
@@ -157,14 +205,24 @@ std::optional<float> CellGridSearch::kthDistance2(pcl::index_t i, int count,
     const std::size_t n = candidates_.size;
     const float* d2s = candidates_.d2.data();
     if (smallest_.size() < n) smallest_.resize(n);
+    // First the candidates within a few times the previous answer (near_: an adaptive radius
+    // of twice the k-th distance is then likely to lie within them), and of those the ones
+    // within twice the previous answer to select from; then, if too few, every candidate.
+    near_bound_ = std::min(limit, kNearHint * hint_);
+    if (near_.size() < n + 3) near_.resize(2 * n + 3);  // compactBelow() may write 3 past
+    near_count_ = compactBelow(d2s, n, near_bound_, near_.data());
+    const float first = std::min(limit, 2.0f * hint_);
     std::size_t m = 0;
-    for (const float bound : {std::min(limit, 2.0f * hint_), limit}) {
+    for (std::size_t j = 0; j < near_count_; ++j) {
+      smallest_[m] = d2s[near_[j]];
+      m += d2s[near_[j]] < first;
+    }
+    if (m < static_cast<std::size_t>(count)) {
       m = 0;
       for (std::size_t k = 0; k < n; ++k) {
         smallest_[m] = d2s[k];
-        m += d2s[k] < bound;
+        m += d2s[k] < limit;
       }
-      if (m >= static_cast<std::size_t>(count) || bound == limit) break;
     }
     if (m < static_cast<std::size_t>(count)) {
       if (reach >= max_reach_) return std::nullopt;
@@ -198,7 +256,25 @@ bool CellGridSearch::adaptiveSubset(pcl::index_t i, int count, float scale,
 
 bool CellGridSearch::radius(pcl::index_t i, double radius, std::vector<Neighbour>& found) {
   if (!gather(i, radius)) return false;
-  within(i, static_cast<float>(radius * radius), found);  // d^2 < float(r^2), as KdTreeFLANN
+  const auto limit = static_cast<float>(radius * radius);  // d^2 < float(r^2), as KdTreeFLANN
+  if (limit <= near_bound_) {
+    // Every candidate with d^2 < limit is in near_, in the candidates' order.
+    const float* d2s = candidates_.d2.data();
+    const std::uint32_t* slots = candidates_.slot.data();
+    if (kept_.size() < near_count_) kept_.resize(near_count_);
+    std::size_t m = 0;
+    for (std::size_t j = 0; j < near_count_; ++j) {
+      kept_[m] = near_[j];
+      m += d2s[near_[j]] < limit;
+    }
+    found.resize(m);
+    const pcl::PointXYZ& p = cloud_[i];
+    for (std::size_t k = 0; k < m; ++k) {
+      found[k] = grid_.neighbour(slots[kept_[k]], p, d2s[kept_[k]]);
+    }
+    return true;
+  }
+  within(i, limit, found);
   return true;
 }
 

@@ -7,8 +7,11 @@ namespace mcws {
 namespace {
 
 /// The grid's cell side as a fraction of the typical radius: the k nearest are then found within
-/// one ring of cells and the radius neighbourhood within two.
-constexpr double kCellPerRadius = 0.55;
+/// one ring of cells and the radius neighbourhood within two. In 3-D coarser cells collect more
+/// candidates but visit fewer rows of cells, and the k-nearest search hands the radius search the
+/// candidates it needs: 0.85 measured fastest (1e6-point ball 1.61 -> 1.49 s, the de-icing arm's
+/// 5e5 samples 0.95 -> 0.84 s against 0.55); in 2-D 0.55 still is (disk 0.55 s against 0.66).
+double cellPerRadius(int dimensions) { return dimensions == 2 ? 0.55 : 0.85; }
 /// How far a grid search may reach [cell sides]; beyond that (sparse regions) the tree searches.
 /// A lonely point at the rim of a uniform cloud needs 4 or 5 cells in 2-D.
 double maxReachInCells(int dimensions) { return dimensions == 2 ? 8.0 : 4.0; }
@@ -25,7 +28,7 @@ GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& position
                                        std::vector<pcl::index_t>& position_of, int dimensions,
                                        double typical_radius, double mean_spacing, bool use_grid)
     : positions_(std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(std::move(positions))),
-      grid_(*positions_, dimensions, kCellPerRadius * typical_radius),
+      grid_(*positions_, dimensions, cellPerRadius(dimensions) * typical_radius),
       use_grid_(use_grid),
       first_reach_(kFirstReach * typical_radius),
       max_reach_(maxReachInCells(dimensions) * grid_.cellSize()) {

@@ -112,6 +112,13 @@ class CellGridSearch : public NeighbourSearch {
   std::vector<float> smallest_;
   std::vector<std::uint32_t> kept_;
   float hint_{std::numeric_limits<float>::infinity()};
+  /// The candidates of the last k-nearest search's point with d^2 < near_bound_ (their places in
+  /// candidates_, in order; the first near_count_ entries): a radius search after it that reaches
+  /// no farther filters these instead of every candidate. None when the candidates were
+  /// collected anew.
+  std::vector<std::uint32_t> near_;
+  std::size_t near_count_{0};
+  float near_bound_{0.0f};
 };
 
 }  // namespace mcws
