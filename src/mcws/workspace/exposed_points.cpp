@@ -41,6 +41,11 @@ struct Grid {
   std::array<double, 3> lo{0.0, 0.0, 0.0};
   std::size_t size() const { return static_cast<std::size_t>(n[0] * n[1] * n[2]); }
   std::array<std::int64_t, 3> stride() const { return {1, n[0], n[0] * n[1]}; }
+  /// Index along axis `a` of the cell that holds p (clamped to the grid).
+  std::int64_t along(const pcl::PointXYZ& p, int a) const {
+    return std::clamp<std::int64_t>(
+        static_cast<std::int64_t>(std::floor((p.data[a] - lo[a]) / cell)), 0, n[a] - 1);
+  }
 };
 
 /// Replaces every cell by 1 when every cell of its line along `axis` within [a, b] of it is
@@ -166,10 +171,7 @@ template <int D>
 std::int64_t cellOf(const Grid& grid, const pcl::PointXYZ& p) {
   const auto stride = grid.stride();
   std::int64_t index = 0;
-  for (int a = 0; a < D; ++a) {
-    const auto k = static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell));
-    index += std::clamp<std::int64_t>(k, 0, grid.n[a] - 1) * stride[a];
-  }
+  for (int a = 0; a < D; ++a) index += grid.along(p, a) * stride[a];
   return index;
 }
 
@@ -189,14 +191,9 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   constexpr int m = kBlock<D>;
   std::vector<float> cover(grid.size(), std::numeric_limits<float>::infinity());
   const auto stride = grid.stride();
-  auto cellIndex = [&](const pcl::PointXYZ& p, int a) {
-    return std::clamp<std::int64_t>(
-        static_cast<std::int64_t>(std::floor((p.data[a] - grid.lo[a]) / grid.cell)), 0,
-        grid.n[a] - 1);
-  };
   auto bound = [&](const pcl::PointXYZ& p) {
     std::array<std::int64_t, 3> k{0, 0, 0};
-    for (int a = 0; a < D; ++a) k[a] = cellIndex(p, a);
+    for (int a = 0; a < D; ++a) k[a] = grid.along(p, a);
     // Per axis and neighbour offset: the squared distance to the cell's farther face.
     std::array<std::array<double, 2 * m + 1>, 3> far2{};
     for (int a = 0; a < D; ++a) {
@@ -232,7 +229,7 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   std::vector<std::uint32_t> start(slabs + 1, 0), order(points.size());
   std::vector<std::uint32_t> slab_of(points.size());
   for (std::size_t j = 0; j < points.size(); ++j) {
-    slab_of[j] = static_cast<std::uint32_t>(cellIndex(cloud[points[j]], axis) / thick);
+    slab_of[j] = static_cast<std::uint32_t>(grid.along(cloud[points[j]], axis) / thick);
     ++start[slab_of[j] + 1];
   }
   for (std::int64_t k = 0; k < slabs; ++k) start[k + 1] += start[k];
@@ -314,7 +311,6 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     }
     const double cap = std::max(kCellsPerPoint * static_cast<double>(nearby.size()), 4096.0);
     const Grid grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
-    result.cell = result.cell == 0.0 ? grid.cell : std::min(result.cell, grid.cell);
     const std::vector<float> cover = coverRadius<D>(cloud, nearby, grid, threads);
     for (int j = g * kClassesPerGrid; j < std::min(classes, (g + 1) * kClassesPerGrid); ++j) {
       const double r = smallest * std::pow(kClassRatio, j);

@@ -16,7 +16,6 @@ struct ExposedPoints {
   /// point and no point lies inside); 0: proven that none does.
   std::vector<char> exposed;
   std::size_t count{0};  ///< points flagged 1
-  double cell{0.0};      ///< edge of the grid's cells [length unit]
 };
 
 /// \brief Flags every point that an empty ball of its radius may touch; the others are proven

@@ -11,13 +11,13 @@ namespace mcws {
 
 /// \brief Squared distance from every point to its k-th nearest other point.
 ///
-/// One kd-tree (nanoflann) over x, y (`dimensions` = 2; z is ignored) or x, y, z (3); the queries
-/// run on all threads in the tree's leaf order, so neighbouring queries walk the same nodes
-/// (BENCHMARKS.md, the measuring stage, compares it with the cloud's order). Distances are computed
-/// in float, as PCL's `KdTreeFLANN` computes them; exact up to the float rounding of the tree's
-/// pruning bound (a neighbour within about one float step of the k-th may be passed over; brute
-/// force agrees to the bit on the test clouds). Each result depends only on the cloud, not on the
-/// thread count.
+/// Over x, y (`dimensions` = 2; z is ignored) or x, y, z (3), on all threads: the boundary
+/// filter's grid search (CellGrid) in cell order, so neighbouring queries read the same cells,
+/// exact; for a cloud crowded into a small part of its bounding box, and for the few points the
+/// grid declines, a kd-tree (nanoflann) queried in its leaf order, exact up to the float rounding
+/// of its pruning bound (a neighbour within about one float step of the k-th may be passed over;
+/// brute force agrees to the bit on the test clouds). Distances are computed in float, as PCL's
+/// `KdTreeFLANN` computes them. Each result depends only on the cloud, not on the thread count.
 /// \param cloud the points; copies of a position count as distinct points at distance 0.
 /// \param dimensions 2 or 3.
 /// \param k the neighbour's rank among the other points (k >= 1); a cloud of at most k points
