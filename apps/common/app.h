@@ -27,10 +27,7 @@ constexpr int kExitFailure = 1;  ///< a failed load, save or computation
 constexpr int kExitUsage = 2;    ///< a bad command line
 
 /// \brief A bad command line (exit code 2).
-class UsageError : public Error {
- public:
-  using Error::Error;
-};
+using UsageError = mcws::UsageError;
 
 /// \brief `text` with its control bytes (below 0x20, and 0x7f) written as \xNN, so that a value
 /// read from a file or typed as a flag cannot break a one-line message or drive the terminal.

@@ -17,4 +17,12 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
+/// \brief An error of the command line or of what it names together (a flag's bad value, two
+/// outputs that are one file, an output that is one of the run's inputs): the tools exit with
+/// code 2 for it, 1 for every other Error.
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace mcws

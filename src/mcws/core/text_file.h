@@ -5,13 +5,12 @@
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <system_error>
 
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 
 namespace mcws {
 
@@ -20,14 +19,10 @@ namespace mcws {
 /// \param kind what the file is, for messages ("robot file").
 /// \return the file's text.
 /// \throws mcws::Error "kind name is empty", "path: kind does not exist", "path: kind is not a
-///   regular file", "path: cannot open kind: reason" or "path: cannot read kind".
+///   regular file" (see requireInputFile()), "path: cannot open kind: reason" or "path: cannot
+///   read kind".
 inline std::string readTextFile(const std::string& path, const std::string& kind) {
-  if (path.empty()) throw Error(kind + " name is empty");
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw Error(path + ": " + kind + " does not exist");
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw Error(path + ": " + kind + " is not a regular file");
-  }
+  requireInputFile(path, kind);
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open " + kind + ": " + std::strerror(errno));
   std::ostringstream text;
