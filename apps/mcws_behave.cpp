@@ -86,7 +86,7 @@ Settings readSettings(const app::CommandLine& cli) {
   return s;
 }
 
-/// A text output: written under a temporary name, renamed when the run is over.
+/// A text output: written under a temporary name, handed to the run's io::OutputSet at the end.
 struct Output {
   std::optional<io::AtomicFile> file;
   explicit Output(const std::string& path) {
@@ -164,12 +164,17 @@ int main(int argc, char** argv) {
     }
     RunOptions options = RunOptions::forModel(model, std::max(settings.insulators, 1));
     if (!settings.faults.empty()) options.faults = loadFaultScript(settings.faults);
-    if (!settings.dot.empty()) {
-      for (const std::string& file : writeStateMachineDots(model, settings.dot)) {
-        std::cerr << "mcws_behave: wrote " << file << "\n";
-      }
-    }
+    // The diagrams, log, timeline and plot appear together when the run ends (whatever its
+    // status), or, when the tool fails, none of them.
+    io::OutputSet outputs;
+    std::vector<std::string> diagrams;
+    if (!settings.dot.empty()) diagrams = writeStateMachineDots(model, settings.dot);
+    const auto commitOutputs = [&] {
+      outputs.commit();
+      for (const std::string& file : diagrams) std::cerr << "mcws_behave: wrote " << file << "\n";
+    };
     if (settings.check) {
+      commitOutputs();
       if (cli.has("json")) {
         std::cout << checkJson(report, findings).dump() << "\n";
       } else {
@@ -183,6 +188,7 @@ int main(int argc, char** argv) {
               << describePlan(planCleaningTask(settings.insulators));
 
     const RunSummary summary = rehearse(model, options, settings, cli.has("plot-all"));
+    commitOutputs();
     std::cout << (cli.has("json") ? summaryJson(summary).dump() + "\n" : summaryText(summary));
     return runExitCode(summary);
   });

@@ -303,9 +303,6 @@ void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
 /// Checks both destinations before any work, so that neither is written when the other cannot
 /// be.
 void checkOutputs(const app::CommandLine& cli) {
-  if (cli.has("interior") && cli.required("interior") == cli.required("output")) {
-    throw app::UsageError("--interior and --output name the same file");
-  }
   app::checkOutputs({{"output", cli.required("output")}, {"interior", cli.text("interior", "")}},
                     {{"input", cli.required("input")}});
 }
@@ -317,17 +314,15 @@ void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
   const std::optional<io::CloudProvenance> robot = app::readProvenance(cli.required("input"));
+  io::OutputSet outputs;
   app::saveCloud(cloud, kept, output, robot);
-  if (!cli.has("interior")) return;
-  for (const auto i : removed) {
-    if (pcl::isFinite(cloud[i])) interior.push_back(i);
-  }
-  try {
+  if (cli.has("interior")) {
+    for (const auto i : removed) {
+      if (pcl::isFinite(cloud[i])) interior.push_back(i);
+    }
     app::saveCloud(cloud, interior, cli.required("interior"), robot);
-  } catch (...) {
-    std::remove(output.c_str());  // all or nothing
-    throw;
   }
+  outputs.commit();
 }
 
 /// Prints the run's summary: one JSON object with --json, else a line on stderr.
@@ -409,6 +404,7 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
 
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
+  io::OutputSet outputs;
   io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
                                                     reader.provenance());
   std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;
@@ -431,14 +427,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
     if (with_interior) interior_file->write(rest.data(), rest.size());
   });
   boundary_file.commit();
-  if (with_interior) {
-    try {
-      interior_file->commit();
-    } catch (...) {
-      std::remove(output.c_str());  // all or nothing
-      throw;
-    }
-  }
+  if (with_interior) interior_file->commit();
+  outputs.commit();
 
   nlohmann::json summary = summaryOf(cli, method, reader.size(), found.kept, clock);
   summary.update(lengths(

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <list>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -117,25 +116,26 @@ int main(int argc, char** argv) {
           app::asUsageError("azimuth", [&] { return envelopeDrawing(shown, samples, azimuth); });
     }
     // Every file complete under a temporary name before any gets its own.
-    std::list<io::AtomicFile> files;
+    io::OutputSet outputs;
     if (!output.empty()) {
-      files.emplace_back(output);
-      writeSurface(shown, format,
-                   "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
-                   files.back().stream());
+      io::AtomicFile file(output);
+      try {
+        writeSurface(shown, format,
+                     "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
+                     file.stream());
+      } catch (const Error& e) {
+        throw Error("cannot write '" + output + "': " + e.what());
+      }
+      file.commit();
     }
     if (cli.has("plot")) {
-      const std::string png = renderEnvelopePng(shown, name, units.lengthName());
-      files.emplace_back(cli.required("plot"));
-      files.back().write(png.data(), png.size());
+      io::writeWholeFile(cli.required("plot"), renderEnvelopePng(shown, name, units.lengthName()));
     }
     if (drawing) {
-      const std::string bytes =
-          renderEnvelopeDrawing(*drawing, drawing_format, name, units.lengthName());
-      files.emplace_back(drawing_file);
-      files.back().write(bytes.data(), bytes.size());
+      io::writeWholeFile(drawing_file, renderEnvelopeDrawing(*drawing, drawing_format, name,
+                                                             units.lengthName()));
     }
-    for (auto& file : files) file.commit();
+    outputs.commit();
 
     const SurfaceTopology topology = surfaceTopology(envelope.mesh);
     const std::string volume = units.volumeName();
@@ -215,7 +215,9 @@ int main(int argc, char** argv) {
                 << " ms : " << topology.triangles << " triangles, " << topology.vertices
                 << " vertices" << (topology.closedAndOriented() ? "" : ", surface touches itself")
                 << "] ->";
-      for (const auto& file : files) std::cerr << " " << file.path();
+      for (const std::string& file : {output, cli.text("plot", ""), drawing_file}) {
+        if (!file.empty()) std::cerr << " " << file;
+      }
       std::cerr << "\n";
     }
     return app::kExitOk;

@@ -189,17 +189,15 @@ int main(int argc, char** argv) {
     const int best = bestCandidate(candidates);
 
     const std::string unit = unitName(robot.length_unit);
-    std::unique_ptr<io::AtomicFile> plot;
+    io::OutputSet outputs;
     if (cli.has("plot")) {
-      const std::string png = renderPlacementPng(candidates, robot.name, unit);
-      plot = std::make_unique<io::AtomicFile>(cli.required("plot"));
-      plot->write(png.data(), png.size());
+      io::writeWholeFile(cli.required("plot"), renderPlacementPng(candidates, robot.name, unit));
     }
     const std::vector<BasePoint> points = basePoints(candidates, robot.T_world_base);
     io::PcdStreamWriter<BasePoint> cloud(output, points.size());
     cloud.write(points.data(), points.size());
     cloud.commit();
-    if (plot) plot->commit();
+    outputs.commit();
 
     nlohmann::json table = nlohmann::json::array();
     for (const BaseCandidate& c : candidates) table.push_back(candidateJson(c));

@@ -41,10 +41,6 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("threads", "threads (default: all cores)");
 }
 
-void save(io::AtomicFile& file, const std::string& bytes) {
-  file.write(bytes.data(), bytes.size());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,20 +87,15 @@ int main(int argc, char** argv) {
       return app::kExitFailure;
     }
     const PlanningRound& round = result.rounds[*result.accepted];
-    io::AtomicFile csv(output);
-    save(csv, pathCsv(scenario, *round.best));
-    std::optional<io::AtomicFile> cspace, offsets;
+    io::OutputSet outputs;
+    io::writeWholeFile(output, pathCsv(scenario, *round.best));
     if (!plot.empty()) {
-      cspace.emplace(plot);
-      save(*cspace, renderConfigurationSpacePng(scenario, planner, round, cells));
+      io::writeWholeFile(plot, renderConfigurationSpacePng(scenario, planner, round, cells));
     }
     if (!plot_offsets.empty()) {
-      offsets.emplace(plot_offsets);
-      save(*offsets, renderOffsetsPng(scenario, scanOffsets(planner)));
+      io::writeWholeFile(plot_offsets, renderOffsetsPng(scenario, scanOffsets(planner)));
     }
-    csv.commit();
-    if (cspace) cspace->commit();
-    if (offsets) offsets->commit();
+    outputs.commit();
     return app::kExitOk;
   });
 }

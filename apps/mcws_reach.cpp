@@ -94,15 +94,6 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
-/// One output written under a temporary name, renamed when every output is ready.
-struct PendingFile {
-  std::unique_ptr<io::AtomicFile> file;
-  void write(const std::string& path, const std::string& bytes) {
-    file = std::make_unique<io::AtomicFile>(path);
-    file->write(bytes.data(), bytes.size());
-  }
-};
-
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
 void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProvenance& provenance,
             distributed::Processes& processes) {
@@ -215,11 +206,13 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
       {"output", output}};
 
   // Every output is rendered and written under a temporary name before any is renamed.
-  PendingFile halfcut, histogram, map_file;
+  io::OutputSet outputs;
   if (cli.has("halfcut"))
-    halfcut.write(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
-  if (cli.has("histogram"))
-    histogram.write(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
+    io::writeWholeFile(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
+  if (cli.has("histogram")) {
+    io::writeWholeFile(cli.required("histogram"),
+                       renderReachabilityHistogramPng(map, robot.name));
+  }
   if (cli.has("map")) {
     std::ostringstream bytes;
     map.write(bytes, nlohmann::json{{"robot", robot.name},
@@ -229,15 +222,13 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
                                     {"collision", cli.has("collision")},
                                     {"manipulability", summary["manipulability"]}}
                          .dump());
-    map_file.write(cli.required("map"), bytes.str());
+    io::writeWholeFile(cli.required("map"), bytes.str());
   }
   const auto points = reachPoints(map);
   io::PcdStreamWriter<ReachPoint> cloud(output, points.size(), io::PcdFormat::kBinary, provenance);
   cloud.write(points.data(), points.size());
   cloud.commit();
-  for (PendingFile* file : {&halfcut, &histogram, &map_file}) {
-    if (file->file) file->file->commit();
-  }
+  outputs.commit();
   removeCheckpoint();
   summary["seconds"] = progress.seconds();
   if (cli.has("json")) {

@@ -156,21 +156,20 @@ std::string moveShape(const Move& move) {
 /// The CSV and, with --plot, the PNG: both written or neither.
 /// The CSV is written in pieces, with progress on stderr for a long one.
 void saveMove(const Robot& robot, const Move& move, const SampledTrajectory& samples) {
+  io::OutputSet outputs;
   io::AtomicFile csv_file(move.output);
   app::Progress progress("mcws_traj", "samples written");
   writeTrajectoryCsv(robot, samples, [&](const std::string& piece, std::size_t done) {
     csv_file.write(piece.data(), piece.size());
     progress.update(done, static_cast<std::size_t>(samples.size()));
   });
-  std::optional<io::AtomicFile> png_file;
-  if (!move.plot.empty()) {
-    const std::string png = renderTrajectoryPng(
-        robot, samples, robot.name + ": " + moveShape(move) + ", " + move.duration_text + " s");
-    png_file.emplace(move.plot);
-    png_file->write(png.data(), png.size());
-  }
   csv_file.commit();
-  if (png_file) png_file->commit();
+  if (!move.plot.empty()) {
+    io::writeWholeFile(move.plot, renderTrajectoryPng(robot, samples,
+                                                      robot.name + ": " + moveShape(move) + ", " +
+                                                          move.duration_text + " s"));
+  }
+  outputs.commit();
 }
 
 double pathLength(const Eigen::MatrixXd& xyz) {

@@ -9,6 +9,8 @@
 #include <new>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
+#include "mcws/core/input_files.h"
 #include "mcws/io/atomic_file.h"
 
 namespace mcws::app {
@@ -43,6 +45,7 @@ namespace {
 
 /// run()'s body with the error line returned in `message` (with its newline) instead of printed.
 int runCapturing(const char* program, const std::function<int()>& body, std::string& message) {
+  const RunInputs inputs;  // the files the run reads, which none of its outputs may replace
   try {
     return body();
   } catch (const distributed::OtherProcessFailed& e) {
@@ -154,10 +157,16 @@ bool CommandLine::parse(int argc, char** argv) {
     if (text && text->rfind("--", 0) == 0) {
       throw UsageError("--" + flag + " has no value (next comes '" + *text + "')");
     }
+    // An empty value ("--output ''", an unset shell variable) names nothing: never a default.
+    const bool takes_value = options_.find(flag, false).semantic()->max_tokens() > 0;
+    if (takes_value && text && text->empty()) {
+      throw UsageError("--" + flag + ": the value is empty");
+    }
     if (const auto* texts = boost::any_cast<std::vector<std::string>>(&value.value())) {
       for (const std::string& t : *texts) {
         if (t.rfind("--", 0) == 0)
           throw UsageError("--" + flag + " has no value (next comes '" + t + "')");
+        if (t.empty()) throw UsageError("--" + flag + ": a value is empty");
       }
     }
   }
@@ -177,11 +186,7 @@ std::vector<std::string> CommandLine::all(const std::string& flag) const {
   return has(flag) ? values_[flag].as<std::vector<std::string>>() : std::vector<std::string>{};
 }
 
-std::string shortNumber(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
+std::string shortNumber(double value) { return formatNumber(value); }
 
 double parseNumber(const std::string& text, const std::string& flag) {
   const char* begin = text.c_str();
@@ -203,8 +208,17 @@ std::int64_t parseInteger(const std::string& text, const std::string& flag, std:
   char* end = nullptr;
   errno = 0;
   const long long value = std::strtoll(begin, &end, 10);
-  if (text.empty() || end != begin + text.size() || errno == ERANGE) {
+  const bool digits = !text.empty() &&
+                      text.find_first_not_of("0123456789", text[0] == '-' || text[0] == '+') ==
+                          std::string::npos &&
+                      text.size() > (text[0] == '-' || text[0] == '+' ? 1u : 0u);
+  if (!digits || end != begin + text.size()) {
     throw UsageError("--" + flag + ": '" + text + "' is not a whole number");
+  }
+  if (errno == ERANGE) {  // a whole number all the same, beyond what any flag takes
+    throw UsageError("--" + flag + ": " + text + " is " +
+                     (text[0] == '-' ? "less than " + std::to_string(minimum)
+                                     : "more than " + std::to_string(maximum)));
   }
   if (value < minimum) {
     throw UsageError("--" + flag + ": " + text + " is less than " + std::to_string(minimum));
@@ -248,32 +262,17 @@ std::vector<std::pair<std::string, double>> parseAssignments(const std::string& 
   return pairs;
 }
 
-namespace {
-
-/// Whether writing `output` would replace `other`: see checkOutputs().
-bool sameFile(const std::string& output, const std::string& other) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const fs::file_status status = fs::status(output, ec);
-  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status)) return false;
-  if (output == other || fs::equivalent(output, other, ec)) return true;
-  const fs::path resolved_output = fs::weakly_canonical(output, ec);
-  if (ec) return false;
-  return resolved_output == fs::weakly_canonical(other, ec) && !ec;
-}
-
-}  // namespace
 
 void checkOutputs(const std::vector<FlagPath>& outputs, const std::vector<FlagPath>& inputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto& [flag, path] = outputs[i];
     if (path.empty()) continue;
     for (std::size_t j = 0; j < i; ++j) {
-      if (!outputs[j].second.empty() && sameFile(path, outputs[j].second))
+      if (!outputs[j].second.empty() && io::sameOutputFile(path, outputs[j].second))
         throw UsageError("--" + flag + ": must differ from --" + outputs[j].first);
     }
     for (const auto& [input_flag, input] : inputs) {
-      if (!input.empty() && sameFile(path, input))
+      if (!input.empty() && io::sameOutputFile(path, input))
         throw UsageError("--" + flag + ": '" + path + "' is the same file as --" + input_flag);
     }
     io::checkOutputPath(path);  // a missing or read-only directory or file: a failed run (exit 1)

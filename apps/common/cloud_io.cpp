@@ -22,6 +22,7 @@
 
 #include "common/app.h"
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 #include "mcws/kinematics/robot.h"
 
 namespace mcws::app {
@@ -547,12 +548,8 @@ pcl::PCLPointField pclField(const PcdField& f, std::uint32_t offset) {
 /// The size of the cloud file `path` [byte]. \throws mcws::Error when it is missing, not a regular
 /// file or unreadable.
 std::uint64_t cloudFileSize(const std::string& path) {
+  requireInputFile(path, "cloud file");  // a FIFO or device would block or never end
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw Error(
-        path + ": " +
-        (std::filesystem::exists(path, ec) ? "not a regular file" : "cloud file does not exist"));
-  }
   const std::uint64_t file_size = std::filesystem::file_size(path, ec);
   if (ec) throw Error(path + ": cannot read the file");
   return file_size;
@@ -608,12 +605,14 @@ void requireVolume(const CoordinateRange& range, const std::string& path) {
   const Eigen::Vector3f extent = range.extent().matrix();
   if (!(extent.minCoeff() >= 0.0f)) throw Error(path + ": the cloud has no finite points");
   const char* axis = "xyz";
-  for (int k = 0; k < 3; ++k) {
-    if (!(extent[k] > 1e-6f * extent.maxCoeff())) {
-      throw Error(path + ": the cloud is flat (" + axis[k] +
-                  " extent 0), so in 3-D every point "
-                  "is on its boundary; give --plane");
-    }
+  int flattest = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (extent[k] < extent[flattest]) flattest = k;
+  }
+  if (!(extent[flattest] > 1e-6f * extent.maxCoeff())) {
+    throw Error(path + ": the cloud is flat in " + axis[flattest] + " (extent " +
+                shortNumber(extent[flattest]) + ", its largest " + shortNumber(extent.maxCoeff()) +
+                "), so in 3-D every point is on its boundary; give --plane");
   }
 }
 

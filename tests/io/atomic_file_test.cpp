@@ -16,7 +16,9 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
+#include "mcws/core/input_files.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -207,6 +209,179 @@ TEST(AtomicFile, AChildKilledMidWriteLeavesNoEntry) {
       EXPECT_EQ(test::readFile(dir.file("old.txt")), "old\n");
     }
   }
+}
+
+// --- OutputSet: the outputs of one run appear together or not at all (issue 31, section 1) ---
+
+TEST(OutputSet, NothingIsRenamedUntilCommitAndAllAreThen) {
+  test::TempDir dir;
+  test::writeFile(dir.file("a.txt"), "old a\n");
+  {
+    io::OutputSet outputs;
+    io::writeWholeFile(dir.file("a.txt"), "new a\n");
+    io::writeWholeFile(dir.file("b.txt"), "new b\n");
+    EXPECT_EQ(test::readFile(dir.file("a.txt")), "old a\n");
+    EXPECT_EQ(listing(dir.file("")), std::set<std::string>{"a.txt"});
+    outputs.commit();
+  }
+  EXPECT_EQ(test::readFile(dir.file("a.txt")), "new a\n");
+  EXPECT_EQ(test::readFile(dir.file("b.txt")), "new b\n");
+  EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(OutputSet, AFailureAfterTheFirstOutputLeavesEveryPathAsItWas) {
+  // The old mcws_boundary committed --output, then removed it when --interior failed: the file
+  // that lay there was lost. In a set, the first output is never renamed.
+  test::TempDir dir;
+  test::writeFile(dir.file("a.txt"), "old a\n");
+  test::writeFile(dir.file("b.txt"), "old b\n");
+  fs::permissions(dir.file("b.txt"), fs::perms::owner_read);
+  EXPECT_EQ(test::errorOf([&] {
+              io::OutputSet outputs;
+              io::writeWholeFile(dir.file("a.txt"), "new a\n");
+              io::writeWholeFile(dir.file("b.txt"), "new b\n");
+              outputs.commit();
+            }),
+            "cannot write '" + dir.file("b.txt") + "': it is read-only");
+  EXPECT_EQ(test::readFile(dir.file("a.txt")), "old a\n");
+  EXPECT_EQ(test::readFile(dir.file("b.txt")), "old b\n");
+  EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(OutputSet, ADeviceThatFailsOnCommitKeepsTheRegularOutputsUnwritten) {
+  // /dev/full takes the open but fails every write with ENOSPC: the device's bytes are held
+  // until the set's commit, which sends them before any regular output gets its name.
+  test::TempDir dir;
+  test::writeFile(dir.file("a.txt"), "old a\n");
+  const std::string error = test::errorOf([&] {
+    io::OutputSet outputs;
+    io::writeWholeFile(dir.file("a.txt"), "new a\n");
+    io::writeWholeFile("/dev/full", "to the device\n");
+    outputs.commit();
+  });
+  EXPECT_THAT(error, HasSubstr("cannot write '/dev/full'"));
+  EXPECT_EQ(test::readFile(dir.file("a.txt")), "old a\n");
+  EXPECT_EQ(listing(dir.file("")), std::set<std::string>{"a.txt"});
+  EXPECT_EQ(typeOf("/dev/full"), static_cast<mode_t>(S_IFCHR));
+}
+
+TEST(OutputSet, ADeviceGetsItsBytesOnlyOnCommit) {
+  test::TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  char buffer[64] = {};
+  {
+    io::OutputSet outputs;
+    io::writeWholeFile(fifo, "held\n");
+    EXPECT_LT(::read(reader, buffer, sizeof buffer), 1);  // nothing yet (EAGAIN)
+    outputs.commit();
+  }
+  const ssize_t got = ::read(reader, buffer, sizeof buffer);
+  ::close(reader);
+  EXPECT_EQ(std::string(buffer, got > 0 ? got : 0), "held\n");
+}
+
+TEST(OutputSet, TwoSpellingsOfOneNewFileAreRefused) {
+  test::TempDir dir;
+  fs::create_directory(dir.file("real"));
+  fs::create_directory_symlink("real", dir.file("linked"));
+  fs::create_symlink("real/new.txt", dir.file("dangling"));
+  const std::string cwd = fs::current_path();
+  fs::current_path(dir.file(""));
+  const std::vector<std::pair<std::string, std::string>> same = {
+      {"b.pcd", "./b.pcd"},
+      {"b.pcd", dir.file("b.pcd")},
+      {"real/b.pcd", "linked/b.pcd"},
+      {"real/../b.pcd", "b.pcd"},
+      {"dangling", "real/new.txt"},
+      {"linked/new.txt", "dangling"}};
+  for (const auto& [a, b] : same) {
+    EXPECT_TRUE(io::sameOutputFile(a, b)) << a << " " << b;
+    const std::string error = test::errorOf([&, a = a, b = b] {
+      io::OutputSet outputs;
+      io::writeWholeFile(a, "one\n");
+      io::writeWholeFile(b, "two\n");
+      outputs.commit();
+    });
+    EXPECT_THAT(error, HasSubstr("are the same file")) << a << " " << b;
+  }
+  EXPECT_FALSE(io::sameOutputFile("b.pcd", "c.pcd"));
+  EXPECT_FALSE(io::sameOutputFile("real/b.pcd", "b.pcd"));
+  EXPECT_FALSE(io::sameOutputFile("/dev/null", "/dev/null"));  // written through, replaces nothing
+  EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"real", "linked", "dangling"}));
+  EXPECT_TRUE(listing(dir.file("real")).empty());
+  fs::current_path(cwd);
+}
+
+TEST(AtomicFile, ADescriptorOfTheProcessIsWrittenThroughAndAppendsToAnAppendingFile) {
+  // /dev/stdout under the shell's `>> log` is a descriptor opened with O_APPEND on a regular
+  // file: the log is appended to, its inode kept, never replaced.
+  test::TempDir dir;
+  const std::string log = dir.file("log");
+  test::writeFile(log, "earlier line\n");
+  struct stat before {};
+  ASSERT_EQ(::stat(log.c_str(), &before), 0);
+  const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
+  ASSERT_GE(fd, 0);
+  writeAtomically("/proc/self/fd/" + std::to_string(fd), "appended\n");
+  writeAtomically("/dev/fd/" + std::to_string(fd), "again\n");
+  {
+    io::OutputSet outputs;  // held, then sent on commit, still appended
+    writeAtomically("/proc/self/fd/" + std::to_string(fd), "in a set\n");
+    outputs.commit();
+  }
+  ::close(fd);
+  struct stat after {};
+  ASSERT_EQ(::stat(log.c_str(), &after), 0);
+  EXPECT_EQ(before.st_ino, after.st_ino);
+  EXPECT_EQ(test::readFile(log), "earlier line\nappended\nagain\nin a set\n");
+  EXPECT_EQ(listing(dir.file("")), std::set<std::string>{"log"});
+}
+
+TEST(AtomicFile, AFileTheRunReadsIsNeverAnOutput) {
+  // A robot file's collision mesh, read through the robot file, named as an output: refused
+  // (mcws::UsageError, exit 2 in the tools) and left as it was, also when it is read after the
+  // output was made.
+  test::TempDir dir;
+  const RunInputs run;
+  test::writeFile(dir.file("mesh.stl"), "solid mesh\n");
+  test::writeFile(dir.file("late.stl"), "solid late\n");
+  requireInputFile(dir.file("mesh.stl"), "collision mesh");
+  fs::create_symlink("mesh.stl", dir.file("link.stl"));
+  for (const std::string& output : {dir.file("mesh.stl"), dir.file("link.stl"),
+                                    dir.file("./mesh.stl")}) {
+    try {
+      writeAtomically(output, "overwritten\n");
+      ADD_FAILURE() << output << " was written";
+    } catch (const UsageError& e) {
+      EXPECT_EQ(std::string(e.what()), "cannot write '" + output + "': it is the collision mesh '" +
+                                           dir.file("mesh.stl") + "' this run reads");
+    }
+  }
+  io::AtomicFile late(dir.file("late.stl"));
+  late.write("overwritten\n", 12);
+  requireInputFile(dir.file("late.stl"), "collision mesh");
+  EXPECT_THROW(late.commit(), UsageError);
+  EXPECT_EQ(test::readFile(dir.file("mesh.stl")), "solid mesh\n");
+  EXPECT_EQ(test::readFile(dir.file("late.stl")), "solid late\n");
+  EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"mesh.stl", "late.stl", "link.stl"}));
+}
+
+TEST(InputFiles, AFifoOrDeviceIsRefusedBeforeItIsOpened) {
+  // Opening a FIFO that nobody writes would block for ever.
+  test::TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  EXPECT_EQ(test::errorOf([&] { requireInputFile(fifo, "scenario file"); }),
+            fifo + ": scenario file is not a regular file (a FIFO)");
+  EXPECT_EQ(test::errorOf([&] { requireInputFile("/dev/zero", "map"); }),
+            "/dev/zero: map is not a regular file (a character device)");
+  EXPECT_EQ(test::errorOf([&] { requireInputFile(dir.file(""), "cloud file"); }),
+            dir.file("") + ": cloud file is not a regular file (a directory)");
+  EXPECT_EQ(test::errorOf([&] { requireInputFile(dir.file("none"), "robot file"); }),
+            dir.file("none") + ": robot file does not exist");
 }
 
 }  // namespace

@@ -1,9 +1,11 @@
 #pragma once
 /// \file
-/// \brief Strict parsing of a plain decimal number from configuration text.
+/// \brief Strict parsing of a plain decimal number from configuration text, and the short form
+/// of a number in messages.
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -36,6 +38,14 @@ inline bool parseDecimal(const std::string& text, double& value, bool allow_sign
   if (!std::isfinite(parsed)) return false;
   value = parsed;
   return true;
+}
+
+/// \brief A number for a message: 6 significant digits, no trailing zeros (0.102375, 39, 1e-09,
+/// 1e+30), so that a small value never reads as 0.000000 (std::to_string's fixed 6 decimals).
+inline std::string formatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
 }
 
 }  // namespace mcws

@@ -2,7 +2,7 @@
 /// \file
 /// \brief The files a run reads: checked to be regular files before a reader opens them, and
 /// noted, so that no output of the same run replaces one of them (io::AtomicFile asks
-/// isInputFile() before it writes).
+/// inputFileOf() before it writes).
 ///
 /// Header-only, so that the loaders' fuzz build links without the io module.
 
@@ -41,6 +41,12 @@ inline std::vector<InputFile>& inputFileList() {
   return files;
 }
 
+/// RunInputs alive (nested ones count).
+inline int& runInputsDepth() {
+  static int depth = 0;
+  return depth;
+}
+
 /// What a non-regular file is, for messages.
 inline const char* fileTypeName(mode_t mode) {
   if (S_ISDIR(mode)) return "a directory";
@@ -53,15 +59,16 @@ inline const char* fileTypeName(mode_t mode) {
 
 }  // namespace detail
 
-/// \brief Checks that `path` names an existing regular file (symbolic links followed) and notes
-/// it as one of the run's inputs. Call it before a reader opens the file: a FIFO nobody writes
-/// would block the open for ever, and a device may never end.
+/// \brief Checks that `path` names an existing regular file (symbolic links followed). Call it
+/// before a reader opens the file: a FIFO nobody writes would block the open for ever, and a
+/// device may never end.
 /// \param path the file, as given.
 /// \param kind what the file is, for messages ("robot file", "collision mesh").
+/// \return the file's status.
 /// \throws mcws::Error "kind name is empty", "path: kind does not exist", "path: kind is not a
 ///   regular file (a FIFO)" (a directory, a device, a socket likewise) or "path: cannot read kind:
 ///   reason".
-inline void requireInputFile(const std::string& path, const std::string& kind) {
+inline struct stat requireRegularFile(const std::string& path, const std::string& kind) {
   if (path.empty()) throw Error(kind + " name is empty");
   struct stat status {};
   if (::stat(path.c_str(), &status) != 0) {
@@ -72,7 +79,34 @@ inline void requireInputFile(const std::string& path, const std::string& kind) {
     throw Error(path + ": " + kind + " is not a regular file (" +
                 detail::fileTypeName(status.st_mode) + ")");
   }
+  return status;
+}
+
+/// \brief One run: while it lives, the files requireInputFile() checks are noted as the run's
+/// inputs, which no output of the run may replace (io::AtomicFile refuses them); they are
+/// forgotten when it ends. The tools make one for their whole run (app::run()); a program that
+/// runs many stages (a test, a script through the Python API) makes one per stage, so that a file
+/// read by one stage may be written by the next.
+class RunInputs {
+ public:
+  RunInputs() {
+    const std::lock_guard<std::mutex> lock(detail::inputFilesMutex());
+    if (detail::runInputsDepth()++ == 0) detail::inputFileList().clear();
+  }
+  ~RunInputs() {
+    const std::lock_guard<std::mutex> lock(detail::inputFilesMutex());
+    if (--detail::runInputsDepth() == 0) detail::inputFileList().clear();
+  }
+  RunInputs(const RunInputs&) = delete;
+  RunInputs& operator=(const RunInputs&) = delete;
+};
+
+/// \brief requireRegularFile(), and, while a RunInputs lives, notes the file as one of the run's
+/// inputs.
+inline void requireInputFile(const std::string& path, const std::string& kind) {
+  const struct stat status = requireRegularFile(path, kind);
   const std::lock_guard<std::mutex> lock(detail::inputFilesMutex());
+  if (detail::runInputsDepth() == 0) return;
   for (const detail::InputFile& file : detail::inputFileList()) {
     if (file.device == status.st_dev && file.inode == status.st_ino) return;
   }

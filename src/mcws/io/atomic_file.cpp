@@ -11,8 +11,11 @@
 #include <cstring>
 #include <filesystem>
 #include <mutex>
+#include <optional>
+#include <utility>
 
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 
 namespace mcws::io {
 namespace fs = std::filesystem;
@@ -82,18 +85,54 @@ void unregisterTempFile(int slot) {
   if (slot >= 0) g_temp_used[slot].store(false);
 }
 
+/// The descriptor N that `path` names when it is `/proc/self/fd/N`, `/proc/thread-self/fd/N`,
+/// `/proc/<this process>/fd/N` or `/dev/fd/N` (lexically).
+std::optional<int> descriptorOf(const fs::path& path) {
+  const std::string text = path.lexically_normal().string();
+  for (const std::string& prefix :
+       {std::string("/proc/self/fd/"), std::string("/proc/thread-self/fd/"),
+        "/proc/" + std::to_string(::getpid()) + "/fd/", std::string("/dev/fd/")}) {
+    if (text.size() <= prefix.size() || text.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = text.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) {
+      return std::nullopt;
+    }
+    return std::stoi(digits);
+  }
+  return std::nullopt;
+}
+
+/// Where a path leads: its final target after the links, or a descriptor of this process met on
+/// the way (/dev/stdout -> /proc/self/fd/1), which the kernel resolves to what the descriptor
+/// holds (a pipe, a terminal, a file opened with O_APPEND), not to a path to replace.
+struct Resolved {
+  std::string file;              ///< the path with its links followed (or where they stopped)
+  std::optional<int> descriptor;  ///< the descriptor the chain reached, if any
+};
+
 /// `path` with its symbolic links followed to the end of the chain; for a dangling link, the
 /// path the last link names.
-std::string followLinks(const std::string& path) {
+Resolved followLinks(const std::string& path) {
   fs::path current(path);
   for (int hop = 0; hop < kMaxLinkHops; ++hop) {
+    if (const std::optional<int> descriptor = descriptorOf(current)) {
+      return {current.string(), descriptor};
+    }
     std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(current, ec))) return current.string();
+    if (!fs::is_symlink(fs::symlink_status(current, ec))) return {current.string(), std::nullopt};
     const fs::path next = fs::read_symlink(current, ec);
     if (ec) throw Error("cannot write '" + path + "': " + ec.message());
     current = next.is_absolute() ? next : current.parent_path() / next;
   }
   throw Error("cannot write '" + path + "': too many levels of symbolic links");
+}
+
+/// Refuses to write over a file this run reads (requireInputFile() noted it).
+void refuseInput(const std::string& path, const struct stat& status) {
+  if (const auto input = inputFileOf(status)) {
+    throw UsageError("cannot write '" + path + "': it is the " + input->second + " '" +
+                     input->first + "' this run reads");
+  }
 }
 
 /// The directory a file lands in: its parent, or "." for a bare name.
@@ -103,26 +142,37 @@ fs::path directoryOf(const fs::path& file) {
 
 /// Where AtomicFile writes a path, checked.
 struct Destination {
-  std::string file;           ///< the path with its links followed
-  bool write_through{false};  ///< an existing device, FIFO or socket
+  std::string file;               ///< the path with its links followed
+  bool write_through{false};      ///< an existing device, FIFO or socket, or a descriptor
+  std::optional<int> descriptor;  ///< a descriptor of this process to write through
 };
 
 Destination checkDestination(const std::string& path) {
   if (path.empty()) throw Error("output path is empty");
-  // A device reached through a link (/dev/stdout -> /proc/self/fd/1 -> pipe:[...]) is opened by
-  // the kernel, which knows where such links lead: the path is kept as given.
+  const Resolved resolved = followLinks(path);
   struct stat status {};
+  if (resolved.descriptor) {
+    if (::fstat(*resolved.descriptor, &status) != 0) {
+      throw Error("cannot write '" + path + "': descriptor " +
+                  std::to_string(*resolved.descriptor) + " is not open");
+    }
+    refuseInput(path, status);
+    return {path, true, resolved.descriptor};
+  }
+  // A device reached through a link is opened by the kernel, which knows where such links lead:
+  // the path is kept as given.
   if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) {
     if (::access(path.c_str(), W_OK) != 0) {
       throw Error("cannot write '" + path + "': " + std::strerror(errno));
     }
-    return {path, true};
+    return {path, true, std::nullopt};
   }
-  const std::string file = followLinks(path);
+  const std::string& file = resolved.file;
   const std::string what =
       "cannot write '" + path + "'" + (file == path ? "" : " (a link to '" + file + "')") + ": ";
   if (::stat(file.c_str(), &status) == 0) {
     if (S_ISDIR(status.st_mode)) throw Error(what + "it is a directory");
+    refuseInput(path, status);
     // The mode bits, not access(): root may write anything, but a file marked read-only is
     // meant to stay as it is.
     if ((status.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0) {
@@ -140,7 +190,28 @@ Destination checkDestination(const std::string& path) {
   if (::access(dir.c_str(), W_OK | X_OK) != 0) {
     throw Error(what + "directory '" + dir.string() + "' is not writable");
   }
-  return {file, false};
+  return {file, false, std::nullopt};
+}
+
+/// What identifies an output's file: "dev:inode" when it exists, else the canonical path of its
+/// directory plus its name; nullopt for what is written through (replaces nothing).
+std::optional<std::string> outputIdentity(const std::string& path) {
+  Resolved resolved;
+  try {
+    resolved = followLinks(path);
+  } catch (const Error&) {
+    return std::nullopt;  // a loop of links: refused when written
+  }
+  if (resolved.descriptor) return std::nullopt;
+  struct stat status {};
+  if (::stat(resolved.file.c_str(), &status) == 0) {
+    if (!S_ISREG(status.st_mode)) return std::nullopt;
+    return std::to_string(status.st_dev) + ":" + std::to_string(status.st_ino);
+  }
+  const fs::path file(resolved.file);
+  std::error_code ec;
+  const fs::path dir = fs::weakly_canonical(fs::absolute(directoryOf(file), ec), ec);
+  return "path:" + (dir / file.filename()).lexically_normal().string();
 }
 
 /// A fresh temporary name beside `file`: ".<start of its name>.mcws-<pid>-<n>".
@@ -156,6 +227,45 @@ std::string temporaryName(const std::string& file) {
 
 void checkOutputPath(const std::string& path) { checkDestination(path); }
 
+bool sameOutputFile(const std::string& a, const std::string& b) {
+  const std::optional<std::string> first = outputIdentity(a);
+  return first && first == outputIdentity(b);
+}
+
+namespace {
+thread_local OutputSet* g_current_set = nullptr;
+
+/// Opens an existing device, FIFO or socket to write through, or duplicates the descriptor.
+int openWriteThrough(const std::string& path, const std::string& target,
+                     const std::optional<int>& descriptor) {
+  if (descriptor) {
+    const int fd = ::fcntl(*descriptor, F_DUPFD_CLOEXEC, 3);
+    if (fd < 0) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+    return fd;
+  }
+  // Without O_NONBLOCK, opening a FIFO nobody reads would wait for a reader forever.
+  const int fd = ::open(target.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0 && errno == ENXIO) throw Error("cannot write '" + path + "': no reader");
+  if (fd < 0) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  return fd;
+}
+
+/// Writes all of `size` bytes to `fd`. \return false on an error (errno set).
+bool writeAll(int fd, const char* data, std::size_t size) {
+  while (size > 0) {
+    const ssize_t written = ::write(fd, data, size);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    data += written;
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+}  // namespace
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   const Destination destination = checkDestination(path_);
   target_ = destination.file;
@@ -163,10 +273,19 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   installSignalHandlers();
   int fd = -1;
   if (write_through_) {
-    // Without O_NONBLOCK, opening a FIFO nobody reads would wait for a reader forever.
-    fd = ::open(target_.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-    if (fd < 0 && errno == ENXIO) throw Error("cannot write '" + path_ + "': no reader");
-    if (fd >= 0) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    fd = openWriteThrough(path_, target_, destination.descriptor);
+    if (g_current_set) {
+      // Part of a set: the bytes wait in an unnamed buffer until the set is committed.
+      device_ = fd;
+      file_ = std::tmpfile();
+      if (!file_) {
+        const int tmpfile_errno = errno;
+        discard();
+        throw Error("cannot write '" + path_ + "': no temporary buffer: " +
+                    std::strerror(tmpfile_errno));
+      }
+      return;
+    }
   } else {
     fd = ::open(directoryOf(target_).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
     unnamed_ = fd >= 0;
@@ -197,11 +316,25 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   }
 }
 
+AtomicFile::AtomicFile(AtomicFile&& other) noexcept
+    : path_(std::move(other.path_)),
+      target_(std::move(other.target_)),
+      temp_path_(std::move(other.temp_path_)),
+      file_(std::exchange(other.file_, nullptr)),
+      device_(std::exchange(other.device_, -1)),
+      write_through_(other.write_through_),
+      unnamed_(other.unnamed_),
+      signal_slot_(std::exchange(other.signal_slot_, -1)) {
+  other.temp_path_.clear();
+}
+
 AtomicFile::~AtomicFile() { discard(); }
 
 void AtomicFile::discard() {
   if (file_) std::fclose(file_);
   file_ = nullptr;
+  if (device_ >= 0) ::close(device_);
+  device_ = -1;
   if (!temp_path_.empty()) ::unlink(temp_path_.c_str());
   temp_path_.clear();
   unregisterTempFile(signal_slot_);
@@ -209,6 +342,7 @@ void AtomicFile::discard() {
 }
 
 void AtomicFile::write(const void* data, std::size_t size) {
+  if (!file_) throw Error("cannot write '" + path_ + "': it is closed");
   if (size > 0 && std::fwrite(data, 1, size, file_) != size) {
     throw Error("cannot write '" + path_ + "': " + std::strerror(errno));
   }
@@ -240,21 +374,79 @@ const std::string& AtomicFile::temporaryPath() {
   return temp_path_;
 }
 
-void AtomicFile::commit() {
-  const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0;
+void AtomicFile::finish() {
+  if (!file_) throw Error("cannot write '" + path_ + "': it is closed");
+  // The bytes on the disk before any name points at them: a crash after the rename never leaves
+  // a target that is empty or short.
+  const bool flushed = std::fflush(file_) == 0 && std::ferror(file_) == 0 &&
+                       (write_through_ || ::fdatasync(::fileno(file_)) == 0);
   if (!flushed) {
     const int flush_errno = errno;
     discard();
     throw Error("cannot write '" + path_ + "': " + std::strerror(flush_errno));
   }
+  if (!write_through_) {
+    // An input the run opened after this output was made (a mesh of the robot file, ...).
+    struct stat status {};
+    if (::stat(target_.c_str(), &status) == 0) {
+      try {
+        refuseInput(path_, status);
+      } catch (...) {
+        discard();
+        throw;
+      }
+    }
+  }
+}
+
+void AtomicFile::sendBuffered() {
+  if (device_ < 0) return;
+  std::rewind(file_);
+  char buffer[1 << 16];
+  bool sent = true;
+  int send_errno = 0;
+  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, file_)) > 0;) {
+    if (!writeAll(device_, buffer, got)) {
+      sent = false;
+      send_errno = errno;
+      break;
+    }
+  }
+  if (sent && std::ferror(file_)) {
+    sent = false;
+    send_errno = EIO;
+  }
+  const int device = std::exchange(device_, -1);
+  if (::close(device) != 0 && sent && errno != EINTR) {
+    sent = false;
+    send_errno = errno;
+  }
+  if (!sent) {
+    discard();
+    throw Error("cannot write '" + path_ + "': " + std::strerror(send_errno));
+  }
+  std::fclose(std::exchange(file_, nullptr));
+}
+
+void AtomicFile::link() {
+  if (write_through_) {
+    if (!file_) return;  // a buffer already sent
+    if (std::fclose(std::exchange(file_, nullptr)) != 0) {
+      const int close_errno = errno;
+      discard();
+      throw Error("cannot write '" + path_ + "': " + std::strerror(close_errno));
+    }
+    return;
+  }
   if (unnamed_) linkTempFile();
-  std::FILE* file = file_;
-  file_ = nullptr;
-  if (std::fclose(file) != 0) {
+  if (std::fclose(std::exchange(file_, nullptr)) != 0) {
     const int close_errno = errno;
     discard();
     throw Error("cannot write '" + path_ + "': " + std::strerror(close_errno));
   }
+}
+
+void AtomicFile::rename() {
   if (write_through_) return;
   if (std::rename(temp_path_.c_str(), target_.c_str()) != 0) {
     const int rename_errno = errno;
@@ -264,6 +456,53 @@ void AtomicFile::commit() {
   temp_path_.clear();  // the name is the target's now
   unregisterTempFile(signal_slot_);
   signal_slot_ = -1;
+}
+
+void AtomicFile::commit() {
+  finish();
+  if (g_current_set) {
+    g_current_set->adopt(std::move(*this));
+    return;
+  }
+  sendBuffered();
+  link();
+  rename();
+}
+
+void writeWholeFile(const std::string& path, const std::string& bytes) {
+  AtomicFile file(path);
+  file.write(bytes.data(), bytes.size());
+  file.commit();
+}
+
+OutputSet::OutputSet() : previous_(g_current_set) { g_current_set = this; }
+
+OutputSet::~OutputSet() {
+  g_current_set = previous_;
+  files_.clear();  // each AtomicFile removes what it has not renamed
+}
+
+OutputSet* OutputSet::current() { return g_current_set; }
+
+void OutputSet::adopt(AtomicFile&& file) {
+  if (committed_) throw Error("cannot write '" + file.path_ + "': its output set was committed");
+  auto held = std::unique_ptr<AtomicFile>(new AtomicFile(std::move(file)));
+  for (const auto& other : files_) {
+    if (sameOutputFile(held->path_, other->path_)) {
+      throw UsageError("'" + held->path_ + "' and '" + other->path_ +
+                       "' are the same file: two outputs of one run must differ");
+    }
+  }
+  files_.push_back(std::move(held));
+}
+
+void OutputSet::commit() {
+  committed_ = true;
+  g_current_set = previous_;
+  for (auto& file : files_) file->sendBuffered();
+  for (auto& file : files_) file->link();
+  for (auto& file : files_) file->rename();
+  files_.clear();
 }
 
 }  // namespace mcws::io

@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -26,7 +27,7 @@ SmallMatrix measuredRows(const double* J, int n, const QualityOptions& options) 
 void QualityOptions::check() const {
   if (!(characteristic_length > 0.0) || !std::isfinite(characteristic_length)) {
     throw Error("quality: the characteristic length must be positive and finite, not " +
-                std::to_string(characteristic_length));
+                formatNumber(characteristic_length));
   }
 }
 

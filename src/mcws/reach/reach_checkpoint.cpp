@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 #include "mcws/io/atomic_file.h"
 
 namespace mcws {
@@ -17,6 +18,8 @@ bool readCheckpoint(const ReachCheckpoint& checkpoint, const nlohmann::json& run
                     std::uint64_t& done) {
   std::error_code ec;
   if (!std::filesystem::exists(checkpoint.path, ec)) return false;
+  // Not noted as an input: the run rewrites it as it goes.
+  requireRegularFile(checkpoint.path, "checkpoint");
   std::ifstream in(checkpoint.path, std::ios::binary);
   if (!in) throw Error("cannot read checkpoint '" + checkpoint.path + "'");
   std::string text;

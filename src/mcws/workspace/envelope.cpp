@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -34,7 +35,9 @@ Eigen::Vector3d doubleAreaNormal(const TriangleSurface& s, const std::array<std:
 }
 
 void put(std::FILE* out, const void* data, std::size_t size) {
-  if (std::fwrite(data, 1, size, out) != size) throw Error("writing the mesh failed");
+  if (std::fwrite(data, 1, size, out) != size) {
+    throw Error(std::string("writing the mesh failed: ") + std::strerror(errno));
+  }
 }
 
 void putText(std::FILE* out, const std::string& text) { put(out, text.data(), text.size()); }
