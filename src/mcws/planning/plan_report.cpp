@@ -256,11 +256,11 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       << ", w = " << problem.score.weight << "\n"
       << "acceptance " << criterion(problem) << "\n"
       << "units: lengths " << length_unit << ", angles rad, times s; D = " << scenario.distance_unit
-      << " (dimensionless, as are D0, w and the scores); P, the threshold, "
-         "max_collision_probability and the free and collision rates are fractions in [0, 1]; P "
-         "is the patent's mean of segment free rates, not the probability that the whole path is "
-         "free; a path's whole-path collision rate is the share of base poses for which it "
-         "collides anywhere along its length\n";
+      << " (dimensionless, as are D0, w and the scores); P, the threshold and the free and "
+         "collision rates are fractions in [0, 1]; so is max_collision_probability; P is the "
+         "patent's mean of segment free rates, not the probability that the whole path is free; a "
+         "path's whole-path collision rate is the share of base poses for which it collides "
+         "anywhere along its length\n";
   for (std::size_t r = 0; r < result.rounds.size(); ++r) {
     const PlanningRound& round = result.rounds[r];
     out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
