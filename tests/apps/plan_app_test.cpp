@@ -169,9 +169,10 @@ class McwsPlan : public ::testing::Test {
     test::writeFile(inputs_.file("arm2.yaml"), kArm);
     test::writeFile(inputs_.file("slider.yaml"), kSlider);
     test::writeFile(inputs_.file("walled.yaml"), kSliderScenario);
-    test::writeFile(inputs_.file("slider_post.yaml"),
-                    replaced(kSlider, "{name: wall, type: box, size: [200, 2, 200], xyz: [0, 0, 0]}",
-                             "{name: post, type: box, size: [2, 8, 200], xyz: [4, 0, 0]}"));
+    test::writeFile(
+        inputs_.file("slider_post.yaml"),
+        replaced(kSlider, "{name: wall, type: box, size: [200, 2, 200], xyz: [0, 0, 0]}",
+                 "{name: post, type: box, size: [2, 8, 200], xyz: [4, 0, 0]}"));
     test::writeFile(inputs_.file("beside.yaml"), kBesideScenario);
     writeArmScenario("ok.yaml", "0 deg, 0 deg", "120 deg, 0 deg");
   }
@@ -306,8 +307,8 @@ TEST_F(McwsPlan, APathThatCollidesForSomePlanningPosesIsRefusedByDefault) {
   const std::string patent = inputs_.file("patent.yaml");
   test::writeFile(patent, replaced(kBesideScenario, "threshold: 0.9",
                                    "threshold: 0.9\n  acceptance: patent_p"));
-  const test::RunResult accepted = test::run(kPlan + " --scenario " + patent + " --json --output " +
-                                             outputs_.file("path.csv"));
+  const test::RunResult accepted =
+      test::run(kPlan + " --scenario " + patent + " --json --output " + outputs_.file("path.csv"));
   ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
   const auto patent_json = nlohmann::json::parse(accepted.out);
   EXPECT_EQ(patent_json["acceptance"], "patent_p");
@@ -317,9 +318,8 @@ TEST_F(McwsPlan, APathThatCollidesForSomePlanningPosesIsRefusedByDefault) {
   // 0.0507); the message says how many can (73: 0.0500).
   const std::string few = inputs_.file("few.yaml");
   test::writeFile(few, replaced(test::readFile(okScenario()), "poses: 80", "poses: 72"));
-  const test::RunResult refused =
-      test::run(kPlan + " --scenario " + few + " --validation-poses 0 --output " +
-                outputs_.file("path.csv"));
+  const test::RunResult refused = test::run(
+      kPlan + " --scenario " + few + " --validation-poses 0 --output " + outputs_.file("path.csv"));
   EXPECT_EQ(refused.exit_code, 1) << refused.err;
   EXPECT_THAT(refused.err, HasSubstr("above_max_collision_probability"));
   EXPECT_THAT(refused.err, HasSubstr("(lowest 0.0507, 0 of 72 poses colliding); with n = 72 poses "

@@ -331,22 +331,20 @@ TEST_F(Scenario, AcceptanceFields) {
   EXPECT_EQ(set.max_collision_probability, 0.1);
   EXPECT_TRUE(set.allow_goal_shift);
   EXPECT_EQ(set.threshold, 0.8);
-  EXPECT_EQ(load(replaced(kScenario, "threshold: 0.8", "acceptance: whole_path"))
-                .problem.acceptance,
-            Acceptance::kWholePath);
+  EXPECT_EQ(
+      load(replaced(kScenario, "threshold: 0.8", "acceptance: whole_path")).problem.acceptance,
+      Acceptance::kWholePath);
 }
 
 TEST_F(Scenario, BadAcceptanceFields) {
   // Each replaces the threshold on line 24.
-  auto with = [](const std::string& field) {
-    return replaced(kScenario, "threshold: 0.8", field);
-  };
+  auto with = [](const std::string& field) { return replaced(kScenario, "threshold: 0.8", field); };
   expectError(with("acceptance: P"), 24, {"planner: acceptance 'P' is not whole_path or patent_p"});
-  expectError(with("acceptance: [whole_path]"), 24, {"planner: acceptance: must be a single value"});
+  expectError(with("acceptance: [whole_path]"), 24,
+              {"planner: acceptance: must be a single value"});
   for (const char* bad : {"0", "1", "1.5", "-0.05"}) {
     expectError(with(std::string("max_collision_probability: ") + bad), 24,
-                {std::string("planner: max_collision_probability ") + bad +
-                 " is outside (0, 1)"});
+                {std::string("planner: max_collision_probability ") + bad + " is outside (0, 1)"});
   }
   expectError(with("max_collision_probability: 5%"), 24,
               {"planner: max_collision_probability: '5%' is not a number"});

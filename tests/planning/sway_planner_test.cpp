@@ -140,7 +140,8 @@ TEST(SwayPlanner, ShiftsTheBaseOneStepAwayFromThePost) {
 /// lies halfway between the k-th and the (k+1)-th largest slide x_j. The whole path collides for
 /// exactly those poses; only the segments beside the post lose probability.
 SwayPlanningProblem sliderWithCollidingPoses(std::size_t k, std::size_t n) {
-  SwayPlanningProblem problem = slider("{name: far, type: box, size: [2, 2, 2], xyz: [90, 0, 0]}", 1);
+  SwayPlanningProblem problem =
+      slider("{name: far, type: box, size: [2, 2, 2], xyz: [90, 0, 0]}", 1);
   problem.base_poses = n;
   const SwaySampler sampler(problem.sway);
   std::vector<double> x;

@@ -277,8 +277,8 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       const PathSafety& path = round.candidates[c];
       char line[200];
       std::snprintf(line, sizeof line,
-                    "  %4zu  %8.3f  %10.4f  %5zu of %-5zu %.3f [%.3f, %.3f]        %4zu, %.3f\n",
-                    c, path.length, path.probability, path.colliding_poses, problem.base_poses,
+                    "  %4zu  %8.3f  %10.4f  %5zu of %-5zu %.3f [%.3f, %.3f]        %4zu, %.3f\n", c,
+                    path.length, path.probability, path.colliding_poses, problem.base_poses,
                     path.collision_rate, path.collision_interval.low, path.collision_interval.high,
                     path.worst_segment, path.worst_probability);
       out << line;
@@ -301,10 +301,11 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
     }
     const PathSafety& best = *round.best;
     out << "  best path: length " << format("%.3f", best.length) << ", P "
-        << format("%.4f", best.probability) << ", whole path collides for "
-        << best.colliding_poses << " of " << problem.base_poses << " poses (rate "
-        << format("%.3f", best.collision_rate) << " [" << format("%.3f", best.collision_interval.low)
-        << ", " << format("%.3f", best.collision_interval.high) << "]), worst segment " << best.worst_segment << " of " << best.segments << " (P "
+        << format("%.4f", best.probability) << ", whole path collides for " << best.colliding_poses
+        << " of " << problem.base_poses << " poses (rate " << format("%.3f", best.collision_rate)
+        << " [" << format("%.3f", best.collision_interval.low) << ", "
+        << format("%.3f", best.collision_interval.high) << "]), worst segment "
+        << best.worst_segment << " of " << best.segments << " (P "
         << format("%.3f", best.worst_probability) << ", from "
         << configuration(scenario, best.worst_from) << " to "
         << configuration(scenario, best.worst_to) << ")\n";
@@ -355,7 +356,7 @@ std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& res
   const SwayPlanningProblem& problem = scenario.problem;
   const std::string status = overallStatus(problem, result);
   const std::string range = problem.base_step > 0.0 ? "at every base offset within the range"
-                                                     : "(no base shift: base_step 0)";
+                                                    : "(no base shift: base_step 0)";
   if (result.validated) {
     const PathSafety& best = *result.rounds[*result.validated].best;
     if (problem.acceptance == Acceptance::kPatentP) {

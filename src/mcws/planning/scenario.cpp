@@ -325,8 +325,9 @@ class ScenarioReader : YamlReader {
     }
     if (const YAML::Node on = node["threshold_on"]) {
       // The old switch between P and the whole-path free fraction as a point estimate.
-      fail(on, "planner: threshold_on is no longer read: acceptance: whole_path (the default, "
-               "with max_collision_probability) or acceptance: patent_p (with threshold)");
+      fail(on,
+           "planner: threshold_on is no longer read: acceptance: whole_path (the default, "
+           "with max_collision_probability) or acceptance: patent_p (with threshold)");
     }
     if (const YAML::Node acceptance = node["acceptance"]) {
       const std::string name = scalar(acceptance, "planner: acceptance");

@@ -60,8 +60,9 @@ struct Scenario {
 /// \throws mcws::Error "file:line: field: ..." for a missing or unknown field, a value of the
 ///   wrong kind or unit, a negative sigma, a covariance that is not positive semi-definite, a
 ///   confidence outside (0, 1), n or m zero, an acceptance other than whole_path or patent_p, a
-///   max_collision_probability outside (0, 1), an allow_goal_shift other than true or false, a start or goal outside the joint limits or of
-///   the wrong length, a robot file that does not exist or has no collision geometry.
+///   max_collision_probability outside (0, 1), an allow_goal_shift other than true or false, a
+///   start or goal outside the joint limits or of the wrong length, a robot file that does not
+///   exist or has no collision geometry.
 Scenario parseScenario(const std::string& text, const std::string& source);
 
 /// \brief parseScenario() of a file. \throws mcws::Error when it cannot be read.

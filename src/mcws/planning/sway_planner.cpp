@@ -446,7 +446,6 @@ bool SwayPlanner::accepts(const PathSafety& path) const {
   return path.collision_interval.high <= problem_.max_collision_probability;
 }
 
-
 double SwayPlanner::goalDisplacement(double offset) const {
   Robot shifted = problem_.robot;
   shifted.T_world_base = measuredBase(offset);

@@ -78,7 +78,7 @@ struct PathSafety {
   std::size_t colliding_poses{0};
   double collision_rate{0.0};             ///< colliding_poses / n [fraction]
   ProportionInterval collision_interval;  ///< 95 % Wilson interval of collision_rate
-  std::size_t worst_segment{0};      ///< index along the path, from 0
+  std::size_t worst_segment{0};           ///< index along the path, from 0
   double worst_probability{1.0};
   Eigen::VectorXd worst_from, worst_to;  ///< the worst segment's end configurations
 };
@@ -103,24 +103,24 @@ struct PlanningRound {
 
 /// \brief The validation of one path on fresh base poses.
 struct ValidationRow {
-  std::string name;  ///< "chosen", "shortest", "padded"
+  std::string name;     ///< "chosen", "shortest", "padded"
   bool planned{false};  ///< false: its planner found no path, and the numbers below mean nothing
   std::string status;   ///< roadmap status of its planner
   double length{0.0};   ///< [scaled joint distance]; planned rows only
   std::size_t colliding{0}, poses{0};
   double collision_probability{0.0};  ///< planned rows only
-  ProportionInterval interval;   ///< 95 % Wilson interval; planned rows only
-  double padding{0.0};           ///< the padded row's margin [length unit]
-  double seconds{0.0};           ///< wall time (the padded row: its roadmap included)
-  double planning_seconds{0.0};  ///< the padded row: growing its roadmap and its shortest path
+  ProportionInterval interval;        ///< 95 % Wilson interval; planned rows only
+  double padding{0.0};                ///< the padded row's margin [length unit]
+  double seconds{0.0};                ///< wall time (the padded row: its roadmap included)
+  double planning_seconds{0.0};       ///< the padded row: growing its roadmap and its shortest path
 };
 
 /// \brief The whole result of mcws_plan.
 struct SwayPlanningResult {
   std::vector<PlanningRound> rounds;    ///< offset 0 first, then the base adjustments (s70)
   std::optional<std::size_t> accepted;  ///< the round whose best path meets the criterion
-  /// The round whose best path was validated: the accepted one, or when none is, the one
-  /// closest to the criterion.
+  /// The round whose best path is validated (when plan() is asked to): the accepted one, or when
+  /// none is, the one closest to the criterion; empty when no round found a path.
   std::optional<std::size_t> validated;
   std::vector<ValidationRow> validation;
   double validation_seconds{0.0};
