@@ -325,6 +325,16 @@ TEST_F(McwsPlan, APathThatCollidesForSomePlanningPosesIsRefusedByDefault) {
   EXPECT_THAT(refused.err, HasSubstr("(lowest 0.0507, 0 of 72 poses colliding); with n = 72 poses "
                                      "not even a path free for all of them can pass: sway: poses "
                                      "must be at least 73; nothing written"));
+  // At 0.001: 3.8415 / (3838 + 3.8415) = 0.00099990, / (3837 + 3.8415) = 0.00100010.
+  const std::string strict = inputs_.file("strict.yaml");
+  test::writeFile(strict, replaced(test::readFile(okScenario()), "threshold: 0.5",
+                                   "max_collision_probability: 0.001"));
+  const test::RunResult strict_run =
+      test::run(kPlan + " --scenario " + strict + " --validation-poses 0 --output " +
+                outputs_.file("path.csv"));
+  EXPECT_EQ(strict_run.exit_code, 1) << strict_run.err;
+  EXPECT_THAT(strict_run.err, HasSubstr("with n = 80 poses not even a path free for all of them "
+                                        "can pass: sway: poses must be at least 3838"));
 }
 
 TEST_F(McwsPlan, ABaseShiftReportsHowFarTheToolEndsFromTheTarget) {
@@ -429,7 +439,12 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
       EXPECT_NEAR(chosen["waypoints"][k][j].get<double>(), csv.rows[k][1 + j], kCsvTol);
   }
   EXPECT_NEAR(chosen["length"].get<double>(), csv.last()[0], 1e-9);
-  EXPECT_GE(chosen["probability"].get<double>(), 0.5);  // the threshold
+  // Accepted by the default criterion: the upper end of the whole-path collision rate's 95 %
+  // interval over the 80 planning poses is at most 0.05 (so none of them collides: 0 of 80
+  // gives 3.8415 / 83.8415 = 0.0458, 1 of 80 more than 0.05).
+  EXPECT_EQ(json["acceptance"], "whole_path");
+  EXPECT_LE(chosen["whole_path_collision_interval_95"][1].get<double>(), 0.05);
+  EXPECT_EQ(chosen["whole_path_colliding_poses"], 0);
 
   const auto& validation = json["validation"];
   EXPECT_EQ(validation["poses"], 200);

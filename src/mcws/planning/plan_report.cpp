@@ -97,8 +97,12 @@ std::string criterion(const SwayPlanningProblem& problem) {
 std::string fewestPoses(const SwayPlanningProblem& problem) {
   const double most = problem.max_collision_probability;
   if (wilsonInterval(0, problem.base_poses).high <= most) return "";
-  std::size_t n = problem.base_poses;
+  // z^2 from the interval itself (at n = 1 the upper end is z^2 / (1 + z^2)); a step either way
+  // settles the rounding.
+  const double u = wilsonInterval(0, 1).high, z2 = u / (1.0 - u);
+  auto n = static_cast<std::size_t>(std::ceil(z2 * (1.0 - most) / most));
   while (wilsonInterval(0, n).high > most) ++n;
+  while (n > 1 && wilsonInterval(0, n - 1).high <= most) --n;
   return "; with n = " + std::to_string(problem.base_poses) +
          " poses not even a path free for all of them can pass: sway: poses must be at least " +
          std::to_string(n);
