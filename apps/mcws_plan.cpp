@@ -21,11 +21,15 @@ constexpr char kUsage[] = "mcws_plan --scenario S.yaml --output path.csv [option
 constexpr char kSummary[] =
     R"(Plans the arm of a robot whose base sways (the maintenance-arm patent): m candidate paths through a roadmap for
 the measured base pose, their segments checked exactly for n base poses drawn from the scenario's
-sway, the dominant path taken at every shared node; the base is shifted along the line while the
-best path's P is below the threshold. Writes the chosen path (CSV: D then one column per joint,
-units in the names) and prints a report. Exit 0 with a path, 1 when no path meets the threshold
-within the base range or start or goal collide or the roadmap cannot connect them, 2 for a bad
-command line.)";
+sway, the dominant path taken at every shared node. The best path is accepted when the upper end
+of the 95 % Wilson interval of its whole-path collision rate over the n poses is at most
+max_collision_probability (acceptance: whole_path, the default; patent_p: the patent's P >=
+threshold); otherwise the base is shifted along the line within the range, which moves the tool's
+end away from the target (reported as goal_displacement). Writes the chosen path (CSV: D then one
+column per joint, units in the names) and prints a report ending in a status line. Exit 0 with an
+accepted path; 1 when no path is accepted within the base range, the start collides at the
+measured base pose, the goal does (unless allow_goal_shift), or the roadmap cannot connect them;
+2 for a bad command line.)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("scenario", "scenario file (.yaml), see scenarios/");

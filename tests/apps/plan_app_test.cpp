@@ -57,7 +57,7 @@ sway:
   line: [1, 0, 0]
   swing: 1 deg
   slide: 0.5 cm
-  poses: 30
+  poses: 80    # at least 73: fewer cannot show a whole-path collision rate below 0.05
   seed: 1
 planner:
   candidates: 3
@@ -98,6 +98,28 @@ planner:
   roadmap_nodes: 50
   max_roadmap_nodes: 100
 validation: {poses: 100}
+)";
+
+// The slider past a post beside its way: the post (y from -4 to 4 cm) has its face at x = 3 cm,
+// so the sphere (radius 2 cm, at x = the base's slide, sigma 1 cm) touches it for the poses that
+// slide more than 1 cm toward it: about 13 % of them (P(X > 1 | |X| <= 1.96) for X ~ N(0, 1)). Only
+// the segments beside the post lose those poses, so the patent's P stays high.
+const char* const kBesideScenario = R"(name: beside
+robot: slider_post.yaml
+start: [-20 cm]
+goal: [20 cm]
+sway:
+  pivot: [0 cm, 0 cm, 25 cm]
+  line: [1, 0, 0]
+  slide: 1 cm
+  poses: 100
+planner:
+  candidates: 2
+  roadmap_nodes: 30
+  max_roadmap_nodes: 60
+  segment_length: 4
+  threshold: 0.9
+validation: {poses: 200}
 )";
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -147,6 +169,11 @@ class McwsPlan : public ::testing::Test {
     test::writeFile(inputs_.file("arm2.yaml"), kArm);
     test::writeFile(inputs_.file("slider.yaml"), kSlider);
     test::writeFile(inputs_.file("walled.yaml"), kSliderScenario);
+    test::writeFile(
+        inputs_.file("slider_post.yaml"),
+        replaced(kSlider, "{name: wall, type: box, size: [200, 2, 200], xyz: [0, 0, 0]}",
+                 "{name: post, type: box, size: [2, 8, 200], xyz: [4, 0, 0]}"));
+    test::writeFile(inputs_.file("beside.yaml"), kBesideScenario);
     writeArmScenario("ok.yaml", "0 deg, 0 deg", "120 deg, 0 deg");
   }
 
@@ -249,6 +276,125 @@ TEST_F(McwsPlan, WallBetweenStartAndGoalIsNotConnected) {
   expectNoPath(inputs_.file("walled.yaml"), "not_connected");
 }
 
+TEST_F(McwsPlan, APathThatCollidesForSomePlanningPosesIsRefusedByDefault) {
+  // P stays above the threshold 0.9, but the whole path collides for some of the 100 poses.
+  expectNoPath(inputs_.file("beside.yaml"), "above_max_collision_probability");
+  const test::RunResult r = test::run(kPlan + " --scenario " + inputs_.file("beside.yaml") +
+                                      " --json --output " + outputs_.file("path.csv"));
+  ASSERT_EQ(r.exit_code, 1) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["acceptance"], "whole_path");
+  EXPECT_EQ(json["max_collision_probability"], 0.05);
+  EXPECT_FALSE(json.contains("chosen"));
+  EXPECT_FALSE(json.contains("accepted_round"));
+  const auto& best = json["rounds"][0]["best"];
+  EXPECT_FALSE(best["accepted"].get<bool>());
+  EXPECT_GE(best["probability"].get<double>(), 0.9);  // the patent's reading would take it
+  const std::size_t colliding = best["whole_path_colliding_poses"];
+  EXPECT_GT(colliding, 0u);
+  EXPECT_EQ(best["whole_path_free_poses"].get<std::size_t>() + colliding, 100u);
+  EXPECT_DOUBLE_EQ(best["whole_path_collision_rate"].get<double>(), colliding / 100.0);
+  // Wilson's upper end, computed here from its closed form.
+  const double z = 1.959964, k = static_cast<double>(colliding), n = 100.0;
+  const double upper = (k + z * z / 2 + z * std::sqrt(k * (n - k) / n + z * z / 4)) / (n + z * z);
+  EXPECT_NEAR(best["whole_path_collision_interval_95"][1].get<double>(), upper, 1e-6);
+  EXPECT_GT(upper, 0.05);
+  // The refused path is still validated, and the report says it was refused.
+  EXPECT_EQ(json["validated_round"], 0);
+  EXPECT_EQ(json["validation"]["rows"][0]["name"], "chosen");
+
+  // With the patent's literal reading the same path is accepted (and written).
+  const std::string patent = inputs_.file("patent.yaml");
+  test::writeFile(patent, replaced(kBesideScenario, "threshold: 0.9",
+                                   "threshold: 0.9\n  acceptance: patent_p"));
+  const test::RunResult accepted =
+      test::run(kPlan + " --scenario " + patent + " --json --output " + outputs_.file("path.csv"));
+  ASSERT_EQ(accepted.exit_code, 0) << accepted.err;
+  const auto patent_json = nlohmann::json::parse(accepted.out);
+  EXPECT_EQ(patent_json["acceptance"], "patent_p");
+  EXPECT_EQ(patent_json["chosen"]["whole_path_colliding_poses"], colliding);
+
+  // 72 poses cannot accept even a path free for all of them (upper end 3.8415 / 75.8415 =
+  // 0.0507); the message says how many can (73: 0.0500).
+  const std::string few = inputs_.file("few.yaml");
+  test::writeFile(few, replaced(test::readFile(okScenario()), "poses: 80", "poses: 72"));
+  const test::RunResult refused = test::run(
+      kPlan + " --scenario " + few + " --validation-poses 0 --output " + outputs_.file("path.csv"));
+  EXPECT_EQ(refused.exit_code, 1) << refused.err;
+  EXPECT_THAT(refused.err, HasSubstr("above_max_collision_probability"));
+  EXPECT_THAT(refused.err, HasSubstr("(lowest 0.0507, 0 of 72 poses colliding); with n = 72 poses "
+                                     "not even a path free for all of them can pass: sway: poses "
+                                     "must be at least 73; nothing written"));
+  // At 0.001: 3.8415 / (3838 + 3.8415) = 0.00099990, / (3837 + 3.8415) = 0.00100010.
+  const std::string strict = inputs_.file("strict.yaml");
+  test::writeFile(strict, replaced(test::readFile(okScenario()), "threshold: 0.5",
+                                   "max_collision_probability: 0.001"));
+  const test::RunResult strict_run =
+      test::run(kPlan + " --scenario " + strict + " --validation-poses 0 --output " +
+                outputs_.file("path.csv"));
+  EXPECT_EQ(strict_run.exit_code, 1) << strict_run.err;
+  EXPECT_THAT(strict_run.err, HasSubstr("with n = 80 poses not even a path free for all of them "
+                                        "can pass: sway: poses must be at least 3838"));
+}
+
+TEST_F(McwsPlan, ABaseShiftReportsHowFarTheToolEndsFromTheTarget) {
+  // The post refuses offset 0; +5 cm puts the sphere's way through the post (no path); -5 cm
+  // leaves 8 - 2 = 6 cm between its face and the sphere, more than any slide (1.96 cm).
+  const std::string shifted = inputs_.file("shifted.yaml");
+  test::writeFile(shifted, replaced(kBesideScenario, "threshold: 0.9",
+                                    "threshold: 0.9\n  base_step: 5 cm\n  base_range: 5 cm"));
+  const std::string out = outputs_.file("path.csv");
+  const test::RunResult r = test::run(kPlan + " --scenario " + shifted + " --json --output " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  EXPECT_EQ(json["status"], "ok");
+  ASSERT_EQ(json["accepted_round"], 2);
+  EXPECT_EQ(json["rounds"][2]["base_offset"], -5.0);
+  ASSERT_TRUE(json.contains("goal_displacement")) << r.out;
+  // A 5 cm shift along the line moves every point of the arm by 5 cm.
+  EXPECT_NEAR(json["goal_displacement"]["value"].get<double>(), 5.0, 1e-9);
+  EXPECT_EQ(json["goal_displacement"]["unit"], "cm");
+  EXPECT_EQ(json["chosen"]["whole_path_colliding_poses"], 0);
+
+  const test::RunResult text = test::run(kPlan + " --scenario " + shifted + " --output " + out);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("\nstatus: ok: round 3's best path is accepted (whole_path); the "
+                                  "base is shifted -5 cm along the line, so the tool ends 5 cm "
+                                  "from the target"));
+  // Without a shift, no goal_displacement.
+  const test::RunResult plain = test::run(kPlan + " --scenario " + okScenario() +
+                                          " --json --validation-poses 0 --output " + out);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("goal_displacement"));
+}
+
+TEST_F(McwsPlan, APaddedPlannerWithoutAPathHasAStatusAndNoProbability) {
+  // Obstacles padded by 40 cm swallow the straight arm at the start (37.5 cm from the post).
+  const std::string padded = inputs_.file("padded.yaml");
+  test::writeFile(padded, replaced(test::readFile(okScenario()), "threshold: 0.5",
+                                   "threshold: 0.5\n  padding: 40 cm"));
+  const std::string out = outputs_.file("path.csv");
+  const test::RunResult r = test::run(kPlan + " --scenario " + padded + " --json --output " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto json = nlohmann::json::parse(r.out);
+  bool found = false;
+  for (const auto& row : json["validation"]["rows"]) {
+    if (row["name"] != "padded") continue;
+    found = true;
+    EXPECT_FALSE(row["planned"].get<bool>());
+    EXPECT_EQ(row["status"], "no_path");
+    EXPECT_EQ(row["roadmap_status"], "start_in_collision");
+    for (const char* key : {"collision_probability", "length", "colliding_poses", "interval_95"})
+      EXPECT_FALSE(row.contains(key)) << key << " in " << row;
+    EXPECT_EQ(row["padding"], 40.0);
+  }
+  EXPECT_TRUE(found);
+  EXPECT_FALSE(json["validation"].contains("padded_collision_probability"));
+  const test::RunResult text = test::run(kPlan + " --scenario " + padded + " --output " + out);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("padded    no path (roadmap start_in_collision)"));
+}
+
 TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
   const std::string out = outputs_.file("path.csv");
   const test::RunResult r = test::run(kPlan + " --scenario " + okScenario() + " --output " + out +
@@ -293,7 +439,12 @@ TEST_F(McwsPlan, PlansAPathAndWritesItAsCsv) {
       EXPECT_NEAR(chosen["waypoints"][k][j].get<double>(), csv.rows[k][1 + j], kCsvTol);
   }
   EXPECT_NEAR(chosen["length"].get<double>(), csv.last()[0], 1e-9);
-  EXPECT_GE(chosen["probability"].get<double>(), 0.5);  // the threshold
+  // Accepted by the default criterion: the upper end of the whole-path collision rate's 95 %
+  // interval over the 80 planning poses is at most 0.05 (so none of them collides: 0 of 80
+  // gives 3.8415 / 83.8415 = 0.0458, 1 of 80 more than 0.05).
+  EXPECT_EQ(json["acceptance"], "whole_path");
+  EXPECT_LE(chosen["whole_path_collision_interval_95"][1].get<double>(), 0.05);
+  EXPECT_EQ(chosen["whole_path_colliding_poses"], 0);
 
   const auto& validation = json["validation"];
   EXPECT_EQ(validation["poses"], 200);

@@ -302,6 +302,9 @@ TEST_F(Scenario, DefaultsWithoutPlannerJointScaleOrValidation) {
   EXPECT_EQ(p.score.rule, ScoreRule::kWeighted);
   EXPECT_EQ(p.score.weight, 1.0);
   EXPECT_EQ(p.threshold, 0.9);
+  EXPECT_EQ(p.acceptance, Acceptance::kWholePath);
+  EXPECT_EQ(p.max_collision_probability, 0.05);
+  EXPECT_FALSE(p.allow_goal_shift);
   EXPECT_EQ(p.base_step, 0.0);
   EXPECT_EQ(p.base_range, 0.0);
   EXPECT_LT(p.padding, 0.0);
@@ -313,6 +316,46 @@ TEST_F(Scenario, DefaultsWithoutPlannerJointScaleOrValidation) {
   EXPECT_EQ(p.roadmap.nodes, roadmap.nodes);
   EXPECT_EQ(p.roadmap.max_nodes, roadmap.max_nodes);
   EXPECT_EQ(s.distance_unit, "sqrt(sum (s_i dq_i)^2) with s = 1/rad, 1/cm");
+}
+
+TEST_F(Scenario, AcceptanceFields) {
+  const SwayPlanningProblem defaults = load(kScenario).problem;
+  EXPECT_EQ(defaults.acceptance, Acceptance::kWholePath);
+  EXPECT_EQ(defaults.max_collision_probability, 0.05);
+  EXPECT_FALSE(defaults.allow_goal_shift);
+  const std::string fields =
+      "threshold: 0.8\n  acceptance: patent_p\n  max_collision_probability: 0.1\n"
+      "  allow_goal_shift: true";
+  const SwayPlanningProblem set = load(replaced(kScenario, "threshold: 0.8", fields)).problem;
+  EXPECT_EQ(set.acceptance, Acceptance::kPatentP);
+  EXPECT_EQ(set.max_collision_probability, 0.1);
+  EXPECT_TRUE(set.allow_goal_shift);
+  EXPECT_EQ(set.threshold, 0.8);
+  EXPECT_EQ(
+      load(replaced(kScenario, "threshold: 0.8", "acceptance: whole_path")).problem.acceptance,
+      Acceptance::kWholePath);
+}
+
+TEST_F(Scenario, BadAcceptanceFields) {
+  // Each replaces the threshold on line 24.
+  auto with = [](const std::string& field) { return replaced(kScenario, "threshold: 0.8", field); };
+  expectError(with("acceptance: P"), 24, {"planner: acceptance 'P' is not whole_path or patent_p"});
+  expectError(with("acceptance: [whole_path]"), 24,
+              {"planner: acceptance: must be a single value"});
+  for (const char* bad : {"0", "1", "1.5", "-0.05"}) {
+    expectError(with(std::string("max_collision_probability: ") + bad), 24,
+                {std::string("planner: max_collision_probability ") + bad + " is outside (0, 1)"});
+  }
+  expectError(with("max_collision_probability: 5%"), 24,
+              {"planner: max_collision_probability: '5%' is not a number"});
+  expectError(with("allow_goal_shift: maybe"), 24,
+              {"planner: allow_goal_shift 'maybe' is not true or false"});
+  expectError(with("allow_goal_shift: 1"), 24,
+              {"planner: allow_goal_shift '1' is not true or false"});
+  // The old switch is refused with what replaced it, not silently ignored.
+  expectError(with("threshold_on: whole_path"), 24,
+              {"planner: threshold_on is no longer read", "acceptance: whole_path",
+               "max_collision_probability", "patent_p"});
 }
 
 TEST_F(Scenario, PaddingAsALength) {

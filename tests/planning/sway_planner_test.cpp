@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -109,6 +110,7 @@ TEST(SwayPlanner, ShiftsTheBaseOneStepAwayFromThePost) {
   // One step of +3 cm along the line gives 3.5 cm, more than the largest slide (1.96 cm).
   SwayPlanningProblem problem =
       slider("{name: post, type: box, size: [2, 8, 200], xyz: [-3.5, 24, 0]}", 1.0);
+  problem.acceptance = Acceptance::kPatentP;
   problem.threshold = 0.999;
   problem.base_step = 3.0;
   problem.base_range = 9.0;
@@ -123,6 +125,114 @@ TEST(SwayPlanner, ShiftsTheBaseOneStepAwayFromThePost) {
   EXPECT_DOUBLE_EQ(result.rounds[1].base_offset, 3.0);
   EXPECT_DOUBLE_EQ(result.rounds[1].best->probability, 1.0);
   EXPECT_EQ(result.rounds[1].best->free_poses, problem.base_poses);
+  EXPECT_NEAR(result.rounds[1].goal_displacement, 3.0, 1e-9);  // the tool ends 3 cm away
+  // The default acceptance (whole_path) refuses the first round and takes the same step.
+  problem.acceptance = Acceptance::kWholePath;
+  const SwayPlanningResult whole = SwayPlanner(problem).plan(false);
+  ASSERT_EQ(whole.rounds.size(), 2u);
+  EXPECT_GT(whole.rounds[0].best->colliding_poses, 0u);
+  ASSERT_TRUE(whole.accepted);
+  EXPECT_EQ(*whole.accepted, 1u);
+}
+
+/// A post beside the slider's path (y = 20 .. 28) whose face at x = f is placed so that exactly
+/// `k` of the problem's n planning poses push the sphere (radius 2 cm, at x = x_j) into it: f - 2
+/// lies halfway between the k-th and the (k+1)-th largest slide x_j. The whole path collides for
+/// exactly those poses; only the segments beside the post lose probability.
+SwayPlanningProblem sliderWithCollidingPoses(std::size_t k, std::size_t n) {
+  SwayPlanningProblem problem =
+      slider("{name: far, type: box, size: [2, 2, 2], xyz: [90, 0, 0]}", 1);
+  problem.base_poses = n;
+  const SwaySampler sampler(problem.sway);
+  std::vector<double> x;
+  for (std::size_t j = 0; j < n; ++j) x.push_back(sampler.vector(problem.seed, j)[0]);
+  std::sort(x.rbegin(), x.rend());
+  const double edge = k == 0 ? x[0] + 0.5 : 0.5 * (x[k - 1] + x[k]);
+  EXPECT_GT(k == 0 ? 1.0 : x[k - 1] - x[k], 1e-3) << "slides too close to part at " << k;
+  SwayPlanningProblem placed = slider("{name: post, type: box, size: [2, 8, 200], xyz: [" +
+                                          std::to_string(edge + 2.0 + 1.0) + ", 24, 0]}",
+                                      1);
+  placed.base_poses = n;
+  return placed;
+}
+
+TEST(SwayPlanner, AcceptsOnlyWhenTheWilsonUpperEndOfTheWholePathCollisionRateIsSmall) {
+  // n = 100 planning poses, k of them colliding. Upper ends of the 95 % Wilson interval, worked by
+  // hand in sway_test.cpp (WilsonInterval.UpperEndsOfThePlannersAcceptanceRule) and for k = 3:
+  // (3 + 1.9207294 + 1.959964 sqrt(2.91 + 0.9603647)) / 103.8414588 = 0.0845194.
+  const double upper[] = {0.0369935, 0.0544862, 0.0700118, 0.0845194};
+  constexpr double kHand = 1e-6;
+  for (std::size_t k = 0; k < 4; ++k) {
+    SwayPlanningProblem problem = sliderWithCollidingPoses(k, 100);
+    ASSERT_EQ(problem.acceptance, Acceptance::kWholePath);  // the default
+    ASSERT_EQ(problem.max_collision_probability, 0.05);
+    const SwayPlanningResult result = SwayPlanner(problem).plan(false);
+    ASSERT_EQ(result.rounds.size(), 1u);  // no base_step
+    ASSERT_TRUE(result.rounds[0].best) << k;
+    const PathSafety& best = *result.rounds[0].best;
+    EXPECT_EQ(best.colliding_poses, k);
+    EXPECT_EQ(best.free_poses, 100 - k);
+    EXPECT_DOUBLE_EQ(best.collision_rate, k / 100.0);
+    EXPECT_NEAR(best.collision_interval.high, upper[k], kHand) << k;
+    // The patent's P: one or two of the path's ten segments lose k % of the poses.
+    EXPECT_GT(best.probability, 0.99) << k;
+    // Accepted at 0.05 only without a collision.
+    EXPECT_EQ(result.accepted.has_value(), k == 0) << k;
+    EXPECT_EQ(result.rounds[0].accepted, k == 0) << k;
+    ASSERT_TRUE(result.validated);  // the refused path is still the one to validate
+    // At 0.08: up to two colliding poses (0.0700), not three (0.0845).
+    problem.max_collision_probability = 0.08;
+    EXPECT_EQ(SwayPlanner(problem).plan(false).accepted.has_value(), k <= 2) << k;
+    // The patent's literal reading takes every one of them.
+    problem.acceptance = Acceptance::kPatentP;
+    problem.threshold = 0.9;
+    EXPECT_TRUE(SwayPlanner(problem).plan(false).accepted) << k;
+  }
+}
+
+TEST(SwayPlanner, AGoalInCollisionAtTheMeasuredPoseEndsThePlanningUnlessAllowed) {
+  // A post around the goal (y = 40) at x = 0: the goal collides for the measured base pose. One
+  // base step of 10 cm along the line leaves 10 - 2 - 2 = 6 cm between sphere and post, more than
+  // the largest slide (1.96 cm): every pose is free there.
+  SwayPlanningProblem problem =
+      slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 40, 0]}", 1);
+  problem.base_step = 10.0;
+  problem.base_range = 20.0;
+  ASSERT_FALSE(problem.allow_goal_shift);  // the default
+  {
+    const SwayPlanningResult result = SwayPlanner(problem).plan(true);
+    ASSERT_EQ(result.rounds.size(), 1u);  // no base shift tried
+    EXPECT_EQ(result.rounds[0].status, RoadmapStatus::kGoalInvalid);
+    EXPECT_FALSE(result.accepted);
+    EXPECT_FALSE(result.validated);
+    EXPECT_TRUE(result.validation.empty());
+  }
+  problem.allow_goal_shift = true;
+  const SwayPlanningResult result = SwayPlanner(problem).plan(false);
+  ASSERT_EQ(result.rounds.size(), 2u);
+  ASSERT_TRUE(result.accepted);
+  EXPECT_EQ(*result.accepted, 1u);
+  const PlanningRound& round = result.rounds[1];
+  EXPECT_DOUBLE_EQ(round.base_offset, 10.0);
+  EXPECT_EQ(round.best->colliding_poses, 0u);
+  // A shift along the (unit) line moves the goal's tool point by the shift: 10 cm.
+  constexpr double kFk = 1e-9;  // [cm] forward kinematics' rounding
+  EXPECT_NEAR(round.goal_displacement, 10.0, kFk);
+  EXPECT_EQ(result.rounds[0].goal_displacement, 0.0);
+  EXPECT_NEAR(SwayPlanner(problem).goalDisplacement(-5.0), 5.0, kFk);
+}
+
+TEST(SwayPlanner, AStartInCollisionAtTheMeasuredPoseEndsThePlanning) {
+  // The start is where the arm is: a base shift cannot free it, whatever allow_goal_shift says.
+  SwayPlanningProblem problem =
+      slider("{name: post, type: box, size: [4, 4, 4], xyz: [0, 0, 0]}", 1);
+  problem.base_step = 10.0;
+  problem.base_range = 20.0;
+  problem.allow_goal_shift = true;
+  const SwayPlanningResult result = SwayPlanner(problem).plan(false);
+  ASSERT_EQ(result.rounds.size(), 1u);
+  EXPECT_EQ(result.rounds[0].status, RoadmapStatus::kStartInvalid);
+  EXPECT_FALSE(result.accepted);
 }
 
 TEST(SwayPlanner, ReportsStartGoalAndRoadmapFailures) {

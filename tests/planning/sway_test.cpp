@@ -41,6 +41,26 @@ TEST(WilsonInterval, MatchesNewcombesTable) {
   EXPECT_THROW(wilsonInterval(3, 2), Error);
 }
 
+TEST(WilsonInterval, UpperEndsOfThePlannersAcceptanceRule) {
+  // Closed form of the upper end for k of n at z = 1.959964 (95 %):
+  // (k + z^2/2 + z sqrt(k (n - k) / n + z^2 / 4)) / (n + z^2), z^2 = 3.8414588.
+  // k = 0, n = 100: z^2 / (n + z^2) = 3.8414588 / 103.8414588 = 0.0369935 (<= 0.05: accepted).
+  // k = 2, n = 100: (2 + 1.9207294 + 1.959964 sqrt(1.96 + 0.9603647)) / 103.8414588
+  //               = (3.9207294 + 3.3493971) / 103.8414588 = 0.0700118 (> 0.05: refused).
+  // k = 1, n = 100: (1 + 1.9207294 + 1.959964 sqrt(0.99 + 0.9603647)) / 103.8414588 = 0.0544862.
+  // k = 0, n = 72 and 73: 3.8414588 / 75.8414588 = 0.0506512, / 76.8414588 = 0.0499920: the
+  // fewest poses with which a path can be accepted at 0.05.
+  constexpr double kHand = 1e-6;  // the hand computation's seven decimals
+  EXPECT_NEAR(wilsonInterval(0, 100).high, 0.0369935, kHand);
+  EXPECT_NEAR(wilsonInterval(2, 100).high, 0.0700118, kHand);
+  EXPECT_NEAR(wilsonInterval(1, 100).high, 0.0544862, kHand);
+  EXPECT_NEAR(wilsonInterval(0, 72).high, 0.0506512, kHand);
+  EXPECT_NEAR(wilsonInterval(0, 73).high, 0.0499920, kHand);
+  // The other ends at k = 0 and k = n are exact (not 3e-18 off).
+  EXPECT_EQ(wilsonInterval(0, 100).low, 0.0);
+  EXPECT_EQ(wilsonInterval(100, 100).high, 1.0);
+}
+
 TEST(SwayDisplacement, RollSwingsTheBodyAboutTheLine) {
   SwayModel model;
   model.pivot = {0, 0, 25};

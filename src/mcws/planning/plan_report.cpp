@@ -48,6 +48,10 @@ nlohmann::json pathJson(const PathSafety& path) {
       {"whole_path_free_poses", path.free_poses},
       {"whole_path_free_fraction", path.free_fraction},
       {"whole_path_free_interval_95", {path.free_interval.low, path.free_interval.high}},
+      {"whole_path_colliding_poses", path.colliding_poses},
+      {"whole_path_collision_rate", path.collision_rate},
+      {"whole_path_collision_interval_95",
+       {path.collision_interval.low, path.collision_interval.high}},
       {"worst_segment",
        {{"index", path.worst_segment},
         {"probability", path.worst_probability},
@@ -67,11 +71,55 @@ Eigen::VectorXd vertexConfiguration(const PlanningRound& round, std::size_t vert
   return {};
 }
 
-const char* overallStatus(const SwayPlanningResult& result) {
+/// "ok", the refusal when some round found a path ("above_max_collision_probability" or
+/// "below_threshold"), else the roadmap status of the last round.
+std::string overallStatus(const SwayPlanningProblem& problem, const SwayPlanningResult& result) {
   if (result.accepted) return "ok";
-  for (const PlanningRound& round : result.rounds)
-    if (round.best) return "below_threshold";
-  return roadmapStatusName(result.rounds.front().status);
+  if (result.validated) {
+    return problem.acceptance == Acceptance::kPatentP ? "below_threshold"
+                                                      : "above_max_collision_probability";
+  }
+  return roadmapStatusName(result.rounds.back().status);
+}
+
+/// The acceptance criterion in words.
+std::string criterion(const SwayPlanningProblem& problem) {
+  if (problem.acceptance == Acceptance::kPatentP)
+    return "patent_p: the patent's P >= threshold " + format("%g", problem.threshold);
+  return "whole_path: the upper end of the 95 % Wilson interval of the whole-path collision rate "
+         "over the n = " +
+         std::to_string(problem.base_poses) + " planning poses <= max_collision_probability " +
+         format("%g", problem.max_collision_probability);
+}
+
+/// When even a path free for all n poses is refused (the upper end at 0 of n is z^2 / (n + z^2)),
+/// a note with the fewest poses that can pass: n >= z^2 (1 - max) / max; else "".
+std::string fewestPoses(const SwayPlanningProblem& problem) {
+  const double most = problem.max_collision_probability;
+  if (wilsonInterval(0, problem.base_poses).high <= most) return "";
+  // z^2 from the interval itself (at n = 1 the upper end is z^2 / (1 + z^2)); a step either way
+  // settles the rounding.
+  const double u = wilsonInterval(0, 1).high, z2 = u / (1.0 - u);
+  auto n = static_cast<std::size_t>(std::ceil(z2 * (1.0 - most) / most));
+  while (wilsonInterval(0, n).high > most) ++n;
+  while (n > 1 && wilsonInterval(0, n - 1).high <= most) --n;
+  return "; with n = " + std::to_string(problem.base_poses) +
+         " poses not even a path free for all of them can pass: sway: poses must be at least " +
+         std::to_string(n);
+}
+
+/// Why a best path is accepted or refused, in words.
+std::string verdict(const SwayPlanningProblem& problem, const PathSafety& path, bool accepted) {
+  if (problem.acceptance == Acceptance::kPatentP) {
+    return std::string(accepted ? "accepted" : "refused") + ": P " +
+           format("%.4f", path.probability) + (accepted ? " >= " : " < ") + "threshold " +
+           format("%g", problem.threshold) + " (patent_p)";
+  }
+  return std::string(accepted ? "accepted" : "refused") +
+         ": the upper end of the 95 % interval of the whole-path collision rate, " +
+         format("%.4f", path.collision_interval.high) + (accepted ? ", is at most" : ", exceeds") +
+         " max_collision_probability " + format("%g", problem.max_collision_probability) +
+         " (whole_path)";
 }
 
 }  // namespace
@@ -109,17 +157,20 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
                      {"robot", scenario.robot_path},
                      {"length_unit", unitName(problem.robot.length_unit)},
                      {"units", units},
-                     {"status", overallStatus(result)},
+                     {"status", overallStatus(problem, result)},
                      {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
                      {"weight", problem.score.weight},
+                     {"acceptance", acceptanceName(problem.acceptance)},
+                     {"max_collision_probability", problem.max_collision_probability},
                      {"threshold", problem.threshold},
-                     {"threshold_on", problem.threshold_on_whole_path ? "whole_path" : "P"},
+                     {"allow_goal_shift", problem.allow_goal_shift},
                      {"base_poses", problem.base_poses},
                      {"candidates_requested", problem.candidates},
                      {"confidence", problem.sway.confidence},
                      {"rounds", nlohmann::json::array()}};
   for (const PlanningRound& round : result.rounds) {
     nlohmann::json r{{"base_offset", round.base_offset},
+                     {"goal_displacement", round.goal_displacement},
                      {"roadmap_status", roadmapStatusName(round.status)},
                      {"roadmap_vertices", round.roadmap_vertices},
                      {"roadmap_edges", round.roadmap_edges},
@@ -145,26 +196,42 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
       }
       r["shared_nodes"].push_back(node);
     }
-    if (round.best) r["best"] = pathJson(*round.best);
+    if (round.best) {
+      r["best"] = pathJson(*round.best);
+      r["best"]["accepted"] = round.accepted;
+    }
     out["rounds"].push_back(r);
   }
+  if (result.validated) out["validated_round"] = *result.validated;
   if (result.accepted) {
+    const PlanningRound& round = result.rounds[*result.accepted];
     out["accepted_round"] = *result.accepted;
-    out["chosen"] = pathJson(*result.rounds[*result.accepted].best);
+    out["chosen"] = pathJson(*round.best);
+    if (round.base_offset != 0.0) {
+      out["goal_displacement"] = {{"value", round.goal_displacement},
+                                  {"unit", unitName(problem.robot.length_unit)},
+                                  {"base_offset", round.base_offset}};
+    }
   }
   if (!result.validation.empty()) {
     nlohmann::json v{{"poses", problem.validation_poses},
                      {"seconds", result.validation_seconds},
                      {"rows", nlohmann::json::array()}};
     for (const ValidationRow& row : result.validation) {
+      // A row whose planner found no path has a status and no numbers: no length 0 or
+      // probability 0 that reads as a perfect path.
       nlohmann::json item{{"name", row.name},
                           {"planned", row.planned},
+                          {"status", row.planned ? "planned" : "no_path"},
                           {"roadmap_status", row.status},
-                          {"length", row.length},
-                          {"colliding_poses", row.colliding},
-                          {"collision_probability", row.collision_probability},
-                          {"interval_95", {row.interval.low, row.interval.high}},
                           {"seconds", row.seconds}};
+      if (row.planned) {
+        item["length"] = row.length;
+        item["poses"] = row.poses;
+        item["colliding_poses"] = row.colliding;
+        item["collision_probability"] = row.collision_probability;
+        item["interval_95"] = {row.interval.low, row.interval.high};
+      }
       if (row.name == "padded") {
         item["padding"] = row.padding;
         item["planning_seconds"] = row.planning_seconds;
@@ -190,29 +257,34 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       << "): n = " << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
       << " % region, m = " << problem.candidates << " candidates, rule "
       << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
-      << ", w = " << problem.score.weight << ", threshold " << problem.threshold << " on "
-      << (problem.threshold_on_whole_path ? "the whole-path free fraction" : "P") << "\n"
+      << ", w = " << problem.score.weight << "\n"
+      << "acceptance " << criterion(problem) << "\n"
       << "units: lengths " << length_unit << ", angles rad, times s; D = " << scenario.distance_unit
       << " (dimensionless, as are D0, w and the scores); P, the threshold and the free and "
-         "collision rates are fractions in [0, 1]; P is the patent's mean of segment free rates, "
-         "not the probability that the whole path is free\n";
+         "collision rates are fractions in [0, 1]; so is max_collision_probability; P is the "
+         "patent's mean of segment free rates, not the probability that the whole path is free; a "
+         "path's whole-path collision rate is the share of base poses for which it collides "
+         "anywhere along its length\n";
   for (std::size_t r = 0; r < result.rounds.size(); ++r) {
     const PlanningRound& round = result.rounds[r];
     out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
-        << " along the line: roadmap " << round.roadmap_vertices << " vertices, "
+        << " along the line (goal's tool point " << format("%.4g", round.goal_displacement) << " "
+        << length_unit << " from the target): roadmap " << round.roadmap_vertices << " vertices, "
         << round.roadmap_edges << " edges (" << roadmapStatusName(round.status)
         << "), D0 = " << format("%.4g", round.reference_distance) << ", "
         << format("%.2f", round.seconds) << " s (roadmap " << format("%.2f", round.roadmap_seconds)
         << " s, segments " << format("%.2f", round.evaluation_seconds) << " s)\n";
     if (!round.best) continue;
-    out << "  cand  length D  P (patent)  whole path free [95 % CI]   worst segment: index, P\n";
+    out << "  cand  length D  P (patent)  whole path collides: poses, rate [95 % CI]  "
+           "worst segment: index, P\n";
     for (std::size_t c = 0; c < round.candidates.size(); ++c) {
       const PathSafety& path = round.candidates[c];
       char line[200];
       std::snprintf(line, sizeof line,
-                    "  %4zu  %8.3f  %10.4f  %.3f [%.3f, %.3f]       %4zu, %.3f\n", c, path.length,
-                    path.probability, path.free_fraction, path.free_interval.low,
-                    path.free_interval.high, path.worst_segment, path.worst_probability);
+                    "  %4zu  %8.3f  %10.4f  %5zu of %-5zu %.3f [%.3f, %.3f]        %4zu, %.3f\n", c,
+                    path.length, path.probability, path.colliding_poses, problem.base_poses,
+                    path.collision_rate, path.collision_interval.low, path.collision_interval.high,
+                    path.worst_segment, path.worst_probability);
       out << line;
     }
     for (const SharedNodeDecision& decision : round.decisions) {
@@ -233,24 +305,26 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
     }
     const PathSafety& best = *round.best;
     out << "  best path: length " << format("%.3f", best.length) << ", P "
-        << format("%.4f", best.probability) << ", whole path free for " << best.free_poses << " of "
-        << problem.base_poses << " poses (" << format("%.3f", best.free_fraction) << " ["
-        << format("%.3f", best.free_interval.low) << ", " << format("%.3f", best.free_interval.high)
-        << "]), worst segment " << best.worst_segment << " of " << best.segments << " (P "
+        << format("%.4f", best.probability) << ", whole path collides for " << best.colliding_poses
+        << " of " << problem.base_poses << " poses (rate " << format("%.3f", best.collision_rate)
+        << " [" << format("%.3f", best.collision_interval.low) << ", "
+        << format("%.3f", best.collision_interval.high) << "]), worst segment "
+        << best.worst_segment << " of " << best.segments << " (P "
         << format("%.3f", best.worst_probability) << ", from "
         << configuration(scenario, best.worst_from) << " to "
         << configuration(scenario, best.worst_to) << ")\n";
-    out << "  " << (result.accepted && *result.accepted == r ? "meets" : "below")
-        << " the threshold " << problem.threshold << " on "
-        << (problem.threshold_on_whole_path ? "the whole-path free fraction" : "P") << "\n";
+    out << "  " << verdict(problem, best, round.accepted) << "\n";
   }
   if (!result.validation.empty()) {
     out << "\nvalidation on " << problem.validation_poses
-        << " fresh base poses (another seed), whole-path collision probability:\n";
+        << " fresh base poses (another seed), whole-path collision probability";
+    if (!result.accepted)
+      out << " (\"chosen\": round " << *result.validated + 1 << "'s best path, refused)";
+    out << ":\n";
     for (const ValidationRow& row : result.validation) {
       char line[200];
       if (!row.planned) {
-        std::snprintf(line, sizeof line, "  %-9s no path (%s)", row.name.c_str(),
+        std::snprintf(line, sizeof line, "  %-9s no path (roadmap %s)", row.name.c_str(),
                       row.status.c_str());
       } else {
         std::snprintf(line, sizeof line,
@@ -264,16 +338,51 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
       out << ", " << format("%.2f", row.seconds) << " s\n";
     }
   }
+  out << "\nstatus: ";
+  if (result.accepted) {
+    const PlanningRound& round = result.rounds[*result.accepted];
+    out << "ok: round " << *result.accepted + 1 << "'s best path is accepted ("
+        << acceptanceName(problem.acceptance) << ")";
+    if (round.base_offset != 0.0) {
+      out << "; the base is shifted " << format("%g", round.base_offset) << " " << length_unit
+          << " along the line, so the tool ends " << format("%.4g", round.goal_displacement) << " "
+          << length_unit << " from the target it reaches from the measured base pose "
+          << "(goal_displacement)";
+    }
+  } else {
+    out << noPathStatus(scenario, result);
+  }
+  out << "\n";
   return out.str();
 }
 
 std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& result) {
   const SwayPlanningProblem& problem = scenario.problem;
-  const PlanningRound& last = result.rounds.back();
-  if (!last.best) return roadmapStatusName(last.status);
-  return std::string("below_threshold: the best path stays below the ") +
-         (problem.threshold_on_whole_path ? "whole-path" : "P") + " threshold " +
-         format("%g", problem.threshold) + " within the base range";
+  const std::string status = overallStatus(problem, result);
+  const std::string range = problem.base_step > 0.0 ? "at every base offset within the range"
+                                                    : "(no base shift: base_step 0)";
+  if (result.validated) {
+    const PathSafety& best = *result.rounds[*result.validated].best;
+    if (problem.acceptance == Acceptance::kPatentP) {
+      return status + ": the best path's P stays below the threshold " +
+             format("%g", problem.threshold) + " " + range + " (highest " +
+             format("%.4f", best.probability) + ")";
+    }
+    return status + ": the best path's whole-path collision rate over the " +
+           std::to_string(problem.base_poses) +
+           " planning poses has the upper end of its 95 % interval above " +
+           "max_collision_probability " + format("%g", problem.max_collision_probability) + " " +
+           range + " (lowest " + format("%.4f", best.collision_interval.high) + ", " +
+           std::to_string(best.colliding_poses) + " of " + std::to_string(problem.base_poses) +
+           " poses colliding)" + fewestPoses(problem);
+  }
+  const PlanningRound& first = result.rounds.front();
+  if (result.rounds.size() == 1 && first.status == RoadmapStatus::kStartInvalid)
+    return status + " at the measured base pose (a base shift cannot move the arm's start)";
+  if (result.rounds.size() == 1 && first.status == RoadmapStatus::kGoalInvalid &&
+      !problem.allow_goal_shift)
+    return status + " at the measured base pose (allow_goal_shift: false)";
+  return status + " " + range;
 }
 
 std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner) {
@@ -296,7 +405,8 @@ std::string renderOffsetsPng(const Scenario& scenario, const std::vector<Plannin
     for (const PlanningRound& round : rounds) {
       if (round.best) {
         file << round.base_offset << " " << round.best->probability << " "
-             << round.best->free_fraction << "\n";
+             << round.best->free_fraction << " " << 1.0 - round.best->collision_interval.high
+             << "\n";
       }
     }
   }
@@ -310,7 +420,15 @@ std::string renderOffsetsPng(const Scenario& scenario, const std::vector<Plannin
      << "plot " << gnuplotQuoted(data) << " using 1:2 with linespoints lw 2 pt 7 title "
      << "'P (patent: mean of segment free rates)', " << gnuplotQuoted(data)
      << " using 1:3 with linespoints lw 2 pt 5 title 'whole path free fraction', "
-     << scenario.problem.threshold << " with lines dt 2 lc rgb 'black' title 'threshold'\n";
+     << gnuplotQuoted(data)
+     << " using 1:4 with linespoints lw 1 pt 4 title 'its lower 95 % bound (whole_path)', ";
+  if (scenario.problem.acceptance == Acceptance::kPatentP) {
+    gp << scenario.problem.threshold
+       << " with lines dt 2 lc rgb 'black' title 'threshold on P (patent_p)'\n";
+  } else {
+    gp << 1.0 - scenario.problem.max_collision_probability
+       << " with lines dt 2 lc rgb 'black' title '1 - max_collision_probability'\n";
+  }
   return io::runGnuplot(dir, gp.str(), png);
 }
 

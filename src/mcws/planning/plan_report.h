@@ -23,16 +23,18 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
 /// validation.
 std::string planReport(const Scenario& scenario, const SwayPlanningResult& result);
 
-/// \brief Why no path was accepted, one line: "goal_in_collision", "not_connected", or
-/// "below_threshold: ..." with the threshold and the measure it applies to.
+/// \brief Why no path was accepted, one line that starts with the JSON's status:
+/// "start_in_collision", "goal_in_collision", "not_connected", "above_max_collision_probability"
+/// (acceptance whole_path) or "below_threshold" (patent_p), then what was measured against what.
 std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& result);
 
 /// \brief Rounds at every base offset -range, ..., 0, ..., +range (step apart), for a plot of
 /// P against the offset.
 std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner);
 
-/// \brief PNG of P and of the whole-path free fraction of each round's best path against its
-/// base offset. \throws mcws::Error when gnuplot fails.
+/// \brief PNG of P, of the whole-path free fraction and of the lower end of its 95 % interval
+/// (1 - the upper end of the collision rate's) of each round's best path against its base offset,
+/// with the acceptance criterion's line. \throws mcws::Error when gnuplot fails.
 std::string renderOffsetsPng(const Scenario& scenario, const std::vector<PlanningRound>& rounds);
 
 /// \brief PNG of a two-joint configuration space (Figure 2b of the maintenance-arm patent,

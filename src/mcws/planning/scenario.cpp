@@ -285,7 +285,8 @@ class ScenarioReader : YamlReader {
   void readPlanner(const YAML::Node& node, SwayPlanningProblem& problem) {
     checkKeys(node, "planner",
               {"candidates", "diversity", "roadmap_nodes", "max_roadmap_nodes", "neighbours",
-               "roadmap_seed", "segment_length", "rule", "weight", "threshold", "threshold_on",
+               "roadmap_seed", "segment_length", "rule", "weight", "acceptance",
+               "max_collision_probability", "threshold", "threshold_on", "allow_goal_shift",
                "base_step", "base_range", "padding"});
     if (node["candidates"]) problem.candidates = count(node["candidates"], "planner: candidates");
     if (node["diversity"]) problem.diversity = nonNegative(node["diversity"], "planner: diversity");
@@ -323,11 +324,34 @@ class ScenarioReader : YamlReader {
       }
     }
     if (const YAML::Node on = node["threshold_on"]) {
-      const std::string name = scalar(on, "planner: threshold_on");
-      if (name != "P" && name != "whole_path") {
-        fail(on, "planner: threshold_on '" + name + "' is not P or whole_path");
+      // The old switch between P and the whole-path free fraction as a point estimate.
+      fail(on,
+           "planner: threshold_on is no longer read: acceptance: whole_path (the default, "
+           "with max_collision_probability) or acceptance: patent_p (with threshold)");
+    }
+    if (const YAML::Node acceptance = node["acceptance"]) {
+      const std::string name = scalar(acceptance, "planner: acceptance");
+      if (name == "whole_path") {
+        problem.acceptance = Acceptance::kWholePath;
+      } else if (name == "patent_p") {
+        problem.acceptance = Acceptance::kPatentP;
+      } else {
+        fail(acceptance, "planner: acceptance '" + name + "' is not whole_path or patent_p");
       }
-      problem.threshold_on_whole_path = name == "whole_path";
+    }
+    if (const YAML::Node most = node["max_collision_probability"]) {
+      problem.max_collision_probability = number(most, "planner: max_collision_probability");
+      if (!(problem.max_collision_probability > 0.0 && problem.max_collision_probability < 1.0)) {
+        fail(most, "planner: max_collision_probability " + most.Scalar() +
+                       " is outside (0, 1) (a fraction, e.g. 0.05)");
+      }
+    }
+    if (const YAML::Node shift = node["allow_goal_shift"]) {
+      const std::string value = scalar(shift, "planner: allow_goal_shift");
+      if (value != "true" && value != "false") {
+        fail(shift, "planner: allow_goal_shift '" + value + "' is not true or false");
+      }
+      problem.allow_goal_shift = value == "true";
     }
     if (node["base_step"])
       problem.base_step = nonNegative(node["base_step"], 'l', "planner: base_step", "");

@@ -47,8 +47,11 @@ struct Scenario {
 ///   segment_length: 0.5                  # [scaled joint distance]
 ///   rule: weighted                       # or literal
 ///   weight: 1
-///   threshold: 0.9
-///   threshold_on: P                      # or whole_path (the whole-path free fraction)
+///   acceptance: whole_path               # or patent_p (P >= threshold)
+///   max_collision_probability: 0.05      # whole_path: the largest upper end of the 95 % Wilson
+///                                        # interval of the whole-path collision rate
+///   threshold: 0.9                       # patent_p: the least P
+///   allow_goal_shift: false              # may a base shift free a goal in collision?
 ///   base_step: 5 cm
 ///   base_range: 30 cm
 ///   padding: auto                        # or a length, e.g. 3 cm
@@ -56,8 +59,10 @@ struct Scenario {
 /// \endcode
 /// \throws mcws::Error "file:line: field: ..." for a missing or unknown field, a value of the
 ///   wrong kind or unit, a negative sigma, a covariance that is not positive semi-definite, a
-///   confidence outside (0, 1), n or m zero, a start or goal outside the joint limits or of
-///   the wrong length, a robot file that does not exist or has no collision geometry.
+///   confidence outside (0, 1), n or m zero, an acceptance other than whole_path or patent_p, a
+///   max_collision_probability outside (0, 1), an allow_goal_shift other than true or false, a
+///   start or goal outside the joint limits or of the wrong length, a robot file that does not
+///   exist or has no collision geometry.
 Scenario parseScenario(const std::string& text, const std::string& source);
 
 /// \brief parseScenario() of a file. \throws mcws::Error when it cannot be read.

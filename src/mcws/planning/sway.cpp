@@ -75,7 +75,9 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials, dou
   const double z2n = z * z / n;
   const double centre = (p + 0.5 * z2n) / (1.0 + z2n);
   const double half = z * std::sqrt(p * (1.0 - p) / n + 0.25 * z2n / n) / (1.0 + z2n);
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // At k = 0 (k = n) the lower (upper) end is 0 (1) exactly; centre - half rounds to 3e-18.
+  return {successes == 0 ? 0.0 : std::max(0.0, centre - half),
+          successes == trials ? 1.0 : std::min(1.0, centre + half)};
 }
 
 SwaySampler::SwaySampler(const SwayModel& model) : model_(model) {

@@ -12,6 +12,10 @@
 
 namespace mcws {
 
+const char* acceptanceName(Acceptance acceptance) {
+  return acceptance == Acceptance::kPatentP ? "patent_p" : "whole_path";
+}
+
 namespace {
 
 /// Base poses of a run and what bounds their effect on a clearance.
@@ -277,6 +281,9 @@ PathSafety pathSafety(const VertexPath& path, const Roadmap& roadmap,
   for (std::uint8_t f : whole) safety.free_poses += f;
   safety.free_fraction = static_cast<double>(safety.free_poses) / static_cast<double>(poses);
   safety.free_interval = wilsonInterval(safety.free_poses, poses);
+  safety.colliding_poses = poses - safety.free_poses;
+  safety.collision_rate = static_cast<double>(safety.colliding_poses) / static_cast<double>(poses);
+  safety.collision_interval = wilsonInterval(safety.colliding_poses, poses);
   return safety;
 }
 
@@ -287,6 +294,7 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   const SwayPlanningProblem& p = problem_;
   PlanningRound round;
   round.base_offset = offset;
+  round.goal_displacement = goalDisplacement(offset);
   const Eigen::Isometry3d T_nominal = measuredBase(offset);
   const Eigen::VectorXd& scale = p.roadmap.joint_scale;
   round.reference_distance = scaledDistance(p.start, p.goal, scale);
@@ -387,6 +395,7 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
     round.candidates.push_back(pathSafety(path, roadmap, evaluation.edges, p.base_poses));
   round.decisions = merged.decisions;
   round.best = pathSafety(merged.paths[merged.best], roadmap, evaluation.edges, p.base_poses);
+  round.accepted = accepts(*round.best);
   round.seconds = elapsed();
   return round;
 }
@@ -432,11 +441,17 @@ ValidationRow SwayPlanner::validate(const std::string& name,
   return row;
 }
 
-bool SwayPlanner::meetsThreshold(const PlanningRound& round) const {
-  if (!round.best) return false;
-  const double value =
-      problem_.threshold_on_whole_path ? round.best->free_fraction : round.best->probability;
-  return value >= problem_.threshold;
+bool SwayPlanner::accepts(const PathSafety& path) const {
+  if (problem_.acceptance == Acceptance::kPatentP) return path.probability >= problem_.threshold;
+  return path.collision_interval.high <= problem_.max_collision_probability;
+}
+
+double SwayPlanner::goalDisplacement(double offset) const {
+  Robot shifted = problem_.robot;
+  shifted.T_world_base = measuredBase(offset);
+  return (toolPose(shifted, problem_.goal).translation() -
+          toolPose(problem_.robot, problem_.goal).translation())
+      .norm();
 }
 
 SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
@@ -456,28 +471,38 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   for (double offset : offsets) {
     result.rounds.push_back(planRound(offset, progress));
     const PlanningRound& round = result.rounds.back();
-    if (meetsThreshold(round)) {
+    if (round.accepted) {
       result.accepted = result.rounds.size() - 1;
       break;
     }
-    // A start or goal in collision, or a roadmap that does not connect, at this offset: the
-    // next offset may do better, so step s70 goes on.
+    // The start is where the arm is now: in collision at the measured pose, the model and the
+    // robot disagree, and no base shift can mend that. A goal in collision there is freed by a
+    // shift only when the scenario allows the tool to end away from the target.
+    if (offset == 0.0 && (round.status == RoadmapStatus::kStartInvalid ||
+                          (round.status == RoadmapStatus::kGoalInvalid && !p.allow_goal_shift)))
+      break;
+    // A roadmap that does not connect, a goal in collision (when allowed) or a path refused at
+    // this offset: the next offset may do better, so step s70 goes on.
   }
-  if (!validate_paths) return result;
-
-  // Validate the accepted round, or else the round whose best path has the highest P.
-  std::optional<std::size_t> chosen = result.accepted;
-  for (std::size_t r = 0; r < result.rounds.size() && !chosen; ++r) {
-    if (result.rounds[r].best) chosen = r;
-  }
+  // The round to validate: the accepted one, or else the one whose best path comes closest to
+  // the criterion (the lowest upper end of the collision interval, or the highest P).
+  result.validated = result.accepted;
   for (std::size_t r = 0; r < result.rounds.size() && !result.accepted; ++r) {
-    if (result.rounds[r].best &&
-        result.rounds[r].best->probability > result.rounds[*chosen].best->probability)
-      chosen = r;
+    const std::optional<PathSafety>& best = result.rounds[r].best;
+    if (!best) continue;
+    if (!result.validated) {
+      result.validated = r;
+      continue;
+    }
+    const PathSafety& held = *result.rounds[*result.validated].best;
+    const bool closer = p.acceptance == Acceptance::kPatentP
+                            ? best->probability > held.probability
+                            : best->collision_interval.high < held.collision_interval.high;
+    if (closer) result.validated = r;
   }
-  if (!chosen) return result;
+  if (!validate_paths || !result.validated) return result;
   const auto started = std::chrono::steady_clock::now();
-  const PlanningRound& round = result.rounds[*chosen];
+  const PlanningRound& round = result.rounds[*result.validated];
   if (progress) progress("validation", 0, 3);
   result.validation.push_back(validate("chosen", round.best->waypoints, round.base_offset));
   if (progress) progress("validation", 1, 3);

@@ -20,6 +20,20 @@
 
 namespace mcws {
 
+/// \brief What a round's best path must meet to be accepted (step s50).
+enum class Acceptance {
+  /// The upper end of the 95 % Wilson interval of the path's whole-path collision rate over the
+  /// n planning poses (the share of poses for which it collides anywhere along its length) is at
+  /// most max_collision_probability.
+  kWholePath,
+  /// The patent's literal reading: P (a mean of segment free rates) is at least the threshold.
+  /// P stays near 1 while the path collides for a large share of the poses.
+  kPatentP,
+};
+
+/// \brief "whole_path" or "patent_p", as the scenario file writes it.
+const char* acceptanceName(Acceptance acceptance);
+
 /// \brief Everything the method of the maintenance-arm patent takes (step s10 and the readings mcws
 /// makes of it).
 struct SwayPlanningProblem {
@@ -32,10 +46,14 @@ struct SwayPlanningProblem {
   double diversity{0.5};        ///< diversePaths() penalty
   double segment_length{0.5};   ///< step s41's resolution [scaled joint distance]
   ScoreOptions score;           ///< step s45 (reference_distance: set to D0 by the planner)
-  double threshold{0.9};        ///< step s50: least acceptable P of the best path
-  /// Apply the threshold to the whole-path free fraction over the n poses instead of the
-  /// patent's P (a mean of segment rates, which stays near 1 when one segment is risky).
-  bool threshold_on_whole_path{false};
+  Acceptance acceptance{Acceptance::kWholePath};  ///< step s50's criterion
+  /// kWholePath: the largest acceptable upper end of the 95 % Wilson interval of the whole-path
+  /// collision rate [fraction in (0, 1)].
+  double max_collision_probability{0.05};
+  double threshold{0.9};  ///< kPatentP: least acceptable P of the best path [fraction]
+  /// A goal in collision at the measured base pose may be freed by shifting the base (step s70),
+  /// which moves the tool's end away from the target; false: such a goal ends the planning.
+  bool allow_goal_shift{false};
   double base_step{0.0};   ///< step s70: shift along the line per round [length unit]
   double base_range{0.0};  ///< step s70: largest shift either way [length unit]
   RoadmapOptions roadmap;  ///< includes the joint scales and the seed
@@ -56,7 +74,11 @@ struct PathSafety {
   std::size_t free_poses{0};  ///< base poses for which the whole path is free
   double free_fraction{0.0};
   ProportionInterval free_interval;  ///< 95 % Wilson interval of free_fraction
-  std::size_t worst_segment{0};      ///< index along the path, from 0
+  /// Base poses for which the path collides anywhere along its length (n - free_poses).
+  std::size_t colliding_poses{0};
+  double collision_rate{0.0};             ///< colliding_poses / n [fraction]
+  ProportionInterval collision_interval;  ///< 95 % Wilson interval of collision_rate
+  std::size_t worst_segment{0};           ///< index along the path, from 0
   double worst_probability{1.0};
   Eigen::VectorXd worst_from, worst_to;  ///< the worst segment's end configurations
 };
@@ -70,6 +92,10 @@ struct PlanningRound {
   std::vector<PathSafety> candidates;  ///< as found (step s30), before any splice
   std::vector<SharedNodeDecision> decisions;
   std::optional<PathSafety> best;  ///< the global best path (step s47), when connected
+  bool accepted{false};            ///< best meets the problem's acceptance criterion (s50)
+  /// How far the goal's tool point lies from where it lies for the measured base pose
+  /// (SwayPlanner::goalDisplacement()) [length unit].
+  double goal_displacement{0.0};
   double seconds{0.0};             ///< wall time of the round
   double roadmap_seconds{0.0};     ///< of which growing the roadmap (step s30)
   double evaluation_seconds{0.0};  ///< of which the segments' free states (s41, s42)
@@ -77,22 +103,25 @@ struct PlanningRound {
 
 /// \brief The validation of one path on fresh base poses.
 struct ValidationRow {
-  std::string name;  ///< "chosen", "shortest", "padded"
-  bool planned{false};
-  std::string status;  ///< roadmap status of its planner
-  double length{0.0};  ///< [scaled joint distance]
+  std::string name;     ///< "chosen", "shortest", "padded"
+  bool planned{false};  ///< false: its planner found no path, and the numbers below mean nothing
+  std::string status;   ///< roadmap status of its planner
+  double length{0.0};   ///< [scaled joint distance]; planned rows only
   std::size_t colliding{0}, poses{0};
-  double collision_probability{0.0};
-  ProportionInterval interval;   ///< 95 % Wilson interval
-  double padding{0.0};           ///< the padded row's margin [length unit]
-  double seconds{0.0};           ///< wall time (the padded row: its roadmap included)
-  double planning_seconds{0.0};  ///< the padded row: growing its roadmap and its shortest path
+  double collision_probability{0.0};  ///< planned rows only
+  ProportionInterval interval;        ///< 95 % Wilson interval; planned rows only
+  double padding{0.0};                ///< the padded row's margin [length unit]
+  double seconds{0.0};                ///< wall time (the padded row: its roadmap included)
+  double planning_seconds{0.0};       ///< the padded row: growing its roadmap and its shortest path
 };
 
 /// \brief The whole result of mcws_plan.
 struct SwayPlanningResult {
   std::vector<PlanningRound> rounds;    ///< offset 0 first, then the base adjustments (s70)
-  std::optional<std::size_t> accepted;  ///< the round whose best path meets the threshold
+  std::optional<std::size_t> accepted;  ///< the round whose best path meets the criterion
+  /// The round whose best path is validated (when plan() is asked to): the accepted one, or when
+  /// none is, the one closest to the criterion; empty when no round found a path.
+  std::optional<std::size_t> validated;
   std::vector<ValidationRow> validation;
   double validation_seconds{0.0};
 };
@@ -110,19 +139,27 @@ class SwayPlanner {
   /// \brief Steps s20 to s47 with the base shifted by `offset` along the line [length unit].
   PlanningRound planRound(double offset, const PlanningProgress& progress = {}) const;
 
-  /// \brief Whether a round's best path meets the threshold (step s50).
-  bool meetsThreshold(const PlanningRound& round) const;
+  /// \brief Whether a path meets the problem's acceptance criterion (step s50): for kWholePath,
+  /// the upper end of the 95 % Wilson interval of its whole-path collision rate over the n
+  /// planning poses is at most max_collision_probability; for kPatentP, P >= threshold.
+  bool accepts(const PathSafety& path) const;
 
   /// \brief Steps s20 to s70: offset 0, then +step, -step, +2 step, ... within the range until
-  /// the best path's P reaches the threshold; then validates the accepted (or, when none
-  /// passes, the last round's) best path against the shortest and the padded shortest path
-  /// (when `validate`).
+  /// the best path is accepted; a start in collision at the measured pose, or a goal in
+  /// collision there without allow_goal_shift, ends the planning after the first round. Then
+  /// validates the accepted (or, when none is, the closest to acceptance) round's best path
+  /// against the shortest and the padded shortest path (when `validate`).
   SwayPlanningResult plan(bool validate, const PlanningProgress& progress = {}) const;
 
   /// \brief Collision probability of a path over `poses` fresh base poses (a seed distinct
   /// from the planning one) at a base offset.
   ValidationRow validate(const std::string& name, const std::vector<Eigen::VectorXd>& waypoints,
                          double offset) const;
+
+  /// \brief How far the tool point of the goal configuration moves when the base is shifted by
+  /// `offset` along the line [length unit]: the tool then ends this far from the target it
+  /// reaches from the measured base pose.
+  double goalDisplacement(double offset) const;
 
   /// \brief The padding of the comparison planner [length unit]: problem.padding, or when
   /// negative, twice the root-mean-square displacement over the n base poses of the point of
