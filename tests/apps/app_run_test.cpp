@@ -3,9 +3,12 @@
 // control bytes from a file or flag are escaped, so a message stays one line.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <limits>
 #include <new>
 
 #include "common/app.h"
+#include "mcws/core/decimal.h"
 #include "common/pose_args.h"
 #include "test_support.h"
 
@@ -56,6 +59,58 @@ TEST(AppFlags, RealNumbersAreDecimalOnlyAndListsHaveNoEmptyItems) {
             "--q: no number between commas in ',1'");
   EXPECT_EQ(test::errorOf([] { app::parseNumberList("1,2,", "q"); }),
             "--q: no number after the last comma in '1,2,'");
+}
+
+TEST(AppFlags, AnEmptyValueIsAUsageErrorNamingTheFlag) {
+  // `--output ""` (an unset shell variable) was taken for "no output" and failed later with exit
+  // 1 and a message naming no flag. Switches take no value and are not affected.
+  app::CommandLine cli("t --output FILE", "test");
+  cli.addValue("output", "a cloud");
+  cli.addValues("via", "via points");
+  cli.addSwitch("json", "JSON");
+  const char* empty[] = {"t", "--output", "", "--json"};
+  EXPECT_EQ(test::errorOf([&] { cli.parse(4, const_cast<char**>(empty)); }),
+            "--output: the value is empty");
+  app::CommandLine cli2("t --output FILE", "test");
+  cli2.addValue("output", "a cloud");
+  cli2.addValues("via", "via points");
+  cli2.addSwitch("json", "JSON");
+  const char* empty_via[] = {"t", "--output", "a.pcd", "--via", "1 2", "--via", ""};
+  EXPECT_EQ(test::errorOf([&] { cli2.parse(7, const_cast<char**>(empty_via)); }),
+            "--via: a value is empty");
+  app::CommandLine cli3("t --output FILE", "test");
+  cli3.addValue("output", "a cloud");
+  cli3.addSwitch("json", "JSON");
+  const char* fine[] = {"t", "--output", "a.pcd", "--json"};
+  EXPECT_TRUE(cli3.parse(4, const_cast<char**>(fine)));
+  ::testing::internal::CaptureStderr();
+  const int code = app::run("mcws_test", [&] { return cli.parse(4, const_cast<char**>(empty)); });
+  ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, app::kExitUsage);
+}
+
+TEST(AppFlags, AWholeNumberOutOfRangeIsSaidToBeOutOfRange) {
+  // 18446744073709551615 is a whole number, beyond what --seed takes: not "not a whole number".
+  const std::int64_t max = std::numeric_limits<std::int64_t>::max();
+  EXPECT_EQ(test::errorOf([&] { app::parseInteger("18446744073709551615", "seed", 0, max); }),
+            "--seed: 18446744073709551615 is more than 9223372036854775807");
+  EXPECT_EQ(test::errorOf([&] { app::parseInteger("-99999999999999999999", "seed", 0, max); }),
+            "--seed: -99999999999999999999 is less than 0");
+  EXPECT_EQ(test::errorOf([&] { app::parseInteger("12", "threads", 1, 8); }),
+            "--threads: 12 is more than 8");
+  EXPECT_EQ(app::parseInteger("+7", "threads", 1, 8), 7);
+  for (const char* bad : {"1e3", " 5", "5x", "", "-", "0x10", "1.0"}) {
+    EXPECT_EQ(test::errorOf([&] { app::parseInteger(bad, "seed", 0, max); }),
+              "--seed: '" + std::string(bad) + "' is not a whole number");
+  }
+}
+
+TEST(AppFlags, SmallNumbersInMessagesKeepTheirDigits) {
+  // std::to_string printed 1e-9 as "0.000000" ("--resolution 1e-9 prints resolution 0.000000").
+  EXPECT_EQ(formatNumber(1e-9), "1e-09");
+  EXPECT_EQ(formatNumber(0.102375), "0.102375");
+  EXPECT_EQ(formatNumber(39.0), "39");
+  EXPECT_EQ(app::shortNumber(2e6), "2e+06");
 }
 
 TEST(AppFlags, PoseValuesBeyondWhatRobotFilesHoldAreRefused) {

@@ -109,6 +109,21 @@ TEST_F(CloudChecksApp, CloudsWithoutARegionFailAlikeIn2DAnd3D) {
                 path + ": the points extend along x only (a line): no region in the xz plane");
 }
 
+TEST_F(CloudChecksApp, AFlatCloudIsNamedByItsFlattestAxisAndItsRealExtents) {
+  // 2e6 x 2 x 2e-3: flat in z (1e-9 of the largest extent), not in y (the old message said
+  // "y extent 0" for a y extent of 2).
+  pcl::PointCloud<pcl::PointXYZ> slab;
+  for (float x : {0.0f, 2e6f}) {
+    for (float y : {0.0f, 2.0f}) {
+      for (float z : {0.0f, 2e-3f}) slab.push_back({x, y, z});
+    }
+  }
+  const std::string path = save("slab.pcd", slab);
+  const std::string message = path + ": the cloud is flat in z (extent 0.002, its largest 2e+06)";
+  expectFailure(kBoundary, "--input " + path + " --output " + out(), 1, message);
+  expectFailure(kMeasure, "--input " + path, 1, message);
+}
+
 TEST_F(CloudChecksApp, NumericFlagsOutsideTheCloudsRangeAreUsageErrors) {
   // 40 x 40 grid of spacing 1: extent 39 in the plane; meanSpacing() estimates the spacing from
   // the cells the points occupy as 1.02375, so lengths run from 0.102375.

@@ -121,7 +121,7 @@ TEST_F(MeasureApp, BadInput) {
   expectFailure(
       "--input " + disk_ + " --plane xy --boundary " + rim_ + " --method column --triangulate all",
       2, "--triangulate does not apply to --method column");
-  expectFailure("--input " + disk_, 1, "the cloud is flat (z extent 0)");
+  expectFailure("--input " + disk_, 1, "the cloud is flat in z (extent 0, its largest 1.99");
   expectFailure("--input " + dir_.file("none.pcd"), 1, "cloud file does not exist");
   expectFailure(
       "--input " + dir_.file("none.pcd") + " --plane xy --method column --boundary " + rim_, 1,

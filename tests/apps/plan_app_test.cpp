@@ -251,7 +251,7 @@ TEST_F(McwsPlan, BadScenarioExitsOneNamingTheField) {
                           bad + ":8: sway: swing: sigma -1 deg must be >= 0", outputs_);
   test::expectToolFailure(
       kPlan, "--scenario " + inputs_.file("none.yaml") + " --output " + outputs_.file("p.csv"), 1,
-      "none.yaml: cannot read the scenario file", outputs_);
+      "none.yaml: scenario file does not exist", outputs_);
 }
 
 TEST_F(McwsPlan, PlotOfAFourJointRobotIsAUsageError) {

@@ -5,6 +5,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
@@ -698,7 +699,12 @@ TEST_F(Scenario, MalformedYaml) {
 TEST_F(Scenario, ScenarioFileThatCannotBeRead) {
   const std::string missing = dir_.file("missing.yaml");
   const std::string message = errorOf([&] { loadScenario(missing); });
-  EXPECT_EQ(message, missing + ": cannot read the scenario file");
+  EXPECT_EQ(message, missing + ": scenario file does not exist");
+  // A FIFO nobody writes would block the read for ever: refused before it is opened.
+  const std::string fifo = dir_.file("fifo.yaml");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_EQ(errorOf([&] { loadScenario(fifo); }),
+            fifo + ": scenario file is not a regular file (a FIFO)");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -31,7 +32,7 @@ MotionCertifier::MotionCertifier(const Robot& robot, const CollisionChecker& che
                 " must be >= 0");
   }
   if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {
-    throw Error("motion check: resolution " + std::to_string(options.resolution) + " must be > 0");
+    throw Error("motion check: resolution " + formatNumber(options.resolution) + " must be > 0");
   }
   const int dof = robot.dof();
   const int tool = checker.toolBody();

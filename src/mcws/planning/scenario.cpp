@@ -13,6 +13,7 @@
 #include "mcws/collision/collision_model.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -403,11 +404,8 @@ Scenario parseScenario(const std::string& text, const std::string& source) {
 }
 
 Scenario loadScenario(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot read the scenario file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScenario(text.str(), path);
+  // Regular files only (a FIFO nobody writes would block), noted as an input of the run.
+  return parseScenario(readTextFile(path, "scenario file"), path);
 }
 
 }  // namespace mcws

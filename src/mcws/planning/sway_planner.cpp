@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 
@@ -176,7 +177,7 @@ SwayPlanner::SwayPlanner(SwayPlanningProblem problem) : problem_(std::move(probl
   if (p.base_poses == 0) throw Error("base_poses (n) must be at least 1");
   if (p.candidates == 0) throw Error("candidates (m) must be at least 1");
   if (!(p.segment_length > 0.0) || !std::isfinite(p.segment_length))
-    throw Error("segment_length " + std::to_string(p.segment_length) + " must be > 0");
+    throw Error("segment_length " + formatNumber(p.segment_length) + " must be > 0");
   if (!(p.diversity >= 0.0) || !std::isfinite(p.diversity))
     throw Error("diversity " + std::to_string(p.diversity) + " must be >= 0");
   if (!(p.base_step >= 0.0) || !(p.base_range >= 0.0) || !std::isfinite(p.base_step) ||
