@@ -264,8 +264,8 @@ class CleaningRun {
     mode_ = Mode::kDone;
     if (status == RunStatus::kCompleted || status == RunStatus::kReturned) {
       resolve(until_start_);  // the return these faults caused reached the start
+      fireTask("job_done");
     }
-    if (status == RunStatus::kCompleted || status == RunStatus::kReturned) fireTask("job_done");
     log("run_end", "", std::string(runStatusName(status)) + ": " + detail);
   }
 
@@ -304,7 +304,7 @@ class CleaningRun {
       if (done.counted && done.combined == "CB2") ++summary_.discs_cleaned;
     }
     log("subtask_done", "",
-        (completed ? "back in " : "stopped in ") + sensedStateText(m.current()));
+        sensedText((completed ? "back in " : "stopped in ") + m.current(), m.current()));
     active_.reset();
     const std::string stopped_in = m.current();
     if (returning_) {
@@ -472,8 +472,7 @@ class CleaningRun {
     if (!mismatch) return true;
     stopAll();
     log("sensor_mismatch", active_ ? active_->behavior : "", mismatch->second);
-    handOver("sensor_mismatch", mismatch->second,
-             switch_fault_at_[mismatch->first == kFixedClamp ? 0 : 1]);
+    handOver("sensor_mismatch", mismatch->second, sensorFaultAt(mismatch->first));
     return false;
   }
 
@@ -500,7 +499,7 @@ class CleaningRun {
       if (a.reclose_to) {
         const std::string to = *a.reclose_to;
         active_.reset();
-        log("reclosed", a.behavior, "both clamps grip: the robot is in " + sensedStateText(to));
+        log("reclosed", a.behavior, "both clamps grip: " + sensedText("in " + to, to));
         landOn(to, true);
         return;
       }
@@ -588,8 +587,10 @@ class CleaningRun {
     sim_.command(command);
     log("command", behavior,
         describe(command) +
-            (ground ? "; echo seq " + std::to_string(seq) + " " + sensedStateText(stateName()) +
-                          (sensorsFit(stateName()) ? " matches" : "")
+            (ground ? "; echo seq " + std::to_string(seq) + " " + stateName() +
+                          (sensorsFit(stateName()) ? " matches"
+                                                   : ": " + sensedText("in " + stateName(),
+                                                                       stateName()))
                     : "; on board"),
         seq);
     return true;
@@ -774,14 +775,14 @@ class CleaningRun {
     return true;
   }
 
-  /// The state the sensors read, for the log: `expected` when the sensors fit its pose, else
-  /// "the sensors read q6 (fixed_clamp=closed moving_clamp=open ...), not q1".
-  std::string sensedStateText(const std::string& expected) const {
-    if (sensorsFit(expected)) return expected;
+  /// For the log: `claim` (e.g. "back in q1") when the sensors fit the pose of `state`, else
+  /// "the machine is back in q1, but the sensors read q6 (fixed_clamp=closed ...)".
+  std::string sensedText(const std::string& claim, const std::string& state) const {
+    if (sensorsFit(state)) return claim;
     const std::vector<ValueSet> pose = sensedPose();
     const std::optional<std::string> sensed = sensedState(pose);
-    return "the sensors read " + (sensed ? *sensed + " (" : std::string("(")) +
-           describePose(pose) + "), not " + expected;
+    return "the machine is " + claim + ", but the sensors read " +
+           (sensed ? *sensed + " (" : std::string("(")) + describePose(pose) + ")";
   }
 
   /// Why `command` must not be sent now, or nothing: the simulator's refuse() (joint limits,
