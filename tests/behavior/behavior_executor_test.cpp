@@ -623,6 +623,27 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtWheneverTheEncoderContradictsIt) {
     EXPECT_EQ(rec.events("sensor_mismatch")[0].behavior, "BB_UG_Clamp");
     EXPECT_EQ(rec.unsafe_steps, 0);
   }
+  {
+    // Stuck while the robot stands still, waiting for the link (down 10 s to 50 s): found at
+    // 20 s, handed to the operator when the robot would run again (50 s), repaired 5 s later.
+    FaultScript faults;
+    faults.link_wait_s = 60.0;
+    InjectedFault down = fault(FaultKind::kLinkDown, 10.0);
+    down.duration_s = 40.0;
+    faults.faults = std::vector<InjectedFault>{down, stuckSwitch(kMovingClamp, 20.0, true)};
+    faults.operator_responses = {{5.0, OperatorAction::kRepairAndResume, 0}};
+    const Recorded rec = runJob(model(), 1, faults);
+    ASSERT_EQ(rec.summary.faults.size(), 2u);
+    const FaultReaction& f = rec.summary.faults[1];
+    EXPECT_EQ(f.fault, "sensor_mismatch");
+    EXPECT_NEAR(*f.injected_t, 20.0, 1e-9);
+    EXPECT_NEAR(*f.detected_t, 20.0, 1e-9);
+    EXPECT_NEAR(*f.resolved_t, 55.0, 1e-9);
+    ASSERT_EQ(rec.events("sensor_mismatch").size(), 1u);
+    EXPECT_NEAR(rec.events("manual")[0].t, 50.0, 1e-9);
+    EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+    EXPECT_EQ(rec.unsafe_steps, 0);
+  }
 }
 
 TEST(Executor, FaultsCarryTheirInjectedDetectedAndResolvedTimes) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "mcws/core/error.h"
 
@@ -98,7 +99,11 @@ class CleaningRun {
       applyFaults();
       superviseLink();
       superviseOperator();
-      if (mode_ == Mode::kRunning) superviseSensors();
+      if (mode_ == Mode::kRunning) {
+        superviseSensors();
+      } else if (mode_ != Mode::kDone) {
+        noteSensors();
+      }
       if (mode_ == Mode::kDone) break;
       sim_.step();
       accountPhase();
@@ -466,14 +471,34 @@ class CleaningRun {
     return std::nullopt;
   }
 
-  /// The sensor check; \return false when it handed control to the operator.
+  /// The sensor check while the robot runs; \return false when it handed control to the
+  /// operator. A disagreement already found while the robot stood still keeps its time.
   bool superviseSensors() {
     const auto mismatch = sensorMismatch();
-    if (!mismatch) return true;
+    const std::optional<double> seen = std::exchange(mismatch_seen_at_, std::nullopt);
+    mismatch_handed_over_ = mismatch.has_value();
+    if (!mismatch) {
+      if (seen) {  // found while stopped, gone before the robot ran again: the operator's repair
+        react("sensor_mismatch", "found while the robot stood still; repaired before it ran again",
+              std::nullopt, seen, sim_.time());
+      }
+      return true;
+    }
     stopAll();
-    log("sensor_mismatch", active_ ? active_->behavior : "", mismatch->second);
-    handOver("sensor_mismatch", mismatch->second, sensorFaultAt(mismatch->first));
+    if (!seen) log("sensor_mismatch", active_ ? active_->behavior : "", mismatch->second);
+    handOver("sensor_mismatch", mismatch->second, sensorFaultAt(mismatch->first), seen);
     return false;
+  }
+
+  /// The sensor check while the robot stands still (waiting for the link, or in MANUAL): a
+  /// disagreement is logged when it shows and handled when the robot runs again.
+  void noteSensors() {
+    if (mismatch_seen_at_ || mismatch_handed_over_) return;
+    if (const auto mismatch = sensorMismatch()) {
+      mismatch_seen_at_ = sim_.time();
+      log("sensor_mismatch", active_ ? active_->behavior : "",
+          mismatch->second + "; the robot stands still: handled when it runs again");
+    }
   }
 
   /// When the fault file broke the sensor a behaviour on `joint` waits for [s], if it did.
@@ -934,14 +959,16 @@ class CleaningRun {
   }
 
   /// Control to the operator (MANUAL), with the next scripted response if there is one.
+  /// \param detected when the fault was found [s]; now when not given.
   void handOver(const std::string& fault, const std::string& what,
-                std::optional<double> injected) {
+                std::optional<double> injected, std::optional<double> detected = std::nullopt) {
+    if (!detected) detected = sim_.time();
     mode_ = Mode::kManual;
     fireTask("hand_over");
     const auto& responses = options_.faults.operator_responses;
     if (next_response_ >= responses.size()) {
       react(fault, what + "; control to the operator; no scripted response: the run stops",
-            injected, sim_.time(), std::nullopt);
+            injected, detected, std::nullopt);
       finish(RunStatus::kHaltedInManual, "waiting for the operator after: " + what);
       return;
     }
@@ -951,7 +978,7 @@ class CleaningRun {
                                     what + "; control to the operator; scripted response " +
                                         operatorActionName(response_->action) + " after " +
                                         number(response_->after_s) + " s",
-                                    injected, sim_.time(), std::nullopt));
+                                    injected, detected, std::nullopt));
     log("manual", "", "control to the operator: " + what);
   }
 
@@ -1249,6 +1276,8 @@ class CleaningRun {
   bool link_loss_noted_{false};  // a loss during MANUAL or the return was reported
   double drain_{0.0};
   double link_lost_at_{0.0};
+  std::optional<double> mismatch_seen_at_;  // a sensor disagreement found while standing still
+  bool mismatch_handed_over_{false};        // the present disagreement is the operator's already
   std::optional<double> outage_injected_at_;  // when the present (or last) outage began [s]
   std::array<std::optional<double>, 2> switch_fault_at_;  // J1's, J2's zero-switch fault [s]
   std::vector<std::size_t> until_link_;      // faults resolved when the link is back
