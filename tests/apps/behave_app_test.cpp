@@ -170,8 +170,9 @@ TEST(BehaveApp, TheLiteralModelEndsInASafetyStopWithExit1) {
   EXPECT_EQ(lines[lines.size() - 2]["event"], "refused");
   bool sensed = false;
   for (const auto& line : lines) {
-    sensed = sensed || (line["event"] == "subtask_done" &&
-                        std::string(line["detail"]).find("the sensors read q6") != std::string::npos);
+    sensed =
+        sensed || (line["event"] == "subtask_done" &&
+                   std::string(line["detail"]).find("the sensors read q6") != std::string::npos);
   }
   EXPECT_TRUE(sensed);
 }
@@ -254,10 +255,9 @@ TEST(BehaveApp, BadCommandLinesAndFilesAreOneLineErrors) {
   test::expectToolFailure(kBehave,
                           "--model " + kModel + " --insulators 3 --timeline-period 0" + log, 2,
                           "--timeline-period: 0 s is not a positive number", out);
-  test::expectToolFailure(kBehave,
-                          "--model " + kModel + " --insulators 3 --timeline-period 0.005" + log, 2,
-                          "--timeline-period: period = 0.005 s is below the simulator's step 0.01 s",
-                          out);
+  test::expectToolFailure(
+      kBehave, "--model " + kModel + " --insulators 3 --timeline-period 0.005" + log, 2,
+      "--timeline-period: period = 0.005 s is below the simulator's step 0.01 s", out);
   test::expectToolFailure(kBehave,
                           "--model " + kModel + " --insulators 3 --timeline-period 0.015" + log, 2,
                           "is not a whole multiple of the simulator's step 0.01 s", out);

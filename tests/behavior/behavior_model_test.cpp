@@ -401,7 +401,8 @@ TEST(BehaviorModelParsing, ACombinedBehavioursNameMustBeAPlainFileNameOfItsOwn) 
                     std::to_string(lineOf(shippedText(), "  - name: CB1\n")) +
                     ") only in case: their diagrams would share a file name"},
        }) {
-    const std::string text = replaced(shippedText(), "  - name: CB3\n", "  - name: " + c.yaml + "\n");
+    const std::string text =
+        replaced(shippedText(), "  - name: CB3\n", "  - name: " + c.yaml + "\n");
     expectError(parseError(text), text, "  - name: " + c.yaml + "\n",
                 "combined behaviour 3: name " + c.quoted + ": " + c.why);
   }

@@ -596,8 +596,8 @@ class CleaningRun {
           } else {
             sim_.command(f->command);
             react("wrong_command",
-                  describe(f->command) + " passed the interference check and was executed",
-                  f->at_s, std::nullopt, std::nullopt);
+                  describe(f->command) + " passed the interference check and was executed", f->at_s,
+                  std::nullopt, std::nullopt);
             return true;
           }
         }
@@ -611,12 +611,12 @@ class CleaningRun {
     }
     sim_.command(command);
     log("command", behavior,
-        describe(command) +
-            (ground ? "; echo seq " + std::to_string(seq) + " " + stateName() +
-                          (sensorsFit(stateName()) ? " matches"
-                                                   : ": " + sensedText("in " + stateName(),
-                                                                       stateName()))
-                    : "; on board"),
+        describe(command) + (ground
+                                 ? "; echo seq " + std::to_string(seq) + " " + stateName() +
+                                       (sensorsFit(stateName())
+                                            ? " matches"
+                                            : ": " + sensedText("in " + stateName(), stateName()))
+                                 : "; on board"),
         seq);
     return true;
   }
@@ -641,8 +641,8 @@ class CleaningRun {
          << " (sub-task " << stop.subtask << "): " << reason;
     stop.message = text.str();
     summary_.safety_stop = stop;
-    react("refused_own_command", "every joint stopped; the run ends (safety stop)",
-          std::nullopt, sim_.time(), std::nullopt);
+    react("refused_own_command", "every joint stopped; the run ends (safety stop)", std::nullopt,
+          sim_.time(), std::nullopt);
     finish(RunStatus::kSafetyStop, stop.message);
   }
 
@@ -669,8 +669,10 @@ class CleaningRun {
       int below = -1, above = -1;
       for (std::size_t v = 0; v < c.positions.size(); ++v) {
         const double p = c.positions[v];
-        if (p <= end + kSamePosition && (below < 0 || p > c.positions[below])) below = int(v);
-        if (p >= end - kSamePosition && (above < 0 || p < c.positions[above])) above = int(v);
+        if (p <= end + kSamePosition && (below < 0 || p > c.positions[below]))
+          below = static_cast<int>(v);
+        if (p >= end - kSamePosition && (above < 0 || p < c.positions[above]))
+          above = static_cast<int>(v);
       }
       if (below >= 0) set[below] = true;
       if (above >= 0) set[above] = true;
@@ -731,7 +733,8 @@ class CleaningRun {
           }
         }
       }
-      if (std::none_of(set.begin(), set.end(), [](bool b) { return b; })) set.assign(set.size(), true);
+      if (std::none_of(set.begin(), set.end(), [](bool b) { return b; }))
+        set.assign(set.size(), true);
       pose.push_back(std::move(set));
     }
     return pose;
@@ -948,8 +951,7 @@ class CleaningRun {
       startBehavior(true);
     } else if (sim_.time() - link_lost_at_ >= options_.faults.link_wait_s - 1e-9) {
       until_start_.push_back(react("link_down",
-                                   "stopped, no link after " +
-                                       number(options_.faults.link_wait_s) +
+                                   "stopped, no link after " + number(options_.faults.link_wait_s) +
                                        " s, returned to the start on its own",
                                    outage_injected_at_, link_lost_at_, std::nullopt));
       mode_ = Mode::kRunning;
@@ -960,8 +962,8 @@ class CleaningRun {
 
   /// Control to the operator (MANUAL), with the next scripted response if there is one.
   /// \param detected when the fault was found [s]; now when not given.
-  void handOver(const std::string& fault, const std::string& what,
-                std::optional<double> injected, std::optional<double> detected = std::nullopt) {
+  void handOver(const std::string& fault, const std::string& what, std::optional<double> injected,
+                std::optional<double> detected = std::nullopt) {
     if (!detected) detected = sim_.time();
     mode_ = Mode::kManual;
     fireTask("hand_over");
@@ -1022,16 +1024,16 @@ class CleaningRun {
       react("battery_low", "alarm at " + voltage + "; the job goes on (policy alarm_only)",
             std::nullopt, sim_.time(), sim_.time());
     } else if (returning_ || (segment_ && segment_->combined == "CB3")) {
-      until_start_.push_back(react("battery_low", "alarm at " + voltage + "; already on the way back",
+      until_start_.push_back(react("battery_low",
+                                   "alarm at " + voltage + "; already on the way back",
                                    std::nullopt, sim_.time(), std::nullopt));
     } else {
       return_after_disc_ = true;
-      until_start_.push_back(
-          react("battery_low",
-                "alarm at " + voltage + "; finishing disc " +
-                    std::to_string(disc_ + (segment_->combined == "CB1" ? 1 : 0)) +
-                    ", then returning",
-                std::nullopt, sim_.time(), std::nullopt));
+      until_start_.push_back(react(
+          "battery_low",
+          "alarm at " + voltage + "; finishing disc " +
+              std::to_string(disc_ + (segment_->combined == "CB1" ? 1 : 0)) + ", then returning",
+          std::nullopt, sim_.time(), std::nullopt));
     }
   }
 
@@ -1125,8 +1127,8 @@ class CleaningRun {
     StateMachine& m = *machine();
     const std::string state = m.current();
     const SimSnapshot& s = sim_.snapshot();
-    const SettleStep step = settleStep(state, s.joint(kFixedClamp).gripping,
-                                       s.joint(kMovingClamp).gripping, j3Class());
+    const SettleStep step =
+        settleStep(state, s.joint(kFixedClamp).gripping, s.joint(kMovingClamp).gripping, j3Class());
     const CombinedBehavior& cb = *model_.combinedBehavior(segment_->combined);
     const Transition& own_transition = *cb.transitionFrom(state);
     if (step.kind == SettleStep::kOwn) {
@@ -1276,13 +1278,13 @@ class CleaningRun {
   bool link_loss_noted_{false};  // a loss during MANUAL or the return was reported
   double drain_{0.0};
   double link_lost_at_{0.0};
-  std::optional<double> mismatch_seen_at_;  // a sensor disagreement found while standing still
-  bool mismatch_handed_over_{false};        // the present disagreement is the operator's already
+  std::optional<double> mismatch_seen_at_;    // a sensor disagreement found while standing still
+  bool mismatch_handed_over_{false};          // the present disagreement is the operator's already
   std::optional<double> outage_injected_at_;  // when the present (or last) outage began [s]
   std::array<std::optional<double>, 2> switch_fault_at_;  // J1's, J2's zero-switch fault [s]
-  std::vector<std::size_t> until_link_;      // faults resolved when the link is back
-  std::vector<std::size_t> until_operator_;  // faults resolved when the operator acts
-  std::vector<std::size_t> until_start_;     // faults resolved when the return reaches the start
+  std::vector<std::size_t> until_link_;                   // faults resolved when the link is back
+  std::vector<std::size_t> until_operator_;               // faults resolved when the operator acts
+  std::vector<std::size_t> until_start_;  // faults resolved when the return reaches the start
   std::optional<OperatorResponse> response_;
   double response_at_{0.0};
   std::size_t next_response_{0};

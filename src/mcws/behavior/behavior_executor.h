@@ -34,9 +34,9 @@
 ///   more than 0.5 deg open (a sensor fault, checked on both clamps at every step whatever runs,
 ///   so a switch stuck pressed on a closed jaw is found at once; found while the robot stands
 ///   still, waiting for the link or in MANUAL, it is logged then and acted on when the robot
-///   would run again): every joint stops and control passes to the operator (MANUAL); the fault file scripts what the operator does and when (repair and
-///   resume, resume, return), acted on once the link is up; with no response left, or the link
-///   down for good, the run ends in MANUAL.
+///   would run again): every joint stops and control passes to the operator (MANUAL); the fault
+///   file scripts what the operator does and when (repair and resume, resume, return), acted on
+///   once the link is up; with no response left, or the link down for good, the run ends in MANUAL.
 /// - commands from the ground station are not sent while the link is down; faults armed for a
 ///   command that never comes are reported as such at the end.
 /// - an empty battery stops every joint and ends the run (status kBatteryEmpty).

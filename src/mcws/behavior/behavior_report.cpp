@@ -437,8 +437,7 @@ std::string summaryText(const RunSummary& s) {
   };
   for (const FaultReaction& f : s.faults) {
     out << "  " << f.fault << " (injected " << time(f.injected_t) << ", detected "
-        << time(f.detected_t) << ", resolved " << time(f.resolved_t) << "): " << f.reaction
-        << "\n";
+        << time(f.detected_t) << ", resolved " << time(f.resolved_t) << "): " << f.reaction << "\n";
   }
   out << "safety invariant (a clamp grips the string at every step): "
       << (s.violation ? "VIOLATED at " + s.violation->message
