@@ -203,7 +203,8 @@ struct RunObserver {
 
 /// \brief The task-level machine: idle -> CB1 <-> CB2 -> CB3 -> done, FAULT and MANUAL
 /// superstates entered from CB1..CB3 on `link_lost` and `hand_over` (a behaviour timeout or a
-/// refused command) and left by `resume_CB<k>` (to the superstate that was interrupted).
+/// sensor disagreement) and left by `resume_CB<k>` (to the superstate that was interrupted). A
+/// refused own command ends the run where it is (RunStatus::kSafetyStop).
 StateMachine taskMachine();
 
 /// \brief Runs `options.insulators` discs of the cleaning job on the simulated robot.
