@@ -29,9 +29,12 @@ command, <ending event> (zero_switch, encoder_reached, ...), subtask_done, fault
 command_rejected, command_not_sent, refused, link_lost, link_up, link_restored, return_start,
 reclose, reclosed, timeout, sensor_mismatch, manual, operator, restore, restored, battery_low,
 invariant_violated, run_end. The outputs are written also when the invariant fails.
-Exit 0 when the run ends back at the start or in MANUAL; 1 when the invariant is violated, the
-battery runs empty, the time limit is reached, or an input is bad (--check: the model has a pose
-finding); 2 for a bad command line.)";
+Every command, the behaviours' own included, passes the interference check (joint limits, the
+model's pose rules on the pose the sensors read) before it is sent; a refused own command stops
+the run (status safety_stop).
+Exit 0 when the run ends back at the start or in MANUAL; 1 when the invariant is violated, an own
+command is refused, the battery runs empty, the time limit is reached, or an input is bad
+(--check: the model has a pose finding); 2 for a bad command line.)";
 
 void declareFlags(app::CommandLine& cli) {
   cli.addValue("model", "behaviour model (.yaml), see robots/");
@@ -42,7 +45,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("log", "event log: one JSON object per line (.jsonl)");
   cli.addValue("timeline",
                "joints, speeds, currents, switches, battery over time (.csv, units in the header)");
-  cli.addValue("timeline-period", "time between timeline rows [s] (default 0.1; the step is 0.01)");
+  cli.addValue("timeline-period",
+               "time between timeline rows [s]: a whole multiple of the simulator's step 0.01 s "
+               "(default 0.1)");
   cli.addValue("plot",
                "PNG of the joint speeds like Figure 10 of Wang et al. 2018 (first disc's cycle)");
   cli.addSwitch("plot-all", "draw the whole run in --plot, not the first disc's cycle");
@@ -72,6 +77,13 @@ Settings readSettings(const app::CommandLine& cli) {
   s.plot = cli.text("plot", "");
   s.dot = cli.text("dot", "");
   s.period = app::parsePositive(cli.text("timeline-period", "0.1"), "timeline-period", "s");
+  try {
+    TimelineRecorder(s.period, RobotSimulatorConfig().dt);
+  } catch (const Error& e) {
+    std::string what = e.what();
+    if (what.rfind("timeline: ", 0) == 0) what.erase(0, 10);
+    throw app::UsageError("--timeline-period: " + what);
+  }
   if (s.check) {
     for (const char* flag : {"faults", "log", "timeline", "plot", "plot-all", "timeline-period"}) {
       if (cli.has(flag))
@@ -138,6 +150,9 @@ int runExitCode(const RunSummary& summary) {
       return app::kExitFailure;
     case RunStatus::kBatteryEmpty:
       std::cerr << "mcws_behave: the battery ran empty; the robot is stranded on the string\n";
+      return app::kExitFailure;
+    case RunStatus::kSafetyStop:
+      std::cerr << "mcws_behave: safety stop: " << summary.safety_stop->message << "\n";
       return app::kExitFailure;
     case RunStatus::kTimeLimit:
       std::cerr << "mcws_behave: the simulated time limit was reached\n";

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -145,23 +146,74 @@ TEST(BehaveApp, SameInputsSameLogBytes) {
   EXPECT_GT(test::readFile(dir.file("a.jsonl")).size(), 1000u);
 }
 
-TEST(BehaveApp, TheLiteralModelIsStoppedByTheInvariantWithExit1) {
+TEST(BehaveApp, TheLiteralModelEndsInASafetyStopWithExit1) {
   test::TempDir dir;
   const std::string log = dir.file("literal.jsonl");
   const test::RunResult r =
       test::run(kBehave + " --model " + kLiteral + " --insulators 3 --log " + log + " --json");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_THAT(r.err, HasSubstr("safety invariant violated at step "));
-  EXPECT_THAT(r.err, HasSubstr("both clamps open"));
+  EXPECT_THAT(r.err, HasSubstr("mcws_behave: safety stop: "));
+  EXPECT_THAT(r.err, HasSubstr("refused BB_Brush's own command J6 spin 300 rpm in CB2 q1"));
+  EXPECT_THAT(r.err, HasSubstr("moving_clamp_open_parks_the_cleaner"));
   const nlohmann::json summary = nlohmann::json::parse(r.out);
-  EXPECT_EQ(summary["status"], "invariant_violated");
-  EXPECT_EQ(summary["invariant"]["holds"], false);
-  EXPECT_EQ(summary["invariant"]["violation"]["state"], "q1");
-  EXPECT_EQ(summary["invariant"]["violation"]["behavior"], "BB_UG_Release");
-  // The log is kept: it is what shows the engineer how the robot got there.
+  EXPECT_EQ(summary["status"], "safety_stop");
+  EXPECT_EQ(summary["invariant"]["holds"], true);
+  EXPECT_EQ(summary["safety_stop"]["cb"], "CB2");
+  EXPECT_EQ(summary["safety_stop"]["state"], "q1");
+  EXPECT_EQ(summary["safety_stop"]["behavior"], "BB_Brush");
+  EXPECT_EQ(summary["safety_stop"]["command"], "J6 spin 300 rpm");
+  EXPECT_EQ(summary["discs_cleaned"], 0);
+  // The log is kept: it shows the engineer how the robot got there, with the state the
+  // sensors read at the end of CB1.
   const std::vector<nlohmann::json> lines = jsonLines(test::readFile(log));
-  ASSERT_GE(lines.size(), 2u);
-  EXPECT_EQ(lines[lines.size() - 2]["event"], "invariant_violated");
+  ASSERT_GE(lines.size(), 3u);
+  EXPECT_EQ(lines[lines.size() - 2]["event"], "refused");
+  bool sensed = false;
+  for (const auto& line : lines) {
+    sensed =
+        sensed || (line["event"] == "subtask_done" &&
+                   std::string(line["detail"]).find("the sensors read q6") != std::string::npos);
+  }
+  EXPECT_TRUE(sensed);
+}
+
+TEST(BehaveApp, FaultTimesAreInjectedDetectedAndResolved) {
+  // link_outage.yaml: the link down at 10 s for 40 s; the robot stops at once and resumes when
+  // it is back.
+  const test::RunResult r = test::run(kBehave + " --model " + kModel + " --insulators 1 --faults " +
+                                      kFaults + "link_outage.yaml --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  ASSERT_EQ(summary["faults"].size(), 1u);
+  const nlohmann::json& f = summary["faults"][0];
+  EXPECT_EQ(f["fault"], "link_down");
+  EXPECT_FALSE(f.contains("t_s"));
+  EXPECT_DOUBLE_EQ(f["injected_t_s"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(f["detected_t_s"].get<double>(), 10.0);
+  EXPECT_DOUBLE_EQ(f["resolved_t_s"].get<double>(), 50.0);
+}
+
+TEST(BehaveApp, ModelNamesThatWouldWriteOutsideTheDotDirectoryAreRefused) {
+  test::TempDir in, out;
+  const std::string shipped = test::readFile(kModel);
+  for (const std::string& bad : {std::string("../../x"), std::string("task")}) {
+    std::string text = shipped;
+    const std::string from = "  - name: CB3\n";
+    text.replace(text.find(from), from.size(), "  - name: \"" + bad + "\"\n");
+    const std::string robot = "robot: insulator_cleaner.yaml";
+    text.replace(text.find(robot), robot.size(),
+                 "robot: " + std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner.yaml");
+    const std::string model = in.file("bad.yaml");
+    test::writeFile(model, text);
+    test::expectToolFailure(kBehave,
+                            "--model " + model + " --insulators 1 --dot " + out.file("a/b"), 1,
+                            "bad.yaml:", out);
+    const test::RunResult r =
+        test::run(kBehave + " --model " + model + " --check --dot " + out.file("a/b"));
+    EXPECT_THAT(r.err, HasSubstr("name '" + bad + "'"));
+    EXPECT_FALSE(std::filesystem::exists(out.file("x.dot")));
+    EXPECT_FALSE(std::filesystem::exists(out.file("a/b/task.dot")));
+  }
 }
 
 TEST(BehaveApp, EachShippedFaultFileGivesItsDocumentedReaction) {
@@ -203,6 +255,12 @@ TEST(BehaveApp, BadCommandLinesAndFilesAreOneLineErrors) {
   test::expectToolFailure(kBehave,
                           "--model " + kModel + " --insulators 3 --timeline-period 0" + log, 2,
                           "--timeline-period: 0 s is not a positive number", out);
+  test::expectToolFailure(
+      kBehave, "--model " + kModel + " --insulators 3 --timeline-period 0.005" + log, 2,
+      "--timeline-period: period = 0.005 s is below the simulator's step 0.01 s", out);
+  test::expectToolFailure(kBehave,
+                          "--model " + kModel + " --insulators 3 --timeline-period 0.015" + log, 2,
+                          "is not a whole multiple of the simulator's step 0.01 s", out);
   test::expectToolFailure(kBehave, "--model " + kModel + " --insulators 3 --log " + kModel, 2,
                           "log", out);
   // A bad fault file names its file and line.

@@ -194,29 +194,69 @@ TEST(Executor, ThreeDiscsRunThePlanInOrderAndEndWhereMounted) {
   EXPECT_EQ(rec.summary.faults.size(), 0u);
 }
 
-TEST(Executor, ThePapersLiteralCb1IsStoppedByTheInvariantAtTheNextRelease) {
+TEST(Executor, ThePapersLiteralCb1IsSafetyStoppedAtItsFirstOwnCommandTheRulesForbid) {
   // Read literally, q6 -> q1 closes the fixed clamp (already closed) and leaves the moving clamp
-  // open; the robot cleans disc 1 holding by one clamp and the second CB1's first step (the
-  // fixed clamp releases) would open both. The run must stop there, before the command.
+  // open: the machine says q1, the sensors say q6's pose. CB2's first command (the brush spun up,
+  // 300 rpm) would break the rule moving_clamp_open_parks_the_cleaner on the pose the sensors
+  // read, so it is refused and the run stops there, before anything of CB2 moves.
   const Recorded rec = runJob(literalModel(), 3);
-  ASSERT_EQ(rec.summary.status, RunStatus::kInvariantViolated);
-  ASSERT_TRUE(rec.summary.violation);
-  const InvariantViolation& v = *rec.summary.violation;
-  EXPECT_EQ(v.subtask, 3);
-  EXPECT_EQ(v.combined, "CB1");
-  EXPECT_EQ(v.state, "q1");
-  EXPECT_EQ(v.behavior, "BB_UG_Release");
-  const LogRecord start = rec.events("subtask_start")[2];
-  // Caught before the release is sent: the moving clamp's sensors say it does not grip.
-  EXPECT_EQ(v.step, start.step);
-  EXPECT_NE(v.message.find("step " + std::to_string(v.step)), std::string::npos) << v.message;
-  EXPECT_NE(v.message.find("both clamps open"), std::string::npos) << v.message;
-  EXPECT_EQ(rec.unsafe_steps, 0);
-  EXPECT_EQ(rec.steps.back().step, v.step);
-  EXPECT_FALSE(rec.steps.back().joint(kMovingClamp).gripping);  // the literal q6 -> q1
+  ASSERT_EQ(rec.summary.status, RunStatus::kSafetyStop);
+  ASSERT_TRUE(rec.summary.safety_stop);
+  EXPECT_FALSE(rec.summary.violation);
+  const SafetyStop& stop = *rec.summary.safety_stop;
+  EXPECT_EQ(stop.subtask, 2);
+  EXPECT_EQ(stop.combined, "CB2");
+  EXPECT_EQ(stop.state, "q1");
+  EXPECT_EQ(stop.behavior, "BB_Brush");
+  EXPECT_EQ(stop.command, "J6 spin 300 rpm");
+  EXPECT_NE(stop.reason.find("moving_clamp_open_parks_the_cleaner"), std::string::npos)
+      << stop.reason;
+  EXPECT_NE(stop.message.find("J6 spin 300 rpm"), std::string::npos) << stop.message;
+  // Stopped at CB2's start, with J2 open as the simulator has it; nothing of CB2 ever moved.
+  EXPECT_EQ(stop.step, rec.events("subtask_start")[1].step);
+  EXPECT_FALSE(rec.steps.back().joint(kMovingClamp).gripping);
   EXPECT_TRUE(rec.steps.back().joint(kFixedClamp).gripping);
-  // The shipped model runs the same plan safely.
-  EXPECT_EQ(runJob(model(), 3).summary.status, RunStatus::kCompleted);
+  for (const SimSnapshot& s : rec.steps) {
+    EXPECT_EQ(s.joint(SimJoint::kJ6).velocity, 0.0) << s.time;
+    EXPECT_EQ(s.joint(SimJoint::kJ4).position, 0.0) << s.time;
+  }
+  EXPECT_EQ(rec.unsafe_steps, 0);
+  // The log says where the sensors put the robot, not where the machine thinks it is.
+  const LogRecord done = rec.events("subtask_done")[0];
+  EXPECT_EQ(done.state, "q1");
+  EXPECT_NE(done.detail.find("the sensors read q6"), std::string::npos) << done.detail;
+  EXPECT_NE(done.detail.find("moving_clamp=open"), std::string::npos) << done.detail;
+  // The shipped model runs the same plan to the end, its log "back in q1" after every CB.
+  const Recorded shipped = runJob(model(), 3);
+  EXPECT_EQ(shipped.summary.status, RunStatus::kCompleted);
+  for (const LogRecord& r : shipped.events("subtask_done")) EXPECT_EQ(r.detail, "back in q1");
+}
+
+TEST(Executor, AnOwnCommandIsCheckedOnTheSensedPoseAfterAWrongCommandToo) {
+  // Another way to a machine state the robot is not in: a wrong command that passes the check
+  // (J2 released at CB2's q1: allowed, the fixed clamp grips and the cleaner is parked) is sent
+  // instead of the brush's spin-up; BB_Brush times out (10 s) and the operator resumes it 5 s
+  // later. The machine is still in q1 (both clamps closed), the sensors read J2 open: the
+  // spin-up is refused by the same rule, the run stops, the brush never turns.
+  const Recorded clean = runJob(model(), 1);
+  const double cb2 = clean.events("subtask_start")[1].t;
+  FaultScript faults;
+  // Armed one step before CB2 starts: CB1's last behaviour ends, and CB2's first command (the
+  // next one) goes out, in the step to cb2.
+  InjectedFault wrong = fault(FaultKind::kWrongCommand, cb2 - 0.01);
+  wrong.command = SimCommand::release(kMovingClamp);
+  faults.faults = std::vector<InjectedFault>{wrong};
+  faults.operator_responses = {{5.0, OperatorAction::kResume, 0}};
+  const Recorded rec = runJob(model(), 1, faults);
+  ASSERT_EQ(rec.summary.status, RunStatus::kSafetyStop) << runStatusName(rec.summary.status);
+  const SafetyStop& stop = *rec.summary.safety_stop;
+  EXPECT_EQ(stop.behavior, "BB_Brush");
+  EXPECT_EQ(stop.state, "q1");
+  EXPECT_NEAR(stop.t, cb2 + 10.0 + 5.0, 1e-9);
+  EXPECT_NE(stop.reason.find("moving_clamp_open_parks_the_cleaner"), std::string::npos)
+      << stop.reason;
+  for (const SimSnapshot& s : rec.steps) EXPECT_EQ(s.joint(SimJoint::kJ6).velocity, 0.0);
+  EXPECT_EQ(rec.unsafe_steps, 0);
 }
 
 TEST(Executor, ALinkLostForLessThanTheWaitStopsThenResumes) {
@@ -518,18 +558,24 @@ TEST(Executor, AWrongReleaseThatPassesTheCheckNeverDropsTheRobot) {
 }
 
 TEST(Executor, AZeroSwitchStuckPressedIsCaughtByTheEncoder) {
-  // The fixed clamp's switch reads pressed from 100 s (second CB1 starts at 111.17 s): the release
-  // "ends" at once with the jaw still at the disc; the encoder disagrees, so the robot stops
-  // before J3 drags the clamp, and the operator repairs the switch.
+  // The fixed clamp's switch reads pressed from 100 s, while its jaw grips the string (CB2 of
+  // disc 1; the second CB1 starts at 111.17 s): the encoder (25 deg) contradicts it at once, so
+  // the robot stops at 100 s, not at the next release, and the operator repairs the switch.
   FaultScript faults;
   faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 100.0, true)};
   faults.operator_responses = {{20.0, OperatorAction::kRepairAndResume, 0}};
   const Recorded rec = runJob(model(), 2, faults);
   const std::vector<LogRecord> mismatch = rec.events("sensor_mismatch");
   ASSERT_EQ(mismatch.size(), 1u);
-  EXPECT_EQ(mismatch[0].behavior, "BB_UG_Release");
-  EXPECT_EQ(mismatch[0].state, "q1");
+  EXPECT_NEAR(mismatch[0].t, 100.0, 1e-9);
+  EXPECT_EQ(mismatch[0].combined, "CB2");
   EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  ASSERT_EQ(rec.summary.faults.size(), 1u);
+  const FaultReaction& f = rec.summary.faults[0];
+  EXPECT_EQ(f.fault, "sensor_mismatch");
+  EXPECT_NEAR(*f.injected_t, 100.0, 1e-9);
+  EXPECT_NEAR(*f.detected_t, 100.0, 1e-9);
+  EXPECT_NEAR(*f.resolved_t, 120.0, 1e-9);  // the operator's repair 20 s later
   // J3 never moved while the fixed jaw was not fully open in CB1's q2.
   for (std::size_t k = 0; k < rec.steps.size(); ++k) {
     if (rec.contexts[k].state == "q2" && rec.contexts[k].combined == "CB1") {
@@ -537,6 +583,155 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtByTheEncoder) {
     }
   }
   EXPECT_EQ(rec.unsafe_steps, 0);
+}
+
+TEST(Executor, AZeroSwitchStuckPressedIsCaughtWheneverTheEncoderContradictsIt) {
+  // Other members of the class: the moving clamp's switch, stuck while its jaw grips (at 1 s,
+  // CB1's q1 -> q2 running on the other clamp): found at 1 s. And the fixed clamp's switch stuck
+  // while its jaw is open (CB1's q2, J3 extending): nothing contradicts it until BB_UG_Clamp
+  // closes the jaw; it is found at the first step whose encoder reads more than 0.5 deg
+  // (10 counts), taken from the simulator's own snapshots.
+  {
+    FaultScript faults;
+    faults.faults = std::vector<InjectedFault>{stuckSwitch(kMovingClamp, 1.0, true)};
+    faults.operator_responses = {{45.0, OperatorAction::kRepairAndResume, 0}};
+    const Recorded rec = runJob(model(), 1, faults);
+    ASSERT_EQ(rec.summary.faults.size(), 1u);
+    const FaultReaction& f = rec.summary.faults[0];
+    EXPECT_NEAR(*f.injected_t, 1.0, 1e-9);
+    EXPECT_NEAR(*f.detected_t, 1.0, 1e-9);
+    EXPECT_NEAR(*f.resolved_t, 46.0, 1e-9);
+    EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+  }
+  {
+    FaultScript faults;
+    faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 5.0, true)};
+    faults.operator_responses = {{10.0, OperatorAction::kRepairAndResume, 0}};
+    const Recorded rec = runJob(model(), 1, faults);
+    double contradicted = -1.0;
+    for (const SimSnapshot& s : rec.steps) {
+      if (s.time >= 5.0 && s.joint(kFixedClamp).encoder > 10) {
+        contradicted = s.time;
+        break;
+      }
+    }
+    ASSERT_GT(contradicted, 5.0);
+    ASSERT_EQ(rec.summary.faults.size(), 1u);
+    EXPECT_NEAR(*rec.summary.faults[0].injected_t, 5.0, 1e-9);
+    EXPECT_NEAR(*rec.summary.faults[0].detected_t, contradicted, 1e-9);
+    ASSERT_EQ(rec.events("sensor_mismatch").size(), 1u);
+    EXPECT_EQ(rec.events("sensor_mismatch")[0].behavior, "BB_UG_Clamp");
+    EXPECT_EQ(rec.unsafe_steps, 0);
+  }
+  {
+    // Stuck while the robot stands still, waiting for the link (down 10 s to 50 s): found at
+    // 20 s, handed to the operator when the robot would run again (50 s), repaired 5 s later.
+    FaultScript faults;
+    faults.link_wait_s = 60.0;
+    InjectedFault down = fault(FaultKind::kLinkDown, 10.0);
+    down.duration_s = 40.0;
+    faults.faults = std::vector<InjectedFault>{down, stuckSwitch(kMovingClamp, 20.0, true)};
+    faults.operator_responses = {{5.0, OperatorAction::kRepairAndResume, 0}};
+    const Recorded rec = runJob(model(), 1, faults);
+    ASSERT_EQ(rec.summary.faults.size(), 2u);
+    const FaultReaction& f = rec.summary.faults[1];
+    EXPECT_EQ(f.fault, "sensor_mismatch");
+    EXPECT_NEAR(*f.injected_t, 20.0, 1e-9);
+    EXPECT_NEAR(*f.detected_t, 20.0, 1e-9);
+    EXPECT_NEAR(*f.resolved_t, 55.0, 1e-9);
+    ASSERT_EQ(rec.events("sensor_mismatch").size(), 1u);
+    EXPECT_NEAR(rec.events("manual")[0].t, 50.0, 1e-9);
+    EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
+    EXPECT_EQ(rec.unsafe_steps, 0);
+  }
+}
+
+TEST(Executor, FaultsCarryTheirInjectedDetectedAndResolvedTimes) {
+  // Hand-worked from the fault script and the executor's timing: the link supervision runs in
+  // the step the fault is applied, so a link lost at 10 s for 40 s is detected at 10 s and
+  // resolved when it is back and the behaviour resent, at 50 s. A corrupted command armed at 2 s
+  // is caught (and resent) when the next command goes out: J3's extension after the fixed
+  // clamp's release, which takes 25 deg / 10 deg/s = 2.5 s. A stuck switch (never pressed)
+  // injected at 0 s times out BB_UG_Release after its 15 s; the operator repairs it 30 s later.
+  FaultScript faults;
+  faults.link_wait_s = 60.0;
+  InjectedFault down = fault(FaultKind::kLinkDown, 10.0);
+  down.duration_s = 40.0;
+  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kCorruptCommand, 2.0), down};
+  const Recorded rec = runJob(model(), 1, faults);
+  ASSERT_EQ(rec.summary.faults.size(), 2u);
+  const FaultReaction& corrupt = rec.summary.faults[0];
+  EXPECT_EQ(corrupt.fault, "corrupt_command");
+  EXPECT_NEAR(*corrupt.injected_t, 2.0, 1e-9);
+  EXPECT_NEAR(*corrupt.detected_t, 2.5, 1e-9);
+  EXPECT_NEAR(*corrupt.resolved_t, 2.5, 1e-9);
+  const FaultReaction& link = rec.summary.faults[1];
+  EXPECT_EQ(link.fault, "link_down");
+  EXPECT_NEAR(*link.injected_t, 10.0, 1e-9);
+  EXPECT_NEAR(*link.detected_t, 10.0, 1e-9);
+  EXPECT_NEAR(*link.resolved_t, 50.0, 1e-9);
+
+  FaultScript stuck;
+  stuck.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 0.0, false)};
+  stuck.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
+  const Recorded timed_out = runJob(model(), 1, stuck);
+  ASSERT_EQ(timed_out.summary.faults.size(), 1u);
+  const FaultReaction& timeout = timed_out.summary.faults[0];
+  EXPECT_EQ(timeout.fault, "timeout");
+  EXPECT_NEAR(*timeout.injected_t, 0.0, 1e-9);
+  EXPECT_NEAR(*timeout.detected_t, 15.0, 1e-9);
+  EXPECT_NEAR(*timeout.resolved_t, 45.0, 1e-9);
+
+  // Lost for good at 10 s with a 5 s wait: detected at 10 s, resolved when the return it caused
+  // reaches the start (the run's end).
+  FaultScript lost;
+  lost.link_wait_s = 5.0;
+  lost.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0)};
+  const Recorded returned = runJob(model(), 1, lost);
+  ASSERT_EQ(returned.summary.status, RunStatus::kReturned);
+  ASSERT_FALSE(returned.summary.faults.empty());
+  const FaultReaction& gone = returned.summary.faults[0];
+  EXPECT_NEAR(*gone.injected_t, 10.0, 1e-9);
+  EXPECT_NEAR(*gone.detected_t, 10.0, 1e-9);
+  EXPECT_NEAR(*gone.resolved_t, returned.summary.duration_s, 1e-9);
+}
+
+TEST(Executor, TheReturnsDiscCountIsTheNumberOfDiscsItClimbs) {
+  // The link lost for good every 2.5 s through a 2-disc job (every state of CB1, CB2, CB3, mid
+  // behaviour): the count return_start gives must be the discs the return then climbs, counted
+  // on the log's own `disc` field (each decrease after return_start is one disc climbed; a CB1
+  // finished first raises it by one before).
+  const double end = runJob(model(), 2).summary.duration_s;
+  int with_cb1_finished = 0;
+  for (double at = 0.0; at < end; at += 2.5) {
+    FaultScript faults;
+    faults.link_wait_s = 5.0;
+    faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, at)};
+    RunOptions options = RunOptions::forModel(model(), 2);
+    options.faults = faults;
+    Recorded rec;  // the log only: the sweep stays cheap
+    RunObserver observer;
+    observer.on_log = [&](const LogRecord& r) { rec.log.push_back(r); };
+    rec.summary = runCleaningJob(model(), options, observer);
+    const std::vector<LogRecord> starts = rec.events("return_start");
+    ASSERT_EQ(starts.size(), 1u) << at;
+    const std::string& detail = starts[0].detail;
+    const auto count_at = detail.rfind("; ");
+    ASSERT_NE(count_at, std::string::npos) << detail;
+    const int announced = std::stoi(detail.substr(count_at + 2));
+    int climbed = 0, disc = starts[0].disc;
+    bool after = false;
+    for (const LogRecord& r : rec.log) {
+      after = after || (r.event == "return_start");
+      if (!after) continue;
+      if (r.disc < disc) climbed += disc - r.disc;
+      if (r.disc > disc) ++with_cb1_finished;
+      disc = r.disc;
+    }
+    EXPECT_EQ(announced, climbed) << "link lost at " << at << " s: " << detail;
+    EXPECT_EQ(disc, 0) << at;
+  }
+  EXPECT_GT(with_cb1_finished, 0);  // the sweep met the case a CB1 is finished first
 }
 
 TEST(Executor, TheOperatorActsOnlyOverALiveLink) {

@@ -373,6 +373,44 @@ const char* const kCb1Q2Q3 =
 const char* const kCb1Q6Q1 = "      - {from: q6, to: q1, run: BB_LG_Clamp, event: current_held}";
 const char* const kCb1States = "    states: [q1, q2, q3, q4, q5, q6]";
 
+TEST(BehaviorModelParsing, ACombinedBehavioursNameMustBeAPlainFileNameOfItsOwn) {
+  // The name is the stem of its diagram's file (mcws_behave --dot DIR writes DIR/<name>.dot):
+  // a path, a hidden or relative name, a control byte or the task diagram's name would write
+  // outside DIR or over another diagram. Each is one line naming the file, line, field and name.
+  struct Case {
+    std::string yaml;    // as written in the file
+    std::string quoted;  // as the message quotes it
+    std::string why;
+  };
+  const std::string plain = "it names the file of its diagram and ";
+  for (const Case& c : {
+           Case{"\"../../x\"", "'../../x'", plain + "must not start with '.'"},
+           Case{"x/../../y", "'x/../../y'", plain + "must not contain '/' or '\\'"},
+           Case{"/tmp/x", "'/tmp/x'", plain + "must not contain '/' or '\\'"},
+           Case{"'a\\b'", "'a\\x5cb'", plain + "must not contain '/' or '\\'"},
+           Case{"\"..\"", "'..'", plain + "must not start with '.'"},
+           Case{".hidden", "'.hidden'", plain + "must not start with '.'"},
+           Case{"\"a\\nb\"", "'a\\x0ab'", plain + "must not contain a control byte"},
+           Case{"\"a\\tb\"", "'a\\x09b'", plain + "must not contain a control byte"},
+           Case{std::string(201, 'c'), "'" + std::string(201, 'c') + "'",
+                plain + "has 201 bytes, more than 200"},
+           Case{"task", "'task'", "the task machine's diagram has that file name (task.dot)"},
+           Case{"Task", "'Task'", "the task machine's diagram has that file name (task.dot)"},
+           Case{"cb1", "'cb1'",
+                "differs from combined behaviour 'CB1' (line " +
+                    std::to_string(lineOf(shippedText(), "  - name: CB1\n")) +
+                    ") only in case: their diagrams would share a file name"},
+       }) {
+    const std::string text =
+        replaced(shippedText(), "  - name: CB3\n", "  - name: " + c.yaml + "\n");
+    expectError(parseError(text), text, "  - name: " + c.yaml + "\n",
+                "combined behaviour 3: name " + c.quoted + ": " + c.why);
+  }
+  // A name that is a fine file name passes (CB3 is not needed to parse).
+  const std::string fine = replaced(shippedText(), "  - name: CB3\n", "  - name: CB3 up\n");
+  EXPECT_NO_THROW(parseBehaviorModel(fine, "model.yaml"));
+}
+
 TEST(BehaviorModelValidation, UnreachableState) {
   const std::string text = replaced(shippedText(), kCb1Q2Q3, "");
   expectError(validationError(text), text, kCb1States,

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -131,7 +132,8 @@ TEST(SummaryJson, KeysInDocumentedOrderWithAViolation) {
   summary.commands_sent = 16;
   summary.duration_s = 75.25;
   summary.steps = 7525;
-  summary.faults = {{12.5, "link_down", "stopped; link back after 2 s: q3 again"}};
+  summary.faults = {{"link_down", 10.5, 10.5, 12.5, "stopped; link back after 2 s: q3 again"},
+                    {"battery_low", std::nullopt, 70.5, std::nullopt, "alarm"}};
   InvariantViolation violation;
   violation.step = 7525;
   violation.t = 75.25;
@@ -166,6 +168,7 @@ TEST(SummaryJson, KeysInDocumentedOrderWithAViolation) {
                                                   "battery_alarm_t_s",
                                                   "faults",
                                                   "invariant",
+                                                  "safety_stop",
                                                   "plan"};
   EXPECT_EQ(keys, expected_keys);
 
@@ -175,11 +178,13 @@ TEST(SummaryJson, KeysInDocumentedOrderWithAViolation) {
             R"("behaviors_run":15,"commands_sent":16,"phase_one_s":50.0,"phase_two_s":25.25,)"
             R"("battery_voltage_end_V":24.5,"battery_charge_used_Ah":0.125,)"
             R"("battery_alarm_t_s":70.5,)"
-            R"("faults":[{"t_s":12.5,"fault":"link_down",)"
-            R"("reaction":"stopped; link back after 2 s: q3 again"}],)"
+            R"("faults":[{"fault":"link_down","injected_t_s":10.5,"detected_t_s":10.5,)"
+            R"("resolved_t_s":12.5,"reaction":"stopped; link back after 2 s: q3 again"},)"
+            R"({"fault":"battery_low","injected_t_s":null,"detected_t_s":70.5,)"
+            R"("resolved_t_s":null,"reaction":"alarm"}],)"
             R"("invariant":{"holds":false,"violation":{"step":7525,"t_s":75.25,"subtask":3,)"
             R"("cb":"CB1","state":"q2","behavior":"BB_LG_Release",)"
-            R"("message":"step 7525 (t = 75.25 s): both clamps open"}},)"
+            R"("message":"step 7525 (t = 75.25 s): both clamps open"}},"safety_stop":null,)"
             R"("plan":[{"cb":"CB1","action":"move down one disc","disc":1},)"
             R"({"cb":"CB2","action":"clean disc","disc":1}]})");
 }
@@ -195,6 +200,30 @@ TEST(SummaryJson, NoAlarmNoFaultsNoViolation) {
   EXPECT_TRUE(json["plan"].is_array());
   EXPECT_TRUE(json["plan"].empty());
   EXPECT_EQ(json["invariant"].dump(), R"({"holds":true,"violation":null})");
+  EXPECT_TRUE(json["safety_stop"].is_null());
+}
+
+TEST(SummaryJson, ASafetyStopNamesTheCommandAndTheReason) {
+  RunSummary summary;
+  summary.status = RunStatus::kSafetyStop;
+  SafetyStop stop;
+  stop.step = 10869;
+  stop.t = 108.69;
+  stop.subtask = 2;
+  stop.combined = "CB2";
+  stop.state = "q1";
+  stop.behavior = "BB_Brush";
+  stop.command = "J6 spin 300 rpm";
+  stop.reason = "rule 'r'";
+  stop.message = "step 10869 (t = 108.69 s): refused";
+  summary.safety_stop = stop;
+  EXPECT_EQ(summaryJson(summary)["status"], "safety_stop");
+  EXPECT_EQ(summaryJson(summary)["safety_stop"].dump(),
+            R"({"step":10869,"t_s":108.69,"subtask":2,"cb":"CB2","state":"q1",)"
+            R"("behavior":"BB_Brush","command":"J6 spin 300 rpm","reason":"rule 'r'",)"
+            R"("message":"step 10869 (t = 108.69 s): refused"})");
+  EXPECT_NE(summaryText(summary).find("safety stop: step 10869 (t = 108.69 s): refused"),
+            std::string::npos);
 }
 
 // ---- timeline ---------------------------------------------------------------------------------
@@ -313,10 +342,23 @@ TEST(TimelineRecorder, KeepsStepZeroAndEveryFifthStepForAPeriodOfFiveSteps) {
   EXPECT_TRUE(s.link_up);
 }
 
-TEST(TimelineRecorder, APeriodBelowTheStepKeepsEveryStep) {
-  TimelineRecorder recorder(0.001, 0.01);
-  for (std::uint64_t step = 0; step < 4; ++step) recorder(snapshotAt(step, 0.01), StepContext{});
-  EXPECT_EQ(recorder.rows().size(), 4u);
+TEST(TimelineRecorder, RejectsAPeriodBelowTheStepOrNotAWholeNumberOfSteps) {
+  // Below the step there is nothing between two steps to record; 0.015 s with 0.01 s steps
+  // would silently give rows every 0.02 s.
+  for (const double period : {0.001, 0.005, 0.0099, 0.015, 0.105}) {
+    const std::string message = test::errorOf([&] { TimelineRecorder(period, 0.01); });
+    EXPECT_TRUE(contains(message, "period = ")) << period << ": " << message;
+    EXPECT_TRUE(contains(message, "0.01 s")) << message;
+  }
+  // The step itself and whole multiples (0.1 / 0.01 is 10.000000000000002 in doubles).
+  for (const double period : {0.01, 0.02, 0.1, 0.3, 2.5}) {
+    TimelineRecorder recorder(period, 0.01);
+    const auto every = static_cast<std::uint64_t>(std::llround(period / 0.01));
+    for (std::uint64_t step = 0; step <= 3 * every; ++step) {
+      recorder(snapshotAt(step, 0.01), StepContext{});
+    }
+    EXPECT_EQ(recorder.rows().size(), 4u) << period;
+  }
 }
 
 TEST(TimelineRecorder, RejectsAPeriodThatIsNotPositive) {
@@ -474,6 +516,27 @@ TEST(WriteStateMachineDots, ADirectoryThatCannotBeCreatedIsNamed) {
   const std::string message =
       test::errorOf([&] { writeStateMachineDots(model, file + "/graphs"); });
   EXPECT_TRUE(contains(message, file + "/graphs")) << message;
+}
+
+TEST(WriteStateMachineDots, RefusesNamesThatLeaveTheDirectoryOrOverwriteAnotherDiagram) {
+  // A model built in code (the loader refuses these names already): nothing is written, not
+  // even the good diagrams, and nothing appears outside the directory.
+  test::TempDir tmp;
+  const std::string dir = tmp.file("a/b/out");
+  for (const std::string& bad :
+       {std::string("../../x"), std::string("/tmp/mcws_dot_escape"), std::string(".."),
+        std::string(".hidden"), std::string("task"), std::string("TASK"), std::string("cb1"),
+        std::string("a\nb"), std::string("a\\b"), std::string(""), std::string(201, 'c')}) {
+    BehaviorModel model = shippedModel();
+    model.combined[2].name = bad;
+    const std::string message = test::errorOf([&] { writeStateMachineDots(model, dir); });
+    EXPECT_TRUE(contains(message, "not written to '" + dir + "'")) << message;
+    EXPECT_TRUE(contains(message, quotedName(bad))) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/CB1.dot")) << bad;
+  }
+  EXPECT_FALSE(std::filesystem::exists(tmp.file("a/x.dot")));
+  EXPECT_FALSE(std::filesystem::exists("/tmp/mcws_dot_escape.dot"));
 }
 
 }  // namespace

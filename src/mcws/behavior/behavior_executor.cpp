@@ -1,9 +1,12 @@
 #include "mcws/behavior/behavior_executor.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "mcws/core/error.h"
 
@@ -96,6 +99,11 @@ class CleaningRun {
       applyFaults();
       superviseLink();
       superviseOperator();
+      if (mode_ == Mode::kRunning) {
+        superviseSensors();
+      } else if (mode_ != Mode::kDone) {
+        noteSensors();
+      }
       if (mode_ == Mode::kDone) break;
       sim_.step();
       accountPhase();
@@ -103,7 +111,8 @@ class CleaningRun {
       if (!checkInvariant()) break;
       if (sim_.snapshot().battery_charge <= 0.0) {
         stopAll();
-        react("battery_empty", "every joint stopped: the robot hangs on the string");
+        react("battery_empty", "every joint stopped: the robot hangs on the string", std::nullopt,
+              sim_.time(), std::nullopt);
         finish(RunStatus::kBatteryEmpty, "the battery is empty");
         break;
       }
@@ -230,8 +239,18 @@ class CleaningRun {
     observer_.on_step(sim_.snapshot(), c);
   }
 
-  void react(const std::string& fault, const std::string& reaction) {
-    summary_.faults.push_back({sim_.time(), fault, reaction});
+  /// Records a fault and its reaction; \return its index in summary_.faults.
+  std::size_t react(const std::string& fault, const std::string& reaction,
+                    std::optional<double> injected, std::optional<double> detected,
+                    std::optional<double> resolved) {
+    summary_.faults.push_back({fault, injected, detected, resolved, reaction});
+    return summary_.faults.size() - 1;
+  }
+
+  /// Marks the faults in `open` resolved now.
+  void resolve(std::vector<std::size_t>& open) {
+    for (const std::size_t k : open) summary_.faults[k].resolved_t = sim_.time();
+    open.clear();
   }
 
   void fireTask(const std::string& event) {
@@ -242,12 +261,16 @@ class CleaningRun {
 
   void finish(RunStatus status, const std::string& detail) {
     for (const InjectedFault& f : pending_) {
-      react(faultKindName(f.kind), "never acted: no command came from the ground station after it");
+      react(faultKindName(f.kind), "never acted: no command came from the ground station after it",
+            f.at_s, std::nullopt, std::nullopt);
     }
     pending_.clear();
     summary_.status = status;
     mode_ = Mode::kDone;
-    if (status == RunStatus::kCompleted || status == RunStatus::kReturned) fireTask("job_done");
+    if (status == RunStatus::kCompleted || status == RunStatus::kReturned) {
+      resolve(until_start_);  // the return these faults caused reached the start
+      fireTask("job_done");
+    }
     log("run_end", "", std::string(runStatusName(status)) + ": " + detail);
   }
 
@@ -285,7 +308,8 @@ class CleaningRun {
       if (done.counted && done.combined == "CB3") --disc_;
       if (done.counted && done.combined == "CB2") ++summary_.discs_cleaned;
     }
-    log("subtask_done", "", completed ? "back in " + m.current() : "stopped in " + m.current());
+    log("subtask_done", "",
+        sensedText((completed ? "back in " : "stopped in ") + m.current(), m.current()));
     active_.reset();
     const std::string stopped_in = m.current();
     if (returning_) {
@@ -427,28 +451,66 @@ class CleaningRun {
     return false;
   }
 
-  /// A zero switch that reads pressed while the clamp's encoder says the jaw is still closed
-  /// (more than half a degree open): a sensor fault, like a timeout (seed section 2.4 (2)).
-  std::optional<std::string> sensorMismatch(const Active& a) const {
-    if (a.event != "zero_switch") return std::nullopt;
-    const SimJointState& j = sim_.snapshot().joint(a.joint);
-    const SimClampConfig& c =
-        a.joint == kFixedClamp ? sim_.config().fixed_clamp : sim_.config().moving_clamp;
-    if (!j.zero_switch || std::abs(static_cast<double>(j.encoder)) <= 0.5 * c.counts_per_deg) {
-      return std::nullopt;
+  /// A zero switch that reads pressed while its clamp's encoder says the jaw is more than half
+  /// a degree open: a sensor fault, like a timeout (seed section 2.4 (2)). Checked on both
+  /// clamps at every step, whatever runs: a switch stuck pressed on a closed jaw shows at once.
+  /// \return the clamp and the text.
+  std::optional<std::pair<SimJoint, std::string>> sensorMismatch() const {
+    for (const SimJoint clamp : {kFixedClamp, kMovingClamp}) {
+      const SimJointState& j = sim_.snapshot().joint(clamp);
+      const SimClampConfig& c =
+          clamp == kFixedClamp ? sim_.config().fixed_clamp : sim_.config().moving_clamp;
+      if (!j.zero_switch || std::abs(static_cast<double>(j.encoder)) <= 0.5 * c.counts_per_deg) {
+        continue;
+      }
+      return std::make_pair(clamp, std::string(simJointName(clamp)) +
+                                       "'s zero switch reads pressed but its encoder reads " +
+                                       number(static_cast<double>(j.encoder) / c.counts_per_deg) +
+                                       " deg");
     }
-    return std::string(simJointName(a.joint)) + "'s zero switch reads pressed but its encoder " +
-           "reads " + number(static_cast<double>(j.encoder) / c.counts_per_deg) + " deg";
+    return std::nullopt;
+  }
+
+  /// The sensor check while the robot runs; \return false when it handed control to the
+  /// operator. A disagreement already found while the robot stood still keeps its time.
+  bool superviseSensors() {
+    const auto mismatch = sensorMismatch();
+    const std::optional<double> seen = std::exchange(mismatch_seen_at_, std::nullopt);
+    mismatch_handed_over_ = mismatch.has_value();
+    if (!mismatch) {
+      if (seen) {  // found while stopped, gone before the robot ran again: the operator's repair
+        react("sensor_mismatch", "found while the robot stood still; repaired before it ran again",
+              std::nullopt, seen, sim_.time());
+      }
+      return true;
+    }
+    stopAll();
+    if (!seen) log("sensor_mismatch", active_ ? active_->behavior : "", mismatch->second);
+    handOver("sensor_mismatch", mismatch->second, sensorFaultAt(mismatch->first), seen);
+    return false;
+  }
+
+  /// The sensor check while the robot stands still (waiting for the link, or in MANUAL): a
+  /// disagreement is logged when it shows and handled when the robot runs again.
+  void noteSensors() {
+    if (mismatch_seen_at_ || mismatch_handed_over_) return;
+    if (const auto mismatch = sensorMismatch()) {
+      mismatch_seen_at_ = sim_.time();
+      log("sensor_mismatch", active_ ? active_->behavior : "",
+          mismatch->second + "; the robot stands still: handled when it runs again");
+    }
+  }
+
+  /// When the fault file broke the sensor a behaviour on `joint` waits for [s], if it did.
+  std::optional<double> sensorFaultAt(SimJoint joint) const {
+    if (joint == kFixedClamp) return switch_fault_at_[0];
+    if (joint == kMovingClamp) return switch_fault_at_[1];
+    return std::nullopt;
   }
 
   void superviseBehavior() {
+    if (!superviseSensors()) return;
     Active& a = *active_;
-    if (const auto mismatch = sensorMismatch(a)) {
-      stopAll();
-      log("sensor_mismatch", a.behavior, *mismatch);
-      handOver("sensor_mismatch", *mismatch);
-      return;
-    }
     if (endingEventSeen(a)) {
       if (a.command.kind == SimCommandKind::kClose || a.command.kind == SimCommandKind::kRelease) {
         sim_.command(SimCommand::stop(a.joint));  // the jaw holds: cut the motor
@@ -462,7 +524,7 @@ class CleaningRun {
       if (a.reclose_to) {
         const std::string to = *a.reclose_to;
         active_.reset();
-        log("reclosed", a.behavior, "both clamps grip: the robot is in " + to);
+        log("reclosed", a.behavior, "both clamps grip: " + sensedText("in " + to, to));
         landOn(to, true);
         return;
       }
@@ -488,7 +550,7 @@ class CleaningRun {
       const std::string what =
           a.behavior + " did not end on " + a.event + " within " + number(*a.timeout) + " s";
       log("timeout", a.behavior, what);
-      handOver("timeout", what);
+      handOver("timeout", what, sensorFaultAt(a.joint));
     }
   }
 
@@ -512,14 +574,14 @@ class CleaningRun {
       return false;
     }
     if (ground) {
-      if (takeFault(FaultKind::kCorruptCommand)) {
+      if (const auto corrupt = takeFault(FaultKind::kCorruptCommand)) {
         const std::uint64_t seq = ++seq_;
         const std::string what = "seq " + std::to_string(seq) + " (" + describe(command) +
                                  ") failed the robot's command check; its echo (seq " +
                                  std::to_string(seq - 1) + ", " + stateName() +
                                  ") did not match; resent";
         log("command_rejected", behavior, what, seq);
-        react("corrupt_command", what);
+        react("corrupt_command", what, corrupt->at_s, sim_.time(), sim_.time());
       }
       if (command.kind != SimCommandKind::kStop) {
         if (auto f = takeFault(FaultKind::kWrongCommand)) {
@@ -527,12 +589,15 @@ class CleaningRun {
           log("command", behavior, "received " + describe(f->command) + " (wrong command)", seq);
           if (const auto reason = interference(f->command)) {
             log("refused", behavior, describe(f->command) + ": " + *reason, seq);
-            react("wrong_command", "refused " + describe(f->command) + " (" + *reason +
-                                       "); the behaviour's own command sent instead");
+            react("wrong_command",
+                  "refused " + describe(f->command) + " (" + *reason +
+                      "); the behaviour's own command sent instead",
+                  f->at_s, sim_.time(), sim_.time());
           } else {
             sim_.command(f->command);
             react("wrong_command",
-                  describe(f->command) + " passed the interference check and was executed");
+                  describe(f->command) + " passed the interference check and was executed", f->at_s,
+                  std::nullopt, std::nullopt);
             return true;
           }
         }
@@ -541,17 +606,44 @@ class CleaningRun {
     const std::uint64_t seq = ++seq_;
     if (const auto reason = interference(command)) {
       log("refused", behavior, describe(command) + ": " + *reason, seq);
-      stopAll();
-      handOver("interference", "refused " + describe(command) + ": " + *reason);
+      safetyStop(command, behavior, *reason);
       return false;
     }
     sim_.command(command);
     log("command", behavior,
-        describe(command) +
-            (ground ? "; echo seq " + std::to_string(seq) + " " + stateName() + " matches"
-                    : "; on board"),
+        describe(command) + (ground
+                                 ? "; echo seq " + std::to_string(seq) + " " + stateName() +
+                                       (sensorsFit(stateName())
+                                            ? " matches"
+                                            : ": " + sensedText("in " + stateName(), stateName()))
+                                 : "; on board"),
         seq);
     return true;
+  }
+
+  /// A behaviour's own command was refused: every joint stops and the run ends there.
+  void safetyStop(const SimCommand& command, const std::string& behavior,
+                  const std::string& reason) {
+    stopAll();
+    const SimSnapshot& s = sim_.snapshot();
+    SafetyStop stop;
+    stop.step = s.step;
+    stop.t = s.time;
+    stop.subtask = subtask_;
+    stop.combined = segment_ ? segment_->combined : "";
+    stop.state = stateName();
+    stop.behavior = behavior;
+    stop.command = describe(command);
+    stop.reason = reason;
+    std::ostringstream text;
+    text << "step " << stop.step << " (t = " << stop.t << " s): refused " << behavior
+         << "'s own command " << stop.command << " in " << stop.combined << " " << stop.state
+         << " (sub-task " << stop.subtask << "): " << reason;
+    stop.message = text.str();
+    summary_.safety_stop = stop;
+    react("refused_own_command", "every joint stopped; the run ends (safety stop)", std::nullopt,
+          sim_.time(), std::nullopt);
+    finish(RunStatus::kSafetyStop, stop.message);
   }
 
   /// Why releasing a clamp would leave the robot hanging by neither (the other clamp does not
@@ -564,34 +656,193 @@ class CleaningRun {
            simJointName(other) + " does not grip: both clamps open";
   }
 
-  /// Why `command` must not run from the current state, or nothing.
+  /// The values a component may have: one per value index, true when possible.
+  using ValueSet = std::vector<bool>;
+
+  /// The values a positioned component (named positions, the robot's units) may have with its
+  /// joint anywhere in [lo, hi]: every named position in the interval, and the nearest one on
+  /// either side of each end that is not a named position (the joint is between them).
+  static ValueSet valuesSpanned(const StateComponent& c, double lo, double hi) {
+    constexpr double kSamePosition = 1e-9;  // [mm or deg] named positions are exact
+    ValueSet set(c.values.size(), false);
+    for (const double end : {lo, hi}) {
+      int below = -1, above = -1;
+      for (std::size_t v = 0; v < c.positions.size(); ++v) {
+        const double p = c.positions[v];
+        if (p <= end + kSamePosition && (below < 0 || p > c.positions[below]))
+          below = static_cast<int>(v);
+        if (p >= end - kSamePosition && (above < 0 || p < c.positions[above]))
+          above = static_cast<int>(v);
+      }
+      if (below >= 0) set[below] = true;
+      if (above >= 0) set[above] = true;
+    }
+    for (std::size_t v = 0; v < c.positions.size(); ++v) {
+      if (c.positions[v] >= lo - kSamePosition && c.positions[v] <= hi + kSamePosition) {
+        set[v] = true;
+      }
+    }
+    return set;
+  }
+
+  /// The commands with which the model's behaviours set each value of component `k`.
+  std::vector<std::vector<std::string>> commandsSetting(std::size_t k) const {
+    const StateComponent& c = model_.state_vector.components[k];
+    std::vector<std::vector<std::string>> commands(c.values.size());
+    for (const BasicBehavior& b : model_.behaviors) {
+      if (b.body.changes.size() != 1 || b.body.changes[0] != c.name) continue;
+      for (const BehaviorTarget& target : b.body.targets) {
+        const int v = c.indexOf(target.value);
+        if (v >= 0) commands[v].push_back(target.command);
+      }
+    }
+    return commands;
+  }
+
+  /// The pose the sensors read, per component the values it may have: a clamp's value is the
+  /// one its close behaviour sets while it grips, its release's otherwise; a positioned joint's
+  /// the named position its encoder reads, or the two it lies between; the brush's the value of
+  /// its spin while it turns, of its stop at rest. A component the sensors cannot name may have
+  /// any value.
+  std::vector<ValueSet> sensedPose() const {
+    const StateVectorSpec& spec = model_.state_vector;
+    const SimSnapshot& s = sim_.snapshot();
+    std::vector<ValueSet> pose;
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
+      const StateComponent& c = spec.components[k];
+      ValueSet set(c.values.size(), false);
+      SimJoint joint;
+      try {
+        joint = simJointFromName(c.actuator);
+      } catch (const Error&) {
+        pose.emplace_back(c.values.size(), true);
+        continue;
+      }
+      const SimJointState& j = s.joint(joint);
+      if (!c.positions.empty()) {
+        const double at = static_cast<double>(j.encoder) / countsPerUnit(joint);
+        set = valuesSpanned(c, at, at);
+      } else {
+        const auto commands = commandsSetting(k);
+        const bool clamp = joint == kFixedClamp || joint == kMovingClamp;
+        const bool turning = j.velocity != 0.0 || j.moving;
+        for (std::size_t v = 0; v < c.values.size(); ++v) {
+          for (const std::string& command : commands[v]) {
+            if (clamp && (command == (j.gripping ? "close" : "release"))) set[v] = true;
+            if (!clamp && command == (turning ? "spin" : "stop")) set[v] = true;
+          }
+        }
+      }
+      if (std::none_of(set.begin(), set.end(), [](bool b) { return b; }))
+        set.assign(set.size(), true);
+      pose.push_back(std::move(set));
+    }
+    return pose;
+  }
+
+  /// "fixed_clamp=closed moving_clamp=open j3=home|extended ...".
+  std::string describePose(const std::vector<ValueSet>& pose) const {
+    const StateVectorSpec& spec = model_.state_vector;
+    std::string text;
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
+      text += (k ? " " : "") + spec.components[k].name + "=";
+      bool first = true;
+      for (std::size_t v = 0; v < pose[k].size(); ++v) {
+        if (!pose[k][v]) continue;
+        text += (first ? "" : "|") + spec.components[k].values[v];
+        first = false;
+      }
+    }
+    return text;
+  }
+
+  /// The first pose of the product of `pose`'s value sets that a rule forbids, with the rule.
+  std::optional<std::pair<Pose, const PoseRule*>> forbiddenPose(
+      const std::vector<ValueSet>& pose) const {
+    const StateVectorSpec& spec = model_.state_vector;
+    Pose p(pose.size(), 0);
+    std::optional<std::pair<Pose, const PoseRule*>> found;
+    std::function<void(std::size_t)> visit = [&](std::size_t k) {
+      if (found) return;
+      if (k == pose.size()) {
+        if (const PoseRule* rule = spec.brokenRule(p)) found.emplace(p, rule);
+        return;
+      }
+      for (std::size_t v = 0; v < pose[k].size(); ++v) {
+        if (!pose[k][v]) continue;
+        p[k] = static_cast<int>(v);
+        visit(k + 1);
+      }
+    };
+    visit(0);
+    return found;
+  }
+
+  /// The FSM state whose pose the sensors read, when exactly one state's pose fits.
+  std::optional<std::string> sensedState(const std::vector<ValueSet>& pose) const {
+    std::optional<std::string> found;
+    for (const StatePose& sp : model_.poses) {
+      bool fits = true;
+      for (std::size_t k = 0; k < pose.size() && fits; ++k) fits = pose[k][sp.pose[k]];
+      if (!fits) continue;
+      if (found) return std::nullopt;
+      found = sp.state;
+    }
+    return found;
+  }
+
+  /// Whether the pose of `state` is one the sensors allow (a joint between two named positions
+  /// allows either).
+  bool sensorsFit(const std::string& state) const {
+    const StatePose* sp = model_.poseOf(state);
+    if (!sp) return false;
+    const std::vector<ValueSet> pose = sensedPose();
+    for (std::size_t k = 0; k < pose.size(); ++k) {
+      if (!pose[k][sp->pose[k]]) return false;
+    }
+    return true;
+  }
+
+  /// For the log: `claim` (e.g. "back in q1") when the sensors fit the pose of `state`, else
+  /// "the machine is back in q1, but the sensors read q6 (fixed_clamp=closed ...)".
+  std::string sensedText(const std::string& claim, const std::string& state) const {
+    if (sensorsFit(state)) return claim;
+    const std::vector<ValueSet> pose = sensedPose();
+    const std::optional<std::string> sensed = sensedState(pose);
+    return "the machine is " + claim + ", but the sensors read " +
+           (sensed ? *sensed + " (" : std::string("(")) + describePose(pose) + ")";
+  }
+
+  /// Why `command` must not be sent now, or nothing: the simulator's refuse() (joint limits,
+  /// command kinds), a release while the other clamp does not grip, and the pose rules: every
+  /// pose the robot may pass through while the command runs, from the pose the sensors read
+  /// (not the machine's state) with the commanded component over the values between where it
+  /// is and where the command takes it, must be allowed.
   std::optional<std::string> interference(const SimCommand& command) const {
     if (const auto reason = sim_.refuse(command)) return reason;
     if (const auto reason = opensBothClamps(command)) return reason;
-    // The state-vector rules: the pose the command gives from the current state's pose.
-    const StatePose* pose = model_.poseOf(stateName());
-    if (!pose) return std::nullopt;
     const StateVectorSpec& spec = model_.state_vector;
-    for (const BasicBehavior& b : model_.behaviors) {
-      if (b.body.actuator != simJointName(command.joint) || b.body.changes.size() != 1) continue;
-      const int k = spec.componentIndex(b.body.changes[0]);
-      if (k < 0) continue;
+    const std::vector<ValueSet> sensed = sensedPose();
+    for (std::size_t k = 0; k < spec.components.size(); ++k) {
       const StateComponent& c = spec.components[k];
-      for (const BehaviorTarget& target : b.body.targets) {
-        if (target.command != commandKindName(command.kind)) continue;
-        const int v = c.indexOf(target.value);
-        if (v < 0) continue;
-        if (command.kind == SimCommandKind::kMoveTo &&
-            (c.positions.empty() || std::abs(c.positions[v] - command.value) > 1e-9)) {
-          continue;
+      if (c.actuator != simJointName(command.joint)) continue;
+      std::vector<ValueSet> pose = sensed;
+      if (command.kind == SimCommandKind::kMoveTo && !c.positions.empty()) {
+        const double at = static_cast<double>(sim_.snapshot().joint(command.joint).encoder) /
+                          countsPerUnit(command.joint);
+        pose[k] = valuesSpanned(c, std::min(at, command.value), std::max(at, command.value));
+      } else {
+        const auto commands = commandsSetting(k);
+        for (std::size_t v = 0; v < c.values.size(); ++v) {
+          for (const std::string& name : commands[v]) {
+            if (name == commandKindName(command.kind)) pose[k][v] = true;
+          }
         }
-        Pose next = pose->pose;
-        next[k] = v;
-        if (const PoseRule* rule = spec.brokenRule(next)) {
-          return "it would give " + c.name + " = " + target.value + " in " + stateName() +
-                 ", a pose rule '" + rule->name + "' forbids";
-        }
-        return std::nullopt;
+      }
+      if (const auto bad = forbiddenPose(pose)) {
+        return "from the pose the sensors read (" + describePose(sensed) +
+               ") it would pass through " + spec.describe(bad->first) + ", which pose rule '" +
+               bad->second->name + "' forbids";
       }
     }
     return std::nullopt;
@@ -617,6 +868,7 @@ class CleaningRun {
       std::string detail = faultKindName(f.kind);
       switch (f.kind) {
         case FaultKind::kLinkDown:
+          if (sim_.snapshot().link_up) outage_injected_at_ = t;  // an outage starts
           sim_.setLinkUp(false);
           if (f.duration_s) {
             link_back_at_.push_back(t + *f.duration_s);
@@ -632,6 +884,7 @@ class CleaningRun {
                                     : (f.reads_pressed ? SimFault::kMovingZeroSwitchAlwaysPressed
                                                        : SimFault::kMovingZeroSwitchNeverPressed);
           sim_.setFault(sf);
+          switch_fault_at_[fixed ? 0 : 1] = t;
           detail += std::string(": ") + simJointName(f.clamp) + " reads " +
                     (f.reads_pressed ? "pressed" : "not pressed");
           break;
@@ -655,6 +908,7 @@ class CleaningRun {
         if (link_back_at_.empty() && !link_down_for_good_) {
           sim_.setLinkUp(true);
           log("link_up", "", "the radio link is back");
+          resolve(until_link_);
         }
       } else {
         ++it;
@@ -672,7 +926,8 @@ class CleaningRun {
                                           : "in MANUAL: the robot stays stopped; the operator "
                                             "acts once the link is back";
       log("link_lost", active_ ? active_->behavior : "", what);
-      react("link_down", what);
+      until_link_.push_back(
+          react("link_down", what, outage_injected_at_, sim_.time(), std::nullopt));
     }
     if (mode_ == Mode::kRunning && !returning_ && !up) {
       link_loss_noted_ = true;
@@ -688,14 +943,17 @@ class CleaningRun {
     if (mode_ != Mode::kWaitingForLink) return;
     if (up) {
       const double waited = sim_.time() - link_lost_at_;
-      react("link_down", "stopped, link back after " + number(waited) + " s, resumed");
+      react("link_down", "stopped, link back after " + number(waited) + " s, resumed",
+            outage_injected_at_, link_lost_at_, sim_.time());
       mode_ = Mode::kRunning;
       fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
       log("link_restored", "", "resuming " + stateName());
       startBehavior(true);
     } else if (sim_.time() - link_lost_at_ >= options_.faults.link_wait_s - 1e-9) {
-      react("link_down", "stopped, no link after " + number(options_.faults.link_wait_s) +
-                             " s, returned to the start on its own");
+      until_start_.push_back(react("link_down",
+                                   "stopped, no link after " + number(options_.faults.link_wait_s) +
+                                       " s, returned to the start on its own",
+                                   outage_injected_at_, link_lost_at_, std::nullopt));
       mode_ = Mode::kRunning;
       fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
       startReturn("no link for " + number(options_.faults.link_wait_s) + " s");
@@ -703,20 +961,26 @@ class CleaningRun {
   }
 
   /// Control to the operator (MANUAL), with the next scripted response if there is one.
-  void handOver(const std::string& fault, const std::string& what) {
+  /// \param detected when the fault was found [s]; now when not given.
+  void handOver(const std::string& fault, const std::string& what, std::optional<double> injected,
+                std::optional<double> detected = std::nullopt) {
+    if (!detected) detected = sim_.time();
     mode_ = Mode::kManual;
     fireTask("hand_over");
     const auto& responses = options_.faults.operator_responses;
     if (next_response_ >= responses.size()) {
-      react(fault, what + "; control to the operator; no scripted response: the run stops");
+      react(fault, what + "; control to the operator; no scripted response: the run stops",
+            injected, detected, std::nullopt);
       finish(RunStatus::kHaltedInManual, "waiting for the operator after: " + what);
       return;
     }
     response_ = responses[next_response_++];
     response_at_ = sim_.time() + response_->after_s;
-    react(fault, what + "; control to the operator; scripted response " +
-                     operatorActionName(response_->action) + " after " +
-                     number(response_->after_s) + " s");
+    until_operator_.push_back(react(fault,
+                                    what + "; control to the operator; scripted response " +
+                                        operatorActionName(response_->action) + " after " +
+                                        number(response_->after_s) + " s",
+                                    injected, detected, std::nullopt));
     log("manual", "", "control to the operator: " + what);
   }
 
@@ -731,12 +995,14 @@ class CleaningRun {
     }
     const OperatorAction action = response_->action;
     response_.reset();
+    resolve(until_operator_);
     if (action == OperatorAction::kRepairAndResume) {
       for (const SimFault f :
            {SimFault::kFixedZeroSwitchNeverPressed, SimFault::kFixedZeroSwitchAlwaysPressed,
             SimFault::kMovingZeroSwitchNeverPressed, SimFault::kMovingZeroSwitchAlwaysPressed}) {
         sim_.setFault(f, 0.0);
       }
+      switch_fault_at_ = {};
     }
     mode_ = Mode::kRunning;
     fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
@@ -755,14 +1021,19 @@ class CleaningRun {
     const std::string voltage = number(sim_.snapshot().battery_voltage) + " V";
     log("battery_low", active_ ? active_->behavior : "", "alarm: battery at " + voltage);
     if (options_.faults.low_battery == LowBatteryPolicy::kAlarmOnly) {
-      react("battery_low", "alarm at " + voltage + "; the job goes on (policy alarm_only)");
+      react("battery_low", "alarm at " + voltage + "; the job goes on (policy alarm_only)",
+            std::nullopt, sim_.time(), sim_.time());
     } else if (returning_ || (segment_ && segment_->combined == "CB3")) {
-      react("battery_low", "alarm at " + voltage + "; already on the way back");
+      until_start_.push_back(react("battery_low",
+                                   "alarm at " + voltage + "; already on the way back",
+                                   std::nullopt, sim_.time(), std::nullopt));
     } else {
       return_after_disc_ = true;
-      react("battery_low", "alarm at " + voltage + "; finishing disc " +
-                               std::to_string(disc_ + (segment_->combined == "CB1" ? 1 : 0)) +
-                               ", then returning");
+      until_start_.push_back(react(
+          "battery_low",
+          "alarm at " + voltage + "; finishing disc " +
+              std::to_string(disc_ + (segment_->combined == "CB1" ? 1 : 0)) + ", then returning",
+          std::nullopt, sim_.time(), std::nullopt));
     }
   }
 
@@ -772,7 +1043,10 @@ class CleaningRun {
   /// the half-done move; then one CB3 per disc below the start.
   void startReturn(const std::string& why) {
     returning_ = true;
-    log("return_start", "", why + "; " + std::to_string(disc_) + " disc(s) below the start");
+    const int climbs = disc_ + (returnCompletesCb1() ? 1 : 0);
+    log("return_start", "",
+        why + "; " + std::to_string(climbs) + " disc(s) to climb back to the start" +
+            (climbs != disc_ ? " (the CB1 in hand goes on to its end first)" : ""));
     if (!active_) {  // between sub-tasks
       endSegmentForReturn();
       return;
@@ -801,25 +1075,24 @@ class CleaningRun {
     return -1;
   }
 
-  /// On the way back in CB1 or CB3: reach a state whose pose has both clamps closed by the
-  /// shortest safe way. Both clamps gripping: the robot is there. One clamp open (or half
-  /// released) with J3 at a named position, so that its platform sits at a disc: close it again
-  /// (the clamp's close behaviour) unless the state's own behaviour is that very close; J3 mid
-  /// travel: finish the state's own behaviour first, then settle again.
-  void settle() {
-    StateMachine& m = *machine();
-    const std::string state = m.current();
-    const SimSnapshot& s = sim_.snapshot();
-    const bool fixed = s.joint(kFixedClamp).gripping, moving = s.joint(kMovingClamp).gripping;
+  /// What settle() does in a state: run the state's own behaviour; land in `to` at once (both
+  /// clamps grip); or close the open clamp again with `closer` and land in `to`.
+  struct SettleStep {
+    enum Kind { kOwn, kLand, kReclose } kind{kOwn};
+    std::string to;
+    const BasicBehavior* closer{nullptr};
+    SimJoint open{kFixedClamp};
+  };
+
+  /// settle()'s decision in `state` of the current CB1 or CB3, the clamps gripping as given and
+  /// J3 in position class `j3` (-1: mid travel).
+  SettleStep settleStep(const std::string& state, bool fixed, bool moving, int j3) const {
     const CombinedBehavior& cb = *model_.combinedBehavior(segment_->combined);
-    const Transition& own_transition = *cb.transitionFrom(state);
-    const BehaviorRun own = resolveRun(model_, own_transition);
+    const BehaviorRun own = resolveRun(model_, *cb.transitionFrom(state));
     const SimJoint open = fixed ? kMovingClamp : kFixedClamp;
-    const int j3 = j3Class();
     if (j3 < 0 || (!(fixed && moving) && own.behavior->body.actuator == simJointName(open) &&
                    own.target->command == "close")) {
-      startBehavior(true);  // J3 mid travel, or the state's own behaviour closes the clamp
-      return;
+      return {};  // J3 mid travel, or the state's own behaviour closes the clamp
     }
     // The state whose pose is the robot's once both clamps grip: the state's pose with both
     // clamps closed and J3 where its encoder says.
@@ -835,28 +1108,80 @@ class CleaningRun {
     for (const std::string& q : cb.states) {
       if (model_.poseOf(q)->pose == pose) to = q;
     }
-    if (to.empty()) {  // the model has no such state: go on instead
-      startBehavior(true);
-      return;
-    }
-    if (fixed && moving) {  // already there (the state's own close gripped before the stop)
-      landOn(to, to != own_transition.to);
-      return;
-    }
-    const int component = open == kFixedClamp ? fixed_component_ : moving_component_;
+    if (to.empty()) return {};  // the model has no such state: go on instead
+    if (fixed && moving) return {SettleStep::kLand, to, nullptr, open};
     for (const BasicBehavior& b : model_.behaviors) {
       const BehaviorTarget* target = b.body.target("closed");
       if (b.body.actuator != simJointName(open) || !target || target->command != "close") continue;
-      m.jumpTo(state);
-      const BehaviorRun run{&b, target, static_cast<std::size_t>(component),
-                            spec.components[component].indexOf("closed"), std::nullopt};
-      log("reclose", b.name,
-          std::string(simJointName(open)) + " closes again instead of " + own.behavior->name +
-              ": the shortest way to both clamps gripping, in " + to);
-      runBehavior(run, false, to);
+      return {SettleStep::kReclose, to, &b, open};
+    }
+    return {};  // the model has no behaviour that closes this clamp
+  }
+
+  /// On the way back in CB1 or CB3: reach a state whose pose has both clamps closed by the
+  /// shortest safe way. Both clamps gripping: the robot is there. One clamp open (or half
+  /// released) with J3 at a named position, so that its platform sits at a disc: close it again
+  /// (the clamp's close behaviour) unless the state's own behaviour is that very close; J3 mid
+  /// travel: finish the state's own behaviour first, then settle again.
+  void settle() {
+    StateMachine& m = *machine();
+    const std::string state = m.current();
+    const SimSnapshot& s = sim_.snapshot();
+    const SettleStep step =
+        settleStep(state, s.joint(kFixedClamp).gripping, s.joint(kMovingClamp).gripping, j3Class());
+    const CombinedBehavior& cb = *model_.combinedBehavior(segment_->combined);
+    const Transition& own_transition = *cb.transitionFrom(state);
+    if (step.kind == SettleStep::kOwn) {
+      startBehavior(true);
       return;
     }
-    startBehavior(true);  // the model has no behaviour that closes this clamp
+    if (step.kind == SettleStep::kLand) {  // the state's own close gripped before the stop
+      landOn(step.to, step.to != own_transition.to);
+      return;
+    }
+    const StateVectorSpec& spec = model_.state_vector;
+    const int component = step.open == kFixedClamp ? fixed_component_ : moving_component_;
+    m.jumpTo(state);
+    const BehaviorRun run{step.closer, step.closer->body.target("closed"),
+                          static_cast<std::size_t>(component),
+                          spec.components[component].indexOf("closed"), std::nullopt};
+    log("reclose", step.closer->name,
+        std::string(simJointName(step.open)) + " closes again instead of " +
+            own_transition.behavior + ": the shortest way to both clamps gripping, in " + step.to);
+    runBehavior(run, false, step.to);
+  }
+
+  /// Whether a return starting now brings the CB1 in hand to its end (settle() runs its own
+  /// behaviours until it is back in a final state), so that it counts one disc more to climb.
+  /// Follows settle()'s decisions from the sensed clamps and J3, then from each state's pose.
+  bool returnCompletesCb1() {
+    if (!active_ || !segment_ || segment_->combined != "CB1") return false;
+    const CombinedBehavior& cb = *model_.combinedBehavior("CB1");
+    const StateMachine& m = *machine();
+    const StateVectorSpec& spec = model_.state_vector;
+    std::string state = m.current();
+    std::size_t steps = m.steps();
+    const SimSnapshot& s = sim_.snapshot();
+    bool fixed = s.joint(kFixedClamp).gripping, moving = s.joint(kMovingClamp).gripping;
+    int j3 = j3Class();
+    for (std::size_t n = 0; n <= cb.transitions.size(); ++n) {
+      const SettleStep step = settleStep(state, fixed, moving, j3);
+      const std::string own_to = cb.transitionFrom(state)->to;
+      if (step.kind != SettleStep::kOwn) {  // landOn(): complete only by its own transitions
+        const bool reversal = step.kind == SettleStep::kReclose || step.to != own_to;
+        return m.isFinal(step.to) && !reversal && steps > 0;
+      }
+      state = own_to;
+      ++steps;
+      if (m.isFinal(state)) return true;
+      const Pose& pose = model_.poseOf(state)->pose;
+      fixed = pose[fixed_component_] == spec.components[fixed_component_].indexOf("closed");
+      moving = pose[moving_component_] == spec.components[moving_component_].indexOf("closed");
+      for (std::size_t k = 0; k < spec.components.size(); ++k) {
+        if (spec.components[k].actuator == "J3") j3 = pose[k];
+      }
+    }
+    return false;
   }
 
   /// The robot holds the string with both clamps in state `to` of the current CB1 or CB3
@@ -953,6 +1278,13 @@ class CleaningRun {
   bool link_loss_noted_{false};  // a loss during MANUAL or the return was reported
   double drain_{0.0};
   double link_lost_at_{0.0};
+  std::optional<double> mismatch_seen_at_;    // a sensor disagreement found while standing still
+  bool mismatch_handed_over_{false};          // the present disagreement is the operator's already
+  std::optional<double> outage_injected_at_;  // when the present (or last) outage began [s]
+  std::array<std::optional<double>, 2> switch_fault_at_;  // J1's, J2's zero-switch fault [s]
+  std::vector<std::size_t> until_link_;                   // faults resolved when the link is back
+  std::vector<std::size_t> until_operator_;               // faults resolved when the operator acts
+  std::vector<std::size_t> until_start_;  // faults resolved when the return reaches the start
   std::optional<OperatorResponse> response_;
   double response_at_{0.0};
   std::size_t next_response_{0};
@@ -974,6 +1306,8 @@ const char* runStatusName(RunStatus status) {
       return "time_limit";
     case RunStatus::kBatteryEmpty:
       return "battery_empty";
+    case RunStatus::kSafetyStop:
+      return "safety_stop";
   }
   return "unknown";
 }

@@ -28,22 +28,33 @@
 ///   interrupted behaviour finishes first. CB2 (which parks the cleaner) and CB3 (already on the
 ///   way up) go on to their end; from a CB1 state other than q1 (q4), CB3 runs to q1, undoing the
 ///   half-done move; then one CB3 per disc below the start (completed CB1 minus completed CB3).
+///   The `return_start` record gives the discs to climb: those below the start, one more when
+///   the CB1 in hand goes on to its end first.
 /// - a behaviour timeout, or a zero switch pressed while the clamp's encoder says the jaw is
-///   still more than 0.5 deg open (a sensor fault): every joint stops and control passes to the
-///   operator (MANUAL); the fault file scripts what the operator does and when (repair and
-///   resume, resume, return), acted on once the link is up; with no response left, or the link
-///   down for good, the run ends in MANUAL.
+///   more than 0.5 deg open (a sensor fault, checked on both clamps at every step whatever runs,
+///   so a switch stuck pressed on a closed jaw is found at once; found while the robot stands
+///   still, waiting for the link or in MANUAL, it is logged then and acted on when the robot
+///   would run again): every joint stops and control passes to the operator (MANUAL); the fault
+///   file scripts what the operator does and when (repair and resume, resume, return), acted on
+///   once the link is up; with no response left, or the link down for good, the run ends in MANUAL.
 /// - commands from the ground station are not sent while the link is down; faults armed for a
 ///   command that never comes are reported as such at the end.
 /// - an empty battery stops every joint and ends the run (status kBatteryEmpty).
 /// - low battery: the alarm (once); with LowBatteryPolicy::kFinishDiscAndReturn the robot
 ///   finishes the disc in hand (its CB1 and CB2) and returns.
-/// - interference: before each command, a kinematic check refuses it with a reason: the
-///   simulator's refuse() (joint limits, which are the robot file's; the command kinds a joint
-///   takes) and the state-vector rules (the pose the command would give, from the current
-///   state's pose, must be allowed). robots/insulator_cleaner.yaml has no collision geometry,
-///   so there is no collision check. A refused command from the ground station (a wrong command)
-///   is replaced by the behaviour's own; a refused own command hands control to the operator.
+/// - interference: before each command, the behaviours' own as well as injected ones, a
+///   kinematic check refuses it with a reason: the simulator's refuse() (joint limits, which are
+///   the robot file's; the command kinds a joint takes) and the state-vector rules: from the pose
+///   the sensors read (not the machine's state: a clamp is closed while it grips; J3-J5 at the
+///   named position their encoder reads, or either of the two they lie between; the brush on
+///   while it turns), every pose the robot passes through while the command runs (the commanded
+///   component over every value between where it is and where the command takes it) must be
+///   allowed. robots/insulator_cleaner.yaml has no collision geometry, so there is no collision
+///   check. A refused command from the ground station (a wrong command) is replaced by the
+///   behaviour's own; a refused own command stops every joint and ends the run (status
+///   kSafetyStop, RunSummary::safety_stop names the command and the reason).
+/// - the log's state descriptions ("back in q1", the command echo, "the robot is in q4") come
+///   from the sensors: when they do not fit the machine's state the text says what they read.
 /// - the safety invariant, at least one clamp grips the string: checked after every simulated
 ///   step, and before every command (a release is never sent while the other clamp's sensors say
 ///   it does not grip). A violation ends the run at once (status "invariant_violated", with the
@@ -92,11 +103,32 @@ struct StepContext {
   int disc{0};
 };
 
-/// \brief A fault (injected or detected) and what the robot did about it.
+/// \brief A fault (injected or detected) and what the robot did about it, with three times.
 struct FaultReaction {
-  double t{0.0};         ///< [s]
-  std::string fault;     ///< link_down, timeout, corrupt_command, wrong_command, battery_low, ...
+  std::string fault;  ///< link_down, timeout, corrupt_command, wrong_command, battery_low, ...
+  /// When the fault file injected it [s]; none for a condition the robot met on its own (a
+  /// low or empty battery, a timeout with no injected fault behind it).
+  std::optional<double> injected_t;
+  /// When the robot noticed it [s]; none when it never did (a wrong command that passed the
+  /// check, a fault armed for a command that never came).
+  std::optional<double> detected_t;
+  /// When the reaction ended [s]: the robot resumed, the operator acted, the command was
+  /// resent or replaced, or the return the fault caused reached the start; none when the run
+  /// ended first.
+  std::optional<double> resolved_t;
   std::string reaction;  ///< text
+};
+
+/// \brief A command of the robot's own behaviours that the interference check refused: the run
+/// stops there (status kSafetyStop).
+struct SafetyStop {
+  std::uint64_t step{0};
+  double t{0.0};  ///< [s]
+  int subtask{0};
+  std::string combined, state, behavior;
+  std::string command;  ///< "J6 spin 300 rpm"
+  std::string reason;   ///< why the check refused it (the pose rule, the joint limit, ...)
+  std::string message;  ///< "step 1234 (t = 12.34 s): refused BB_Brush's command ..."
 };
 
 /// \brief The step at which the safety invariant failed.
@@ -116,9 +148,10 @@ enum class RunStatus {
   kInvariantViolated,  ///< both clamps open at some step
   kTimeLimit,          ///< the simulated time limit was reached
   kBatteryEmpty,       ///< the battery ran empty: the robot stopped, hanging on the string
+  kSafetyStop,         ///< a behaviour's own command was refused: every joint stopped
 };
 /// \brief "completed", "returned", "halted_in_manual", "invariant_violated", "time_limit",
-/// "battery_empty".
+/// "battery_empty", "safety_stop".
 const char* runStatusName(RunStatus status);
 
 /// \brief The result of a run.
@@ -135,6 +168,7 @@ struct RunSummary {
   std::uint64_t steps{0};
   std::vector<FaultReaction> faults;
   std::optional<InvariantViolation> violation;  ///< set when status is kInvariantViolated
+  std::optional<SafetyStop> safety_stop;        ///< set when status is kSafetyStop
   double battery_voltage_end{0.0};              ///< [V]
   double battery_charge_used{0.0};              ///< [A h]
   std::optional<double> battery_alarm_t;        ///< when the low-battery alarm was raised [s]
@@ -169,7 +203,8 @@ struct RunObserver {
 
 /// \brief The task-level machine: idle -> CB1 <-> CB2 -> CB3 -> done, FAULT and MANUAL
 /// superstates entered from CB1..CB3 on `link_lost` and `hand_over` (a behaviour timeout or a
-/// refused command) and left by `resume_CB<k>` (to the superstate that was interrupted).
+/// sensor disagreement) and left by `resume_CB<k>` (to the superstate that was interrupted). A
+/// refused own command ends the run where it is (RunStatus::kSafetyStop).
 StateMachine taskMachine();
 
 /// \brief Runs `options.insulators` discs of the cleaning job on the simulated robot.

@@ -294,6 +294,7 @@ class BehaviorModelReader : YamlReader {
       cb.line = lineOf(row);
       cb.name = text(require(row, "name", where), where + ": name");
       if (model_.combinedBehavior(cb.name)) fail(row["name"], cb.name + ": defined twice");
+      checkFileStem(row["name"], where, cb.name);
       if (row["description"]) cb.description = text(row["description"], cb.name + ": description");
       const YAML::Node states = require(row, "states", cb.name);
       cb.states_line = lineOf(states);
@@ -325,6 +326,36 @@ class BehaviorModelReader : YamlReader {
       }
       model_.combined.push_back(cb);
     }
+  }
+
+  /// A combined behaviour's name is the stem of its diagram's file (mcws_behave --dot): it must
+  /// be a plain file name, and differ from the task diagram's and from every other combined
+  /// behaviour's name, ignoring ASCII case.
+  void checkFileStem(const YAML::Node& node, const std::string& where,
+                     const std::string& name) const {
+    const std::string label = where + ": name " + quotedName(name);
+    if (const auto problem = fileStemProblem(name)) {
+      fail(node, label + ": it names the file of its diagram and " + *problem);
+    }
+    const std::string folded = asciiLower(name);
+    if (folded == asciiLower(kTaskDiagramName)) {
+      fail(node, label + ": the task machine's diagram has that file name (" +
+                     std::string(kTaskDiagramName) + ".dot)");
+    }
+    for (const CombinedBehavior& other : model_.combined) {
+      if (asciiLower(other.name) == folded) {
+        fail(node, label + ": differs from combined behaviour " + quotedName(other.name) +
+                       " (line " + std::to_string(other.line) +
+                       ") only in case: their diagrams would share a file name");
+      }
+    }
+  }
+
+  static std::string asciiLower(std::string text) {
+    for (char& c : text) {
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    return text;
   }
 
   BehaviorModel model_;
@@ -796,6 +827,36 @@ std::vector<PoseFinding> checkPoseConsistency(const BehaviorModel& model) {
     }
   }
   return findings;
+}
+
+std::optional<std::string> fileStemProblem(const std::string& name) {
+  if (name.empty()) return std::string("must not be empty");
+  if (name.size() > 200) {
+    return "has " + std::to_string(name.size()) + " bytes, more than 200";
+  }
+  if (name.front() == '.') return std::string("must not start with '.'");
+  for (const char c : name) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '/' || c == '\\') return std::string("must not contain '/' or '\\'");
+    if (byte < 0x20 || byte == 0x7f) return std::string("must not contain a control byte");
+  }
+  return std::nullopt;
+}
+
+std::string quotedName(const std::string& name) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string out = "'";
+  for (const char c : name) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte >= 0x7f || c == '\\' || c == '\'') {
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out + "'";
 }
 
 StateMachine stateMachineOf(const CombinedBehavior& combined) {

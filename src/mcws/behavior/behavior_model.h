@@ -199,13 +199,31 @@ struct BehaviorModel {
   const StatePose* poseOf(const std::string& state) const;                  ///< nullptr if none
 };
 
+/// \brief The stem of the file `mcws_behave --dot` writes the task machine to ("task.dot").
+inline constexpr char kTaskDiagramName[] = "task";
+
+/// \brief Why `name` cannot be the stem of a file written into an output directory (a combined
+/// behaviour's name is: `<dir>/<name>.dot`), or nothing when it can.
+///
+/// Refused: an empty name; a '/' or '\\' (a path, not a name); a leading '.' (".", ".." and
+/// hidden files); a control byte (0x00-0x1f, 0x7f); more than 200 bytes (a file name has at most
+/// 255 with its extension).
+std::optional<std::string> fileStemProblem(const std::string& name);
+
+/// \brief `name` in single quotes for a one-line message, control bytes, '\\', the quote and
+/// bytes >= 0x80 written as \xNN.
+std::string quotedName(const std::string& name);
+
 /// \brief Parses a behaviour model document.
 /// \param text the YAML text.
 /// \param source the file name used in messages; a relative `robot:` is resolved against its
 ///   directory, and the robot file is loaded.
 /// \throws mcws::Error "source:line: item: ..." for YAML syntax, an unknown or duplicate key, a
 ///   missing mandatory field (name, body, ...), a value of the wrong kind or unit, a pose or rule
-///   naming an unknown component or value, a pose missing a component, a missing robot file.
+///   naming an unknown component or value, a pose missing a component, a missing robot file, a
+///   combined behaviour's name that cannot be a file name (fileStemProblem()) or that equals
+///   kTaskDiagramName or another combined behaviour's name ignoring ASCII case (their diagrams
+///   would overwrite each other on a case-insensitive file system).
 ///   Everything about how the items fit together is left to validateBehaviorModel().
 BehaviorModel parseBehaviorModel(const std::string& text, const std::string& source);
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <utility>
 
@@ -127,8 +128,13 @@ nlohmann::ordered_json summaryJson(const RunSummary& summary) {
   ordered_json faults = ordered_json::array();
   for (const FaultReaction& fault : summary.faults) {
     ordered_json item;
-    item["t_s"] = fault.t;
+    const auto time = [](const std::optional<double>& t) {
+      return t ? ordered_json(*t) : ordered_json(nullptr);
+    };
     item["fault"] = fault.fault;
+    item["injected_t_s"] = time(fault.injected_t);
+    item["detected_t_s"] = time(fault.detected_t);
+    item["resolved_t_s"] = time(fault.resolved_t);
     item["reaction"] = fault.reaction;
     faults.push_back(std::move(item));
   }
@@ -149,6 +155,21 @@ nlohmann::ordered_json summaryJson(const RunSummary& summary) {
     invariant["violation"] = nullptr;
   }
   out["invariant"] = std::move(invariant);
+  if (const auto& stop = summary.safety_stop) {
+    ordered_json item;
+    item["step"] = stop->step;
+    item["t_s"] = stop->t;
+    item["subtask"] = stop->subtask;
+    item["cb"] = stop->combined;
+    item["state"] = stop->state;
+    item["behavior"] = stop->behavior;
+    item["command"] = stop->command;
+    item["reason"] = stop->reason;
+    item["message"] = stop->message;
+    out["safety_stop"] = std::move(item);
+  } else {
+    out["safety_stop"] = nullptr;
+  }
   ordered_json plan = ordered_json::array();
   for (const Subtask& subtask : summary.plan) {
     ordered_json item;
@@ -168,8 +189,19 @@ TimelineRecorder::TimelineRecorder(double period, double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) {
     throw Error("timeline: dt = " + number(dt) + " s, must be > 0");
   }
-  const double k = std::round(period / dt);
-  every_ = k >= 1.0 ? static_cast<std::uint64_t>(k) : 1;
+  constexpr double kWhole = 1e-6;  // period / dt within this of a whole number counts as one
+  const double ratio = period / dt;
+  const double k = std::round(ratio);
+  if (ratio < 1.0 - kWhole) {
+    throw Error("timeline: period = " + number(period) + " s is below the simulator's step " +
+                number(dt) + " s: there are no rows between steps");
+  }
+  if (std::abs(ratio - k) > kWhole) {
+    throw Error("timeline: period = " + number(period) + " s is not a whole multiple of the " +
+                "simulator's step " + number(dt) + " s (the rows come every " + number(k * dt) +
+                " s or so)");
+  }
+  every_ = static_cast<std::uint64_t>(k);
 }
 
 void TimelineRecorder::operator()(const SimSnapshot& snapshot, const StepContext& context) {
@@ -323,17 +355,39 @@ std::pair<double, double> firstDiscWindow(const std::vector<TimelineRow>& rows) 
 }
 
 std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const std::string& dir) {
+  // The model's loader refuses such names already; a model built in code is checked here,
+  // before anything is written: no name leaves `dir` or overwrites another diagram.
+  std::vector<std::string> names;
+  for (const CombinedBehavior& combined : model.combined) names.push_back(combined.name);
+  names.push_back(kTaskDiagramName);
+  std::map<std::string, std::string> taken;  // ASCII-lower-case name -> name
+  for (const std::string& name : names) {
+    if (const auto problem = fileStemProblem(name)) {
+      throw Error(model.source + ": diagram " + quotedName(name) + ": not written to '" + dir +
+                  "': its name " + *problem);
+    }
+    std::string folded = name;
+    for (char& c : folded) {
+      if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    const auto [it, fresh] = taken.emplace(folded, name);
+    if (!fresh) {
+      throw Error(model.source + ": diagram " + quotedName(name) + ": not written to '" + dir +
+                  "': its file would be that of diagram " + quotedName(it->second));
+    }
+  }
+  std::vector<std::pair<std::string, std::string>> graphs;  // (name, DOT text)
+  for (const CombinedBehavior& combined : model.combined) {
+    graphs.emplace_back(combined.name, stateMachineOf(combined).toDot());
+  }
+  graphs.emplace_back(kTaskDiagramName, taskMachine().toDot());
+
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec || !fs::is_directory(dir, ec)) {
     throw Error("cannot create the directory '" + dir + "'" +
                 (ec ? ": " + ec.message() : ": it is not a directory"));
   }
-  std::vector<std::pair<std::string, std::string>> graphs;  // (name, DOT text)
-  for (const CombinedBehavior& combined : model.combined) {
-    graphs.emplace_back(combined.name, stateMachineOf(combined).toDot());
-  }
-  graphs.emplace_back("task", taskMachine().toDot());
 
   const std::string dot = io::findOnPath("dot");  // Graphviz; "" when it is not installed
   std::vector<std::string> written;
@@ -378,13 +432,18 @@ std::string summaryText(const RunSummary& s) {
                             : std::string("no alarm"))
       << "\n";
   out << "faults: " << (s.faults.empty() ? "none" : std::to_string(s.faults.size())) << "\n";
+  const auto time = [](const std::optional<double>& t) {
+    return t ? fixed(*t, 2) + " s" : std::string("-");
+  };
   for (const FaultReaction& f : s.faults) {
-    out << "  t = " << fixed(f.t, 2) << " s  " << f.fault << ": " << f.reaction << "\n";
+    out << "  " << f.fault << " (injected " << time(f.injected_t) << ", detected "
+        << time(f.detected_t) << ", resolved " << time(f.resolved_t) << "): " << f.reaction << "\n";
   }
   out << "safety invariant (a clamp grips the string at every step): "
       << (s.violation ? "VIOLATED at " + s.violation->message
                       : "held at all " + std::to_string(s.steps) + " steps")
       << "\n";
+  if (s.safety_stop) out << "safety stop: " << s.safety_stop->message << "\n";
   return out.str();
 }
 

@@ -36,8 +36,10 @@ std::string logHeaderJson(const std::string& model_path, int insulators,
 /// \brief The run summary: status, discs_requested, discs_cleaned, final_disc, duration_s,
 /// steps, subtasks_completed, behaviors_run, commands_sent, phase_one_s, phase_two_s,
 /// battery_voltage_end_V, battery_charge_used_Ah, battery_alarm_t_s (null when none),
-/// faults [{t_s, fault, reaction}], invariant {holds, violation: null or {step, t_s, subtask, cb,
-/// state, behavior, message}}, plan [{cb, action, disc}].
+/// faults [{fault, injected_t_s, detected_t_s, resolved_t_s (each null when none, see
+/// FaultReaction), reaction}], invariant {holds, violation: null or {step, t_s, subtask, cb,
+/// state, behavior, message}}, safety_stop (null or {step, t_s, subtask, cb, state, behavior,
+/// command, reason, message}), plan [{cb, action, disc}].
 nlohmann::ordered_json summaryJson(const RunSummary& summary);
 
 /// \brief The summary as text for a person: status, discs, durations by phase, counts, battery,
@@ -72,9 +74,9 @@ struct TimelineRow {
 /// is always kept), to be passed as RunObserver::on_step.
 class TimelineRecorder {
  public:
-  /// \param period time between rows [s], > 0.
+  /// \param period time between rows [s], a whole multiple of dt (to 1e-6 of dt).
   /// \param dt the simulator's time step [s].
-  /// \throws mcws::Error naming `period` when it is not > 0.
+  /// \throws mcws::Error naming `period` when it is not > 0, below dt or not a multiple of it.
   TimelineRecorder(double period, double dt);
   void operator()(const SimSnapshot& snapshot, const StepContext& context);
   const std::vector<TimelineRow>& rows() const { return rows_; }
@@ -109,7 +111,10 @@ std::pair<double, double> firstDiscWindow(const std::vector<TimelineRow>& rows);
 /// for taskMachine(), and renders each to `<name>.png` with Graphviz `dot` when it is installed
 /// (found on PATH).
 /// \return the files written, in order (each .dot followed by its .png when rendered).
-/// \throws mcws::Error naming the file when a file cannot be written or `dot` fails.
+/// \throws mcws::Error naming the file when a file cannot be written or `dot` fails, and before
+///   writing anything when a combined behaviour's name is not a plain file name
+///   (fileStemProblem()) or its file would be another diagram's (the same name as kTaskDiagramName
+///   or another combined behaviour, ignoring ASCII case).
 std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const std::string& dir);
 
 }  // namespace mcws
