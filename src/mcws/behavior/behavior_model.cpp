@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 #include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -731,6 +732,7 @@ BehaviorModel loadBehaviorModel(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw Error(path + ": behaviour model file does not exist or is not a regular file");
   }
+  requireInputFile(path, "behaviour model file");  // noted: no output of the run replaces it
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot read the behaviour model file");
   std::ostringstream text;

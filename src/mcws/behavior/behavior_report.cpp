@@ -54,18 +54,21 @@ std::string csvField(const std::string& text) {
 
 const char* bit(bool value) { return value ? "1" : "0"; }
 
-void writeWhole(const std::string& path, const std::string& bytes) {
-  io::AtomicFile file(path);
-  file.write(bytes.data(), bytes.size());
-  file.commit();
-}
-
-/// Renders `dot_path` to PNG bytes with `dot`. \throws mcws::Error naming `dot_path`.
-std::string renderPng(const std::string& dot, const std::string& dot_path) {
+/// Renders the DOT text `text` to PNG bytes with `dot` (from a copy in a scratch directory: the
+/// DOT file itself has no name until the run's outputs are committed together).
+/// \throws mcws::Error naming `dot_path`, where the DOT text is written.
+std::string renderPng(const std::string& dot, const std::string& text,
+                      const std::string& dot_path) {
   io::ScratchDir scratch;
-  const std::string png = scratch.file("graph.png"), log = scratch.file("dot.log");
+  const std::string graph = scratch.file("graph.dot"), png = scratch.file("graph.png"),
+                    log = scratch.file("dot.log");
+  {
+    std::ofstream out(graph, std::ios::binary);  // scratch, not an output of the run
+    out << text;
+    if (!out.flush()) throw Error("cannot write a scratch copy of '" + dot_path + "'");
+  }
   int spawn_errno = 0;
-  const int status = io::runProgram({dot, "-Tpng", dot_path, "-o", png}, log, spawn_errno);
+  const int status = io::runProgram({dot, "-Tpng", graph, "-o", png}, log, spawn_errno);
   if (status < 0) {
     throw Error("cannot run '" + dot + "' on '" + dot_path + "': " + std::strerror(spawn_errno));
   }
@@ -393,11 +396,11 @@ std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const
   std::vector<std::string> written;
   for (const auto& [name, text] : graphs) {
     const std::string dot_path = (fs::path(dir) / (name + ".dot")).string();
-    writeWhole(dot_path, text);
+    io::writeWholeFile(dot_path, text);
     written.push_back(dot_path);
     if (dot.empty()) continue;
     const std::string png_path = (fs::path(dir) / (name + ".png")).string();
-    writeWhole(png_path, renderPng(dot, dot_path));
+    io::writeWholeFile(png_path, renderPng(dot, text, dot_path));
     written.push_back(png_path);
   }
   return written;

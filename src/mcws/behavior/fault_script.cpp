@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "mcws/core/error.h"
+#include "mcws/core/input_files.h"
 #include "mcws/core/yaml_reader.h"
 
 namespace mcws {
@@ -323,7 +324,10 @@ FaultScript parseFaultScript(const std::string& text, const std::string& source)
 FaultScript loadFaultScript(const std::string& path) {
   std::error_code ec;
   std::ifstream in;
-  if (std::filesystem::is_regular_file(path, ec)) in.open(path, std::ios::binary);
+  if (std::filesystem::is_regular_file(path, ec)) {
+    requireInputFile(path, "fault file");  // noted: no output of the run replaces it
+    in.open(path, std::ios::binary);
+  }
   if (!in.is_open() || !in) throw Error(path + ": cannot read");
   std::ostringstream text;
   text << in.rdbuf();
