@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -274,8 +275,12 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   int fd = -1;
   if (write_through_) {
     fd = openWriteThrough(path_, target_, destination.descriptor);
-    if (g_current_set) {
-      // Part of a set: the bytes wait in an unnamed buffer until the set is committed.
+    struct stat opened {};
+    const bool null_device = ::fstat(fd, &opened) == 0 && S_ISCHR(opened.st_mode) &&
+                             major(opened.st_rdev) == 1 && minor(opened.st_rdev) == 3;
+    if (g_current_set && !null_device) {
+      // Part of a set: the bytes wait in an unnamed buffer until the set is committed (but for
+      // /dev/null, which takes everything and keeps nothing).
       device_ = fd;
       file_ = std::tmpfile();
       if (!file_) {
