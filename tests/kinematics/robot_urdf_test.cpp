@@ -382,7 +382,9 @@ TEST(RobotUrdf, RefusesControlCharactersInRobotLinkAndJointNames) {
             "bad.urdf: joint name 'j\\x092' holds a control byte (names are printable text)");
   // A link off the chain too: every name of the file may reach a message.
   EXPECT_EQ(errorOf(replace(kPlanar, R"(<link name="tool"/>)",
-                            R"(<link name="tool"/><link name="spare&#127;"/>)")),
+                            R"(<link name="tool"/><link name="spare&#127;"/>)"
+                            R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
+                            R"(<child link="spare&#127;"/></joint>)")),
             "bad.urdf: link name 'spare\\x7f' holds a control byte (names are printable text)");
 }
 
