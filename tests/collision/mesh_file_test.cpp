@@ -265,6 +265,7 @@ TEST(MeshFile, MalformedFilesGetOneLineAndNothingOnStderr) {
       {stl, replace(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found "
                                                             "'lop'"},
       {stl, asciiStl().substr(0, 100), "line 5: triangle 1 corner 2: the file ends"},
+      {stl, asciiStl().substr(0, 88), "line 4: expected 'vertex', found the end of the file"},
       {stl, asciiStl() + "\x1b[31m", "line 31: expected 'solid' or the end of the file after "
                                      "'endsolid', found '\\x1b[31m'"},
       {obj_path, obj("0 0"), "line 5: vertex 3: 'v' takes x y z (and an optional w, or r g b), "

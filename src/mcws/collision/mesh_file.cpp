@@ -158,12 +158,14 @@ class Words {
  public:
   explicit Words(const std::string& text) : text_(text) {}
 
-  /// The next word, "" at the end of the text.
+  /// The next word, "" at the end of the text (line() then stays that of the last word).
   std::string_view next() {
+    const int last_line = line_;
     while (at_ < text_.size() && isSpace(text_[at_])) {
       if (text_[at_] == '\n') ++line_;
       ++at_;
     }
+    if (at_ == text_.size()) line_ = last_line;
     const std::size_t begin = at_;
     while (at_ < text_.size() && !isSpace(text_[at_])) ++at_;
     return std::string_view(text_).substr(begin, at_ - begin);
