@@ -233,5 +233,23 @@ TEST(RobotYaml, RefusesControlCharactersInRobotAndJointNames) {
             "zwei_\xc3\xa4rme");
 }
 
+TEST(RobotYaml, RefusesControlCharactersInTheRobotFileName) {
+  // The file name goes into every cloud's provenance line, which the readers then refuse.
+  test::TempDir dir;
+  for (const char* name : {"two\tarms.yaml", "two\narms.urdf"}) {
+    const std::string path = dir.file(name);
+    test::writeFile(path, kValid);
+    try {
+      loadRobot(path);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                std::string("robot file name 'two\\x") + (name[3] == '\t' ? "09" : "0a") +
+                    "arms." + (name[3] == '\t' ? "yaml" : "urdf") +
+                    "' holds a control byte (names are printable text)");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mcws

@@ -729,6 +729,7 @@ UrdfRobotGeometry parseRobotUrdfGeometry(const std::string& text, const std::str
 }
 
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   std::error_code ec;  // a file that cannot be sized is left to readTextFile's messages
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (!ec) checkUrdfSize(bytes, path);
@@ -736,6 +737,7 @@ Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
 }
 
 UrdfRobotGeometry loadRobotUrdfGeometry(const std::string& path, const UrdfChainOptions& options) {
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (!ec) checkUrdfSize(bytes, path);

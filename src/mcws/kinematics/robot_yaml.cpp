@@ -184,6 +184,8 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
 
 Robot loadRobot(const std::string& path) {
   if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path);
+  // The file name is recorded in every cloud of the robot (mcws::io::CloudProvenance).
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   return parseRobotYaml(readTextFile(path, "robot file"), path);
 }
 
