@@ -75,8 +75,8 @@ std::string asciiStl(const std::string& corner = "") {
       if (t == 2 && c == 1 && !corner.empty()) {
         text += corner + "\n";
       } else {
-        text += std::to_string(p.x()) + " " + std::to_string(p.y()) + " " +
-                std::to_string(p.z()) + "\n";
+        text += std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) +
+                "\n";
       }
     }
     text += "    endloop\n  endfacet\n";
@@ -190,7 +190,7 @@ TEST(MeshFile, RefusesCoordinatesLargerThan1e9AsWrittenOrScaled) {
   EXPECT_EQ(meshError(stl), "'" + stl +
                                 "': triangle 1 corner 2: z coordinate 9.99999968e+37 is out of "
                                 "range (at most 1e9 in size)");  // 1e38 as a float
-  test::writeFile(stl, asciiStl("0 -1e400 3"));  // too large for a double
+  test::writeFile(stl, asciiStl("0 -1e400 3"));                  // too large for a double
   EXPECT_EQ(meshError(stl), "'" + stl +
                                 "': line 19: triangle 3 corner 2: y coordinate -1e400 is out of "
                                 "range (at most 1e9 in size)");
@@ -252,34 +252,40 @@ TEST(MeshFile, MalformedFilesGetOneLineAndNothingOnStderr) {
   };
   const std::vector<Case> cases = {
       {stl, good.substr(0, good.size() - 7),
-       "not an ASCII STL, and as a binary STL its size (277 bytes) is not that of the 4 "
-       "triangles its header counts (284 bytes)"},
+       "not an STL file: not starting with 'solid' (ASCII STL), and its size (277 bytes) is not "
+       "that of a binary STL of the 4 triangles its header counts (284 bytes)"},
       {stl, "solid" + good.substr(5, 200),
-       "starts like an ASCII STL ('solid') but holds binary bytes, and as a binary STL its size "
-       "(205 bytes) is not that of the 4 triangles its header counts (284 bytes)"},
-      {stl, "12 bytes of x", "not an STL file: 13 bytes, too short for a binary STL (84-byte "
-                             "header) and not starting with 'solid'"},
-      {stl, "", "not an STL file: 0 bytes, too short for a binary STL (84-byte header) and not "
-                "starting with 'solid'"},
+       "not an STL file: starting with 'solid' (ASCII STL) but holding a NUL byte, and its size "
+       "(205 bytes) is not that of a binary STL of the 4 triangles its header counts (284 bytes)"},
+      {stl, "12 bytes of x",
+       "not an STL file: 13 bytes, too short for a binary STL (84-byte header), and not starting "
+       "with 'solid' (ASCII STL)"},
+      {stl, std::string("solid\0", 6),
+       "not an STL file: 6 bytes, too short for a binary STL (84-byte header), and starting with "
+       "'solid' (ASCII STL) but holding a NUL byte"},
+      {stl, "",
+       "not an STL file: 0 bytes, too short for a binary STL (84-byte header), and not starting "
+       "with 'solid' (ASCII STL)"},
       {stl, asciiStl("0 0"), "line 20: triangle 3 corner 2: 'vertex' is not a number"},
-      {stl, replace(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found "
-                                                            "'lop'"},
+      {stl, replace(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found 'lop'"},
       {stl, asciiStl().substr(0, 100), "line 5: triangle 1 corner 2: the file ends"},
       {stl, asciiStl().substr(0, 88), "line 4: expected 'vertex', found the end of the file"},
-      {stl, asciiStl() + "\x1b[31m", "line 31: expected 'solid' or the end of the file after "
-                                     "'endsolid', found '\\x1b[31m'"},
-      {obj_path, obj("0 0"), "line 5: vertex 3: 'v' takes x y z (and an optional w, or r g b), "
-                             "not 2 values"},
+      {stl, asciiStl() + "\x1b[31m",
+       "line 31: expected 'solid' or the end of the file after 'endsolid', found '\\x1b[31m'"},
+      {obj_path, obj("0 0"),
+       "line 5: vertex 3: 'v' takes x y z (and an optional w, or r g b), not 2 values"},
       {obj_path, obj("0 0 zero"), "line 5: vertex 3: 'zero' is not a number"},
-      {obj_path, obj() + "f 1 2 9\n", "line 13: a face refers to a missing vertex (number 9; the "
-                                      "file has 4)"},
-      {obj_path, obj() + "f -1 -2 -5\n", "line 13: a face refers to a missing vertex (before the "
-                                         "first; the file has 4)"},
+      {obj_path, obj() + "f 1 2 9\n",
+       "line 13: a face refers to a missing vertex (number 9; the file has 4)"},
+      {obj_path, obj() + "f -1 -2 -5\n",
+       "line 13: a face refers to a missing vertex (before the first; the file has 4)"},
       {obj_path, obj() + "f 1 2\n", "line 13: a face needs at least 3 corners, this one has 2"},
-      {obj_path, obj() + "f 1 x 3\n", "line 13: face corner 'x' does not start with a vertex "
-                                      "number (1, 2, ... or -1, -2, ... from the last vertex)"},
-      {obj_path, obj() + "vv 1 2 3\n", "line 13: unknown keyword 'vv' (v and f are read; vt, "
-                                       "vn, vp, l, p, g, o, s, usemtl and mtllib skipped)"},
+      {obj_path, obj() + "f 1 x 3\n",
+       "line 13: face corner 'x' does not start with a vertex number (1, 2, ... or -1, -2, ... "
+       "from the last vertex)"},
+      {obj_path, obj() + "vv 1 2 3\n",
+       "line 13: unknown keyword 'vv' (v and f are read; vt, vn, vp, l, p, g, o, s, usemtl and "
+       "mtllib skipped)"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.message);

@@ -243,10 +243,10 @@ TEST(RobotYaml, RefusesControlCharactersInTheRobotFileName) {
       loadRobot(path);
       ADD_FAILURE() << "no error for " << name;
     } catch (const Error& e) {
-      EXPECT_EQ(std::string(e.what()),
-                std::string("robot file name 'two\\x") + (name[3] == '\t' ? "09" : "0a") +
-                    "arms." + (name[3] == '\t' ? "yaml" : "urdf") +
-                    "' holds a control byte (names are printable text)");
+      EXPECT_EQ(std::string(e.what()), std::string("robot file name 'two\\x") +
+                                           (name[3] == '\t' ? "09" : "0a") + "arms." +
+                                           (name[3] == '\t' ? "yaml" : "urdf") +
+                                           "' holds a control byte (names are printable text)");
     }
   }
 }

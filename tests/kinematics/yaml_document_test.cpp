@@ -53,7 +53,7 @@ std::string sequenceBomb(int levels, int width, const std::string& prefix) {
 }
 
 const std::string kRobotHead =
-    "name: bomb\n"                      // 1
+    "name: bomb\n"                       // 1
     "units: {length: mm, angle: deg}\n"  // 2
     "convention: standard\n"             // 3
     "description:\n";                    // 4, the bomb's level 0 on line 5
@@ -81,8 +81,8 @@ TEST(YamlAliases, RefuseABombOfMapsInAFaultFile) {
   for (int level = 1; level <= 9; ++level) {
     const std::string alias = "*l" + std::to_string(level - 1);
     text += "l" + std::to_string(level) + ": &l" + std::to_string(level) + " {";
-    for (char key = 'a'; key <= 'j'; ++key) text += std::string(key == 'a' ? "" : ", ") + key +
-                                                    ": " + alias;
+    for (char key = 'a'; key <= 'j'; ++key)
+      text += std::string(key == 'a' ? "" : ", ") + key + ": " + alias;
     text += "}\n";
   }
   EXPECT_EQ(errorOf([&] { parseFaultScript(text, "f.yaml"); }), bombMessage("f.yaml", 10));

@@ -198,8 +198,9 @@ TriangleMesh parseAsciiStl(const std::string& text, const std::string& source) {
     const std::string_view word = words.next();
     double value = 0.0;
     if (!parseNumber(word, value)) {
-      throw Error(where() + ": " + what + ": " +
-                  (word.empty() ? std::string("the file ends") : quoted(word) + " is not a number"));
+      throw Error(
+          where() + ": " + what + ": " +
+          (word.empty() ? std::string("the file ends") : quoted(word) + " is not a number"));
     }
     return std::make_pair(value, std::string(word));
   };
@@ -235,8 +236,7 @@ TriangleMesh parseAsciiStl(const std::string& text, const std::string& source) {
       Eigen::Vector3d p;
       for (int k = 0; k < 3; ++k) {
         const auto [value, written] = number(corner);
-        checkCoordinate(value, where() + ": " + corner + ": " + std::string(1, "xyz"[k]),
-                        written);
+        checkCoordinate(value, where() + ": " + corner + ": " + std::string(1, "xyz"[k]), written);
         p[k] = value;
       }
       corners[c] = merger.add(p);
@@ -258,16 +258,16 @@ TriangleMesh parseStl(const std::string& bytes, const std::string& source) {
   while (first < bytes.size() && isSpace(bytes[first])) ++first;
   const bool ascii = equalsIgnoringCase(std::string_view(bytes).substr(first, 5), "solid");
   if (ascii && bytes.find('\0') == std::string::npos) return parseAsciiStl(bytes, source);
+  const std::string as_ascii = ascii ? "starting with 'solid' (ASCII STL) but holding a NUL byte"
+                                     : "not starting with 'solid' (ASCII STL)";
   const std::string size = std::to_string(bytes.size()) + " bytes";
   if (bytes.size() < kStlHeaderBytes) {
     throw Error("'" + source + "': not an STL file: " + size +
-                ", too short for a binary STL (84-byte header) and not starting with 'solid'");
+                ", too short for a binary STL (84-byte header), and " + as_ascii);
   }
   const std::uint64_t count = littleEndian32(bytes.data() + 80);
-  throw Error("'" + source + "': " + (ascii ? "starts like an ASCII STL ('solid') but holds " +
-                                                  std::string("binary bytes, and as a binary ")
-                                            : std::string("not an ASCII STL, and as a binary ")) +
-              "STL its size (" + size + ") is not that of the " + std::to_string(count) +
+  throw Error("'" + source + "': not an STL file: " + as_ascii + ", and its size (" + size +
+              ") is not that of a binary STL of the " + std::to_string(count) +
               " triangles its header counts (" +
               std::to_string(kStlHeaderBytes + count * kStlTriangleBytes) + " bytes)");
 }
@@ -326,7 +326,8 @@ TriangleMesh parseObj(const std::string& text, const std::string& source) {
       for (std::size_t k = 1; k < words.size(); ++k) {
         const std::string_view index = words[k].substr(0, words[k].find('/'));
         long long value = 0;
-        const auto [stop, error] = std::from_chars(index.data(), index.data() + index.size(), value);
+        const auto [stop, error] =
+            std::from_chars(index.data(), index.data() + index.size(), value);
         if (index.empty() || stop != index.data() + index.size() || error != std::errc() ||
             value == 0) {
           throw Error(where + ": face corner " + quoted(words[k]) +
@@ -365,7 +366,8 @@ TriangleMesh parseObj(const std::string& text, const std::string& source) {
 }  // namespace
 
 TriangleMesh parseMesh(const std::string& bytes, MeshFormat format, const std::string& source) {
-  TriangleMesh mesh = format == MeshFormat::kStl ? parseStl(bytes, source) : parseObj(bytes, source);
+  TriangleMesh mesh =
+      format == MeshFormat::kStl ? parseStl(bytes, source) : parseObj(bytes, source);
   if (mesh.triangles.empty()) throw Error("'" + source + "': holds no triangles");
   return mesh;
 }

@@ -83,7 +83,8 @@ class DocumentEvents : public YAML::EventHandler {
     nodes_ += sizes_[anchor];
     aliased_ += sizes_[anchor];
     if (aliased_ > kMaxAliasedYamlNodes) {
-      throw Error(atLine(source_, mark.line + 1) + ": YAML aliases expand the document by more than " +
+      throw Error(atLine(source_, mark.line + 1) +
+                  ": YAML aliases expand the document by more than " +
                   std::to_string(kMaxAliasedYamlNodes) + " nodes (the limit; an alias bomb?)");
     }
   }
@@ -125,8 +126,8 @@ class DocumentEvents : public YAML::EventHandler {
   }
 
   std::string source_;
-  unsigned long long nodes_{0};    ///< nodes of the document so far, aliases expanded
-  unsigned long long aliased_{0};  ///< of which added by aliases
+  unsigned long long nodes_{0};            ///< nodes of the document so far, aliases expanded
+  unsigned long long aliased_{0};          ///< of which added by aliases
   std::vector<unsigned long long> sizes_;  ///< by anchor: its node's size, or kOpen
   std::vector<std::pair<YAML::anchor_t, unsigned long long>> open_;  ///< anchor, nodes_ at start
 };
