@@ -5,10 +5,10 @@
 # 2 GB of memory fails the run: the input is kept in the work directory named in the message, to
 # be added as a regression test.
 # Usage: scripts/run_fuzzers.sh [SECONDS per target (default 30)] [NAME...]
-#   NAME: robot_yaml robot_urdf pcd scenario behavior_model fault_script (default all)
+#   NAME: robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh (default all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-all=(robot_yaml robot_urdf pcd scenario behavior_model fault_script)
+all=(robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh)
 
 seconds=30
 if (($#)) && [[ $1 != [a-z]* ]]; then

@@ -166,5 +166,12 @@ TEST(CollisionModelBadInput, UnknownShapeTypeOrKey) {
   EXPECT_THAT(parseError("collision:\n  walls: []\n"), HasSubstr("unknown key 'walls'"));
 }
 
+TEST(CollisionModelBadInput, ControlCharactersInAnEnvironmentObjectName) {
+  EXPECT_EQ(parseError("collision:\n  environment:\n    - {name: \"wall\\e[2J\", type: sphere, "
+                       "radius: 1}\n"),
+            "two.yaml:9: collision: environment object 1: name 'wall\\x1b[2J' holds a control "
+            "byte (names are printable text)");
+}
+
 }  // namespace
 }  // namespace mcws

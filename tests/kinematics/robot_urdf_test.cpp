@@ -374,5 +374,19 @@ TEST(RobotUrdf, RefusesLimitsAndOriginsLargerThan1e9LikeRobotYaml) {
   EXPECT_EQ(robot.joints[0].upper, 1e9);
 }
 
+TEST(RobotUrdf, RefusesControlCharactersInRobotLinkAndJointNames) {
+  // XML character references write control characters into a name.
+  EXPECT_EQ(errorOf(replace(kPlanar, R"(<robot name="planar">)", R"(<robot name="pla&#10;nar">)")),
+            "bad.urdf: robot name 'pla\\x0anar' holds a control byte (names are printable text)");
+  EXPECT_EQ(errorOf(replace(kPlanar, R"("j2" type)", R"("j&#9;2" type)")),
+            "bad.urdf: joint name 'j\\x092' holds a control byte (names are printable text)");
+  // A link off the chain too: every name of the file may reach a message.
+  EXPECT_EQ(errorOf(replace(kPlanar, R"(<link name="tool"/>)",
+                            R"(<link name="tool"/><link name="spare&#127;"/>)"
+                            R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
+                            R"(<child link="spare&#127;"/></joint>)")),
+            "bad.urdf: link name 'spare\\x7f' holds a control byte (names are printable text)");
+}
+
 }  // namespace
 }  // namespace mcws

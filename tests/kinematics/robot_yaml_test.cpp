@@ -212,5 +212,44 @@ TEST(RobotYaml, ReportsBadToolPose) {
   EXPECT_THAT(errorOf(kValid + "tool: {rot: [1, 2, 3]}\n"), HasSubstr("tool: unknown key 'rot'"));
 }
 
+TEST(RobotYaml, RefusesControlCharactersInRobotAndJointNames) {
+  // Written with YAML escapes ("\n", "\t", "\x7f") or as a block scalar: the file itself holds no
+  // control byte, the name does. Such a name broke the header of every cloud mcws_sample wrote.
+  EXPECT_EQ(errorOf(replace(kValid, "name: two", R"(name: "two\narms")")),
+            "bad.yaml:1: name 'two\\x0aarms' holds a control byte (names are printable "
+            "text)");
+  EXPECT_EQ(errorOf(replace(kValid, "name: two", "name: \"\\ttwo\"")),
+            "bad.yaml:1: name '\\x09two' holds a control byte (names are printable text)");
+  EXPECT_EQ(errorOf(replace(kValid, "name: two", "name: |\n  two\n")),
+            "bad.yaml:1: name 'two\\x0a' holds a control byte (names are printable text)");
+  EXPECT_EQ(errorOf(replace(kValid, "name: j2", R"(name: "j\x7f2")")),
+            "bad.yaml:6: joint 2: name 'j\\x7f2' holds a control byte (names are printable "
+            "text)");
+  EXPECT_EQ(errorOf(replace(kValid, "name: j1", R"(name: "j\r1")")),
+            "bad.yaml:5: joint 1: name 'j\\x0d1' holds a control byte (names are printable "
+            "text)");
+  // Bytes from 0x80 up are text (UTF-8).
+  EXPECT_EQ(parseRobotYaml(replace(kValid, "name: two", "name: zwei_\xc3\xa4rme"), "ok.yaml").name,
+            "zwei_\xc3\xa4rme");
+}
+
+TEST(RobotYaml, RefusesControlCharactersInTheRobotFileName) {
+  // The file name goes into every cloud's provenance line, which the readers then refuse.
+  test::TempDir dir;
+  for (const char* name : {"two\tarms.yaml", "two\narms.urdf"}) {
+    const std::string path = dir.file(name);
+    test::writeFile(path, kValid);
+    try {
+      loadRobot(path);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("robot file name 'two\\x") +
+                                           (name[3] == '\t' ? "09" : "0a") + "arms." +
+                                           (name[3] == '\t' ? "yaml" : "urdf") +
+                                           "' holds a control byte (names are printable text)");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mcws

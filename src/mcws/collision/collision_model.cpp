@@ -1,15 +1,12 @@
 #include "mcws/collision/collision_model.h"
 
-#include <pcl/PolygonMesh.h>
-#include <pcl/common/io.h>
-#include <pcl/io/vtk_lib_io.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <set>
+#include <sstream>
 
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
@@ -90,6 +87,10 @@ class CollisionYamlReader : YamlReader {
         BodySpec body;
         body.name = item["name"].Scalar();
         if (body.name.empty()) fail(item["name"], where + ": name must not be empty");
+        if (hasControlByte(body.name)) {
+          fail(item["name"], where + ": name '" + escapedControlBytes(body.name) +
+                                 "' holds a control byte (names are printable text)");
+        }
         if (body.name == "tool" || body.name == "base" || isJoint(body.name) ||
             !names.insert(body.name).second) {
           fail(item["name"], where + ": name '" + body.name + "' is already used");
@@ -281,11 +282,11 @@ ShapeSpec urdfShape(const UrdfCollision& in, double unit, const std::string& sou
       const std::string path = urdfMeshPath(in.filename, source, where);
       TriangleMesh mesh;
       try {
-        mesh = loadMesh(path, 1.0);
+        mesh = readMeshFile(path);
+        scaleMesh(mesh, in.scale * unit, path);
       } catch (const Error& e) {
         throw Error(where + ": mesh " + e.what());
       }
-      for (Eigen::Vector3d& v : mesh.vertices) v = v.cwiseProduct(in.scale) * unit;
       shape.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
       break;
     }
@@ -447,54 +448,25 @@ CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string&
   return model;
 }
 
-TriangleMesh loadMesh(const std::string& path, double scale) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw Error("'" + path + "': file does not exist");
-  const std::string extension = lowercaseExtension(path);
-  if (extension != ".stl" && extension != ".obj")
-    throw Error("'" + path + "': not an STL or OBJ file (by its extension)");
-  pcl::PolygonMesh polygons;
-  if (pcl::io::loadPolygonFile(path, polygons) == 0 && polygons.polygons.empty())
-    throw Error("'" + path + "': holds no triangles (or cannot be read as " + extension.substr(1) +
-                ")");
-  // The vertices are read from the blob directly: no pcl::PointCloud<pcl::PointXYZ> is
-  // instantiated here, because under AddressSanitizer Eigen's aligned allocator in this binary
-  // differs from the one compiled into libpcl_io, and the library would free with the wrong one.
-  const pcl::PCLPointCloud2& blob = polygons.cloud;
-  int offsets[3];
-  for (int k = 0; k < 3; ++k) {
-    const int field = pcl::getFieldIndex(blob, std::string(1, "xyz"[k]));
-    if (field < 0 || blob.fields[field].datatype != pcl::PCLPointField::FLOAT32)
-      throw Error("'" + path + "': the reader gave no float vertex coordinates");
-    offsets[k] = static_cast<int>(blob.fields[field].offset);
-  }
-  TriangleMesh mesh;
-  const std::size_t count = std::size_t(blob.width) * blob.height;
-  if (blob.data.size() < count * blob.point_step || blob.point_step < 3 * sizeof(float))
-    throw Error("'" + path + "': the reader gave fewer vertex bytes than vertices");
-  mesh.vertices.reserve(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    Eigen::Vector3d v;
+void scaleMesh(TriangleMesh& mesh, const Eigen::Vector3d& factor, const std::string& path) {
+  for (Eigen::Vector3d& v : mesh.vertices) {
     for (int k = 0; k < 3; ++k) {
-      float value = 0.f;
-      std::memcpy(&value, blob.data.data() + i * blob.point_step + offsets[k], sizeof value);
-      v[k] = scale * double(value);
-    }
-    mesh.vertices.push_back(v);
-  }
-  for (const pcl::Vertices& polygon : polygons.polygons) {
-    const auto& v = polygon.vertices;
-    for (std::size_t k = 2; k < v.size(); ++k) {
-      const std::array<int, 3> triangle{int(v[0]), int(v[k - 1]), int(v[k])};
-      for (int index : triangle) {
-        if (index < 0 || std::size_t(index) >= mesh.vertices.size())
-          throw Error("'" + path + "': a triangle refers to a missing vertex");
+      const double scaled = v[k] * factor[k];
+      if (!(std::abs(scaled) <= kLargestMeshCoordinate)) {
+        std::ostringstream message;
+        message.precision(9);
+        message << "'" << path << "': coordinate " << v[k] << " times scale " << factor[k]
+                << " is out of range (at most 1e9 in size)";
+        throw Error(message.str());
       }
-      mesh.triangles.push_back(triangle);
+      v[k] = scaled;
     }
   }
-  if (mesh.triangles.empty()) throw Error("'" + path + "': holds no triangles");
+}
+
+TriangleMesh loadMesh(const std::string& path, double scale) {
+  TriangleMesh mesh = readMeshFile(path);
+  scaleMesh(mesh, Eigen::Vector3d::Constant(scale), path);
   return mesh;
 }
 

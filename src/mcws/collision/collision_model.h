@@ -10,16 +10,11 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/collision/mesh_file.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/kinematics/robot_urdf.h"
 
 namespace mcws {
-
-/// \brief A triangle mesh [robot length unit].
-struct TriangleMesh {
-  std::vector<Eigen::Vector3d> vertices;
-  std::vector<std::array<int, 3>> triangles;  ///< vertex indices
-};
 
 /// \brief Kind of a collision shape.
 enum class ShapeType { kCapsule, kSphere, kBox, kCylinder, kMesh };
@@ -138,10 +133,17 @@ bool hasGeometry(const CollisionModel& model);
 /// or "(no <collision> element on a link of its chain)" for a URDF, when the model has no shape.
 CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path);
 
-/// \brief Reads a triangle mesh (STL or OBJ, by extension) with PCL's VTK-based
-/// pcl::io::loadPolygonFile; polygons with more than three corners are fanned into triangles.
+/// \brief Reads a triangle mesh (STL or OBJ, by extension; see mcws::readMeshFile()) and scales
+/// it; polygons with more than three corners are fanned into triangles.
 /// \param scale factor applied to the vertices (e.g. 1000 for a file in metres and a robot in mm).
-/// \throws mcws::Error naming the file when it is missing, unreadable or holds no triangles.
+/// \throws mcws::Error naming the file when it is missing, not a regular file, malformed, holds
+///   no triangles, or a coordinate that is not a finite number or, as written or scaled, larger
+///   than kLargestMeshCoordinate in size.
 TriangleMesh loadMesh(const std::string& path, double scale);
+
+/// \brief Scales the vertices of `mesh` read from `path` by `factor`, per axis.
+/// \throws mcws::Error "'path': coordinate c times scale f is out of range (at most 1e9 in size)"
+///   when a scaled coordinate is larger than kLargestMeshCoordinate in size (or not finite).
+void scaleMesh(TriangleMesh& mesh, const Eigen::Vector3d& factor, const std::string& path);
 
 }  // namespace mcws

@@ -41,22 +41,95 @@ inline std::string atLine(const std::string& source, int line) {
   return source + (line > 0 ? ":" + std::to_string(line) : "");
 }
 
-/// \brief The lines (0-based) where yaml-cpp's parser starts documents; nothing else is kept.
-class DocumentStarts : public YAML::EventHandler {
+/// \brief How many nodes YAML aliases may add to a document in all: an alias stands for a copy
+/// of the node its anchor names, so that a few hundred bytes of aliases of aliases expand to
+/// billions of nodes (an "alias bomb"), and every reader that walks the document would run for
+/// ever. No mcws file needs more than a few hundred aliased nodes; a million takes a reader well
+/// under a second to walk.
+constexpr unsigned long long kMaxAliasedYamlNodes = 1000000;
+
+/// \brief What loadYamlDocument() learns from yaml-cpp's parser events before any node is built:
+/// the lines (0-based) where documents start, and the size of the document with its aliases
+/// expanded.
+///
+/// An anchored node records the number of nodes of its subtree (itself, keys, values and the
+/// expansion of the aliases inside it); an alias adds that number. A document whose aliases add
+/// more than kMaxAliasedYamlNodes nodes, or with an alias inside the node its anchor names (a
+/// node that contains itself, which yaml-cpp builds as a cycle), is refused at that alias.
+class DocumentEvents : public YAML::EventHandler {
  public:
-  std::vector<int> lines;
-  void OnDocumentStart(const YAML::Mark& mark) override { lines.push_back(mark.line); }
+  /// \param source names the file in messages.
+  explicit DocumentEvents(std::string source) : source_(std::move(source)) {}
+
+  std::vector<int> lines;  ///< the 0-based lines where documents start
+
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    lines.push_back(mark.line);
+    nodes_ = aliased_ = 0;
+    sizes_.clear();  // anchors are numbered per document
+    open_.clear();
+  }
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {}
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {}
-  void OnMapEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t anchor) override { leaf(anchor); }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                const std::string&) override {
+    leaf(anchor);
+  }
+  void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+    if (anchor >= sizes_.size() || sizes_[anchor] == kOpen) {
+      throw Error(atLine(source_, mark.line + 1) +
+                  ": YAML alias inside the node its anchor names (a node that contains itself)");
+    }
+    nodes_ += sizes_[anchor];
+    aliased_ += sizes_[anchor];
+    if (aliased_ > kMaxAliasedYamlNodes) {
+      throw Error(atLine(source_, mark.line + 1) +
+                  ": YAML aliases expand the document by more than " +
+                  std::to_string(kMaxAliasedYamlNodes) + " nodes (the limit; an alias bomb?)");
+    }
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                       YAML::EmitterStyle::value) override {
+    open(anchor);
+  }
+  void OnSequenceEnd() override { close(); }
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t anchor,
+                  YAML::EmitterStyle::value) override {
+    open(anchor);
+  }
+  void OnMapEnd() override { close(); }
+
+ private:
+  /// The size of a node whose anchor's node has started and not ended.
+  static constexpr unsigned long long kOpen = ~0ULL;
+
+  /// Notes the size of anchor's node (anchors are numbered from 1 in the order they appear; an
+  /// anchor named again is a new number).
+  void setSize(YAML::anchor_t anchor, unsigned long long size) {
+    if (anchor == YAML::NullAnchor) return;
+    if (anchor >= sizes_.size()) sizes_.resize(anchor + 1, kOpen);
+    sizes_[anchor] = size;
+  }
+  void leaf(YAML::anchor_t anchor) {
+    ++nodes_;
+    setSize(anchor, 1);
+  }
+  void open(YAML::anchor_t anchor) {
+    open_.push_back({anchor, nodes_});
+    ++nodes_;
+    setSize(anchor, kOpen);
+  }
+  void close() {
+    if (open_.empty()) return;
+    setSize(open_.back().first, nodes_ - open_.back().second);
+    open_.pop_back();
+  }
+
+  std::string source_;
+  unsigned long long nodes_{0};            ///< nodes of the document so far, aliases expanded
+  unsigned long long aliased_{0};          ///< of which added by aliases
+  std::vector<unsigned long long> sizes_;  ///< by anchor: its node's size, or kOpen
+  std::vector<std::pair<YAML::anchor_t, unsigned long long>> open_;  ///< anchor, nodes_ at start
 };
 
 /// \brief Whether the quoted YAML scalar that starts at text[begin] (a ' or ") closes on the
@@ -80,12 +153,13 @@ inline bool closesOnItsLine(const std::string& text, std::size_t begin) {
 /// \brief The one YAML document of a file (a Null node for an empty file).
 ///
 /// yaml-cpp's syntax errors become "source:line: YAML syntax: ...", and a file of several
-/// documents is an error naming `what` ("a robot file"), as is text after the document that
-/// the parser cannot place. A quoted value that spans lines is
-/// reported where it starts, as an unterminated quote: YAML allows such values (folding the line
-/// breaks into blanks) and no mcws file
-/// needs them, while a missing closing quote makes yaml-cpp read the rest of the file into one
-/// value and the reader then reports a missing field far from the mistake.
+/// documents is an error naming `what` ("a robot file"), as is text after the document that the
+/// parser cannot place. So is a document whose aliases expand it by more than
+/// kMaxAliasedYamlNodes nodes, or one with a node that contains itself (see DocumentEvents). A
+/// quoted value that spans lines is reported where it starts, as an unterminated quote: YAML
+/// allows such values (folding the line breaks into blanks) and no mcws file needs them, while a
+/// missing closing quote makes yaml-cpp read the rest of the file into one value and the reader
+/// then reports a missing field far from the mistake.
 /// \throws mcws::Error as above.
 inline YAML::Node loadYamlDocument(const std::string& text, const std::string& source,
                                    const std::string& what) {
@@ -107,9 +181,10 @@ inline YAML::Node loadYamlDocument(const std::string& text, const std::string& s
   // The documents are counted by yaml-cpp's parser before any is built, stopping at the second:
   // YAML::LoadAll() of yaml-cpp 0.7 loops for ever, allocating, when text it cannot place follows
   // the first document (a stray ',' at the start of a line), and YAML::Load() drops such text.
+  // The same pass sizes the aliases, before anything walks the document they would expand.
   std::istringstream stream(text);
   YAML::Parser parser(stream);
-  DocumentStarts starts;
+  DocumentEvents starts(source);
   try {
     while (starts.lines.size() < 2 && parser.HandleNextDocument(starts)) {
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "mcws/core/error.h"
@@ -94,6 +95,35 @@ std::string describeLimits(const Joint& joint, LengthUnit unit) {
     text << unitName(unit);
   }
   return text.str();
+}
+
+bool hasControlByte(const std::string& text) {
+  return std::any_of(text.begin(), text.end(), [](char c) {
+    const auto byte = static_cast<unsigned char>(c);
+    return byte < 0x20 || byte == 0x7f;
+  });
+}
+
+std::string escapedControlBytes(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[5];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+void checkPrintableName(const std::string& name, const std::string& where) {
+  if (hasControlByte(name)) {
+    throw Error(where + " name '" + escapedControlBytes(name) +
+                "' holds a control byte (names are printable text)");
+  }
 }
 
 Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta) {

@@ -70,6 +70,19 @@ struct Robot {
 /// too: "[-1.047197551, 1.047197551] rad ([-60, 60] deg)" or "[25, 70] cm".
 std::string describeLimits(const Joint& joint, LengthUnit unit);
 
+/// \brief Whether `text` holds a control byte (below 0x20, or 0x7f). A robot, joint or link name
+/// must not: it would break the one-line messages of the tools and the headers of the files they
+/// write, which every later tool then refuses. Bytes from 0x80 up are kept (UTF-8 names).
+bool hasControlByte(const std::string& text);
+
+/// \brief `text` with its control bytes written as \xNN ("arm\x0a2"), for messages.
+std::string escapedControlBytes(const std::string& text);
+
+/// \brief Throws unless `name` is free of control bytes (hasControlByte()).
+/// \param where names the field in the message: "bad.urdf: link".
+/// \throws mcws::Error "where name 'arm\x0a2' holds a control byte (names are printable text)".
+void checkPrintableName(const std::string& name, const std::string& where);
+
 /// \brief Transform of one row of a standard (distal) D-H table:
 /// Rz(theta) * Tz(d) * Tx(a) * Rx(alpha). Lengths in any unit, angles [rad].
 Eigen::Isometry3d dhStandard(double a, double alpha, double d, double theta);

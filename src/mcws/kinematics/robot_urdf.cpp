@@ -329,7 +329,16 @@ urdf::ModelInterfaceSharedPtr tryParseModel(const std::string& text, std::string
   return model;
 }
 
-/// urdfdom's model of the text, checked to be a tree (checkTreeFreeingLoops()).
+/// Throws unless the names of the robot, its links and its joints hold no control byte (an XML
+/// character reference such as `&#10;` writes one).
+void checkPrintableNames(const urdf::ModelInterface& model, const std::string& source) {
+  checkPrintableName(model.getName(), source + ": robot");
+  for (const auto& named : model.links_) checkPrintableName(named.first, source + ": link");
+  for (const auto& named : model.joints_) checkPrintableName(named.first, source + ": joint");
+}
+
+/// urdfdom's model of the text, checked to be a tree (checkTreeFreeingLoops()) and to have
+/// printable names (checkPrintableNames()).
 ///
 /// urdfdom rejects a URDF in which every link has a parent joint (then the joints necessarily
 /// form a loop) as having no root link, without naming a joint. To name the joint that closes the
@@ -342,6 +351,7 @@ urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::str
   std::string why;
   urdf::ModelInterfaceSharedPtr model = tryParseModel(text, why, logged);
   if (model) {
+    checkPrintableNames(*model, source);  // first: the tree check's messages name links
     checkTreeFreeingLoops(*model, source);
     return model;
   }
@@ -350,6 +360,7 @@ urdf::ModelInterfaceSharedPtr parseModel(const std::string& text, const std::str
     with_root.insert(robot_content, "<link name=\"mcws_added_root_link\"/>");
     std::string ignored;
     if (const urdf::ModelInterfaceSharedPtr rooted = tryParseModel(with_root, ignored)) {
+      checkPrintableNames(*rooted, source);
       checkTreeFreeingLoops(*rooted, source);
     }
   }
@@ -718,6 +729,7 @@ UrdfRobotGeometry parseRobotUrdfGeometry(const std::string& text, const std::str
 }
 
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   std::error_code ec;  // a file that cannot be sized is left to readTextFile's messages
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (!ec) checkUrdfSize(bytes, path);
@@ -725,6 +737,7 @@ Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options) {
 }
 
 UrdfRobotGeometry loadRobotUrdfGeometry(const std::string& path, const UrdfChainOptions& options) {
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (!ec) checkUrdfSize(bytes, path);

@@ -32,6 +32,7 @@ class RobotYamlReader : YamlReader {
     robot.source = source();
     robot.name = field(root, "name", "robot");
     if (robot.name.empty()) fail(root["name"], "name: must not be empty");
+    checkPrintable(root["name"], "");
     readUnits(require(root, "units", "robot"), robot);
 
     const std::string convention = field(root, "convention", "robot");
@@ -55,6 +56,7 @@ class RobotYamlReader : YamlReader {
       Joint joint;
       joint.name = field(row, "name", where);
       if (joint.name.empty()) fail(row["name"], where + ": name must not be empty");
+      checkPrintable(row["name"], where + ": ");
       if (joint.name.find_first_of("=, \t") != std::string::npos) {
         fail(row["name"], where + ": name '" + joint.name + "' contains '=', ',' or a space");
       }
@@ -94,6 +96,15 @@ class RobotYamlReader : YamlReader {
   }
 
  private:
+  /// Throws unless the name `node` holds has no control byte (mcws::hasControlByte()); `where`
+  /// starts the message ("" or "joint 2: ").
+  void checkPrintable(const YAML::Node& node, const std::string& where) const {
+    if (hasControlByte(node.Scalar())) {
+      fail(node, where + "name '" + escapedControlBytes(node.Scalar()) +
+                     "' holds a control byte (names are printable text)");
+    }
+  }
+
   /// The single value of field `key` of `map`, possibly empty.
   std::string field(const YAML::Node& map, const std::string& key, const std::string& where) const {
     const YAML::Node node = require(map, key, where);
@@ -173,6 +184,8 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
 
 Robot loadRobot(const std::string& path) {
   if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path);
+  // The file name is recorded in every cloud of the robot (mcws::io::CloudProvenance).
+  checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   return parseRobotYaml(readTextFile(path, "robot file"), path);
 }
 
