@@ -304,9 +304,9 @@ TEST(MeshFile, RefusesAFifoAndNotesTheMeshAsAnInputOfTheRun) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   EXPECT_EQ(meshError(fifo), fifo + ": collision mesh is not a regular file (a FIFO)");
 
-  // A committed mesh: a file of a temporary directory could share its inode with a file noted
-  // by an earlier test and deleted since.
+  // Noted while a run (RunInputs) lives, forgotten when it ends.
   const std::string path = std::string(MCWS_ROBOTS_DIR) + "/meshes/ta1400/torch_body.stl";
+  const RunInputs run;
   loadMesh(path, 1.0);
   struct stat status {};
   ASSERT_EQ(::stat(path.c_str(), &status), 0);
