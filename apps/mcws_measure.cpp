@@ -127,10 +127,42 @@ app::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane
   return cloud;
 }
 
+/// "20000 points, sha256 0123456789ab..." for a message.
+std::string describeCloud(std::uint64_t points, const std::string& sha256) {
+  return std::to_string(points) + " points, sha256 " + sha256.substr(0, 12) + "...";
+}
+
+/// Checks that the --boundary is the boundary of the --input cloud itself, not of a subset of it
+/// or of an older cloud whose points it shares: mcws_boundary records the point count and SHA-256
+/// of the cloud it was found in, which must be those of --input (or the boundary is --input's own
+/// bytes). A boundary without the record is refused when --input records its robot (mcws made
+/// it, so mcws_boundary would have recorded it); clouds that record nothing (--shape, other
+/// tools) are checked only point by point (loadBoundary()).
+void requireBoundaryOf(const std::string& path, const std::string& input, std::uint64_t points) {
+  const std::optional<io::CloudProvenance> boundary = app::readProvenance(path);
+  const std::optional<io::CloudProvenance> cloud = app::readProvenance(input);
+  if (!boundary && !cloud) return;
+  const std::string sha256 = io::sha256OfFile(input);
+  if (io::sha256OfFile(path) == sha256) return;  // the cloud is its own boundary
+  const std::string remake = ": re-make it with mcws_boundary --input " + input;
+  if (!boundary || !boundary->input) {
+    throw Error("--boundary " + path + " does not record the cloud it is the boundary of (" +
+                (boundary ? "its '# mcws' line predates input_points=, input_sha256="
+                          : "no '# mcws' header line, but --input records its robot") +
+                ")" + remake);
+  }
+  if (boundary->input->points != points || boundary->input->sha256 != sha256) {
+    throw Error("--boundary " + path + " is the boundary of a cloud of " +
+                describeCloud(boundary->input->points, boundary->input->sha256) +
+                ", not of --input " + input + " (" + describeCloud(points, sha256) + ")" + remake);
+  }
+}
+
 /// The --boundary points, checked to be points of the --input cloud and to be a region.
 app::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
                                       const app::WorkspaceCloud& cloud, BoundaryPlane plane) {
   app::WorkspaceCloud::Ptr boundary = app::loadCloud(path);
+  requireBoundaryOf(path, input, cloud.size());
   if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
     const auto& p = (*boundary)[*i];
     throw Error("--boundary " + path + ": point " + std::to_string(*i) + " (" +
