@@ -322,7 +322,7 @@ std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
 
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or
 /// neither.
-/// Both record the robot the input records, if any.
+/// Both record the robot the input records, if any, and the input (boundaryProvenance()).
 void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");

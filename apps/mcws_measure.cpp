@@ -35,7 +35,10 @@ mcws_refine has samples on the edge itself (joint limits): measure it with --cor
 gives the same measure as triangulating every point (--triangulate all) in a fraction of the time
 and memory. Method 'column': the rectangles of Yin, Wang & Yu 2010, eqs. (2)-(4), over --boundary
 points grouped into crossings per column. Every boundary point must be a point of --input (exit 1
-naming the first that is not).
+naming the first that is not), and the boundary that of --input itself: mcws_boundary records the
+point count and SHA-256 of the cloud it read, which must be --input's (exit 1 for the boundary of
+a subset or of an older cloud, or a boundary without the record of a cloud that records its
+robot; clouds that record no robot, such as --shape samples, are checked point by point only).
 Which number to trust: the default measures the region the samples cover, to 0.02 % (1e5 points,
 2-D) and 0.003 % (1e6) on uniform clouds, 0.04 % / 0.008 % for a ball's volume (mean absolute
 error over 10 seeds, BENCHMARKS.md). An arm's joint-sampled cloud is not uniform: where the joints

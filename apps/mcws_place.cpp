@@ -43,7 +43,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("along", "\"first last step\": base offsets along x [robot length unit]");
   cli.addValue("across", "\"first last step\": base offsets along y (default 0 only)");
   cli.addValue("up", "\"first last step\": base offsets along z (default 0 only)");
-  cli.addValue("map", "the robot's reachability map (mcws_reach --map, without --collision)");
+  cli.addValue("map",
+               "the robot's reachability map (mcws_reach --map, without --collision), made from "
+               "this very --robot file (its SHA-256 is in the map's header)");
   app::declareMapFlags(cli,
                        "voxel edge of a map built here (without --map): a length with unit "
                        "(2cm, 0.02m, 20mm) or a number in the robot's unit");
