@@ -137,8 +137,7 @@ int main(int argc, char** argv) {
     options.spread = app::parseNumber(cli.text("spread", "0.1"), "spread");
     if (!(options.spread > 0.0 && options.spread <= 1.0))
       throw app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
-    const std::optional<SamplePoint> asked_point =
-        cli.has("point") ? std::optional<SamplePoint>(app::readPoint(cli)) : std::nullopt;
+    const SamplePoint asked_point = app::readPoint(cli);  // checked now; compared below
     const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
@@ -167,7 +166,7 @@ int main(int argc, char** argv) {
     const io::SamplingRecord& sampling = *provenance.sampling;
     const SamplePoint recorded_point =
         sampling.point == "flange" ? SamplePoint::kFlange : SamplePoint::kTool;
-    if (asked_point && *asked_point != recorded_point) {
+    if (cli.has("point") && asked_point != recorded_point) {
       throw app::UsageError("--point " + cli.required("point") + ": --input '" +
                             cli.required("input") + "' was sampled at the " + sampling.point +
                             " (point=" + sampling.point + "); leave out --point to refine it there");

@@ -235,7 +235,7 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
 }
 
 TEST_F(StudyApp, PlacementRefusesTheMapOfAnEditedRobotFileOrOneThatPredatesItsRecord) {
-  // The robot file, copied so that it can be edited: same name and unit, another forearm.
+  // The robot file, copied so that it can be edited.
   const std::string robot = file("planar2.yaml"), map = file("m.bin");
   std::filesystem::copy_file(test::robotPath("planar2"), robot);
   const test::RunResult made = test::run(kReach + " --robot " + robot +
@@ -248,10 +248,12 @@ TEST_F(StudyApp, PlacementRefusesTheMapOfAnEditedRobotFileOrOneThatPredatesItsRe
   // The map of this very file is accepted.
   const test::RunResult same = test::run(kPlace + " " + args + file("b.pcd"));
   ASSERT_EQ(same.exit_code, 0) << same.err;
+  // The elbow's limits narrowed: the same name, unit and lengths (so the same manipulability
+  // scale), another reach.
   std::string text = test::readFile(robot);
-  const std::string forearm = "a: 30,";
-  ASSERT_NE(text.find(forearm), std::string::npos);
-  text.replace(text.find(forearm), forearm.size(), "a: 35,");
+  const std::string elbow = "limits: [-160, 160]";
+  ASSERT_NE(text.find(elbow), std::string::npos);
+  text.replace(text.find(elbow), elbow.size(), "limits: [-120, 120]");
   test::writeFile(robot, text);
   test::expectToolFailure(kPlace, args + output("b.pcd"), 1,
                           map + ": the map was made from robot file planar2.yaml (sha256 ", out_);

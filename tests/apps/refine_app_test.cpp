@@ -245,13 +245,17 @@ TEST_F(RefineReproducesTheSampling, RefusesCloudsThatCannotSayHowTheyWereSampled
                                 out + " " + extra,
                             1, message, nothing_written_);
   };
-  // A mcws_reach map cloud: the robot's, but no joint values (they would all read 0).
-  const std::string map = dir_.file("map.pcd");
-  ASSERT_EQ(test::run(std::string(MCWS_REACH_EXE) + " --robot " + robot +
+  // A mcws_reach map cloud: the robot's, but no joint values (they would all read 0, inside the
+  // planar arm's limits).
+  const std::string map = dir_.file("map.pcd"), planar = test::robotPath("planar2");
+  ASSERT_EQ(test::run(std::string(MCWS_REACH_EXE) + " --robot " + planar +
                       " --resolution 10cm --samples 2000 --output " + map)
                 .exit_code,
             0);
-  expectRefused(map, "--input '" + map + "' has no field q1: refinement needs the joint values");
+  test::expectToolFailure(kRefine,
+                          "--robot " + planar + " --input " + map + " --samples 10 --output " + out,
+                          1, "--input '" + map + "' has no field q1: refinement needs the joint "
+                          "values", nothing_written_);
   // A cloud of mcws before the record: its line has no point=, collision=, fix=.
   const std::string cloud = sample("ws.pcd", "--samples 200");
   std::string text = test::readFile(cloud);
