@@ -310,13 +310,15 @@ void checkOutputs(const app::CommandLine& cli) {
                     {{"input", cli.required("input")}});
 }
 
-/// The provenance the outputs record: the input's (its robot and sampling, if it records them)
-/// and the input's own identity, its point count and SHA-256, so that mcws_measure --boundary can
-/// tell the boundary of this cloud from that of a subset or an older cloud.
+/// The provenance the outputs record: the input's (its robot and sampling, if it records them),
+/// the input's own identity, its point count and SHA-256, and the boundary's point count, so that
+/// mcws_measure --boundary can tell the whole boundary of this cloud from that of a subset or an
+/// older cloud, or from a part of it.
 std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
-                                                      std::uint64_t points) {
+                                                      std::uint64_t points,
+                                                      std::uint64_t boundary_points) {
   std::optional<io::CloudProvenance> recorded = app::readProvenance(input);
-  if (recorded) recorded->input = io::InputCloud{points, io::sha256OfFile(input)};
+  if (recorded) recorded->input = io::InputCloud{points, io::sha256OfFile(input), boundary_points};
   return recorded;
 }
 
@@ -327,7 +329,7 @@ void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
   const std::optional<io::CloudProvenance> robot =
-      boundaryProvenance(cli.required("input"), cloud.size());
+      boundaryProvenance(cli.required("input"), cloud.size(), kept.size());
   app::saveCloud(cloud, kept, output, robot);
   if (!cli.has("interior")) return;
   for (const auto i : removed) {
@@ -420,7 +422,7 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
 
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
-  const std::optional<io::CloudProvenance> recorded = boundaryProvenance(input, reader.size());
+  const std::optional<io::CloudProvenance> recorded = boundaryProvenance(input, reader.size(), found.kept);
   io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
                                                     recorded);
   std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;

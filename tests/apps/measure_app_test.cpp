@@ -145,6 +145,13 @@ std::string recorded(const std::string& path, const std::string& key) {
   return text.substr(begin, text.find_first_of(" \n", begin) - begin);
 }
 
+/// The point count a PCD header gives.
+std::string headerPoints(const std::string& path) {
+  const std::string text = test::readFile(path);
+  const std::size_t at = text.find("\nPOINTS ") + 8;
+  return text.substr(at, text.find('\n', at) - at);
+}
+
 /// A --boundary must be the boundary of the --input cloud itself (issue 31, section 3): every
 /// point of the boundary of a subset, or of an older cloud, is a point of the cloud too.
 TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
@@ -170,8 +177,10 @@ TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
   // mcws_boundary records its input: the count and the hash of its bytes (also with --tiles).
   EXPECT_EQ(recorded(rim, "input_points"), "3000");
   EXPECT_EQ(recorded(rim, "input_sha256"), sha256sum(full));
+  EXPECT_EQ(recorded(rim, "boundary_points"), headerPoints(rim));
   EXPECT_EQ(recorded(free_rim, "input_points"), std::to_string(free_points));
   EXPECT_EQ(recorded(free_rim, "input_sha256"), sha256sum(free));
+  EXPECT_EQ(recorded(free_rim, "boundary_points"), headerPoints(free_rim));
   const std::string tiled = dir.file("tiled.pcd");
   ASSERT_EQ(test::run(std::string(MCWS_BOUNDARY_EXE) + " --input " + full +
                       " --plane xz --tiles 2 --radius 8 --hull-depth 0 --output " + tiled)
@@ -179,6 +188,7 @@ TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
             0);
   EXPECT_EQ(recorded(tiled, "input_points"), "3000");
   EXPECT_EQ(recorded(tiled, "input_sha256"), sha256sum(full));
+  EXPECT_EQ(recorded(tiled, "boundary_points"), headerPoints(tiled));
 
   const std::string args = " --plane xz --method column --json";
   const test::RunResult own = test::run(kMeasure + " --input " + full + args + " --boundary " + rim);
@@ -199,7 +209,20 @@ TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
                           "is the boundary of a cloud of 3000 points", nothing_written);
   // A boundary that predates the record, or has no line at all, for a cloud that has one.
   std::string text = test::readFile(rim);
-  const std::string keys = " input_points=3000 input_sha256=" + sha256sum(full);
+  // A part of the boundary: its colliding points left out (mcws_select copies the line).
+  const std::string rim_part = dir.file("rim_part.pcd");
+  const test::RunResult part = test::run(std::string(MCWS_SELECT_EXE) + " --input " + rim +
+                                         " --label 0 --json --output " + rim_part);
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  const std::uint64_t part_points = nlohmann::json::parse(part.out)["points_out"];
+  ASSERT_LT(part_points, std::stoull(headerPoints(rim)));  // a strict part
+  test::expectToolFailure(kMeasure, "--input " + full + args + " --boundary " + rim_part, 1,
+                          "--boundary " + rim_part + " has " + std::to_string(part_points) +
+                              " points, but mcws_boundary found " + headerPoints(rim) +
+                              " on the boundary of --input " + full,
+                          nothing_written);
+  const std::string keys = " input_points=3000 input_sha256=" + sha256sum(full) +
+                           " boundary_points=" + headerPoints(rim);
   ASSERT_NE(text.find(keys), std::string::npos);
   text.erase(text.find(keys), keys.size());
   test::writeFile(dir.file("old_rim.pcd"), text);

@@ -196,7 +196,10 @@ TEST_F(ProvenanceApp, TheLineSurvivesBoundaryAndSelect) {
                                 " --plane xz --output " + rim + " --interior " + inside);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // ... with the cloud they were found in (mcws_measure --boundary checks it).
-  const std::string input = " input_points=2000 input_sha256=" + sha256sum(cloud_);
+  ASSERT_THAT(line(rim, 11), StartsWith("POINTS "));
+  const std::string rim_points = line(rim, 11).substr(std::string("POINTS ").size());
+  const std::string input =
+      " input_points=2000 input_sha256=" + sha256sum(cloud_) + " boundary_points=" + rim_points;
   EXPECT_EQ(line(rim, 2), expectedLine(robot_) + input);
   EXPECT_EQ(line(inside, 2), expectedLine(robot_) + input);
   r = test::run(std::string(MCWS_SELECT_EXE) + " --input " + rim + " --label 0 --output " + free);

@@ -196,7 +196,8 @@ std::string provenanceComment(const CloudProvenance& p) {
       throw Error("cannot record the input of a boundary: sha256 '" + p.input->sha256 +
                   "' is not 64 lowercase hex digits");
     }
-    line += " input_points=" + std::to_string(p.input->points) + " input_sha256=" + p.input->sha256;
+    line += " input_points=" + std::to_string(p.input->points) + " input_sha256=" +
+            p.input->sha256 + " boundary_points=" + std::to_string(p.input->boundary_points);
   }
   return line;
 }
@@ -220,7 +221,8 @@ bool isProvenanceComment(const std::string& line) {
 CloudProvenance parseProvenanceComment(const std::string& line) {
   // Raw (still encoded) values of the keys this version knows; others are ignored.
   const char* const known[] = {"robot", "file",     "sha256", "length_unit",  "point",
-                               "collision", "fix", "input_points", "input_sha256"};
+                               "collision", "fix", "input_points", "input_sha256",
+                               "boundary_points"};
   std::map<std::string, std::string> raw;
   for (const std::string& word : words(line)) {
     const std::size_t equals = word.find('=');
@@ -267,16 +269,24 @@ CloudProvenance parseProvenanceComment(const std::string& line) {
     sampling.fixed = decodeFixed(raw["fix"]);
     p.sampling = sampling;
   }
-  const int input_keys = static_cast<int>(raw.count("input_points") + raw.count("input_sha256"));
-  if (input_keys == 1) throw Error("input_points= and input_sha256= come together");
-  if (input_keys == 2) {
+  const int input_keys = static_cast<int>(raw.count("input_points") + raw.count("input_sha256") +
+                                          raw.count("boundary_points"));
+  if (input_keys != 0 && input_keys != 3) {
+    throw Error("input_points=, input_sha256= and boundary_points= come together: the line has " +
+                std::to_string(input_keys) + " of them");
+  }
+  if (input_keys == 3) {
+    const auto count = [&](const char* key) {
+      const std::string& text = raw[key];
+      if (text.empty() || text.size() > 19 ||
+          text.find_first_not_of("0123456789") != std::string::npos) {
+        throw Error(std::string(key) + "=" + shortText(text) + " is not a whole number");
+      }
+      return static_cast<std::uint64_t>(std::stoull(text));
+    };
     InputCloud input;
-    const std::string& points = raw["input_points"];
-    if (points.empty() || points.size() > 19 ||
-        points.find_first_not_of("0123456789") != std::string::npos) {
-      throw Error("input_points=" + shortText(points) + " is not a whole number");
-    }
-    input.points = std::stoull(points);
+    input.points = count("input_points");
+    input.boundary_points = count("boundary_points");
     input.sha256 = raw["input_sha256"];
     if (!isSha256(input.sha256)) {
       throw Error("input_sha256=" + shortText(input.sha256) + " is not 64 lowercase hex digits");

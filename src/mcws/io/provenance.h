@@ -28,15 +28,18 @@ struct SamplingRecord {
   bool operator!=(const SamplingRecord& other) const { return !(*this == other); }
 };
 
-/// \brief The cloud a boundary was found in (mcws_boundary's --input), recorded as
-/// `input_points=N input_sha256=HEX` so that mcws_measure --boundary can check that a boundary
-/// is that of the cloud it measures, not of a subset or an older cloud.
+/// \brief The cloud a boundary was found in (mcws_boundary's --input) and the boundary's size,
+/// recorded as `input_points=N input_sha256=HEX boundary_points=K` so that mcws_measure
+/// --boundary can check that a boundary is the whole boundary of the cloud it measures, not that
+/// of a subset or an older cloud, nor a part of it (mcws_select copies the line as it is).
 struct InputCloud {
   std::uint64_t points{0};  ///< points of the input file
   std::string sha256;       ///< SHA-256 of the input file's bytes, 64 lowercase hex digits
+  std::uint64_t boundary_points{0};  ///< points mcws_boundary wrote to its boundary output
 
   bool operator==(const InputCloud& other) const {
-    return points == other.points && sha256 == other.sha256;
+    return points == other.points && sha256 == other.sha256 &&
+           boundary_points == other.boundary_points;
   }
   bool operator!=(const InputCloud& other) const { return !(*this == other); }
 };
@@ -46,7 +49,8 @@ struct InputCloud {
 /// Recorded in the PCD header, right after PCL's own first comment line, as
 ///
 ///     # mcws robot=deicing file=deicing.yaml sha256=<64 hex digits> length_unit=cm
-///       point=tool collision=0 fix=theta3:0 [input_points=N input_sha256=<64 hex digits>]
+///       point=tool collision=0 fix=theta3:0
+///       [input_points=N input_sha256=<64 hex digits> boundary_points=K]
 ///
 /// (one line). PCL's reader (and so pcl_viewer, pcl_pcd2ply & co.) skips every header line that
 /// starts with '#'. Values are percent-encoded (bytes other than A-Z a-z 0-9 - . _ ~ as %XX), so a
@@ -92,7 +96,8 @@ bool isProvenanceComment(const std::string& line);
 ///   empty robot, file, sha256 or length_unit, a hash that is not 64 lowercase hex digits, a
 ///   unit other than m, cm, mm, a bad %XX escape, a point other than tool or flange, a collision
 ///   other than 0 or 1, a fix that is not none or NAME:VALUE,..., some but not all of point,
-///   collision and fix, one of input_points and input_sha256 without the other or malformed);
+///   collision and fix, some but not all of input_points, input_sha256 and boundary_points, or
+///   one of them malformed);
 ///   the caller adds the file and line.
 CloudProvenance parseProvenanceComment(const std::string& line);
 
