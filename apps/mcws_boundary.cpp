@@ -422,7 +422,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
 
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
-  const std::optional<io::CloudProvenance> recorded = boundaryProvenance(input, reader.size(), found.kept);
+  const std::optional<io::CloudProvenance> recorded =
+      boundaryProvenance(input, reader.size(), found.kept);
   io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
                                                     recorded);
   std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;

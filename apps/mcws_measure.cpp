@@ -139,9 +139,10 @@ std::string describeCloud(std::uint64_t points, const std::string& sha256) {
 /// Checks that the --boundary is the boundary of the --input cloud itself, not of a subset of it
 /// or of an older cloud whose points it shares, nor a part of it: mcws_boundary records the point
 /// count and SHA-256 of the cloud it was found in, which must be those of --input (or the boundary
-/// is --input's own bytes), and the number of points it wrote, which must be the boundary's. A boundary without the record is refused when --input records its robot (mcws made
-/// it, so mcws_boundary would have recorded it); clouds that record nothing (--shape, other
-/// tools) are checked only point by point (loadBoundary()).
+/// is --input's own bytes), and the number of points it wrote, which must be the boundary's. A
+/// boundary without the record is refused when --input records its robot (mcws made it, so
+/// mcws_boundary would have recorded it); clouds that record nothing (--shape, other tools) are
+/// checked only point by point (loadBoundary()).
 void requireBoundaryOf(const std::string& path, const std::string& input, std::uint64_t points,
                        std::uint64_t boundary_points) {
   const std::optional<io::CloudProvenance> boundary = app::readProvenance(path);
@@ -164,9 +165,8 @@ void requireBoundaryOf(const std::string& path, const std::string& input, std::u
   if (boundary->input->boundary_points != boundary_points) {
     throw Error("--boundary " + path + " has " + std::to_string(boundary_points) +
                 " points, but mcws_boundary found " +
-                std::to_string(boundary->input->boundary_points) +
-                " on the boundary of --input " + input +
-                ": a part of the boundary (mcws_select?) or its --interior" + remake);
+                std::to_string(boundary->input->boundary_points) + " on the boundary of --input " +
+                input + ": a part of the boundary (mcws_select?) or its --interior" + remake);
   }
 }
 

@@ -122,14 +122,17 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
     // The same name and unit are not the same robot: its file may have been edited since.
     const io::CloudProvenance robot_file = app::robotProvenance(robot);
     if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
-      throw Error(path + ": the map predates the record of its robot file's SHA-256; re-make it "
-                  "with mcws_reach --robot " + cli.required("robot") + " --map " + path);
+      throw Error(path +
+                  ": the map predates the record of its robot file's SHA-256; re-make it "
+                  "with mcws_reach --robot " +
+                  cli.required("robot") + " --map " + path);
     }
     if (h["robot_sha256"].get<std::string>() != robot_file.sha256) {
       throw Error(path + ": the map was made from robot file " + h.value("robot_file", "?") +
                   " (sha256 " + h["robot_sha256"].get<std::string>().substr(0, 12) +
                   "...), not from --robot " + cli.required("robot") + " (sha256 " +
-                  robot_file.sha256.substr(0, 12) + "...): the robot file has changed since, or "
+                  robot_file.sha256.substr(0, 12) +
+                  "...): the robot file has changed since, or "
                   "is another; re-make the map with mcws_reach");
     }
     // Samples colliding with the environment at the robot's own base are missing from such a

@@ -59,7 +59,6 @@ void declareFlags(mcws::app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
-
 /// RefineSampler's samples labelled by CollisionChecker::label() of the joint values that produced
 /// them, as mcws_sample --collision labels its own (LabelledRobotSampler).
 class LabelledRefineSampler : public mcws::PointGenerator {
@@ -95,7 +94,8 @@ void requireJointFields(const std::string& flag, const std::string& path, int do
     if (!found) {
       throw mcws::Error("--" + flag + " '" + path + "' has no field " + name +
                         ": refinement needs the joint values of each point (fields q1..q" +
-                        std::to_string(dof) + ", as mcws_sample writes them; a mcws_reach map "
+                        std::to_string(dof) +
+                        ", as mcws_sample writes them; a mcws_reach map "
                         "cloud has none)");
     }
   }
@@ -103,8 +103,9 @@ void requireJointFields(const std::string& flag, const std::string& path, int do
 
 /// How the cloud of --`flag` was sampled, as its header records it.
 /// \throws mcws::Error when it records nothing or predates the record.
-mcws::io::SamplingRecord recordedSampling(const std::string& flag, const std::string& path,
-                                          const std::optional<mcws::io::CloudProvenance>& recorded) {
+mcws::io::SamplingRecord recordedSampling(
+    const std::string& flag, const std::string& path,
+    const std::optional<mcws::io::CloudProvenance>& recorded) {
   if (!recorded) {
     throw mcws::Error("--" + flag + " '" + path +
                       "' does not record how it was sampled (no '# mcws' header line): refine "
@@ -169,7 +170,8 @@ int main(int argc, char** argv) {
     if (cli.has("point") && asked_point != recorded_point) {
       throw app::UsageError("--point " + cli.required("point") + ": --input '" +
                             cli.required("input") + "' was sampled at the " + sampling.point +
-                            " (point=" + sampling.point + "); leave out --point to refine it there");
+                            " (point=" + sampling.point +
+                            "); leave out --point to refine it there");
     }
     options.point = recorded_point;
     options.fixed = sampling.fixed;

@@ -128,7 +128,6 @@ TEST_F(MeasureApp, BadInput) {
       "none.pcd: cloud file does not exist");
 }
 
-
 /// What `sha256sum` says of a file (an oracle independent of the tools' OpenSSL).
 std::string sha256sum(const std::string& path) {
   const test::RunResult r = test::run("sha256sum " + path);
@@ -191,7 +190,8 @@ TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
   EXPECT_EQ(recorded(tiled, "boundary_points"), headerPoints(tiled));
 
   const std::string args = " --plane xz --method column --json";
-  const test::RunResult own = test::run(kMeasure + " --input " + full + args + " --boundary " + rim);
+  const test::RunResult own =
+      test::run(kMeasure + " --input " + full + args + " --boundary " + rim);
   ASSERT_EQ(own.exit_code, 0) << own.err;
   // The free subset's boundary: every point of it is a point of the full cloud.
   test::expectToolFailure(kMeasure, "--input " + full + args + " --boundary " + free_rim, 1,
@@ -226,16 +226,14 @@ TEST(MeasureBoundaryOf, RefusesTheBoundaryOfASubsetOrOfAnOlderCloud) {
   ASSERT_NE(text.find(keys), std::string::npos);
   text.erase(text.find(keys), keys.size());
   test::writeFile(dir.file("old_rim.pcd"), text);
-  test::expectToolFailure(kMeasure, "--input " + full + args + " --boundary " +
-                                        dir.file("old_rim.pcd"),
-                          1, "its '# mcws' line predates input_points=, input_sha256=",
-                          nothing_written);
+  test::expectToolFailure(
+      kMeasure, "--input " + full + args + " --boundary " + dir.file("old_rim.pcd"), 1,
+      "its '# mcws' line predates input_points=, input_sha256=", nothing_written);
   text.erase(text.find("# mcws"), text.find('\n', text.find("# mcws")) - text.find("# mcws") + 1);
   test::writeFile(dir.file("bare_rim.pcd"), text);
-  test::expectToolFailure(kMeasure, "--input " + full + args + " --boundary " +
-                                        dir.file("bare_rim.pcd"),
-                          1, "no '# mcws' header line, but --input records its robot",
-                          nothing_written);
+  test::expectToolFailure(
+      kMeasure, "--input " + full + args + " --boundary " + dir.file("bare_rim.pcd"), 1,
+      "no '# mcws' header line, but --input records its robot", nothing_written);
 }
 
 }  // namespace

@@ -4,10 +4,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <pcl/io/pcd_io.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -238,9 +238,9 @@ TEST_F(StudyApp, PlacementRefusesTheMapOfAnEditedRobotFileOrOneThatPredatesItsRe
   // The robot file, copied so that it can be edited.
   const std::string robot = file("planar2.yaml"), map = file("m.bin");
   std::filesystem::copy_file(test::robotPath("planar2"), robot);
-  const test::RunResult made = test::run(kReach + " --robot " + robot +
-                                         " --resolution 5cm --samples 20000 --output " +
-                                         file("m.pcd") + " --map " + map);
+  const test::RunResult made =
+      test::run(kReach + " --robot " + robot + " --resolution 5cm --samples 20000 --output " +
+                file("m.pcd") + " --map " + map);
   ASSERT_EQ(made.exit_code, 0) << made.err;
   const std::string targets = planarTargets({{0, 50}});
   const std::string args = "--robot " + robot + " --targets " + targets +

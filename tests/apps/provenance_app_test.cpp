@@ -163,7 +163,8 @@ TEST_F(ProvenanceApp, CloudsWithoutTheLineAreRefusedAndForeignCommentsAccepted) 
   test::writeFile(noted, replaceLine(cloud_, 1, "# .PCD v0.7\n  # measured by hand\n\t#mcwsx"));
   pcl::PointCloud<pcl::PointXYZ> xyz;
   ASSERT_EQ(pcl::io::loadPCDFile(noted, xyz), 0);
-  const test::RunResult r = test::run(kRefine + " " + refineArgs(robot_, noted, dir_.file("b.pcd")));
+  const test::RunResult r =
+      test::run(kRefine + " " + refineArgs(robot_, noted, dir_.file("b.pcd")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(line(dir_.file("b.pcd"), 2), expectedLine(robot_));
 }

@@ -115,7 +115,6 @@ TEST_F(RefineApp, RejectsBadInput) {
                 1, "missing.pcd");
 }
 
-
 /// Refinement draws its samples as the cloud's were (issue 31, section 3): at the recorded point,
 /// with the recorded joints pinned, labelled by collision for a --collision cloud; a cloud that
 /// cannot say how it was sampled, or has no joint values, is refused.
@@ -163,12 +162,11 @@ TEST_F(RefineReproducesTheSampling, AFlangeCloudIsRefinedAtTheFlange) {
   }
   EXPECT_THAT(test::readFile(out), HasSubstr(" point=flange collision=0 fix=none\n"));
   // Asking for the other point is refused, saying why; asking for the same one is fine.
-  test::expectToolFailure(kRefine,
-                          "--robot " + test::robotPath("ta1400") + " --input " + cloud +
-                              " --samples 10 --point tool --output " +
-                              nothing_written_.file("o.pcd"),
-                          2, "--point tool: --input '" + cloud + "' was sampled at the flange",
-                          nothing_written_);
+  test::expectToolFailure(
+      kRefine,
+      "--robot " + test::robotPath("ta1400") + " --input " + cloud +
+          " --samples 10 --point tool --output " + nothing_written_.file("o.pcd"),
+      2, "--point tool: --input '" + cloud + "' was sampled at the flange", nothing_written_);
   EXPECT_EQ(refine(cloud, dir_.file("same.pcd"), "--point flange", "ta1400").exit_code, 0);
 }
 
@@ -181,9 +179,9 @@ TEST_F(RefineReproducesTheSampling, ACollisionCloudsNewSamplesAreLabelledByTheCh
                 .exit_code,
             0);
   const std::string out = dir_.file("refined.pcd");
-  const test::RunResult r = test::run(kRefine + " --robot " + test::robotPath("deicing") +
-                                      " --input " + colliding_parents + " --cloud " + cloud +
-                                      " --samples 16 --output " + out);
+  const test::RunResult r =
+      test::run(kRefine + " --robot " + test::robotPath("deicing") + " --input " +
+                colliding_parents + " --cloud " + cloud + " --samples 16 --output " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(test::readFile(out), HasSubstr(" point=tool collision=1 fix=none\n"));
   auto refined = readCloud(out);
@@ -200,9 +198,9 @@ TEST_F(RefineReproducesTheSampling, ACollisionCloudsNewSamplesAreLabelledByTheCh
       std::snprintf(value, sizeof value, "%.9g ", static_cast<double>(refined[i].q[j]));
       q += value;
     }
-    const test::RunResult c = test::run(std::string(MCWS_COLLIDE_EXE) + " --robot " +
-                                        test::robotPath("deicing") + " --ignore-limits --json --q \"" + q +
-                                        "\"");
+    const test::RunResult c =
+        test::run(std::string(MCWS_COLLIDE_EXE) + " --robot " + test::robotPath("deicing") +
+                  " --ignore-limits --json --q \"" + q + "\"");
     ASSERT_EQ(c.exit_code, 0) << c.err;
     const std::uint32_t label = nlohmann::json::parse(c.out)["label"];
     EXPECT_EQ(refined[i].label, label) << "point " << i << ", q " << q;
@@ -240,10 +238,10 @@ TEST_F(RefineReproducesTheSampling, RefusesCloudsThatCannotSayHowTheyWereSampled
   const std::string robot = test::robotPath("deicing");
   const auto expectRefused = [&](const std::string& input, const std::string& message,
                                  const std::string& extra = "") {
-    test::expectToolFailure(kRefine,
-                            "--robot " + robot + " --input " + input + " --samples 10 --output " +
-                                out + " " + extra,
-                            1, message, nothing_written_);
+    test::expectToolFailure(
+        kRefine,
+        "--robot " + robot + " --input " + input + " --samples 10 --output " + out + " " + extra, 1,
+        message, nothing_written_);
   };
   // A mcws_reach map cloud: the robot's, but no joint values (they would all read 0, inside the
   // planar arm's limits).
@@ -252,10 +250,12 @@ TEST_F(RefineReproducesTheSampling, RefusesCloudsThatCannotSayHowTheyWereSampled
                       " --resolution 10cm --samples 2000 --output " + map)
                 .exit_code,
             0);
-  test::expectToolFailure(kRefine,
-                          "--robot " + planar + " --input " + map + " --samples 10 --output " + out,
-                          1, "--input '" + map + "' has no field q1: refinement needs the joint "
-                          "values", nothing_written_);
+  test::expectToolFailure(
+      kRefine, "--robot " + planar + " --input " + map + " --samples 10 --output " + out, 1,
+      "--input '" + map +
+          "' has no field q1: refinement needs the joint "
+          "values",
+      nothing_written_);
   // A cloud of mcws before the record: its line has no point=, collision=, fix=.
   const std::string cloud = sample("ws.pcd", "--samples 200");
   std::string text = test::readFile(cloud);
@@ -267,8 +267,11 @@ TEST_F(RefineReproducesTheSampling, RefusesCloudsThatCannotSayHowTheyWereSampled
   expectRefused(old, "--input '" + old + "' predates the record of how it was sampled");
   // --cloud sampled otherwise than --input.
   const std::string flange = sample("flange.pcd", "--point flange --samples 200");
-  expectRefused(cloud, "--cloud '" + flange + "' was sampled with point=flange collision=0 "
-                       "fix=none but --input '" + cloud + "' with point=tool",
+  expectRefused(cloud,
+                "--cloud '" + flange +
+                    "' was sampled with point=flange collision=0 "
+                    "fix=none but --input '" +
+                    cloud + "' with point=tool",
                 "--cloud " + flange);
 }
 

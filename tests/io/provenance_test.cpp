@@ -111,9 +111,8 @@ TEST(ProvenanceComment, RecordsHowTheCloudWasSampledAndReadsItBackExactly) {
   EXPECT_EQ(io::parseProvenanceComment(io::provenanceComment(p)), p);
   // A boundary's input cloud.
   p.input = io::InputCloud{20000, kSha256Empty, 700};
-  EXPECT_THAT(io::provenanceComment(p),
-              HasSubstr(std::string(" input_points=20000 input_sha256=") + kSha256Empty +
-                        " boundary_points=700"));
+  EXPECT_THAT(io::provenanceComment(p), HasSubstr(std::string(" input_points=20000 input_sha256=") +
+                                                  kSha256Empty + " boundary_points=700"));
   EXPECT_EQ(io::parseProvenanceComment(io::provenanceComment(p)), p);
   // A line of mcws before the record: read, with no sampling and no input.
   const io::CloudProvenance old = io::parseProvenanceComment(io::provenanceComment(example()));
@@ -123,9 +122,8 @@ TEST(ProvenanceComment, RecordsHowTheCloudWasSampledAndReadsItBackExactly) {
 
 TEST(ProvenanceComment, RefusesMalformedSamplingAndInputKeysSayingWhy) {
   const auto error = [](const std::string& keys) {
-    return test::errorOf([&] {
-      io::parseProvenanceComment(io::provenanceComment(example()) + " " + keys);
-    });
+    return test::errorOf(
+        [&] { io::parseProvenanceComment(io::provenanceComment(example()) + " " + keys); });
   };
   EXPECT_THAT(error("point=tool collision=0"),
               HasSubstr("point=, collision= and fix= come together: the line has 2 of them"));
@@ -136,17 +134,16 @@ TEST(ProvenanceComment, RefusesMalformedSamplingAndInputKeysSayingWhy) {
   EXPECT_THAT(error("point=tool collision=0 fix=a:1x"), HasSubstr("'1x' is not a finite number"));
   EXPECT_THAT(error("point=tool collision=0 fix=a:inf"), HasSubstr("'inf' is not a finite"));
   EXPECT_THAT(error("point=tool collision=0 fix=a:1,a:2"), HasSubstr("joint 'a' given twice"));
-  EXPECT_THAT(error("point=tool point=tool collision=0 fix=none"),
-              HasSubstr("point= given twice"));
+  EXPECT_THAT(error("point=tool point=tool collision=0 fix=none"), HasSubstr("point= given twice"));
   EXPECT_THAT(error("input_points=5"),
               HasSubstr("input_points=, input_sha256= and boundary_points= come together: the "
                         "line has 1 of them"));
-  EXPECT_THAT(error(std::string("input_points=-5 input_sha256=") + kSha256Abc +
-                    " boundary_points=1"),
-              HasSubstr("input_points=-5 is not a whole number"));
-  EXPECT_THAT(error(std::string("input_points=5 input_sha256=") + kSha256Abc +
-                    " boundary_points=1e3"),
-              HasSubstr("boundary_points=1e3 is not a whole number"));
+  EXPECT_THAT(
+      error(std::string("input_points=-5 input_sha256=") + kSha256Abc + " boundary_points=1"),
+      HasSubstr("input_points=-5 is not a whole number"));
+  EXPECT_THAT(
+      error(std::string("input_points=5 input_sha256=") + kSha256Abc + " boundary_points=1e3"),
+      HasSubstr("boundary_points=1e3 is not a whole number"));
   EXPECT_THAT(error("input_points=5 input_sha256=abc boundary_points=1"),
               HasSubstr("input_sha256=abc is not 64 lowercase hex digits"));
   io::CloudProvenance bad = example();

@@ -147,7 +147,8 @@ std::vector<std::pair<std::string, double>> decodeFixed(const std::string& value
     if (end == std::string::npos) end = value.size();
     const std::string item = value.substr(begin, end - begin);
     const std::size_t colon = item.find(':');
-    if (colon == std::string::npos || colon == 0) throw bad("'" + shortText(item) + "' is not NAME:VALUE");
+    if (colon == std::string::npos || colon == 0)
+      throw bad("'" + shortText(item) + "' is not NAME:VALUE");
     const std::string name = decode("fix", item.substr(0, colon));
     const std::optional<double> number = parseNumber(item.substr(colon + 1));
     if (!number) throw bad("'" + shortText(item.substr(colon + 1)) + "' is not a finite number");
@@ -184,8 +185,8 @@ std::string provenanceComment(const CloudProvenance& p) {
     }
     for (const auto& pinned : p.sampling->fixed) {
       if (pinned.first.empty() || !std::isfinite(pinned.second)) {
-        throw Error("cannot record how a cloud was sampled: fixed joint '" + pinned.first + "' = " +
-                    exactNumber(pinned.second));
+        throw Error("cannot record how a cloud was sampled: fixed joint '" + pinned.first +
+                    "' = " + exactNumber(pinned.second));
       }
     }
     line += " point=" + p.sampling->point + " collision=" + (p.sampling->collision ? "1" : "0") +
@@ -196,8 +197,9 @@ std::string provenanceComment(const CloudProvenance& p) {
       throw Error("cannot record the input of a boundary: sha256 '" + p.input->sha256 +
                   "' is not 64 lowercase hex digits");
     }
-    line += " input_points=" + std::to_string(p.input->points) + " input_sha256=" +
-            p.input->sha256 + " boundary_points=" + std::to_string(p.input->boundary_points);
+    line += " input_points=" + std::to_string(p.input->points) +
+            " input_sha256=" + p.input->sha256 +
+            " boundary_points=" + std::to_string(p.input->boundary_points);
   }
   return line;
 }
@@ -220,9 +222,9 @@ bool isProvenanceComment(const std::string& line) {
 
 CloudProvenance parseProvenanceComment(const std::string& line) {
   // Raw (still encoded) values of the keys this version knows; others are ignored.
-  const char* const known[] = {"robot", "file",     "sha256", "length_unit",  "point",
-                               "collision", "fix", "input_points", "input_sha256",
-                               "boundary_points"};
+  const char* const known[] = {"robot",        "file",           "sha256", "length_unit",
+                               "point",        "collision",      "fix",    "input_points",
+                               "input_sha256", "boundary_points"};
   std::map<std::string, std::string> raw;
   for (const std::string& word : words(line)) {
     const std::size_t equals = word.find('=');
@@ -249,8 +251,8 @@ CloudProvenance parseProvenanceComment(const std::string& line) {
   if (!isUnit(p.length_unit)) {
     throw Error("length_unit=" + shortText(p.length_unit) + " is not m, cm or mm");
   }
-  const int sampling_keys = static_cast<int>(raw.count("point") + raw.count("collision") +
-                                             raw.count("fix"));
+  const int sampling_keys =
+      static_cast<int>(raw.count("point") + raw.count("collision") + raw.count("fix"));
   if (sampling_keys != 0 && sampling_keys != 3) {
     throw Error("point=, collision= and fix= come together: the line has " +
                 std::to_string(sampling_keys) + " of them");

@@ -33,8 +33,8 @@ struct SamplingRecord {
 /// --boundary can check that a boundary is the whole boundary of the cloud it measures, not that
 /// of a subset or an older cloud, nor a part of it (mcws_select copies the line as it is).
 struct InputCloud {
-  std::uint64_t points{0};  ///< points of the input file
-  std::string sha256;       ///< SHA-256 of the input file's bytes, 64 lowercase hex digits
+  std::uint64_t points{0};           ///< points of the input file
+  std::string sha256;                ///< SHA-256 of the input file's bytes, 64 lowercase hex digits
   std::uint64_t boundary_points{0};  ///< points mcws_boundary wrote to its boundary output
 
   bool operator==(const InputCloud& other) const {
