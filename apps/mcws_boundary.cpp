@@ -307,13 +307,26 @@ void checkOutputs(const app::CommandLine& cli) {
                     {{"input", cli.required("input")}});
 }
 
+/// The provenance the outputs record: the input's (its robot and sampling, if it records them),
+/// the input's own identity, its point count and SHA-256, and the boundary's point count, so that
+/// mcws_measure --boundary can tell the whole boundary of this cloud from that of a subset or an
+/// older cloud, or from a part of it.
+std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
+                                                      std::uint64_t points,
+                                                      std::uint64_t boundary_points) {
+  std::optional<io::CloudProvenance> recorded = app::readProvenance(input);
+  if (recorded) recorded->input = io::InputCloud{points, io::sha256OfFile(input), boundary_points};
+  return recorded;
+}
+
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or
 /// neither.
-/// Both record the robot the input records, if any.
+/// Both record the robot the input records, if any, and the input (boundaryProvenance()).
 void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
-  const std::optional<io::CloudProvenance> robot = app::readProvenance(cli.required("input"));
+  const std::optional<io::CloudProvenance> robot =
+      boundaryProvenance(cli.required("input"), cloud.size(), kept.size());
   io::OutputSet outputs;
   app::saveCloud(cloud, kept, output, robot);
   if (cli.has("interior")) {
@@ -404,13 +417,14 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
 
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
+  const std::optional<io::CloudProvenance> recorded =
+      boundaryProvenance(input, reader.size(), found.kept);
   io::OutputSet outputs;
   io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
-                                                    reader.provenance());
+                                                    recorded);
   std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;
   if (with_interior) {
-    interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary,
-                          reader.provenance());
+    interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary, recorded);
   }
   app::WorkspaceCloud kept, rest;
   app::forEachPiece(reader, [&](std::uint64_t first, const app::WorkspaceCloud& piece) {

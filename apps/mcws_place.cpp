@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "common/app.h"
+#include "common/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/io/atomic_file.h"
@@ -42,7 +43,9 @@ void declareFlags(app::CommandLine& cli) {
   cli.addValue("along", "\"first last step\": base offsets along x [robot length unit]");
   cli.addValue("across", "\"first last step\": base offsets along y (default 0 only)");
   cli.addValue("up", "\"first last step\": base offsets along z (default 0 only)");
-  cli.addValue("map", "the robot's reachability map (mcws_reach --map, without --collision)");
+  cli.addValue("map",
+               "the robot's reachability map (mcws_reach --map, without --collision), made from "
+               "this very --robot file (its SHA-256 is in the map's header)");
   app::declareMapFlags(cli,
                        "voxel edge of a map built here (without --map): a length with unit "
                        "(2cm, 0.02m, 20mm) or a number in the robot's unit");
@@ -115,6 +118,22 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
       throw Error(path + ": the map is of robot '" + (h.is_object() ? h.value("robot", "?") : "?") +
                   "' in " + (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
                   robot.name + "' in " + unit);
+    }
+    // The same name and unit are not the same robot: its file may have been edited since.
+    const io::CloudProvenance robot_file = app::robotProvenance(robot);
+    if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
+      throw Error(path +
+                  ": the map predates the record of its robot file's SHA-256; re-make it "
+                  "with mcws_reach --robot " +
+                  cli.required("robot") + " --map " + path);
+    }
+    if (h["robot_sha256"].get<std::string>() != robot_file.sha256) {
+      throw Error(path + ": the map was made from robot file " + h.value("robot_file", "?") +
+                  " (sha256 " + h["robot_sha256"].get<std::string>().substr(0, 12) +
+                  "...), not from --robot " + cli.required("robot") + " (sha256 " +
+                  robot_file.sha256.substr(0, 12) +
+                  "...): the robot file has changed since, or "
+                  "is another; re-make the map with mcws_reach");
     }
     // Samples colliding with the environment at the robot's own base are missing from such a
     // map: moved with the base, the environment's shadow would move too.

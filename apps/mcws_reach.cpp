@@ -216,6 +216,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   if (cli.has("map")) {
     std::ostringstream bytes;
     map.write(bytes, nlohmann::json{{"robot", robot.name},
+                                    {"robot_file", provenance.file},
+                                    {"robot_sha256", provenance.sha256},
                                     {"length_unit", unit},
                                     {"samples", samples},
                                     {"seed", sampling.seed},

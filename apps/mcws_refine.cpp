@@ -1,13 +1,20 @@
 // mcws_refine: boundary refinement (Liu et al. 2013): new samples in
 // small joint-space neighbourhoods of the configurations that produced boundary points.
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <numeric>
+#include <optional>
 
 #include "common/app.h"
 #include "common/cloud_io.h"
 #include "common/flags.h"
+#include "mcws/collision/collision_checker.h"
+#include "mcws/collision/collision_model.h"
 #include "mcws/distributed/sample_writer.h"
 #include "mcws/io/provenance.h"
 #include "mcws/workspace/refine.h"
@@ -20,8 +27,12 @@ constexpr char kUsage[] =
 constexpr char kSummary[] =
     R"(Draws K new samples near the boundary points' joint values (fields q1..qn, as mcws_sample
 writes them and mcws_boundary keeps them): sample i moves each joint of boundary point i mod P by
-up to --spread times the joint's range, clamped to its limits. Joints with one value in every
-boundary point (pinned by mcws_sample --fix) keep it. With --cloud, the output is that cloud
+up to --spread times the joint's range, clamped to its limits. The new samples are drawn as the
+cloud's were, as its header records it (mcws_sample writes point=, collision=, fix=; mcws_boundary
+keeps them): at the same point (tool or flange; a different --point is refused), with the same
+joints pinned at the same values, and with --collision labels from the robot file's collision
+model. A cloud that does not record this (other tools, mcws before the record) or has no joint
+fields (a mcws_reach map) is refused. With --cloud, the output is that cloud
 followed by the new samples: the refined cloud to pass to mcws_boundary and mcws_measure. Same
 --seed, same output, for any --threads. A cloud whose header records the robot it was made from
 (name and SHA-256 of the robot file, as mcws_sample writes it) must come from the --robot file;
@@ -42,10 +53,72 @@ void declareFlags(mcws::app::CommandLine& cli) {
   cli.addValue(
       "spread",
       "neighbourhood half-width, a fraction of each joint's range in (0, 1] (default 0.1)");
-  cli.addValue("point", "tool | flange, as sampled (default tool)");
+  cli.addValue("point", "tool | flange: must be the point the cloud records (default: that one)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
   cli.addSwitch("json", "print a JSON summary on stdout");
+}
+
+/// RefineSampler's samples labelled by CollisionChecker::label() of the joint values that produced
+/// them, as mcws_sample --collision labels its own (LabelledRobotSampler).
+class LabelledRefineSampler : public mcws::PointGenerator {
+ public:
+  LabelledRefineSampler(const mcws::RefineSampler& sampler, const mcws::CollisionChecker& checker)
+      : sampler_(sampler), checker_(checker) {}
+  void generate(std::uint64_t first, std::size_t count, mcws::WorkspacePoint* out) const override {
+    sampler_.generate(first, count, out);
+    mcws::CollisionChecker::Scratch scratch;
+    double q[mcws::kMaxJoints];
+    for (std::size_t k = 0; k < count; ++k) {
+      sampler_.jointValues(first + k, q);
+      out[k].label = checker_.label(q, scratch);
+    }
+  }
+
+ private:
+  const mcws::RefineSampler& sampler_;
+  const mcws::CollisionChecker& checker_;
+};
+
+/// Checks that the cloud of --`flag` has the joint fields q1..qn of an n-joint robot: clouds
+/// without them (a mcws_reach map, a PCL cloud) would load with every joint at 0.
+void requireJointFields(const std::string& flag, const std::string& path, int dof) {
+  pcl::PCLPointCloud2 header;
+  if (pcl::PCDReader().readHeader(path, header) < 0) {
+    throw mcws::Error("--" + flag + " '" + path + "': cannot read the PCD header");
+  }
+  for (int j = 1; j <= dof; ++j) {
+    const std::string name = "q" + std::to_string(j);
+    const bool found = std::any_of(header.fields.begin(), header.fields.end(),
+                                   [&](const pcl::PCLPointField& f) { return f.name == name; });
+    if (!found) {
+      throw mcws::Error("--" + flag + " '" + path + "' has no field " + name +
+                        ": refinement needs the joint values of each point (fields q1..q" +
+                        std::to_string(dof) +
+                        ", as mcws_sample writes them; a mcws_reach map "
+                        "cloud has none)");
+    }
+  }
+}
+
+/// How the cloud of --`flag` was sampled, as its header records it.
+/// \throws mcws::Error when it records nothing or predates the record.
+mcws::io::SamplingRecord recordedSampling(
+    const std::string& flag, const std::string& path,
+    const std::optional<mcws::io::CloudProvenance>& recorded) {
+  if (!recorded) {
+    throw mcws::Error("--" + flag + " '" + path +
+                      "' does not record how it was sampled (no '# mcws' header line): refine "
+                      "draws new samples the same way; make the cloud with mcws_sample (then "
+                      "mcws_boundary)");
+  }
+  if (!recorded->sampling) {
+    throw mcws::Error("--" + flag + " '" + path +
+                      "' predates the record of how it was sampled (its '# mcws' header line has "
+                      "no point=, collision=, fix=): re-make it with mcws_sample (then "
+                      "mcws_boundary) of this version");
+  }
+  return *recorded->sampling;
 }
 
 }  // namespace
@@ -65,7 +138,7 @@ int main(int argc, char** argv) {
     options.spread = app::parseNumber(cli.text("spread", "0.1"), "spread");
     if (!(options.spread > 0.0 && options.spread <= 1.0))
       throw app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
-    options.point = app::readPoint(cli);
+    const SamplePoint asked_point = app::readPoint(cli);  // checked now; compared below
     const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
@@ -73,15 +146,45 @@ int main(int argc, char** argv) {
                                              {"cloud", cli.text("cloud", "")}});
 
     const Robot robot = app::readRobot(cli);
-    const io::CloudProvenance provenance = app::robotProvenance(robot);
+    io::CloudProvenance provenance = app::robotProvenance(robot);
+    const auto boundary = app::loadCloud(cli.required("input"));
     for (const char* flag : {"input", "cloud"}) {
       if (cli.has(flag)) {
         const std::string path = cli.required(flag);
-        app::requireSameRobot(flag, path, app::readProvenance(path), provenance);
+        const std::optional<io::CloudProvenance> recorded = app::readProvenance(path);
+        app::requireSameRobot(flag, path, recorded, provenance);
+        requireJointFields(flag, path, robot.dof());
+        const io::SamplingRecord sampling = recordedSampling(flag, path, recorded);
+        if (provenance.sampling && sampling != *provenance.sampling) {
+          throw Error("--cloud '" + path + "' was sampled with " + io::describeSampling(sampling) +
+                      " but --input '" + cli.required("input") + "' with " +
+                      io::describeSampling(*provenance.sampling));
+        }
+        provenance.sampling = sampling;
       }
     }
-    const auto boundary = app::loadCloud(cli.required("input"));
-    const RefineSampler sampler(robot, *boundary, options);
+    // New samples are drawn as the cloud's were: the same point, pinned joints and labels.
+    const io::SamplingRecord& sampling = *provenance.sampling;
+    const SamplePoint recorded_point =
+        sampling.point == "flange" ? SamplePoint::kFlange : SamplePoint::kTool;
+    if (cli.has("point") && asked_point != recorded_point) {
+      throw app::UsageError("--point " + cli.required("point") + ": --input '" +
+                            cli.required("input") + "' was sampled at the " + sampling.point +
+                            " (point=" + sampling.point +
+                            "); leave out --point to refine it there");
+    }
+    options.point = recorded_point;
+    options.fixed = sampling.fixed;
+    const RefineSampler refine(robot, *boundary, options);
+    std::unique_ptr<CollisionChecker> checker;
+    std::unique_ptr<LabelledRefineSampler> labelled;
+    if (sampling.collision) {
+      checker = std::make_unique<CollisionChecker>(
+          robot, loadRequiredCollisionModel(robot, cli.required("robot")));
+      labelled = std::make_unique<LabelledRefineSampler>(refine, *checker);
+    }
+    const PointGenerator& sampler = labelled ? static_cast<const PointGenerator&>(*labelled)
+                                             : static_cast<const PointGenerator&>(refine);
     // Several processes: rank 0 alone holds the copied cloud and writes it.
     const bool holds_cloud = cli.has("cloud") && processes.rank() == 0;
     const auto refined = holds_cloud ? app::loadCloud(cli.required("cloud"))
@@ -112,7 +215,9 @@ int main(int argc, char** argv) {
                              {"points", kept + samples},
                              {"spread", options.spread},
                              {"length_unit", unitName(robot.length_unit)},
-                             {"pinned", sampler.pinnedJoints()},
+                             {"pinned", refine.pinnedJoints()},
+                             {"point", sampling.point},
+                             {"collision", sampling.collision},
                              {"seed", options.seed},
                              {"output", output},
                              {"processes", processes.size()},

@@ -88,6 +88,9 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
   for (const std::string& fix : cli.all("fix")) {
     for (const auto& pinned : app::parseAssignments(fix, "fix")) options.fixed.push_back(pinned);
   }
+  // How the samples are drawn, so that mcws_refine draws more the same way.
+  source.provenance->sampling = io::SamplingRecord{point == SamplePoint::kTool ? "tool" : "flange",
+                                                   cli.has("collision"), options.fixed};
   if (cli.has("collision")) {
     source.checker = std::make_unique<CollisionChecker>(
         robot, loadRequiredCollisionModel(robot, cli.required("robot")));

@@ -3,9 +3,11 @@
 // the base reaches them all; bad input gets one line and writes nothing.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
 #include <pcl/io/pcd_io.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -230,6 +232,43 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
                 " --confirm all --no-collision --threads 1 --json --output " + file("b2.pcd"));
   ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
   EXPECT_EQ(nlohmann::json::parse(from_file.out)["candidates"], candidates);
+}
+
+TEST_F(StudyApp, PlacementRefusesTheMapOfAnEditedRobotFileOrOneThatPredatesItsRecord) {
+  // The robot file, copied so that it can be edited.
+  const std::string robot = file("planar2.yaml"), map = file("m.bin");
+  std::filesystem::copy_file(test::robotPath("planar2"), robot);
+  const test::RunResult made =
+      test::run(kReach + " --robot " + robot + " --resolution 5cm --samples 20000 --output " +
+                file("m.pcd") + " --map " + map);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string targets = planarTargets({{0, 50}});
+  const std::string args = "--robot " + robot + " --targets " + targets +
+                           " --along \"0 10 5\" --no-collision --map " + map + " --output ";
+  // The map of this very file is accepted.
+  const test::RunResult same = test::run(kPlace + " " + args + file("b.pcd"));
+  ASSERT_EQ(same.exit_code, 0) << same.err;
+  // The elbow's limits narrowed: the same name, unit and lengths (so the same manipulability
+  // scale), another reach.
+  std::string text = test::readFile(robot);
+  const std::string elbow = "limits: [-160, 160]";
+  ASSERT_NE(text.find(elbow), std::string::npos);
+  text.replace(text.find(elbow), elbow.size(), "limits: [-120, 120]");
+  test::writeFile(robot, text);
+  test::expectToolFailure(kPlace, args + output("b.pcd"), 1,
+                          map + ": the map was made from robot file planar2.yaml (sha256 ", out_);
+  test::expectToolFailure(kPlace, args + output("b.pcd"), 1,
+                          "not from --robot " + robot + " (sha256 ", out_);
+  // A map written before its header recorded the robot file.
+  std::string bytes = test::readFile(map);
+  const std::size_t from = bytes.find(",\"robot_file\":");  // then robot_sha256, samples
+  const std::size_t to = bytes.find(",\"samples\":", from);
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  bytes.erase(from, to - from);
+  test::writeFile(map, bytes);
+  test::expectToolFailure(kPlace, args + output("b.pcd"), 1,
+                          map + ": the map predates the record of its robot file's SHA-256", out_);
 }
 
 TEST_F(StudyApp, PlacementHelpDescribesTheFlags) {

@@ -56,10 +56,11 @@ class ProvenanceApp : public ::testing::Test {
     return test::run(kSample + " --robot " + robot + " --fix theta3=0 --samples 2000 --output " +
                      output);
   }
-  /// The line mcws_sample should write for the robot file `path` (name deicing, unit cm).
+  /// The line mcws_sample should write for the robot file `path` (name deicing, unit cm) and
+  /// --fix theta3=0.
   std::string expectedLine(const std::string& path) const {
     return "# mcws robot=deicing file=" + std::filesystem::path(path).filename().string() +
-           " sha256=" + sha256sum(path) + " length_unit=cm";
+           " sha256=" + sha256sum(path) + " length_unit=cm point=tool collision=0 fix=theta3:0";
   }
   std::string refineArgs(const std::string& robot, const std::string& input,
                          const std::string& output) const {
@@ -81,7 +82,7 @@ TEST_F(ProvenanceApp, SampleRecordsTheRobotNameFileHashAndUnitAfterPclsFirstLine
       0);
   EXPECT_EQ(line(dir_.file("urdf.pcd"), 2),
             "# mcws robot=inspection6 file=inspection6.urdf sha256=" + sha256sum(urdf) +
-                " length_unit=m");
+                " length_unit=m point=tool collision=0 fix=none");
   // A --shape has no robot: no line.
   ASSERT_EQ(
       test::run(kSample + " --shape disk --samples 10 --output " + dir_.file("disk.pcd")).exit_code,
@@ -149,21 +150,23 @@ TEST_F(ProvenanceApp, RefineWithTheSameRobotFileRecordsIt) {
   EXPECT_EQ(line(dir_.file("copy.pcd"), 2), expectedLine(copy));
 }
 
-TEST_F(ProvenanceApp, CloudsWithoutTheLineAndForeignCommentsAreAccepted) {
-  // An older cloud (or another tool's): no line, the joint-limit check only.
+TEST_F(ProvenanceApp, CloudsWithoutTheLineAreRefusedAndForeignCommentsAccepted) {
+  // An older cloud (or another tool's): no line, so nothing says how it was sampled (issue 31).
   const std::string old = dir_.file("old.pcd");
   test::writeFile(old, replaceLine(cloud_, 2, ""));
   ASSERT_EQ(line(old, 2), "VERSION 0.7");
-  test::RunResult r = test::run(kRefine + " " + refineArgs(robot_, old, dir_.file("a.pcd")));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(line(dir_.file("a.pcd"), 2), expectedLine(robot_));
+  test::expectToolFailure(kRefine, refineArgs(robot_, old, nothing_written_.file("a.pcd")), 1,
+                          "--input '" + old + "' does not record how it was sampled",
+                          nothing_written_);
   // Comments of others, also indented (PCL's reader trims a line before it looks for '#').
   const std::string noted = dir_.file("noted.pcd");
   test::writeFile(noted, replaceLine(cloud_, 1, "# .PCD v0.7\n  # measured by hand\n\t#mcwsx"));
   pcl::PointCloud<pcl::PointXYZ> xyz;
   ASSERT_EQ(pcl::io::loadPCDFile(noted, xyz), 0);
-  r = test::run(kRefine + " " + refineArgs(robot_, noted, dir_.file("b.pcd")));
+  const test::RunResult r =
+      test::run(kRefine + " " + refineArgs(robot_, noted, dir_.file("b.pcd")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(line(dir_.file("b.pcd"), 2), expectedLine(robot_));
 }
 
 TEST_F(ProvenanceApp, AMalformedOrSecondLineIsRefusedNamingTheFileAndLine) {
@@ -193,11 +196,16 @@ TEST_F(ProvenanceApp, TheLineSurvivesBoundaryAndSelect) {
   test::RunResult r = test::run(std::string(MCWS_BOUNDARY_EXE) + " --input " + cloud_ +
                                 " --plane xz --output " + rim + " --interior " + inside);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(line(rim, 2), expectedLine(robot_));
-  EXPECT_EQ(line(inside, 2), expectedLine(robot_));
+  // ... with the cloud they were found in (mcws_measure --boundary checks it).
+  ASSERT_THAT(line(rim, 11), StartsWith("POINTS "));
+  const std::string rim_points = line(rim, 11).substr(std::string("POINTS ").size());
+  const std::string input =
+      " input_points=2000 input_sha256=" + sha256sum(cloud_) + " boundary_points=" + rim_points;
+  EXPECT_EQ(line(rim, 2), expectedLine(robot_) + input);
+  EXPECT_EQ(line(inside, 2), expectedLine(robot_) + input);
   r = test::run(std::string(MCWS_SELECT_EXE) + " --input " + rim + " --label 0 --output " + free);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(line(free, 2), expectedLine(robot_));
+  EXPECT_EQ(line(free, 2), expectedLine(robot_) + input);
   // ... and so the refinement of a boundary of another robot is caught.
   test::expectToolFailure(
       kRefine, refineArgs(test::robotPath("planar2"), free, nothing_written_.file("out.pcd")), 1,

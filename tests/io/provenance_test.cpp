@@ -94,6 +94,64 @@ TEST(ProvenanceComment, RefusesMalformedLinesSayingWhy) {
   EXPECT_THAT(test::errorOf([&] { io::provenanceComment(bad); }), HasSubstr("sha256 'abc'"));
 }
 
+TEST(ProvenanceComment, RecordsHowTheCloudWasSampledAndReadsItBackExactly) {
+  io::CloudProvenance p = example();
+  // 0.1 and 1/3 need all 17 digits to read back as the same double.
+  p.sampling = io::SamplingRecord{"flange", true, {{"theta 3", 0.1}, {"d:1,x", -1.0 / 3.0}}};
+  const std::string line = io::provenanceComment(p);
+  EXPECT_THAT(line, HasSubstr(" length_unit=cm point=flange collision=1 "
+                              "fix=theta%203:0.10000000000000001,d%3A1%2Cx:-0.33333333333333331"));
+  const io::CloudProvenance back = io::parseProvenanceComment(line);
+  ASSERT_TRUE(back.sampling);
+  EXPECT_EQ(back.sampling->fixed[0].second, 0.1);
+  EXPECT_EQ(back.sampling->fixed[1].second, -1.0 / 3.0);
+  EXPECT_EQ(back, p);
+  p.sampling = io::SamplingRecord{};
+  EXPECT_THAT(io::provenanceComment(p), HasSubstr(" point=tool collision=0 fix=none"));
+  EXPECT_EQ(io::parseProvenanceComment(io::provenanceComment(p)), p);
+  // A boundary's input cloud.
+  p.input = io::InputCloud{20000, kSha256Empty, 700};
+  EXPECT_THAT(io::provenanceComment(p), HasSubstr(std::string(" input_points=20000 input_sha256=") +
+                                                  kSha256Empty + " boundary_points=700"));
+  EXPECT_EQ(io::parseProvenanceComment(io::provenanceComment(p)), p);
+  // A line of mcws before the record: read, with no sampling and no input.
+  const io::CloudProvenance old = io::parseProvenanceComment(io::provenanceComment(example()));
+  EXPECT_FALSE(old.sampling);
+  EXPECT_FALSE(old.input);
+}
+
+TEST(ProvenanceComment, RefusesMalformedSamplingAndInputKeysSayingWhy) {
+  const auto error = [](const std::string& keys) {
+    return test::errorOf(
+        [&] { io::parseProvenanceComment(io::provenanceComment(example()) + " " + keys); });
+  };
+  EXPECT_THAT(error("point=tool collision=0"),
+              HasSubstr("point=, collision= and fix= come together: the line has 2 of them"));
+  EXPECT_THAT(error("point=elbow collision=0 fix=none"), HasSubstr("point=elbow is not tool"));
+  EXPECT_THAT(error("point=tool collision=yes fix=none"), HasSubstr("collision=yes is not 0 or 1"));
+  EXPECT_THAT(error("point=tool collision=0 fix="), HasSubstr("fix=: '' is not NAME:VALUE"));
+  EXPECT_THAT(error("point=tool collision=0 fix=a:1,"), HasSubstr("'' is not NAME:VALUE"));
+  EXPECT_THAT(error("point=tool collision=0 fix=a:1x"), HasSubstr("'1x' is not a finite number"));
+  EXPECT_THAT(error("point=tool collision=0 fix=a:inf"), HasSubstr("'inf' is not a finite"));
+  EXPECT_THAT(error("point=tool collision=0 fix=a:1,a:2"), HasSubstr("joint 'a' given twice"));
+  EXPECT_THAT(error("point=tool point=tool collision=0 fix=none"), HasSubstr("point= given twice"));
+  EXPECT_THAT(error("input_points=5"),
+              HasSubstr("input_points=, input_sha256= and boundary_points= come together: the "
+                        "line has 1 of them"));
+  EXPECT_THAT(
+      error(std::string("input_points=-5 input_sha256=") + kSha256Abc + " boundary_points=1"),
+      HasSubstr("input_points=-5 is not a whole number"));
+  EXPECT_THAT(
+      error(std::string("input_points=5 input_sha256=") + kSha256Abc + " boundary_points=1e3"),
+      HasSubstr("boundary_points=1e3 is not a whole number"));
+  EXPECT_THAT(error("input_points=5 input_sha256=abc boundary_points=1"),
+              HasSubstr("input_sha256=abc is not 64 lowercase hex digits"));
+  io::CloudProvenance bad = example();
+  bad.sampling = io::SamplingRecord{"elbow", false, {}};
+  EXPECT_THAT(test::errorOf([&] { io::provenanceComment(bad); }),
+              HasSubstr("point 'elbow' is not tool or flange"));
+}
+
 TEST(PcdStreamWriter, RecordsTheProvenanceAfterPclsFirstLineAndPclStillReadsTheFile) {
   test::TempDir dir;
   pcl::PointCloud<WorkspacePoint> cloud;

@@ -2,9 +2,14 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <array>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -100,6 +105,62 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
+/// A double printed to read back exactly.
+std::string exactNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+/// "name:value,..." or "none".
+std::string encodeFixed(const std::vector<std::pair<std::string, double>>& fixed) {
+  if (fixed.empty()) return "none";
+  std::string out;
+  for (const auto& [name, value] : fixed) {
+    if (!out.empty()) out += ',';
+    out += encode(name) + ":" + exactNumber(value);
+  }
+  return out;
+}
+
+/// The whole of `text` as a finite double, or none.
+std::optional<double> parseNumber(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  errno = 0;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (errno != 0 || end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+/// The value of fix= (still encoded).
+std::vector<std::pair<std::string, double>> decodeFixed(const std::string& value) {
+  std::vector<std::pair<std::string, double>> fixed;
+  if (value == "none") return fixed;
+  const auto bad = [&](const std::string& why) {
+    return Error("fix=" + shortText(value) + ": " + why +
+                 " (it reads none or NAME:VALUE,NAME:VALUE...)");
+  };
+  std::size_t begin = 0;
+  while (begin <= value.size()) {
+    std::size_t end = value.find(',', begin);
+    if (end == std::string::npos) end = value.size();
+    const std::string item = value.substr(begin, end - begin);
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos || colon == 0)
+      throw bad("'" + shortText(item) + "' is not NAME:VALUE");
+    const std::string name = decode("fix", item.substr(0, colon));
+    const std::optional<double> number = parseNumber(item.substr(colon + 1));
+    if (!number) throw bad("'" + shortText(item.substr(colon + 1)) + "' is not a finite number");
+    for (const auto& pinned : fixed) {
+      if (pinned.first == name) throw bad("joint '" + shortText(name) + "' given twice");
+    }
+    fixed.emplace_back(name, *number);
+    begin = end + 1;
+  }
+  return fixed;
+}
+
 }  // namespace
 
 std::string provenanceComment(const CloudProvenance& p) {
@@ -114,8 +175,38 @@ std::string provenanceComment(const CloudProvenance& p) {
     throw Error("cannot record the robot of a cloud: length unit '" + p.length_unit +
                 "' is not m, cm or mm");
   }
-  return std::string("# ") + kWord + " robot=" + encode(p.robot) + " file=" + encode(p.file) +
-         " sha256=" + p.sha256 + " length_unit=" + p.length_unit;
+  std::string line = std::string("# ") + kWord + " robot=" + encode(p.robot) +
+                     " file=" + encode(p.file) + " sha256=" + p.sha256 +
+                     " length_unit=" + p.length_unit;
+  if (p.sampling) {
+    if (p.sampling->point != "tool" && p.sampling->point != "flange") {
+      throw Error("cannot record how a cloud was sampled: point '" + p.sampling->point +
+                  "' is not tool or flange");
+    }
+    for (const auto& pinned : p.sampling->fixed) {
+      if (pinned.first.empty() || !std::isfinite(pinned.second)) {
+        throw Error("cannot record how a cloud was sampled: fixed joint '" + pinned.first +
+                    "' = " + exactNumber(pinned.second));
+      }
+    }
+    line += " point=" + p.sampling->point + " collision=" + (p.sampling->collision ? "1" : "0") +
+            " fix=" + encodeFixed(p.sampling->fixed);
+  }
+  if (p.input) {
+    if (!isSha256(p.input->sha256)) {
+      throw Error("cannot record the input of a boundary: sha256 '" + p.input->sha256 +
+                  "' is not 64 lowercase hex digits");
+    }
+    line += " input_points=" + std::to_string(p.input->points) +
+            " input_sha256=" + p.input->sha256 +
+            " boundary_points=" + std::to_string(p.input->boundary_points);
+  }
+  return line;
+}
+
+std::string describeSampling(const SamplingRecord& sampling) {
+  return "point=" + sampling.point + " collision=" + (sampling.collision ? "1" : "0") +
+         " fix=" + encodeFixed(sampling.fixed);
 }
 
 bool isProvenanceComment(const std::string& line) {
@@ -130,26 +221,28 @@ bool isProvenanceComment(const std::string& line) {
 }
 
 CloudProvenance parseProvenanceComment(const std::string& line) {
-  CloudProvenance p;
-  std::string* const slots[] = {&p.robot, &p.file, &p.sha256, &p.length_unit};
-  const char* const keys[] = {"robot", "file", "sha256", "length_unit"};
-  bool seen[4] = {false, false, false, false};
+  // Raw (still encoded) values of the keys this version knows; others are ignored.
+  const char* const known[] = {"robot",        "file",           "sha256", "length_unit",
+                               "point",        "collision",      "fix",    "input_points",
+                               "input_sha256", "boundary_points"};
+  std::map<std::string, std::string> raw;
   for (const std::string& word : words(line)) {
     const std::size_t equals = word.find('=');
     if (equals == std::string::npos || equals == 0) {
       throw Error("'" + shortText(word) + "' is not key=value (the line reads " + kForm + ")");
     }
     const std::string key = word.substr(0, equals);
-    for (int k = 0; k < 4; ++k) {
-      if (key != keys[k]) continue;
-      if (seen[k]) throw Error(key + "= given twice");
-      seen[k] = true;
-      *slots[k] = decode(key, word.substr(equals + 1));
-    }
+    if (std::find(std::begin(known), std::end(known), key) == std::end(known)) continue;
+    if (raw.count(key)) throw Error(key + "= given twice");
+    raw[key] = word.substr(equals + 1);
   }
+  CloudProvenance p;
+  std::string* const slots[] = {&p.robot, &p.file, &p.sha256, &p.length_unit};
   for (int k = 0; k < 4; ++k) {
-    if (!seen[k] || slots[k]->empty()) {
-      throw Error(std::string("no ") + keys[k] + "= value (the line reads " + kForm + ")");
+    const auto found = raw.find(known[k]);
+    if (found != raw.end()) *slots[k] = decode(known[k], found->second);
+    if (slots[k]->empty()) {
+      throw Error(std::string("no ") + known[k] + "= value (the line reads " + kForm + ")");
     }
   }
   if (!isSha256(p.sha256)) {
@@ -157,6 +250,50 @@ CloudProvenance parseProvenanceComment(const std::string& line) {
   }
   if (!isUnit(p.length_unit)) {
     throw Error("length_unit=" + shortText(p.length_unit) + " is not m, cm or mm");
+  }
+  const int sampling_keys =
+      static_cast<int>(raw.count("point") + raw.count("collision") + raw.count("fix"));
+  if (sampling_keys != 0 && sampling_keys != 3) {
+    throw Error("point=, collision= and fix= come together: the line has " +
+                std::to_string(sampling_keys) + " of them");
+  }
+  if (sampling_keys == 3) {
+    SamplingRecord sampling;
+    sampling.point = raw["point"];
+    if (sampling.point != "tool" && sampling.point != "flange") {
+      throw Error("point=" + shortText(sampling.point) + " is not tool or flange");
+    }
+    const std::string& collision = raw["collision"];
+    if (collision != "0" && collision != "1") {
+      throw Error("collision=" + shortText(collision) + " is not 0 or 1");
+    }
+    sampling.collision = collision == "1";
+    sampling.fixed = decodeFixed(raw["fix"]);
+    p.sampling = sampling;
+  }
+  const int input_keys = static_cast<int>(raw.count("input_points") + raw.count("input_sha256") +
+                                          raw.count("boundary_points"));
+  if (input_keys != 0 && input_keys != 3) {
+    throw Error("input_points=, input_sha256= and boundary_points= come together: the line has " +
+                std::to_string(input_keys) + " of them");
+  }
+  if (input_keys == 3) {
+    const auto count = [&](const char* key) {
+      const std::string& text = raw[key];
+      if (text.empty() || text.size() > 19 ||
+          text.find_first_not_of("0123456789") != std::string::npos) {
+        throw Error(std::string(key) + "=" + shortText(text) + " is not a whole number");
+      }
+      return static_cast<std::uint64_t>(std::stoull(text));
+    };
+    InputCloud input;
+    input.points = count("input_points");
+    input.boundary_points = count("boundary_points");
+    input.sha256 = raw["input_sha256"];
+    if (!isSha256(input.sha256)) {
+      throw Error("input_sha256=" + shortText(input.sha256) + " is not 64 lowercase hex digits");
+    }
+    p.input = input;
   }
   return p;
 }

@@ -40,6 +40,35 @@ RefineSampler::RefineSampler(const Robot& robot, const pcl::PointCloud<Workspace
     }
   }
   step_ = options.spread * (upper_ - lower_);
+  if (options.fixed) {
+    std::vector<bool> pinned(dof_, false);
+    for (const auto& [name, value] : *options.fixed) {
+      const int j = robot.jointIndex(name);
+      const Joint& joint = robot.joints[j];
+      std::ostringstream msg;
+      msg.precision(10);
+      if (pinned[j]) throw Error("joint '" + name + "' is fixed twice");
+      pinned[j] = true;
+      if (!std::isfinite(value) || value < joint.lower || value > joint.upper) {
+        msg << "fixed value " << value << " of joint '" << name << "' is outside its limits "
+            << describeLimits(joint, robot.length_unit);
+        throw Error(msg.str());
+      }
+      // The parents hold the value as a float.
+      const float stored = static_cast<float>(value);
+      for (std::size_t p = 0; p < parents.size(); ++p) {
+        if (parents[p].q[j] != stored) {
+          msg << "point " << p << ": q" << j + 1 << " = " << parents[p].q[j] << " but joint '"
+              << name << "' was fixed at " << value << " when the cloud was sampled";
+          throw Error(msg.str());
+        }
+        parents_[p * dof_ + j] = value;
+      }
+      step_[j] = 0.0;
+      pinned_names_.push_back(name);
+    }
+    return;
+  }
   for (int j = 0; j < dof_; ++j) {
     const bool pinned = parents.size() > 1 &&
                         std::all_of(parents.begin(), parents.end(), [&](const WorkspacePoint& p) {

@@ -6,6 +6,9 @@
 #include <pcl/point_cloud.h>
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "mcws/kinematics/point_kinematics.h"
@@ -22,14 +25,18 @@ struct RefineOptions {
   /// Half-width of each joint's neighbourhood, as a fraction of its range (0, 1]; the default
   /// is the de-icing arm's best (BENCHMARKS.md, "The de-icing arm's pipeline, tighter").
   double spread{0.1};
+  /// The joints pinned when the parents were sampled (mcws_sample --fix), by name [rad | length
+  /// unit]: these, and only these, keep their value. Without it, joints with one value in every
+  /// parent (of two or more) are taken as pinned.
+  std::optional<std::vector<std::pair<std::string, double>>> fixed;
 };
 
 /// \brief Samples joint vectors in small neighbourhoods of given parent configurations: sample i
 /// takes parent i mod P and moves each joint by spread * (range of the joint) * (2u - 1), u
 /// uniform in [0, 1), clamped to the joint's limits. Clamping is deliberate: the joint limits map
 /// onto much of the workspace boundary, which plain uniform sampling reaches with probability 0.
-/// Joints that have one value in every parent (pinned when the parents were sampled, e.g. the
-/// de-icing arm's theta3 = 0 for its X-Z plane) keep it. Points carry x y z, q and label 0, like
+/// Joints pinned when the parents were sampled (RefineOptions::fixed, e.g. the de-icing arm's
+/// theta3 = 0 for its X-Z plane) keep their value. Points carry x y z, q and label 0, like
 /// RobotSampler's, and depend only on the seed and their index.
 ///
 /// Joint-space sampling leaves the Cartesian edge of a workspace sparse where the forward map
@@ -38,8 +45,10 @@ class RefineSampler : public PointGenerator {
  public:
   /// \param parents the boundary points; their q fields are the configurations to refine.
   /// \throws mcws::Error for no parents, a spread outside (0, 1], a robot with more than
-  ///   kMaxJoints joints, or a parent whose joint values lie outside the robot's limits (the
-  ///   cloud was not sampled from this robot), naming the point, the joint and the value.
+  ///   kMaxJoints joints, a parent whose joint values lie outside the robot's limits (the
+  ///   cloud was not sampled from this robot), an unknown joint or a value outside its limits in
+  ///   RefineOptions::fixed, or a parent whose value of a fixed joint is not the fixed value,
+  ///   naming the point, the joint and the value.
   RefineSampler(const Robot& robot, const pcl::PointCloud<WorkspacePoint>& parents,
                 const RefineOptions& options);
 
@@ -48,7 +57,7 @@ class RefineSampler : public PointGenerator {
   /// q[0 .. dof) [rad | length unit].
   void jointValues(std::uint64_t index, double* q) const;
 
-  /// \brief Names of the joints kept at the parents' common value.
+  /// \brief Names of the joints kept at their value.
   const std::vector<std::string>& pinnedJoints() const { return pinned_names_; }
 
  private:
