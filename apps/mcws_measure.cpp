@@ -270,8 +270,18 @@ int main(int argc, char** argv) {
                     << static_cast<int>(clock.seconds()) << " s)\n";
         };
       }
-      out = delaunayJson(delaunayMeasure(region, dimensions, settings.delaunay), settings, key,
-                         units, dimensions);
+      // The measure's own failures (the points lie in a plane, too few for the edge correction)
+      // name the cloud they are about.
+      const RegionMeasure measured = [&] {
+        try {
+          return delaunayMeasure(region, dimensions, settings.delaunay);
+        } catch (const UsageError&) {
+          throw;
+        } catch (const Error& e) {
+          throw Error(settings.input + ": " + e.what());
+        }
+      }();
+      out = delaunayJson(measured, settings, key, units, dimensions);
       if (column) {
         out["cross_check"] = {
             {"method", "column"}, {key, units.area(column->area)}, {"note", kCrossCheckNote}};

@@ -11,6 +11,7 @@
 #include "common/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
+#include "mcws/core/input_files.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
@@ -108,11 +109,15 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
                               " is for a map built here, not with --map");
     }
     const std::string path = cli.required("map");
+    requireInputFile(path, "reachability map");  // regular file, noted as an input of the run
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open the reachability map");
     std::string header;
     ReachMap map = ReachMap::read(in, path, &header);
     const nlohmann::json h = nlohmann::json::parse(header, nullptr, false);
+    // A header member of the wrong type (a number for "robot") throws nlohmann's own exception,
+    // whose message names no file: one line naming the map instead.
+    try {
     if (!h.is_object() || h.value("robot", "") != robot.name ||
         h.value("length_unit", "") != unit) {
       throw Error(path + ": the map is of robot '" + (h.is_object() ? h.value("robot", "?") : "?") +
@@ -149,6 +154,11 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
                   ", not as " + wanted.dump() + " (--quality-task, --length)");
     }
     about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
+    } catch (const nlohmann::json::exception& e) {
+      const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
+      throw Error(path + ": the map's header has a member of the wrong type: " +
+                  what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2));
+    }
     return map;
   }
   if (!cli.has("resolution")) throw app::UsageError("missing --map or --resolution");

@@ -124,6 +124,20 @@ TEST_F(CloudChecksApp, AFlatCloudIsNamedByItsFlattestAxisAndItsRealExtents) {
   expectFailure(kMeasure, "--input " + path, 1, message);
 }
 
+TEST_F(CloudChecksApp, TheMeasuresOwnFailuresNameTheCloud) {
+  // A tilted plane extends along every axis (so it is not flat along one), but holds no volume:
+  // the triangulation's "lie in a plane" named no file.
+  pcl::PointCloud<pcl::PointXYZ> tilted;
+  for (int i = 0; i < 20; ++i) {
+    for (int k = 0; k < 20; ++k) {
+      const float u = static_cast<float>(i), v = static_cast<float>(k);
+      tilted.push_back({u, v, 0.5f * u + 0.25f * v});  // exact in float: one plane
+    }
+  }
+  const std::string path = save("tilted.pcd", tilted);
+  expectFailure(kMeasure, "--input " + path, 1, path + ": the points lie in a plane: no volume");
+}
+
 TEST_F(CloudChecksApp, NumericFlagsOutsideTheCloudsRangeAreUsageErrors) {
   // 40 x 40 grid of spacing 1: extent 39 in the plane; meanSpacing() estimates the spacing from
   // the cells the points occupy as 1.02375, so lengths run from 0.102375.

@@ -14,6 +14,7 @@
 #include <ostream>
 
 #include "mcws/collision/collision_checker.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/reach/pose_batch.h"
@@ -66,7 +67,7 @@ void readRaw(std::istream& in, T& value, const std::string& source) {
 void ReachGrid::check() const {
   if (!(resolution > 0.0) || !std::isfinite(resolution)) {
     throw Error("reachability map: the resolution must be positive and finite, not " +
-                std::to_string(resolution));
+                formatNumber(resolution));
   }
   if (directions < 1) {
     throw Error("reachability map: need at least 1 orientation, not " + std::to_string(directions));
@@ -111,9 +112,11 @@ bool ReachMap::inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const {
 Eigen::Vector3i ReachMap::voxelOf(const Eigen::Vector3d& p) const {
   Eigen::Vector3i index;
   if (!inGrid(p, index)) {
-    throw Error("reachability map: a tool point at (" + std::to_string(p.x()) + ", " +
-                std::to_string(p.y()) + ", " + std::to_string(p.z()) +
-                ") is beyond the grid's range at resolution " + std::to_string(grid_.resolution));
+    throw Error("reachability map: a tool point at (" + formatNumber(p.x()) + ", " +
+                formatNumber(p.y()) + ", " + formatNumber(p.z()) +
+                ") is beyond the grid's range at resolution " + formatNumber(grid_.resolution) +
+                " (voxel indices within +-" + std::to_string(kIndexLimit) +
+                "): give a coarser --resolution");
   }
   return index;
 }
