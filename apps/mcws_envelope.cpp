@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
       io::writeWholeFile(cli.required("plot"), renderEnvelopePng(shown, name, units.lengthName()));
     }
     if (drawing) {
-      io::writeWholeFile(drawing_file, renderEnvelopeDrawing(*drawing, drawing_format, name,
-                                                             units.lengthName()));
+      io::writeWholeFile(drawing_file,
+                         renderEnvelopeDrawing(*drawing, drawing_format, name, units.lengthName()));
     }
     outputs.commit();
 

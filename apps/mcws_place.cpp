@@ -118,42 +118,44 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
     // A header member of the wrong type (a number for "robot") throws nlohmann's own exception,
     // whose message names no file: one line naming the map instead.
     try {
-    if (!h.is_object() || h.value("robot", "") != robot.name ||
-        h.value("length_unit", "") != unit) {
-      throw Error(path + ": the map is of robot '" + (h.is_object() ? h.value("robot", "?") : "?") +
-                  "' in " + (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
-                  robot.name + "' in " + unit);
-    }
-    // The same name and unit are not the same robot: its file may have been edited since.
-    const io::CloudProvenance robot_file = app::robotProvenance(robot);
-    if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
-      throw Error(path +
-                  ": the map predates the record of its robot file's SHA-256; re-make it "
-                  "with mcws_reach --robot " +
-                  cli.required("robot") + " --map " + path);
-    }
-    if (h["robot_sha256"].get<std::string>() != robot_file.sha256) {
-      throw Error(path + ": the map was made from robot file " + h.value("robot_file", "?") +
-                  " (sha256 " + h["robot_sha256"].get<std::string>().substr(0, 12) +
-                  "...), not from --robot " + cli.required("robot") + " (sha256 " +
-                  robot_file.sha256.substr(0, 12) +
-                  "...): the robot file has changed since, or "
-                  "is another; re-make the map with mcws_reach");
-    }
-    // Samples colliding with the environment at the robot's own base are missing from such a
-    // map: moved with the base, the environment's shadow would move too.
-    if (h.value("collision", false)) {
-      throw Error(path +
-                  ": the map counts only samples free of the environment at the robot's "
-                  "base (mcws_reach --collision); placement needs a map without it");
-    }
-    const nlohmann::json wanted = app::qualitySummary(app::readQualityOptions(cli, robot), robot);
-    if (h.contains("manipulability") && !h["manipulability"].is_null() &&
-        h["manipulability"] != wanted) {
-      throw Error(path + ": the map's manipulability is measured as " + h["manipulability"].dump() +
-                  ", not as " + wanted.dump() + " (--quality-task, --length)");
-    }
-    about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
+      if (!h.is_object() || h.value("robot", "") != robot.name ||
+          h.value("length_unit", "") != unit) {
+        throw Error(path + ": the map is of robot '" +
+                    (h.is_object() ? h.value("robot", "?") : "?") + "' in " +
+                    (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
+                    robot.name + "' in " + unit);
+      }
+      // The same name and unit are not the same robot: its file may have been edited since.
+      const io::CloudProvenance robot_file = app::robotProvenance(robot);
+      if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
+        throw Error(path +
+                    ": the map predates the record of its robot file's SHA-256; re-make it "
+                    "with mcws_reach --robot " +
+                    cli.required("robot") + " --map " + path);
+      }
+      if (h["robot_sha256"].get<std::string>() != robot_file.sha256) {
+        throw Error(path + ": the map was made from robot file " + h.value("robot_file", "?") +
+                    " (sha256 " + h["robot_sha256"].get<std::string>().substr(0, 12) +
+                    "...), not from --robot " + cli.required("robot") + " (sha256 " +
+                    robot_file.sha256.substr(0, 12) +
+                    "...): the robot file has changed since, or "
+                    "is another; re-make the map with mcws_reach");
+      }
+      // Samples colliding with the environment at the robot's own base are missing from such a
+      // map: moved with the base, the environment's shadow would move too.
+      if (h.value("collision", false)) {
+        throw Error(path +
+                    ": the map counts only samples free of the environment at the robot's "
+                    "base (mcws_reach --collision); placement needs a map without it");
+      }
+      const nlohmann::json wanted = app::qualitySummary(app::readQualityOptions(cli, robot), robot);
+      if (h.contains("manipulability") && !h["manipulability"].is_null() &&
+          h["manipulability"] != wanted) {
+        throw Error(path + ": the map's manipulability is measured as " +
+                    h["manipulability"].dump() + ", not as " + wanted.dump() +
+                    " (--quality-task, --length)");
+      }
+      about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
     } catch (const nlohmann::json::exception& e) {
       const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
       throw Error(path + ": the map's header has a member of the wrong type: " +

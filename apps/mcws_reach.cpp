@@ -210,8 +210,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   if (cli.has("halfcut"))
     io::writeWholeFile(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
   if (cli.has("histogram")) {
-    io::writeWholeFile(cli.required("histogram"),
-                       renderReachabilityHistogramPng(map, robot.name));
+    io::writeWholeFile(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
   }
   if (cli.has("map")) {
     std::ostringstream bytes;

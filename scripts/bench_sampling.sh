@@ -2,7 +2,8 @@
 # Sampling benchmarks for BENCHMARKS.md: (1) Google Benchmark of the sampler's forward kinematics
 # (file writing excluded) and of the PCD writer alone; (2) timed whole runs of mcws_sample with
 # 10 million samples (/usr/bin/time -v: wall time, peak memory) beside dd writing the same number
-# of bytes to the same disk. Medians of 5 (benchmarks and whole runs) in one run of this script.
+# of bytes to the same disk, without and with fdatasync (mcws_sample syncs its file to the disk
+# before giving it its name). Medians of 5 (benchmarks and whole runs) in one run of this script.
 # Usage: scripts/bench_sampling.sh [BUILD_DIR]   (needs a release build)
 set -euo pipefail
 # shellcheck source=lib/bench_common.sh
@@ -13,13 +14,13 @@ benchmark_medians "$build/bench/bench_sampler"
 echo
 
 echo "## Whole runs, 10000000 samples, --threads 2 (median of 5)"
-echo "| robot | wall s | peak RSS MB | file MB | RSS / file | dd same bytes s |"
-echo "|---|---|---|---|---|---|"
-write_zeros() {  # bytes, file: dd writing as many bytes as mcws_sample wrote
-  head -c "$1" /dev/zero | dd of="$2" bs=12M iflag=fullblock status=none
+echo "| robot | wall s | peak RSS MB | file MB | RSS / file | dd same bytes s | dd + fdatasync s |"
+echo "|---|---|---|---|---|---|---|"
+write_zeros() {  # bytes, file [dd option]: dd writing as many bytes as mcws_sample wrote
+  head -c "$1" /dev/zero | dd of="$2" bs=12M iflag=fullblock status=none ${3:+"$3"}
 }
 for robot in ta1400 inspection6; do
-  : >"$tmp/wall"; : >"$tmp/rss"; : >"$tmp/dd"
+  : >"$tmp/wall"; : >"$tmp/rss"; : >"$tmp/dd"; : >"$tmp/ddsync"
   for _ in $(seq "$runs"); do
     rm -f "$tmp/ws.pcd"; sync
     /usr/bin/time -v "$build/apps/mcws_sample" --robot "$root/robots/$robot.yaml" \
@@ -30,9 +31,13 @@ for robot in ta1400 inspection6; do
     bytes=$(stat -c %s "$tmp/ws.pcd")
     rm -f "$tmp/ws.pcd" "$tmp/dd.bin"; sync
     wall_time "$tmp/dd" write_zeros "$bytes" "$tmp/dd.bin"
+    rm -f "$tmp/dd.bin"; sync
+    wall_time "$tmp/ddsync" write_zeros "$bytes" "$tmp/dd.bin" conv=fdatasync
     rm -f "$tmp/dd.bin"
   done
   wall=$(median <"$tmp/wall"); rss=$(median <"$tmp/rss"); dd_s=$(median <"$tmp/dd")
-  awk -v r="$robot" -v w="$wall" -v rss="$rss" -v bytes="$bytes" -v d="$dd_s" 'BEGIN {
-    mb = bytes / 1048576; printf "| %s | %.2f | %.0f | %.1f | %.2f | %.2f |\n", r, w, rss, mb, rss / mb, d }'
+  dd_sync=$(median <"$tmp/ddsync")
+  awk -v r="$robot" -v w="$wall" -v rss="$rss" -v bytes="$bytes" -v d="$dd_s" -v ds="$dd_sync" 'BEGIN {
+    mb = bytes / 1048576
+    printf "| %s | %.2f | %.0f | %.1f | %.2f | %.2f | %.2f |\n", r, w, rss, mb, rss / mb, d, ds }'
 done

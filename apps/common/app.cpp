@@ -208,10 +208,10 @@ std::int64_t parseInteger(const std::string& text, const std::string& flag, std:
   char* end = nullptr;
   errno = 0;
   const long long value = std::strtoll(begin, &end, 10);
-  const bool digits = !text.empty() &&
-                      text.find_first_not_of("0123456789", text[0] == '-' || text[0] == '+') ==
-                          std::string::npos &&
-                      text.size() > (text[0] == '-' || text[0] == '+' ? 1u : 0u);
+  const bool digits =
+      !text.empty() &&
+      text.find_first_not_of("0123456789", text[0] == '-' || text[0] == '+') == std::string::npos &&
+      text.size() > (text[0] == '-' || text[0] == '+' ? 1u : 0u);
   if (!digits || end != begin + text.size()) {
     throw UsageError("--" + flag + ": '" + text + "' is not a whole number");
   }
@@ -261,7 +261,6 @@ std::vector<std::pair<std::string, double>> parseAssignments(const std::string& 
   if (pairs.empty()) throw UsageError("--" + flag + ": nothing in '" + text + "'");
   return pairs;
 }
-
 
 void checkOutputs(const std::vector<FlagPath>& outputs, const std::vector<FlagPath>& inputs) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {

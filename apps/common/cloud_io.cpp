@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common/app.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/input_files.h"
 #include "mcws/kinematics/robot.h"
@@ -611,7 +612,8 @@ void requireVolume(const CoordinateRange& range, const std::string& path) {
   }
   if (!(extent[flattest] > 1e-6f * extent.maxCoeff())) {
     throw Error(path + ": the cloud is flat in " + axis[flattest] + " (extent " +
-                shortNumber(extent[flattest]) + ", its largest " + shortNumber(extent.maxCoeff()) +
+                formatNumber(extent[flattest]) + ", its largest " +
+                formatNumber(extent.maxCoeff()) +
                 "), so in 3-D every point is on its boundary; give --plane");
   }
 }

@@ -8,8 +8,8 @@
 #include <new>
 
 #include "common/app.h"
-#include "mcws/core/decimal.h"
 #include "common/pose_args.h"
+#include "mcws/core/decimal.h"
 #include "test_support.h"
 
 namespace mcws {

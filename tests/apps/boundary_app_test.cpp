@@ -98,7 +98,7 @@ TEST_F(BoundaryApp, BadInputs) {
   // A 2-D region without --plane: every point would be on its 3-D boundary.
   expectFailure(
       "--input " + disk_ + " --output " + out(), 1,
-      "the cloud is flat in z (extent 0, its largest 1.99"); // the disk's extent, sampled
+      "the cloud is flat in z (extent 0, its largest 1.99");  // the disk's extent, sampled
 }
 
 TEST_F(BoundaryApp, BoundaryAndInteriorPartitionTheCloudWithoutNaN) {

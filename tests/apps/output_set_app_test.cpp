@@ -225,37 +225,43 @@ TEST_P(OutputSetApp, AFullFileSystemLeavesEveryOutputPathAsItWas) {
   }
 }
 
-const std::string kTraj = " --robot " + kRobot + " --from '0 0' --to '0.1 0.2' --duration 1 "
-                                                 "--rate 10";
+const std::string kTraj = " --robot " + kRobot +
+                          " --from '0 0' --to '0.1 0.2' --duration 1 "
+                          "--rate 10";
 
 INSTANTIATE_TEST_SUITE_P(
     EveryToolWithSeveralOutputs, OutputSetApp,
     ::testing::Values(
-        OutputSetCase{"Boundary", MCWS_BOUNDARY_EXE,
+        OutputSetCase{"Boundary",
+                      MCWS_BOUNDARY_EXE,
                       "--input " + kCloud + " --plane xy",
                       {{"output", "b.pcd"}, {"interior", "i.pcd"}}},
-        OutputSetCase{"BoundaryTiled", MCWS_BOUNDARY_EXE,
+        OutputSetCase{"BoundaryTiled",
+                      MCWS_BOUNDARY_EXE,
                       "--input {ball} --radius 0.3 --tiles 2",
                       {{"output", "b.pcd"}, {"interior", "i.pcd"}}},
         OutputSetCase{"Traj", MCWS_TRAJ_EXE, kTraj, {{"output", "t.csv"}, {"plot", "t.png"}}},
-        OutputSetCase{"Envelope", MCWS_ENVELOPE_EXE,
+        OutputSetCase{"Envelope",
+                      MCWS_ENVELOPE_EXE,
                       "--input {ball}",
                       {{"output", "e.ply"}, {"plot", "e.png"}, {"drawing", "d.svg"}}},
-        OutputSetCase{"Reach", MCWS_REACH_EXE,
-                      "--robot " + kRobot + " --resolution 10cm --samples 20000 --orientations 8",
-                      {{"output", "r.pcd"},
-                       {"map", "r.bin"},
-                       {"halfcut", "h.png"},
-                       {"histogram", "g.png"}}},
-        OutputSetCase{"Place", MCWS_PLACE_EXE,
+        OutputSetCase{
+            "Reach",
+            MCWS_REACH_EXE,
+            "--robot " + kRobot + " --resolution 10cm --samples 20000 --orientations 8",
+            {{"output", "r.pcd"}, {"map", "r.bin"}, {"halfcut", "h.png"}, {"histogram", "g.png"}}},
+        OutputSetCase{"Place",
+                      MCWS_PLACE_EXE,
                       "--robot " + kRobot + " --targets {targets}" +
                           " --along '0 10 5' --resolution 10cm --samples 20000 --orientations 8 "
                           "--no-collision",
                       {{"output", "p.pcd"}, {"plot", "p.png"}}},
-        OutputSetCase{"Plan", MCWS_PLAN_EXE,
+        OutputSetCase{"Plan",
+                      MCWS_PLAN_EXE,
                       "--scenario " + kScenario + " --validation-poses 0",
                       {{"output", "path.csv"}, {"plot", "c.png"}, {"plot-offsets", "o.png"}}},
-        OutputSetCase{"Behave", MCWS_BEHAVE_EXE,
+        OutputSetCase{"Behave",
+                      MCWS_BEHAVE_EXE,
                       "--model " + kBehaviors + " --insulators 1 --dot {dir}",
                       {{"log", "log.jsonl"}, {"timeline", "t.csv"}, {"plot", "s.png"}}}),
     [](const ::testing::TestParamInfo<OutputSetCase>& info) { return info.param.name; });
@@ -298,9 +304,9 @@ TEST(OutputSpellings, AFileTheRunReadsThroughTheRobotFileIsNeverReplaced) {
   const std::string mesh = dir.file("meshes/ta1400/j6_flange.stl");
   const std::string original = test::readFile(mesh);
   for (const std::string& output : {mesh, dir.file("meshes/ta1400/../ta1400/j6_flange.stl")}) {
-    const test::RunResult r = test::run(std::string(MCWS_SAMPLE_EXE) + " --robot " +
-                                        dir.file("ta1400_mesh.yaml") +
-                                        " --collision --samples 200 --output " + output);
+    const test::RunResult r =
+        test::run(std::string(MCWS_SAMPLE_EXE) + " --robot " + dir.file("ta1400_mesh.yaml") +
+                  " --collision --samples 200 --output " + output);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("it is the collision mesh"), std::string::npos) << r.err;
     EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
@@ -313,8 +319,8 @@ TEST(OutputSpellings, DevStdoutAppendsToTheShellsLog) {
   const std::string log = dir.file("log");
   test::writeFile(log, "earlier run\n");
   // In a subshell: test::run() sends the command's own stdout elsewhere.
-  const test::RunResult r = test::run("(" + std::string(MCWS_TRAJ_EXE) + kTraj +
-                                      " --output /dev/stdout >> " + log + ")");
+  const test::RunResult r =
+      test::run("(" + std::string(MCWS_TRAJ_EXE) + kTraj + " --output /dev/stdout >> " + log + ")");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const std::string text = test::readFile(log);
   EXPECT_EQ(text.rfind("earlier run\nt_s,", 0), 0u) << text.substr(0, 80);

@@ -291,12 +291,8 @@ TEST(OutputSet, TwoSpellingsOfOneNewFileAreRefused) {
   const std::string cwd = fs::current_path();
   fs::current_path(dir.file(""));
   const std::vector<std::pair<std::string, std::string>> same = {
-      {"b.pcd", "./b.pcd"},
-      {"b.pcd", dir.file("b.pcd")},
-      {"real/b.pcd", "linked/b.pcd"},
-      {"real/../b.pcd", "b.pcd"},
-      {"dangling", "real/new.txt"},
-      {"linked/new.txt", "dangling"}};
+      {"b.pcd", "./b.pcd"},       {"b.pcd", dir.file("b.pcd")}, {"real/b.pcd", "linked/b.pcd"},
+      {"real/../b.pcd", "b.pcd"}, {"dangling", "real/new.txt"}, {"linked/new.txt", "dangling"}};
   for (const auto& [a, b] : same) {
     EXPECT_TRUE(io::sameOutputFile(a, b)) << a << " " << b;
     const std::string error = test::errorOf([&, a = a, b = b] {
@@ -350,8 +346,8 @@ TEST(AtomicFile, AFileTheRunReadsIsNeverAnOutput) {
   test::writeFile(dir.file("late.stl"), "solid late\n");
   requireInputFile(dir.file("mesh.stl"), "collision mesh");
   fs::create_symlink("mesh.stl", dir.file("link.stl"));
-  for (const std::string& output : {dir.file("mesh.stl"), dir.file("link.stl"),
-                                    dir.file("./mesh.stl")}) {
+  for (const std::string& output :
+       {dir.file("mesh.stl"), dir.file("link.stl"), dir.file("./mesh.stl")}) {
     try {
       writeAtomically(output, "overwritten\n");
       ADD_FAILURE() << output << " was written";

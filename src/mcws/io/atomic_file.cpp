@@ -107,7 +107,7 @@ std::optional<int> descriptorOf(const fs::path& path) {
 /// the way (/dev/stdout -> /proc/self/fd/1), which the kernel resolves to what the descriptor
 /// holds (a pipe, a terminal, a file opened with O_APPEND), not to a path to replace.
 struct Resolved {
-  std::string file;              ///< the path with its links followed (or where they stopped)
+  std::string file;               ///< the path with its links followed (or where they stopped)
   std::optional<int> descriptor;  ///< the descriptor the chain reached, if any
 };
 
@@ -286,8 +286,8 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
       if (!file_) {
         const int tmpfile_errno = errno;
         discard();
-        throw Error("cannot write '" + path_ + "': no temporary buffer: " +
-                    std::strerror(tmpfile_errno));
+        throw Error("cannot write '" + path_ +
+                    "': no temporary buffer: " + std::strerror(tmpfile_errno));
       }
       return;
     }

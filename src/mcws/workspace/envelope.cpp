@@ -1,8 +1,8 @@
 #include "mcws/workspace/envelope.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
