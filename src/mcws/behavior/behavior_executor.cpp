@@ -621,18 +621,18 @@ class CleaningRun {
     return true;
   }
 
+  /// Where the run is now, in `behavior`.
+  RunPlace place(const std::string& behavior) const {
+    const SimSnapshot& s = sim_.snapshot();
+    return {s.step, s.time, subtask_, segment_ ? segment_->combined : "", stateName(), behavior};
+  }
+
   /// A behaviour's own command was refused: every joint stops and the run ends there.
   void safetyStop(const SimCommand& command, const std::string& behavior,
                   const std::string& reason) {
     stopAll();
-    const SimSnapshot& s = sim_.snapshot();
     SafetyStop stop;
-    stop.step = s.step;
-    stop.t = s.time;
-    stop.subtask = subtask_;
-    stop.combined = segment_ ? segment_->combined : "";
-    stop.state = stateName();
-    stop.behavior = behavior;
+    static_cast<RunPlace&>(stop) = place(behavior);
     stop.command = describe(command);
     stop.reason = reason;
     std::ostringstream text;
@@ -1225,14 +1225,8 @@ class CleaningRun {
   /// Stops the run on the safety invariant (never both clamps open): broken at this step, or
   /// about to be by a command.
   void violate(const std::string& what) {
-    const SimSnapshot& s = sim_.snapshot();
     InvariantViolation v;
-    v.step = s.step;
-    v.t = s.time;
-    v.subtask = subtask_;
-    v.combined = segment_ ? segment_->combined : "";
-    v.state = stateName();
-    v.behavior = active_ ? active_->behavior : "";
+    static_cast<RunPlace&>(v) = place(active_ ? active_->behavior : "");
     std::ostringstream text;
     text << "step " << v.step << " (t = " << v.t << " s): " << what << ": sub-task " << v.subtask
          << " (" << v.combined << "), state " << v.state << ", behaviour "

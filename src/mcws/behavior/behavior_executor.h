@@ -119,24 +119,25 @@ struct FaultReaction {
   std::string reaction;  ///< text
 };
 
-/// \brief A command of the robot's own behaviours that the interference check refused: the run
-/// stops there (status kSafetyStop).
-struct SafetyStop {
+/// \brief Where in the run something happened: the simulator's step and time, the sub-task, the
+/// combined behaviour and its state, the basic behaviour.
+struct RunPlace {
   std::uint64_t step{0};
   double t{0.0};  ///< [s]
   int subtask{0};
   std::string combined, state, behavior;
+};
+
+/// \brief A command of the robot's own behaviours that the interference check refused: the run
+/// stops there (status kSafetyStop).
+struct SafetyStop : RunPlace {
   std::string command;  ///< "J6 spin 300 rpm"
   std::string reason;   ///< why the check refused it (the pose rule, the joint limit, ...)
   std::string message;  ///< "step 1234 (t = 12.34 s): refused BB_Brush's command ..."
 };
 
 /// \brief The step at which the safety invariant failed.
-struct InvariantViolation {
-  std::uint64_t step{0};
-  double t{0.0};  ///< [s]
-  int subtask{0};
-  std::string combined, state, behavior;
+struct InvariantViolation : RunPlace {
   std::string message;  ///< "step 1234 (t = 12.34 s): both clamps open ..."
 };
 

@@ -22,6 +22,18 @@ using ordered_json = nlohmann::ordered_json;
 
 namespace {
 
+/// Where in the run (RunPlace), as the summary's JSON names it.
+ordered_json placeJson(const RunPlace& place) {
+  ordered_json out;
+  out["step"] = place.step;
+  out["t_s"] = place.t;
+  out["subtask"] = place.subtask;
+  out["cb"] = place.combined;
+  out["state"] = place.state;
+  out["behavior"] = place.behavior;
+  return out;
+}
+
 /// Compact JSON text; invalid UTF-8 in strings is replaced rather than thrown about.
 std::string dumpLine(const ordered_json& value) {
   return value.dump(-1, ' ', false, ordered_json::error_handler_t::replace);
@@ -145,13 +157,7 @@ nlohmann::ordered_json summaryJson(const RunSummary& summary) {
   ordered_json invariant;
   invariant["holds"] = !summary.violation.has_value();
   if (const auto& v = summary.violation) {
-    ordered_json violation;
-    violation["step"] = v->step;
-    violation["t_s"] = v->t;
-    violation["subtask"] = v->subtask;
-    violation["cb"] = v->combined;
-    violation["state"] = v->state;
-    violation["behavior"] = v->behavior;
+    ordered_json violation = placeJson(*v);
     violation["message"] = v->message;
     invariant["violation"] = std::move(violation);
   } else {
@@ -159,13 +165,7 @@ nlohmann::ordered_json summaryJson(const RunSummary& summary) {
   }
   out["invariant"] = std::move(invariant);
   if (const auto& stop = summary.safety_stop) {
-    ordered_json item;
-    item["step"] = stop->step;
-    item["t_s"] = stop->t;
-    item["subtask"] = stop->subtask;
-    item["cb"] = stop->combined;
-    item["state"] = stop->state;
-    item["behavior"] = stop->behavior;
+    ordered_json item = placeJson(*stop);
     item["command"] = stop->command;
     item["reason"] = stop->reason;
     item["message"] = stop->message;
