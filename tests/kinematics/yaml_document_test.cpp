@@ -20,17 +20,7 @@
 namespace mcws {
 namespace {
 
-/// The message of the mcws::Error that `load` throws ("" and a failure when none).
-template <typename Load>
-std::string errorOf(Load&& load) {
-  try {
-    load();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
-}
+using test::errorOf;
 
 std::string bombMessage(const std::string& source, int line) {
   return source + ":" + std::to_string(line) +
