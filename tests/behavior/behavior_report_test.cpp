@@ -135,12 +135,7 @@ TEST(SummaryJson, KeysInDocumentedOrderWithAViolation) {
   summary.faults = {{"link_down", 10.5, 10.5, 12.5, "stopped; link back after 2 s: q3 again"},
                     {"battery_low", std::nullopt, 70.5, std::nullopt, "alarm"}};
   InvariantViolation violation;
-  violation.step = 7525;
-  violation.t = 75.25;
-  violation.subtask = 3;
-  violation.combined = "CB1";
-  violation.state = "q2";
-  violation.behavior = "BB_LG_Release";
+  static_cast<RunPlace&>(violation) = {7525, 75.25, 3, "CB1", "q2", "BB_LG_Release"};
   violation.message = "step 7525 (t = 75.25 s): both clamps open";
   summary.violation = violation;
   summary.battery_voltage_end = 24.5;
@@ -207,12 +202,7 @@ TEST(SummaryJson, ASafetyStopNamesTheCommandAndTheReason) {
   RunSummary summary;
   summary.status = RunStatus::kSafetyStop;
   SafetyStop stop;
-  stop.step = 10869;
-  stop.t = 108.69;
-  stop.subtask = 2;
-  stop.combined = "CB2";
-  stop.state = "q1";
-  stop.behavior = "BB_Brush";
+  static_cast<RunPlace&>(stop) = {10869, 108.69, 2, "CB2", "q1", "BB_Brush"};
   stop.command = "J6 spin 300 rpm";
   stop.reason = "rule 'r'";
   stop.message = "step 10869 (t = 108.69 s): refused";
