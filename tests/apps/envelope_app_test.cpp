@@ -1,6 +1,7 @@
 // mcws_envelope through its command line: the de-icing arm's refined cloud gives a closed,
 // oriented mesh enclosing mcws_measure's volume; plain joint samples get the warning; the
-// datasheet drawing's numbers against eq. (1) of seed 000 and the TA1400's D-H table; bad input.
+// datasheet drawing's numbers against eq. (1) of Yin, Wang & Yu 2010 and the TA1400's D-H
+// table; bad input.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -167,10 +168,10 @@ TEST_F(EnvelopeApp, DrawingOfTheDeicingArmAgreesWithEquationOne) {
 }
 
 TEST_F(EnvelopeApp, DrawingOfTheTa1400WristCentreAgreesWithItsDhTable) {
-  // The P point (wrist centre) of seed 002's Table 1 in the arm's plane: the shoulder is
-  // a1 = 150 mm out, the upper arm a2 = 560, the forearm |(a3, d4)| = |(130, 600)| = 613.92 mm.
-  // Reach a1 + a2 + 613.92 (theta2 = 0, theta3 = -77.8 deg); highest a2 + 613.92 (theta2 =
-  // -90); lowest -(a2 sin 50 + 613.92) at theta2's limit of 50 deg.
+  // The P point (wrist centre) of Table 1 of Fu, Hu, Chen & Pan 2016 in the arm's plane: the
+  // shoulder is a1 = 150 mm out, the upper arm a2 = 560, the forearm |(a3, d4)| = |(130, 600)|
+  // = 613.92 mm. Reach a1 + a2 + 613.92 (theta2 = 0, theta3 = -77.8 deg); highest a2 + 613.92
+  // (theta2 = -90); lowest -(a2 sin 50 + 613.92) at theta2's limit of 50 deg.
   const double forearm = std::hypot(130.0, 600.0);
   test::TempDir here;
   const std::string robot = " --robot " + test::robotPath("ta1400") + " --point flange";

@@ -6,16 +6,16 @@
 #   fig4_t_free.png   T points (torch tip) of the collision-free samples (Fig. 4)
 #   fig5_t_torch.png  T points where the torch hits the arm, whatever the links do (Fig. 5)
 #   fig6_t_all.png    T points of every collision, links and torch (Fig. 6)
-# the clouds behind them, seed002_summary.json with the counts, and the collision-free volume
-# beside the volume without collision checks and the volumes of the two collision regions
+# the clouds behind them, ta1400_collision_summary.json with the counts, and the collision-free
+# volume beside the volume without collision checks and the volumes of the two collision regions
 # (mcws_measure).
 # Every sample's joint values depend only on --seed and its index, so the P and T clouds and the
 # torch-only run label the same 500000 configurations.
-# Usage: scripts/seed002_experiment.sh [OUTPUT_DIR]   (default: out/seed002; MCWS_NO_BUILD=1
-#        skips the build)
+# Usage: scripts/ta1400_collision_experiment.sh [OUTPUT_DIR]
+#        (default: out/ta1400_collision; MCWS_NO_BUILD=1 skips the build)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-out=${1:-$root/out/seed002}
+out=${1:-$root/out/ta1400_collision}
 bin=$root/build/apps
 samples=500000
 seed=2
@@ -72,7 +72,7 @@ torch_only_label=$(count t_all tool-link) # the torch hits, no link collides
 torch_any=$(count t_torch_only tool-link) # the torch hits, whatever the links do
 free=$(count t_all free)
 both=$((torch_any - torch_only_label))
-cat >"$out/seed002_summary.json" <<JSON
+cat >"$out/ta1400_collision_summary.json" <<JSON
 {"samples":$samples,"seed":$seed,"free":$free,"label_link_link":$link_link,
  "label_tool_link":$torch_only_label,"any_link_link":$link_link,"any_torch_arm":$torch_any,
  "torch_and_links":$both,"collisions":$((samples - free)),
