@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Robot descriptions in YAML (the format: README.md, "Robot descriptions").
+/// \brief Robot descriptions in YAML (the format: docs/robot-files.md).
 
 #include <string>
 

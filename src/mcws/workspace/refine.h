@@ -23,7 +23,8 @@ struct RefineOptions {
   std::uint64_t seed{1};
   SamplePoint point{SamplePoint::kTool};
   /// Half-width of each joint's neighbourhood, as a fraction of its range (0, 1]; the default
-  /// is the de-icing arm's best (BENCHMARKS.md, "The de-icing arm's pipeline, tighter").
+  /// is the de-icing arm's best (docs/performance-history.md, "The de-icing arm's pipeline,
+  /// tighter").
   double spread{0.1};
   /// The joints pinned when the parents were sampled (mcws_sample --fix), by name [rad | length
   /// unit]: these, and only these, keep their value. Without it, joints with one value in every
