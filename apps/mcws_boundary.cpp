@@ -13,9 +13,9 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
-#include "common/tiled_boundary.h"
+#include "mcws/distributed/tiled_boundary.h"
 #include "common/units.h"
 #include "mcws/distributed/processes.h"
 #include "mcws/filters/extremum_boundary.h"
@@ -71,12 +71,12 @@ struct Method {
   BoundaryPlane plane;
   std::shared_ptr<pcl::FilterIndices<WorkspacePoint>> filter;
   /// The parameters used, lengths in `units`, with their "units".
-  std::function<nlohmann::json(const app::ResultUnits& units)> parameters;
+  std::function<nlohmann::json(const ResultUnits& units)> parameters;
 };
 
 /// JSON of the lengths a method used, in `units`, and their "units" entries.
 nlohmann::json lengths(std::initializer_list<std::pair<const char*, double>> values,
-                       const app::ResultUnits& units) {
+                       const ResultUnits& units) {
   nlohmann::json out, unit;
   for (const auto& [key, value] : values) {
     out[key] = units.length(value);
@@ -169,7 +169,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane, int threa
   }
   boundary->setNumberOfThreads(threads);
   boundary->setGridSearch(!cli.has("tree-search"));
-  return {"orthant", plane, boundary, [boundary](const app::ResultUnits& units) {
+  return {"orthant", plane, boundary, [boundary](const ResultUnits& units) {
             return lengths(
                 {{"radius", boundary->usedRadius()}, {"spacing", boundary->usedSpacing()}}, units);
           }};
@@ -182,7 +182,7 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(app::parsePositive(cli.required("cell"), "cell"));
-  return {"grid", plane, grid, [grid](const app::ResultUnits& units) {
+  return {"grid", plane, grid, [grid](const ResultUnits& units) {
             nlohmann::json out =
                 lengths({{"cell", grid->usedCellSize()}, {"spacing", grid->usedSpacing()}}, units);
             out["occupied_cells"] = grid->occupiedCells();
@@ -202,7 +202,7 @@ Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   extremum->setPlane(plane);
   if (cli.has("cell")) extremum->setColumnWidth(app::parsePositive(cli.required("cell"), "cell"));
   if (cli.has("gap")) extremum->setGapThreshold(app::parsePositive(cli.required("gap"), "gap"));
-  return {"extremum", plane, extremum, [extremum](const app::ResultUnits& units) {
+  return {"extremum", plane, extremum, [extremum](const ResultUnits& units) {
             nlohmann::json out = lengths({{"cell", extremum->usedColumnWidth()},
                                           {"gap", extremum->usedGapThreshold()},
                                           {"spacing", extremum->usedSpacing()}},
@@ -314,7 +314,7 @@ void checkOutputs(const app::CommandLine& cli) {
 std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
                                                       std::uint64_t points,
                                                       std::uint64_t boundary_points) {
-  std::optional<io::CloudProvenance> recorded = app::readProvenance(input);
+  std::optional<io::CloudProvenance> recorded = io::readProvenance(input);
   if (recorded) recorded->input = io::InputCloud{points, io::sha256OfFile(input), boundary_points};
   return recorded;
 }
@@ -322,24 +322,24 @@ std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or
 /// neither.
 /// Both record the robot the input records, if any, and the input (boundaryProvenance()).
-void saveOutputs(const app::CommandLine& cli, const app::WorkspaceCloud& cloud,
+void saveOutputs(const app::CommandLine& cli, const io::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
   const std::optional<io::CloudProvenance> robot =
       boundaryProvenance(cli.required("input"), cloud.size(), kept.size());
   io::OutputSet outputs;
-  app::saveCloud(cloud, kept, output, robot);
+  io::writeCloud(cloud, kept, output, robot);
   if (cli.has("interior")) {
     for (const auto i : removed) {
       if (pcl::isFinite(cloud[i])) interior.push_back(i);
     }
-    app::saveCloud(cloud, interior, cli.required("interior"), robot);
+    io::writeCloud(cloud, interior, cli.required("interior"), robot);
   }
   outputs.commit();
 }
 
 /// Prints the run's summary: one JSON object with --json, else a line on stderr.
-void report(const app::CommandLine& cli, nlohmann::json summary, const app::ResultUnits& units,
+void report(const app::CommandLine& cli, nlohmann::json summary, const ResultUnits& units,
             const app::Progress& clock) {
   summary["length_unit"] = units.lengthName();
   summary["units"]["seconds"] = "s";
@@ -364,7 +364,7 @@ nlohmann::json summaryOf(const app::CommandLine& cli, const Method& method, std:
           {"seconds", clock.seconds()}};
 }
 
-/// --tiles: the boundary slab by slab (app::tiledBoundary()), the outputs written by rank 0 in
+/// --tiles: the boundary slab by slab (distributed::tiledBoundary()), the outputs written by rank 0 in
 /// one more pass over the input.
 int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   const std::string input = cli.required("input"), output = cli.required("output");
@@ -383,18 +383,18 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
         "--hull-depth 0 with --plane");
   }
   if (processes.rank() == 0) checkOutputs(cli);
-  const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
+  const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(input), input);
   app::Progress clock("mcws_boundary", "slabs");
-  app::PcdPointReader reader(input);
-  const app::FileSummary file = app::summarizeFile(reader, method.plane);
+  io::PcdPointReader reader(input);
+  const distributed::FileSummary file = distributed::summarizeFile(reader, method.plane);
   file.range.check(input);
   requireRegionPoints(file.cloud, input);
-  if (method.plane == BoundaryPlane::k3D) app::requireVolume(file.range, input);
+  if (method.plane == BoundaryPlane::k3D) io::requireVolume(file.range, input);
   app::asUsageError("plane", [&] { requirePlaneFits(file.cloud, input); });
   CloudSummary region = file.cloud;
   if (needsSpacing(cli)) {
     // The ranges of the length flags only: the whole cloud's spacing needs all of it.
-    region.spacing = app::boundingBoxSpacing(region);
+    region.spacing = distributed::boundingBoxSpacing(region);
   }
   checkFlagsAgainstCloud(cli, method, region);
   if (region.finite > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
@@ -411,8 +411,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   const auto make = [&] {
     return std::static_pointer_cast<Filter>(methodFromFlags(cli, threads).filter);
   };
-  const app::TiledBoundary found =
-      app::tiledBoundary(reader, file, tiles, make, threads, processes, clock);
+  const distributed::TiledBoundary found =
+      distributed::tiledBoundary(reader, file, tiles, make, threads, processes, clock);
   if (processes.rank() != 0) return app::kExitOk;
 
   const bool with_interior = cli.has("interior");
@@ -426,8 +426,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   if (with_interior) {
     interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary, recorded);
   }
-  app::WorkspaceCloud kept, rest;
-  app::forEachPiece(reader, [&](std::uint64_t first, const app::WorkspaceCloud& piece) {
+  io::WorkspaceCloud kept, rest;
+  distributed::forEachPiece(reader, [&](std::uint64_t first, const io::WorkspaceCloud& piece) {
     kept.clear();
     rest.clear();
     for (std::size_t k = 0; k < piece.size(); ++k) {
@@ -473,14 +473,14 @@ int main(int argc, char** argv) {
     const std::string input = cli.required("input"), output = cli.required("output");
     const Method method = methodFromFlags(cli, app::readThreads(cli));
     checkOutputs(cli);
-    const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
+    const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(input), input);
 
     app::Progress clock("mcws_boundary", "points");
-    const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
+    const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
     const CloudSummary region = summarizeCloud(
         *cloud, method.plane, needsSpacing(cli) ? SummaryDetail::kSpacing : SummaryDetail::kCounts);
     requireRegionPoints(region, input);
-    if (method.plane == BoundaryPlane::k3D) app::requireVolume(*cloud, input);
+    if (method.plane == BoundaryPlane::k3D) io::requireVolume(*cloud, input);
     app::asUsageError("plane", [&] { requirePlaneFits(region, input); });
     checkFlagsAgainstCloud(cli, method, region);
     method.filter->setInputCloud(cloud);

@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/filters/boundary_geometry.h"
@@ -86,14 +86,14 @@ int main(int argc, char** argv) {
     app::checkOutputs(
         {{"output", output}, {"plot", cli.text("plot", "")}, {"drawing", drawing_file}},
         {{"input", input}});
-    const app::ResultUnits units = app::readResultUnits(cli, app::recordedUnit(input), input);
+    const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(input), input);
 
     app::Progress clock("mcws_envelope", "points");
     pcl::PointCloud<pcl::PointXYZ> points;
     {
-      const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
+      const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
       requireRegionPoints(summarizeCloud(*cloud, BoundaryPlane::k3D), input);
-      app::requireVolume(*cloud, input);
+      io::requireVolume(*cloud, input);
       pcl::Indices all(cloud->size()), source;
       for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
       projectToPlane(*cloud, all, BoundaryPlane::k3D, points, source);

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
         robot, q, "q",
         cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
     const ChainPoses poses = chainPoses(robot, q);
-    const app::ResultUnits units = app::readResultUnits(cli, robot.length_unit, robot.source);
+    const ResultUnits units = app::readResultUnits(cli, robot.length_unit, robot.source);
     Eigen::Matrix4d T = (frame == "tool" ? poses.T_world_tool : poses.T_world_flange).matrix();
     T.topRightCorner<3, 1>() *= units.length(1.0);
     const std::string length = units.lengthName();
@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
       out["q"] = std::vector<double>(q.data(), q.data() + q.size());
       for (int r = 0; r < 4; ++r) out["pose"].push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
       out["position"] = {T(0, 3), T(1, 3), T(2, 3)};
-      out["units"] = {{"q", app::jointUnits(robot)},
+      out["units"] = {{"q", jointUnits(robot)},
                       {"pose", "1 (rotation), " + length + " (last column)"},
                       {"position", length}};
       std::cout << out.dump() << "\n";

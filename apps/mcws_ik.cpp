@@ -90,7 +90,7 @@ Error noSolution(const Robot& robot, const IkResult& result, const IkOptions& op
 
 /// "rad" when every joint's value is in rad, else each joint's unit: "rad, rad, rad, cm".
 std::string jointUnitsText(const Robot& robot) {
-  const std::vector<std::string> units = app::jointUnits(robot);
+  const std::vector<std::string> units = jointUnits(robot);
   if (std::all_of(units.begin(), units.end(), [&](const auto& u) { return u == units.front(); }))
     return units.front();
   std::string text;
@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
       out["attempts"] = result.attempts;
       out["position_error"] = result.position_error;
       out["orientation_error"] = result.orientation_error;
-      out["units"] = {{"q", app::jointUnits(robot)},
+      out["units"] = {{"q", jointUnits(robot)},
                       {"position_error", unitName(robot.length_unit)},
                       {"orientation_error", "rad"}};
       std::cout << out.dump() << "\n";

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/filters/boundary_geometry.h"
@@ -121,12 +121,12 @@ Settings readSettings(const app::CommandLine& cli) {
 
 /// The cloud at `path`, checked to be a region in the plane (or 3-D): requireRegionPoints(), and
 /// a --plane that fits it (a usage error).
-app::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
+io::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
                                     SummaryDetail detail, CloudSummary& summary) {
-  app::WorkspaceCloud::Ptr cloud = app::loadCloud(path);
+  io::WorkspaceCloud::Ptr cloud = io::readCloud(path);
   summary = summarizeCloud(*cloud, plane, detail);
   requireRegionPoints(summary, path);
-  if (plane == BoundaryPlane::k3D) app::requireVolume(*cloud, path);
+  if (plane == BoundaryPlane::k3D) io::requireVolume(*cloud, path);
   app::asUsageError("plane", [&] { requirePlaneFits(summary, path); });
   return cloud;
 }
@@ -145,8 +145,8 @@ std::string describeCloud(std::uint64_t points, const std::string& sha256) {
 /// checked only point by point (loadBoundary()).
 void requireBoundaryOf(const std::string& path, const std::string& input, std::uint64_t points,
                        std::uint64_t boundary_points) {
-  const std::optional<io::CloudProvenance> boundary = app::readProvenance(path);
-  const std::optional<io::CloudProvenance> cloud = app::readProvenance(input);
+  const std::optional<io::CloudProvenance> boundary = io::readProvenance(path);
+  const std::optional<io::CloudProvenance> cloud = io::readProvenance(input);
   if (!boundary && !cloud) return;
   const std::string sha256 = io::sha256OfFile(input);
   if (io::sha256OfFile(path) == sha256) return;  // the cloud is its own boundary
@@ -171,9 +171,9 @@ void requireBoundaryOf(const std::string& path, const std::string& input, std::u
 }
 
 /// The --boundary points, checked to be points of the --input cloud and to be a region.
-app::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
-                                      const app::WorkspaceCloud& cloud, BoundaryPlane plane) {
-  app::WorkspaceCloud::Ptr boundary = app::loadCloud(path);
+io::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
+                                      const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
+  io::WorkspaceCloud::Ptr boundary = io::readCloud(path);
   requireBoundaryOf(path, input, cloud.size(), boundary->size());
   if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
     const auto& p = (*boundary)[*i];
@@ -198,7 +198,7 @@ void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSumm
 }
 
 /// The finite points of `cloud` projected onto the plane (3-D: as they are).
-pcl::PointCloud<pcl::PointXYZ> projected(const app::WorkspaceCloud& cloud, BoundaryPlane plane) {
+pcl::PointCloud<pcl::PointXYZ> projected(const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
   pcl::PointCloud<pcl::PointXYZ> points;
   pcl::Indices all(cloud.size()), source;
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
@@ -207,7 +207,7 @@ pcl::PointCloud<pcl::PointXYZ> projected(const app::WorkspaceCloud& cloud, Bound
 }
 
 nlohmann::json delaunayJson(const RegionMeasure& m, const Settings& s, const char* key,
-                            const app::ResultUnits& units, int dimensions) {
+                            const ResultUnits& units, int dimensions) {
   auto measure = [&](double v) { return dimensions == 2 ? units.area(v) : units.volume(v); };
   const std::string unit = units.measureName(dimensions);
   return {{key, measure(m.measure)},
@@ -222,7 +222,7 @@ nlohmann::json delaunayJson(const RegionMeasure& m, const Settings& s, const cha
 }
 
 nlohmann::json columnJson(const ColumnArea& column, const char* key,
-                          const app::ResultUnits& units) {
+                          const ResultUnits& units) {
   return {{key, units.area(column.area)},
           {"column_width", units.length(column.width)},
           {"crossing_gap", units.length(column.gap)},
@@ -247,18 +247,18 @@ int main(int argc, char** argv) {
     const char* key = boundaryDimensions(settings.plane) == 2 ? "area" : "volume";
     CloudSummary summary;
     // The spacing only for a --column-width to check (a pass over every point).
-    app::WorkspaceCloud::Ptr cloud = loadRegion(
+    io::WorkspaceCloud::Ptr cloud = loadRegion(
         settings.input, settings.plane,
         settings.column_width > 0.0 ? SummaryDetail::kSpacing : SummaryDetail::kCounts, summary);
     checkColumnWidth(cli, settings.column_width, summary);
     std::optional<ColumnArea> column;
     if (cli.has("boundary")) {
-      const app::WorkspaceCloud::Ptr boundary =
+      const io::WorkspaceCloud::Ptr boundary =
           loadBoundary(cli.required("boundary"), settings.input, *cloud, settings.plane);
       column = columnArea(projected(*boundary, settings.plane), settings.column_width);
     }
-    const app::ResultUnits units =
-        app::readResultUnits(cli, app::recordedUnit(settings.input), settings.input);
+    const ResultUnits units =
+        app::readResultUnits(cli, io::recordedUnit(settings.input), settings.input);
     const pcl::PointCloud<pcl::PointXYZ> region = projected(*cloud, settings.plane);
     cloud.reset();  // the triangulation's memory is the peak
     const int dimensions = boundaryDimensions(settings.plane);

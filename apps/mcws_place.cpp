@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/core/input_files.h"
@@ -126,7 +126,7 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
                     robot.name + "' in " + unit);
       }
       // The same name and unit are not the same robot: its file may have been edited since.
-      const io::CloudProvenance robot_file = app::robotProvenance(robot);
+      const io::CloudProvenance robot_file = robotProvenance(robot);
       if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
         throw Error(path +
                     ": the map predates the record of its robot file's SHA-256; re-make it "

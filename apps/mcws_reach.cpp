@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/collision/collision_checker.h"
@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const Robot robot = app::readRobot(cli);
-    const io::CloudProvenance provenance = app::robotProvenance(robot);  // recorded in the PCD
+    const io::CloudProvenance provenance = robotProvenance(robot);  // recorded in the PCD
     if (cli.has("targets")) {
       if (processes.distributed())
         throw app::UsageError("--targets: a reach study runs on one process (no mpirun)");

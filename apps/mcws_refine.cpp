@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
@@ -146,13 +146,13 @@ int main(int argc, char** argv) {
                                              {"cloud", cli.text("cloud", "")}});
 
     const Robot robot = app::readRobot(cli);
-    io::CloudProvenance provenance = app::robotProvenance(robot);
-    const auto boundary = app::loadCloud(cli.required("input"));
+    io::CloudProvenance provenance = robotProvenance(robot);
+    const auto boundary = io::readCloud(cli.required("input"));
     for (const char* flag : {"input", "cloud"}) {
       if (cli.has(flag)) {
         const std::string path = cli.required(flag);
-        const std::optional<io::CloudProvenance> recorded = app::readProvenance(path);
-        app::requireSameRobot(flag, path, recorded, provenance);
+        const std::optional<io::CloudProvenance> recorded = io::readProvenance(path);
+        io::requireSameRobot(flag, path, recorded, provenance);
         requireJointFields(flag, path, robot.dof());
         const io::SamplingRecord sampling = recordedSampling(flag, path, recorded);
         if (provenance.sampling && sampling != *provenance.sampling) {
@@ -187,8 +187,8 @@ int main(int argc, char** argv) {
                                              : static_cast<const PointGenerator&>(refine);
     // Several processes: rank 0 alone holds the copied cloud and writes it.
     const bool holds_cloud = cli.has("cloud") && processes.rank() == 0;
-    const auto refined = holds_cloud ? app::loadCloud(cli.required("cloud"))
-                                     : std::make_shared<app::WorkspaceCloud>();
+    const auto refined = holds_cloud ? io::readCloud(cli.required("cloud"))
+                                     : std::make_shared<io::WorkspaceCloud>();
     // A bad flag or file on any process ends them all here; so do other robot or input files.
     processes.setUpDone(
         {{"robot", provenance.sha256}, {"input", io::sha256OfFile(cli.required("input"))}});
@@ -203,7 +203,7 @@ int main(int argc, char** argv) {
       generateInChunks(sampler, samples, refined->data() + kept, threads, report);
       pcl::Indices all(refined->size());
       std::iota(all.begin(), all.end(), 0);
-      app::saveCloud(*refined, all, output, provenance);
+      io::writeCloud(*refined, all, output, provenance);
     }
     if (processes.rank() != 0) return app::kExitOk;  // rank 0 reports for all
 

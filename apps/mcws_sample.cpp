@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/collision/collision_sampler.h"
@@ -76,7 +76,7 @@ struct Source {
 Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint point) {
   Source source;
   const Robot robot = app::readRobot(cli);
-  source.provenance = app::robotProvenance(robot);
+  source.provenance = robotProvenance(robot);
   if (robot.dof() > kMaxJoints) {  // the robot file's fault, not --fix's (exit 1)
     throw Error(cli.required("robot") + ": robot '" + robot.name + "' has " +
                 std::to_string(robot.dof()) + " joints; a workspace point records at most " +
@@ -120,9 +120,9 @@ Source shapeSource(const app::CommandLine& cli, std::uint64_t seed) {
   source.summary = {
       {"shape", name},
       {measure, shapeMeasure(shape)},
-      {"length_unit", app::kUnrecordedUnit},
+      {"length_unit", kUnrecordedUnit},
       {"units",
-       {{measure, std::string(app::kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
+       {{measure, std::string(kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
   return source;
 }
 

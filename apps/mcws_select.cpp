@@ -8,7 +8,7 @@
 #include <set>
 
 #include "common/app.h"
-#include "common/cloud_io.h"
+#include "mcws/io/cloud_io.h"
 #include "common/units.h"
 
 namespace {
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
     app::checkOutputs({{"output", output}}, {{"input", input}});
 
     app::Progress clock("mcws_select", "points");
-    const app::WorkspaceCloud::Ptr cloud = app::loadCloud(input);
+    const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
     pcl::PCLPointCloud2 header;
     pcl::PCDReader().readHeader(input, header);
     if (pcl::getFieldIndex(header, "label") < 0) throw Error(input + ": has no field 'label'");
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < cloud->size(); ++i) {
       if (labels.count((*cloud)[i].label)) kept.push_back(static_cast<pcl::index_t>(i));
     }
-    app::saveCloud(*cloud, kept, output, app::readProvenance(input));  // the input's robot
+    io::writeCloud(*cloud, kept, output, io::readProvenance(input));  // the input's robot
     if (cli.has("json")) {
       std::cout
           << nlohmann::json{{"input", input},
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
                             {"points_out", kept.size()},
                             {"labels", labels},
                             {"length_unit",
-                             app::ResultUnits(app::recordedUnit(input), std::nullopt).lengthName()},
+                             ResultUnits(io::recordedUnit(input), std::nullopt).lengthName()},
                             {"seconds", clock.seconds()},
                             {"units", {{"seconds", "s"}}}}
                  .dump()

@@ -203,8 +203,8 @@ nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTr
   const std::string length = unitName(robot.length_unit);
   out["units"] = {{"duration", "s"},
                   {"rate", "Hz"},
-                  {"peak_velocity", app::jointUnits(robot, "/s")},
-                  {"peak_acceleration", app::jointUnits(robot, "/s^2")},
+                  {"peak_velocity", jointUnits(robot, "/s")},
+                  {"peak_acceleration", jointUnits(robot, "/s^2")},
                   {"tool_start", length},
                   {"tool_end", length},
                   {"tool_path_length", length}};

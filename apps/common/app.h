@@ -14,9 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/core/activity.h"
 #include "mcws/core/error.h"
 
 #include "mcws/distributed/processes.h"
+#include "mcws/io/progress.h"
 
 namespace mcws::app {
 
@@ -47,41 +49,7 @@ int run(const char* program, const std::function<int()>& body);
 /// printed by the process it happened on, which ends every process (Processes::abortAll()).
 int run(const char* program, distributed::Processes& processes, const std::function<int()>& body);
 
-/// \brief Names what a tool is doing while the object lives, e.g. "reading --input 'a.pcd'", for
-/// the message of run() when memory runs out. Activities nest; header-only so that the loaders'
-/// fuzz build, which has no app.cpp, links.
-class Activity {
- public:
-  explicit Activity(std::string what) : unwinding_(std::uncaught_exceptions()) {
-    failed().clear();  // an exception that left an earlier one was handled
-    stack().push_back(std::move(what));
-  }
-  /// Left by an exception: remembered as the activity that failed (the innermost one).
-  ~Activity() {
-    if (std::uncaught_exceptions() > unwinding_ && failed().empty()) failed() = stack().back();
-    stack().pop_back();
-  }
-  Activity(const Activity&) = delete;
-  Activity& operator=(const Activity&) = delete;
-  /// \brief The activity an exception left last (then forgotten), else the innermost one alive,
-  /// "" when none.
-  static std::string takeFailed() {
-    std::string what = failed().empty() && !stack().empty() ? stack().back() : failed();
-    failed().clear();
-    return what;
-  }
-
- private:
-  static std::vector<std::string>& stack() {
-    static std::vector<std::string> activities;  // the tools' main thread only
-    return activities;
-  }
-  static std::string& failed() {
-    static std::string what;
-    return what;
-  }
-  int unwinding_;  ///< exceptions in flight when the activity began
-};
+using mcws::Activity;
 
 /// \brief Flags of one tool (long options only, so "--q '-1 0.5'" reads as a value).
 class CommandLine {
@@ -148,19 +116,6 @@ using FlagPath = std::pair<std::string, std::string>;
 ///   read-only file.
 void checkOutputs(const std::vector<FlagPath>& outputs, const std::vector<FlagPath>& inputs);
 
-/// \brief Progress lines "program: 45% (4500000/10000000)" on stderr, only for runs longer than
-/// about a second and at most twice a second.
-class Progress {
- public:
-  explicit Progress(std::string program, std::string what);
-  void update(std::size_t done, std::size_t total);
-  /// \brief Seconds since construction.
-  double seconds() const;
-
- private:
-  std::string program_, what_;
-  std::chrono::steady_clock::time_point start_, last_;
-  bool shown_{false};
-};
+using io::Progress;
 
 }  // namespace mcws::app

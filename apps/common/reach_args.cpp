@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "common/flags.h"
-#include "common/targets_io.h"
+#include "mcws/reach/targets_file.h"
 #include "mcws/collision/collision_model.h"
 
 namespace mcws::app {

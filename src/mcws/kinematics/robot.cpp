@@ -9,28 +9,13 @@
 
 namespace mcws {
 
-const char* unitName(LengthUnit unit) {
-  switch (unit) {
-    case LengthUnit::kMetre:
-      return "m";
-    case LengthUnit::kCentimetre:
-      return "cm";
-    case LengthUnit::kMillimetre:
-      return "mm";
+std::vector<std::string> jointUnits(const Robot& robot, const std::string& per) {
+  std::vector<std::string> units;
+  for (const Joint& joint : robot.joints) {
+    units.push_back((joint.type == JointType::kRevolute ? "rad" : unitName(robot.length_unit)) +
+                    per);
   }
-  return "?";
-}
-
-double unitInMetres(LengthUnit unit) {
-  switch (unit) {
-    case LengthUnit::kMetre:
-      return 1.0;
-    case LengthUnit::kCentimetre:
-      return 0.01;
-    case LengthUnit::kMillimetre:
-      return 0.001;
-  }
-  return 1.0;
+  return units;
 }
 
 const char* jointTypeName(JointType type) {

@@ -6,18 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "mcws/core/length_unit.h"
+
 namespace mcws {
 
 /// \brief Kind of a one-degree-of-freedom joint.
 enum class JointType { kRevolute, kPrismatic };
 
-/// \brief Length unit of a robot description; every length of a robot is in this unit.
-enum class LengthUnit { kMetre, kCentimetre, kMillimetre };
-
-/// \brief Short name of a unit ("m", "cm", "mm").
-const char* unitName(LengthUnit unit);
-/// \brief Size of one unit in metres (1, 0.01, 0.001).
-double unitInMetres(LengthUnit unit);
 /// \brief Name of a joint type ("revolute", "prismatic").
 const char* jointTypeName(JointType type);
 
@@ -69,6 +64,10 @@ struct Robot {
 /// \brief A joint's limits for messages, at full precision and, for revolute joints, in degrees
 /// too: "[-1.047197551, 1.047197551] rad ([-60, 60] deg)" or "[25, 70] cm".
 std::string describeLimits(const Joint& joint, LengthUnit unit);
+
+/// \brief The unit of each joint's value: "rad" (revolute) or the robot's length unit (prismatic),
+/// followed by `per` (e.g. "/s" for velocities).
+std::vector<std::string> jointUnits(const Robot& robot, const std::string& per = "");
 
 /// \brief Whether `text` holds a control byte (below 0x20, or 0x7f). A robot, joint or link name
 /// must not: it would break the one-line messages of the tools and the headers of the files they

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -120,15 +121,9 @@ class RobotYamlReader : YamlReader {
     if (!units.IsMap()) fail(units, "units: must be a map with 'length' and 'angle'");
     checkKeys(units, "units", {"length", "angle"});
     const std::string length = field(units, "length", "units");
-    if (length == "m") {
-      robot.length_unit = LengthUnit::kMetre;
-    } else if (length == "cm") {
-      robot.length_unit = LengthUnit::kCentimetre;
-    } else if (length == "mm") {
-      robot.length_unit = LengthUnit::kMillimetre;
-    } else {
-      fail(units["length"], "units: length unit '" + length + "' is not m, cm or mm");
-    }
+    const std::optional<LengthUnit> unit = lengthUnitNamed(length);
+    if (!unit) fail(units["length"], "units: length unit '" + length + "' is not m, cm or mm");
+    robot.length_unit = *unit;
     const std::string angle = field(units, "angle", "units");
     if (angle == "deg") {
       angle_scale_ = kDegree;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <future>
 #include <limits>
 #include <sstream>
@@ -11,6 +12,12 @@
 #include "mcws/core/error.h"
 
 namespace mcws {
+
+io::CloudProvenance robotProvenance(const Robot& robot) {
+  return {robot.name, std::filesystem::path(robot.source).filename().string(),
+          io::sha256OfFile(robot.source), unitName(robot.length_unit)};
+}
+
 namespace {
 
 constexpr std::size_t kBlock = 4096;      ///< samples per parallel work item

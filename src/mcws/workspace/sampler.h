@@ -16,6 +16,7 @@
 
 #include "mcws/core/counter_rng.h"
 #include "mcws/io/pcd_stream_writer.h"
+#include "mcws/io/provenance.h"
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/points/point_types.h"
@@ -44,6 +45,11 @@ enum class SamplePoint { kTool, kFlange };
 /// \throws mcws::Error for a robot with more than kMaxJoints joints (a WorkspacePoint cannot
 ///   record their values).
 PointKinematics samplePointKinematics(const Robot& robot, SamplePoint point);
+
+/// \brief The provenance of clouds made from `robot`: its name, the base name and SHA-256 of the
+/// file it was read from (Robot::source), its length unit.
+/// \throws mcws::Error naming the file when it cannot be read any more.
+io::CloudProvenance robotProvenance(const Robot& robot);
 
 /// \brief The batch loop of the joint-space samplers: samples first .. first+count-1 mapped
 /// through the vectorised kernel PointKinematics::kLanes at a time and written to

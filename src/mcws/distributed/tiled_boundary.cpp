@@ -1,4 +1,4 @@
-#include "common/tiled_boundary.h"
+#include "mcws/distributed/tiled_boundary.h"
 
 #include <pcl/common/point_tests.h>
 
@@ -14,7 +14,11 @@
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/points/unique_positions.h"
 
-namespace mcws::app {
+namespace mcws::distributed {
+
+using io::PcdPointReader;
+using io::WorkspaceCloud;
+
 namespace {
 
 /// Room a reach must leave to a loaded slab's wall, as a share of the slab axis's extent: covers
@@ -216,7 +220,7 @@ FileSummary summarizeFile(PcdPointReader& reader, BoundaryPlane plane) {
 TiledBoundary tiledBoundary(
     PcdPointReader& reader, const FileSummary& file, int tiles,
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
-    const distributed::Processes& processes, Progress& progress) {
+    const Processes& processes, io::Progress& progress) {
   const std::shared_ptr<OrthantBoundary<WorkspacePoint>> settings = make();
   const BoundaryPlane plane = settings->getPlane();
   if (settings->getRadiusMode() == RadiusMode::kAutomatic || settings->getHullDepth() > 0.0) {
@@ -249,8 +253,8 @@ TiledBoundary tiledBoundary(
   const std::uint64_t stride = std::max<std::uint64_t>(1, summary.points / kRadiusSamples);
   Found found;
   TiledBoundary result;
-  const distributed::Block mine =
-      distributed::blockOf(static_cast<std::uint64_t>(tiles), processes.rank(), processes.size());
+  const Block mine =
+      blockOf(static_cast<std::uint64_t>(tiles), processes.rank(), processes.size());
   for (auto t = static_cast<int>(mine.begin); t < static_cast<int>(mine.end); ++t) {
     for (double halo = first_halo;;) {
       LoadedTile tile = loadTile(reader, slabs, t, halo);
@@ -297,7 +301,7 @@ TiledBoundary tiledBoundary(
   std::vector<std::uint64_t> reloaded = {result.reloaded_tiles};
   processes.sum(reloaded);
   result.reloaded_tiles = reloaded[0];
-  distributed::reduceToFirst(
+  reduceToFirst(
       processes, [&] { return found.encode(); },
       [&](const std::string& bytes) { found.merge(bytes); });
   std::vector<std::uint64_t> kept_count = {found.kept.size()};
@@ -317,4 +321,4 @@ TiledBoundary tiledBoundary(
   return result;
 }
 
-}  // namespace mcws::app
+}  // namespace mcws::distributed

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief mcws_boundary --tiles: the orthant boundary of a binary PCD cloud larger than memory,
+/// \brief The orthant boundary of a binary PCD cloud larger than memory,
 /// one slab of space (a tile) at a time, on one process or shared among MPI processes.
 
 #include <cstdint>
@@ -10,18 +10,18 @@
 #include <utility>
 #include <vector>
 
-#include "common/app.h"
-#include "common/cloud_io.h"
 #include "mcws/distributed/processes.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/filters/orthant_boundary.h"
+#include "mcws/io/cloud_io.h"
+#include "mcws/io/progress.h"
 
-namespace mcws::app {
+namespace mcws::distributed {
 
 /// \brief A cloud file seen in one pass (summarizeFile()).
 struct FileSummary {
   CloudSummary cloud;     ///< counts and extents in the plane, as summarizeCloud() gives them
-  CoordinateRange range;  ///< for the coordinate checks of loadCloud()
+  io::CoordinateRange range;  ///< for the coordinate checks of io::readCloud()
   Eigen::Vector3d low{Eigen::Vector3d::Zero()};  ///< the finite points' lowest x, y, z
 };
 
@@ -54,9 +54,9 @@ struct TiledBoundary {
 ///
 /// Every process reads the file; rank 0 gathers the flags.
 TiledBoundary tiledBoundary(
-    PcdPointReader& reader, const FileSummary& file, int tiles,
+    io::PcdPointReader& reader, const FileSummary& file, int tiles,
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
-    const distributed::Processes& processes, Progress& progress);
+    const Processes& processes, io::Progress& progress);
 
 /// \brief The spacing of `cloud.finite` points spread evenly through its bounding box in its
 /// plane (an extent below 1e-3 of the largest counts as that much) [length unit]: what a tiled
@@ -64,12 +64,12 @@ TiledBoundary tiledBoundary(
 double boundingBoxSpacing(const CloudSummary& cloud);
 
 /// \brief Calls `visit(first, piece)` for the file's points in pieces
-/// (PcdPointReader::piecePoints()), in order.
-void forEachPiece(PcdPointReader& reader,
-                  const std::function<void(std::uint64_t, const WorkspaceCloud&)>& visit);
+/// (io::PcdPointReader::piecePoints()), in order.
+void forEachPiece(io::PcdPointReader& reader,
+                  const std::function<void(std::uint64_t, const io::WorkspaceCloud&)>& visit);
 
 /// \brief One pass over the file: the CloudSummary of its points in `plane` (counts, extents)
-/// and the range of its coordinates, for the checks loadCloud() and summarizeCloud() make.
-FileSummary summarizeFile(PcdPointReader& reader, BoundaryPlane plane);
+/// and the range of its coordinates, for the checks io::readCloud() and summarizeCloud() make.
+FileSummary summarizeFile(io::PcdPointReader& reader, BoundaryPlane plane);
 
-}  // namespace mcws::app
+}  // namespace mcws::distributed

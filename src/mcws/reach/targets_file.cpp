@@ -1,4 +1,4 @@
-#include "common/targets_io.h"
+#include "mcws/reach/targets_file.h"
 
 #include <pcl/common/io.h>
 #include <pcl/console/print.h>
@@ -9,12 +9,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "common/cloud_io.h"
 #include "mcws/core/error.h"
 #include "mcws/core/text_file.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/kinematics/robot.h"
 
-namespace mcws::app {
+namespace mcws {
 
 namespace {
 
@@ -24,7 +24,7 @@ bool endsWith(const std::string& text, const std::string& suffix) {
 }
 
 std::vector<ReachTarget> targetsFromPcd(const std::string& path) {
-  const pcl::PCLPointCloud2 blob = loadPcd(path);
+  const pcl::PCLPointCloud2 blob = io::readPcd(path);
   for (const char* field : {"normal_x", "normal_y", "normal_z"}) {
     if (pcl::getFieldIndex(blob, field) < 0) {
       throw Error(path + ": has no field '" + field +
@@ -130,4 +130,4 @@ std::vector<ReachTarget> loadTargets(const std::string& path) {
   return targets;
 }
 
-}  // namespace mcws::app
+}  // namespace mcws

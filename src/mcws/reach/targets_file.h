@@ -7,7 +7,7 @@
 
 #include "mcws/reach/reach_study.h"
 
-namespace mcws::app {
+namespace mcws {
 
 /// \brief Loads targets, in the robot's world frame and length unit.
 ///
@@ -21,4 +21,4 @@ namespace mcws::app {
 ///   with another header, a value that is not a finite number, a zero normal, or no targets.
 std::vector<ReachTarget> loadTargets(const std::string& path);
 
-}  // namespace mcws::app
+}  // namespace mcws
