@@ -128,6 +128,22 @@ class Validator {
   }
 
   void checkCombined(const CombinedBehavior& cb) const {
+    const std::set<std::string> q = checkStates(cb);
+    std::map<std::pair<std::string, std::string>, int> delta;  // (from, event) -> line
+    std::map<std::string, const Transition*> runs;             // from -> first transition
+    std::map<std::string, std::vector<std::string>> next, previous;
+    for (const Transition& t : cb.transitions) {
+      const std::string tw = cb.name + ": transition " + t.from + " -> " + t.to;
+      checkTransition(t, tw, q);
+      checkOneRunPerState(t, tw, delta, runs);
+      next[t.from].push_back(t.to);
+      previous[t.to].push_back(t.from);
+    }
+    checkReachable(cb, next, previous);
+  }
+
+  /// Q, the initial state and the final states of `cb`; \return Q.
+  std::set<std::string> checkStates(const CombinedBehavior& cb) const {
     const std::string& name = cb.name;
     if (cb.states.empty()) fail(cb.states_line, name + ": Q (states) is empty");
     std::set<std::string> q;
@@ -146,59 +162,70 @@ class Validator {
     for (const std::string& f : cb.finals) {
       if (!q.count(f)) fail(cb.final_line, name + ": final state '" + f + "' is not in its states");
     }
+    return q;
+  }
 
-    std::map<std::pair<std::string, std::string>, int> delta;  // (from, event) -> line
-    std::map<std::string, const Transition*> runs;             // from -> first transition
-    std::map<std::string, std::vector<std::string>> next, previous;
-    for (const Transition& t : cb.transitions) {
-      const std::string tw = name + ": transition " + t.from + " -> " + t.to;
-      for (const std::string* s : {&t.from, &t.to}) {
-        if (!q.count(*s)) fail(t.line, tw + ": '" + *s + "' is not in its states");
-      }
-      const BasicBehavior* b = model_.behavior(t.behavior);
-      if (!b) fail(t.line, tw + ": unknown behaviour '" + t.behavior + "'");
-      std::vector<std::string> values;
-      for (const BehaviorTarget& target : b->body.targets) values.push_back(target.value);
-      const BehaviorTarget* target = nullptr;
-      if (t.target.empty()) {
-        if (b->body.targets.size() != 1) {
-          fail(t.line, tw + ": " + b->name + " needs a target (" + joined(values) + ")");
-        }
-        target = &b->body.targets.front();
-      } else {
-        target = b->body.target(t.target);
-        if (!target) {
-          fail(t.line,
-               tw + ": " + b->name + " cannot set '" + t.target + "' (" + joined(values) + ")");
-        }
-      }
-      if (!model_.event(t.event)) {
-        fail(t.line, tw + ": unknown event '" + t.event + "' (" + eventNames() + ")");
-      }
-      if (t.event != target->ends_on) {
-        fail(t.line, tw + ": event '" + t.event + "' is not the ending event of " + b->name +
-                         (t.target.empty() ? "" : " " + t.target) + " (" + target->ends_on + ")");
-      }
-      const auto key = std::make_pair(t.from, t.event);
-      if (const auto it = delta.find(key); it != delta.end()) {
-        fail(t.line, tw + ": " + t.from + " already has a transition on " + t.event + " (line " +
-                         std::to_string(it->second) + ")");
-      }
-      delta[key] = t.line;
-      if (const auto it = runs.find(t.from); it != runs.end()) {
-        const Transition& first = *it->second;
-        if (first.behavior != t.behavior || first.target != t.target) {
-          fail(t.line, tw + ": " + t.from + " already runs " + first.behavior +
-                           (first.target.empty() ? "" : " " + first.target) + " (line " +
-                           std::to_string(first.line) + "); a state runs one behaviour");
-        }
-      } else {
-        runs[t.from] = &t;
-      }
-      next[t.from].push_back(t.to);
-      previous[t.to].push_back(t.from);
+  /// Transition `t` (named `tw` in messages) joins states of Q with a known behaviour, one of
+  /// its targets and that target's ending event.
+  void checkTransition(const Transition& t, const std::string& tw,
+                       const std::set<std::string>& q) const {
+    for (const std::string* s : {&t.from, &t.to}) {
+      if (!q.count(*s)) fail(t.line, tw + ": '" + *s + "' is not in its states");
     }
+    const BasicBehavior* b = model_.behavior(t.behavior);
+    if (!b) fail(t.line, tw + ": unknown behaviour '" + t.behavior + "'");
+    std::vector<std::string> values;
+    for (const BehaviorTarget& target : b->body.targets) values.push_back(target.value);
+    const BehaviorTarget* target = nullptr;
+    if (t.target.empty()) {
+      if (b->body.targets.size() != 1) {
+        fail(t.line, tw + ": " + b->name + " needs a target (" + joined(values) + ")");
+      }
+      target = &b->body.targets.front();
+    } else {
+      target = b->body.target(t.target);
+      if (!target) {
+        fail(t.line,
+             tw + ": " + b->name + " cannot set '" + t.target + "' (" + joined(values) + ")");
+      }
+    }
+    if (!model_.event(t.event)) {
+      fail(t.line, tw + ": unknown event '" + t.event + "' (" + eventNames() + ")");
+    }
+    if (t.event != target->ends_on) {
+      fail(t.line, tw + ": event '" + t.event + "' is not the ending event of " + b->name +
+                       (t.target.empty() ? "" : " " + t.target) + " (" + target->ends_on + ")");
+    }
+  }
 
+  /// A state has one transition per event (`delta`: (from, event) -> line) and runs one
+  /// behaviour (`runs`: from -> its first transition), counting `t` in.
+  void checkOneRunPerState(const Transition& t, const std::string& tw,
+                           std::map<std::pair<std::string, std::string>, int>& delta,
+                           std::map<std::string, const Transition*>& runs) const {
+    const auto key = std::make_pair(t.from, t.event);
+    if (const auto it = delta.find(key); it != delta.end()) {
+      fail(t.line, tw + ": " + t.from + " already has a transition on " + t.event + " (line " +
+                       std::to_string(it->second) + ")");
+    }
+    delta[key] = t.line;
+    if (const auto it = runs.find(t.from); it != runs.end()) {
+      const Transition& first = *it->second;
+      if (first.behavior != t.behavior || first.target != t.target) {
+        fail(t.line, tw + ": " + t.from + " already runs " + first.behavior +
+                         (first.target.empty() ? "" : " " + first.target) + " (line " +
+                         std::to_string(first.line) + "); a state runs one behaviour");
+      }
+    } else {
+      runs[t.from] = &t;
+    }
+  }
+
+  /// Every state of `cb` is reachable from the initial state and has a way back to a final one.
+  void checkReachable(const CombinedBehavior& cb,
+                      std::map<std::string, std::vector<std::string>>& next,
+                      std::map<std::string, std::vector<std::string>>& previous) const {
+    const std::string& name = cb.name;
     const std::set<std::string> reached = closure({cb.initial}, next);
     for (const std::string& s : cb.states) {
       if (!reached.count(s)) {
