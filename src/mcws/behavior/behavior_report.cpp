@@ -260,38 +260,30 @@ void writeTimelineCsv(std::ostream& out, const std::vector<TimelineRow>& rows) {
   }
 }
 
-std::string plotJointSpeeds(const std::vector<TimelineRow>& rows, double from_s, double to_s,
-                            const std::string& title) {
-  std::vector<const TimelineRow*> window;
-  for (const TimelineRow& row : rows) {
-    if (from_s <= row.t && row.t <= to_s) window.push_back(&row);
+namespace {
+
+/// Writes the window's joint speeds to `path`: a header line, then per row the time and the six
+/// speeds. \throws mcws::Error naming the file when it cannot be written.
+void writeSpeedData(const std::vector<const TimelineRow*>& window, const std::string& path) {
+  std::ofstream file(path, std::ios::binary);
+  file << "# t_s J1_deg_per_s J2_deg_per_s J3_mm_per_s J4_mm_per_s J5_deg_per_s J6_rpm\n";
+  for (const TimelineRow* row : window) {
+    file << number(row->t);
+    for (double v : row->velocity) file << " " << number(v);
+    file << "\n";
   }
-  if (window.size() < 2) {
-    throw Error("joint speed plot: " + std::to_string(window.size()) + " timeline row(s) in [" +
-                number(from_s) + ", " + number(to_s) + "] s, need at least 2");
-  }
-  io::ScratchDir dir;
-  const std::string data = dir.file("speeds.dat"), png = dir.file("speeds.png");
-  {
-    std::ofstream file(data, std::ios::binary);
-    file << "# t_s J1_deg_per_s J2_deg_per_s J3_mm_per_s J4_mm_per_s J5_deg_per_s J6_rpm\n";
-    for (const TimelineRow* row : window) {
-      file << number(row->t);
-      for (double v : row->velocity) file << " " << number(v);
-      file << "\n";
-    }
-    if (!file) throw Error("joint speed plot: cannot write '" + data + "'");
-  }
-  // Phase shading: a rectangle per run of rows of one phase, from its first row to the next
-  // row of another phase (the last row at the end of the window).
+  if (!file) throw Error("joint speed plot: cannot write '" + path + "'");
+}
+
+/// gnuplot's phase shading: a rectangle per run of rows of one phase, from its first row to the
+/// next row of another phase (the last row at the end of the window).
+std::string phaseShading(const std::vector<const TimelineRow*>& window) {
   const auto phaseOf = [](const TimelineRow& row) {
     if (row.combined == "CB2") return 2;
     if (row.combined == "CB1" || row.combined == "CB3") return 1;
     return 0;
   };
   std::ostringstream gp;
-  gp << "set terminal pngcairo noenhanced size 1200,800 font 'Sans,11'\n"
-     << "set output " << io::gnuplotQuoted(png) << "\n";
   int object = 1;
   for (std::size_t i = 0; i < window.size();) {
     const int phase = phaseOf(*window[i]);
@@ -306,9 +298,12 @@ std::string plotJointSpeeds(const std::vector<TimelineRow>& rows, double from_s,
     }
     i = end;
   }
-  const double t0 = window.front()->t, t1 = window.back()->t;
-  if (t1 > t0) gp << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
-  // J6 on y2: its range padded as `set offsets` pads y1 (which it does not do for y2).
+  return gp.str();
+}
+
+/// J6 on y2: its speed range over the window [rpm], padded as `set offsets` pads y1 (which it
+/// does not do for y2).
+std::pair<double, double> j6Range(const std::vector<const TimelineRow*>& window) {
   double j6_low = 0.0, j6_high = 0.0;
   for (const TimelineRow* row : window) {
     const double v = row->velocity[simJointIndex(SimJoint::kJ6)];
@@ -316,8 +311,31 @@ std::string plotJointSpeeds(const std::vector<TimelineRow>& rows, double from_s,
   }
   if (j6_high - j6_low <= 0.0) j6_high = j6_low + 1.0;
   const double j6_pad = 0.05 * (j6_high - j6_low);
-  j6_low -= j6_pad;
-  j6_high += j6_pad;
+  return {j6_low - j6_pad, j6_high + j6_pad};
+}
+
+}  // namespace
+
+std::string plotJointSpeeds(const std::vector<TimelineRow>& rows, double from_s, double to_s,
+                            const std::string& title) {
+  std::vector<const TimelineRow*> window;
+  for (const TimelineRow& row : rows) {
+    if (from_s <= row.t && row.t <= to_s) window.push_back(&row);
+  }
+  if (window.size() < 2) {
+    throw Error("joint speed plot: " + std::to_string(window.size()) + " timeline row(s) in [" +
+                number(from_s) + ", " + number(to_s) + "] s, need at least 2");
+  }
+  io::ScratchDir dir;
+  const std::string data = dir.file("speeds.dat"), png = dir.file("speeds.png");
+  writeSpeedData(window, data);
+  std::ostringstream gp;
+  gp << "set terminal pngcairo noenhanced size 1200,800 font 'Sans,11'\n"
+     << "set output " << io::gnuplotQuoted(png) << "\n"
+     << phaseShading(window);
+  const double t0 = window.front()->t, t1 = window.back()->t;
+  if (t1 > t0) gp << "set xrange [" << number(t0) << ":" << number(t1) << "]\n";
+  const auto [j6_low, j6_high] = j6Range(window);
   const std::string source = io::gnuplotQuoted(data);
   const std::string shading =
       "keyentry with boxes fillcolor rgb '#fbf0d9' fillstyle solid 1.0 noborder "

@@ -278,73 +278,65 @@ struct ObjFace {
   int line;
 };
 
-TriangleMesh parseObj(const std::string& text, const std::string& source) {
-  TriangleMesh mesh;
-  std::vector<ObjFace> faces;
-  int line = 0;
-  for (std::size_t begin = 0; begin < text.size();) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    ++line;
-    std::string_view content = std::string_view(text).substr(begin, end - begin);
-    begin = end + 1;
-    content = content.substr(0, content.find('#'));
-    std::vector<std::string_view> words;
-    for (std::size_t k = 0; k < content.size();) {
-      while (k < content.size() && isSpace(content[k])) ++k;
-      const std::size_t start = k;
-      while (k < content.size() && !isSpace(content[k])) ++k;
-      if (k > start) words.push_back(content.substr(start, k - start));
-    }
-    if (words.empty()) continue;
-    const std::string where = "'" + source + "': line " + std::to_string(line);
-    const std::string_view keyword = words[0];
-    if (keyword == "v") {
-      const std::string vertex = where + ": vertex " + std::to_string(mesh.vertices.size() + 1);
-      if (words.size() < 4 || words.size() > 8) {
-        throw Error(vertex + ": 'v' takes x y z (and an optional w, or r g b), not " +
-                    std::to_string(words.size() - 1) + " values");
-      }
-      Eigen::Vector3d p;
-      for (std::size_t k = 1; k < words.size(); ++k) {
-        double value = 0.0;
-        if (!parseNumber(words[k], value))
-          throw Error(vertex + ": " + quoted(words[k]) + " is not a number");
-        if (k <= 3) {
-          checkCoordinate(value, vertex + ": " + std::string(1, "xyz"[k - 1]),
-                          std::string(words[k]));
-          p[int(k) - 1] = value;
-        }
-      }
-      mesh.vertices.push_back(p);
-    } else if (keyword == "f") {
-      if (words.size() < 4) {
-        throw Error(where + ": a face needs at least 3 corners, this one has " +
-                    std::to_string(words.size() - 1));
-      }
-      ObjFace face{{}, line};
-      for (std::size_t k = 1; k < words.size(); ++k) {
-        const std::string_view index = words[k].substr(0, words[k].find('/'));
-        long long value = 0;
-        const auto [stop, error] =
-            std::from_chars(index.data(), index.data() + index.size(), value);
-        if (index.empty() || stop != index.data() + index.size() || error != std::errc() ||
-            value == 0) {
-          throw Error(where + ": face corner " + quoted(words[k]) +
-                      " does not start with a vertex number (1, 2, ... or -1, -2, ... from the "
-                      "last vertex)");
-        }
-        face.corners.push_back(value > 0 ? value - 1
-                                         : static_cast<long long>(mesh.vertices.size()) + value);
-      }
-      faces.push_back(std::move(face));
-    } else if (keyword != "vt" && keyword != "vn" && keyword != "vp" && keyword != "l" &&
-               keyword != "p" && keyword != "g" && keyword != "o" && keyword != "s" &&
-               keyword != "usemtl" && keyword != "mtllib") {
-      throw Error(where + ": unknown keyword " + quoted(keyword) +
-                  " (v and f are read; vt, vn, vp, l, p, g, o, s, usemtl and mtllib skipped)");
+/// The words of an OBJ line, its comment (from '#') cut off.
+std::vector<std::string_view> objWords(std::string_view content) {
+  content = content.substr(0, content.find('#'));
+  std::vector<std::string_view> words;
+  for (std::size_t k = 0; k < content.size();) {
+    while (k < content.size() && isSpace(content[k])) ++k;
+    const std::size_t start = k;
+    while (k < content.size() && !isSpace(content[k])) ++k;
+    if (k > start) words.push_back(content.substr(start, k - start));
+  }
+  return words;
+}
+
+/// The point of a 'v' line (`words`, "v" first), named `vertex` in errors.
+Eigen::Vector3d objVertex(const std::vector<std::string_view>& words, const std::string& vertex) {
+  if (words.size() < 4 || words.size() > 8) {
+    throw Error(vertex + ": 'v' takes x y z (and an optional w, or r g b), not " +
+                std::to_string(words.size() - 1) + " values");
+  }
+  Eigen::Vector3d p;
+  for (std::size_t k = 1; k < words.size(); ++k) {
+    double value = 0.0;
+    if (!parseNumber(words[k], value))
+      throw Error(vertex + ": " + quoted(words[k]) + " is not a number");
+    if (k <= 3) {
+      checkCoordinate(value, vertex + ": " + std::string(1, "xyz"[k - 1]), std::string(words[k]));
+      p[int(k) - 1] = value;
     }
   }
+  return p;
+}
+
+/// The face of an 'f' line (`words`, "f" first) at `line`, named `where` in errors, with
+/// `vertex_count` vertices read before it (a negative index counts back from the last).
+ObjFace objFace(const std::vector<std::string_view>& words, const std::string& where, int line,
+                std::size_t vertex_count) {
+  if (words.size() < 4) {
+    throw Error(where + ": a face needs at least 3 corners, this one has " +
+                std::to_string(words.size() - 1));
+  }
+  ObjFace face{{}, line};
+  for (std::size_t k = 1; k < words.size(); ++k) {
+    const std::string_view index = words[k].substr(0, words[k].find('/'));
+    long long value = 0;
+    const auto [stop, error] = std::from_chars(index.data(), index.data() + index.size(), value);
+    if (index.empty() || stop != index.data() + index.size() || error != std::errc() ||
+        value == 0) {
+      throw Error(where + ": face corner " + quoted(words[k]) +
+                  " does not start with a vertex number (1, 2, ... or -1, -2, ... from the "
+                  "last vertex)");
+    }
+    face.corners.push_back(value > 0 ? value - 1 : static_cast<long long>(vertex_count) + value);
+  }
+  return face;
+}
+
+/// Adds the triangles of `faces` (fans from each face's first corner) to `mesh`, whose vertices
+/// are all read. \throws mcws::Error naming `source` and the line for a missing vertex.
+void addObjFaces(const std::vector<ObjFace>& faces, const std::string& source, TriangleMesh& mesh) {
   const auto vertex_count = static_cast<long long>(mesh.vertices.size());
   for (const ObjFace& face : faces) {
     for (long long corner : face.corners) {
@@ -360,6 +352,35 @@ TriangleMesh parseObj(const std::string& text, const std::string& source) {
           {int(face.corners[0]), int(face.corners[k - 1]), int(face.corners[k])});
     }
   }
+}
+
+TriangleMesh parseObj(const std::string& text, const std::string& source) {
+  TriangleMesh mesh;
+  std::vector<ObjFace> faces;
+  int line = 0;
+  for (std::size_t begin = 0; begin < text.size();) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    ++line;
+    const std::string_view content = std::string_view(text).substr(begin, end - begin);
+    begin = end + 1;
+    const std::vector<std::string_view> words = objWords(content);
+    if (words.empty()) continue;
+    const std::string where = "'" + source + "': line " + std::to_string(line);
+    const std::string_view keyword = words[0];
+    if (keyword == "v") {
+      mesh.vertices.push_back(
+          objVertex(words, where + ": vertex " + std::to_string(mesh.vertices.size() + 1)));
+    } else if (keyword == "f") {
+      faces.push_back(objFace(words, where, line, mesh.vertices.size()));
+    } else if (keyword != "vt" && keyword != "vn" && keyword != "vp" && keyword != "l" &&
+               keyword != "p" && keyword != "g" && keyword != "o" && keyword != "s" &&
+               keyword != "usemtl" && keyword != "mtllib") {
+      throw Error(where + ": unknown keyword " + quoted(keyword) +
+                  " (v and f are read; vt, vn, vp, l, p, g, o, s, usemtl and mtllib skipped)");
+    }
+  }
+  addObjFaces(faces, source, mesh);
   return mesh;
 }
 
