@@ -66,6 +66,131 @@ std::string number(double value) {
   return out.str();
 }
 
+/// The files of a drawing: the data gnuplot plots and the picture it writes.
+struct DrawingFiles {
+  std::string section_data, top_data, outline_data, picture;
+};
+
+/// Writes the section's loops and the top view's bins (each a quadrilateral from inner to outer
+/// distance, and its outer point for the outline) to the data files.
+void writeDrawingData(const EnvelopeDrawing& drawing, const DrawingFiles& files) {
+  const EnvelopeSection& side = drawing.side;
+  const EnvelopeTopView& top = drawing.top;
+  std::ofstream out(files.section_data);
+  out.precision(8);
+  for (const auto& loop : side.loops) {
+    for (const auto& p : loop) out << p.x() << ' ' << p.y() << '\n';
+    out << loop.front().x() << ' ' << loop.front().y() << "\n\n";
+  }
+  std::ofstream fill(files.top_data), outline(files.outline_data);
+  fill.precision(8);
+  outline.precision(8);
+  const int bins = static_cast<int>(top.outer.size());
+  for (int k = 0; k < bins; ++k) {  // each bin a quadrilateral from inner to outer distance
+    if (std::isnan(top.outer[k])) {
+      outline << '\n';
+      continue;
+    }
+    const double ac = -kPi + k * top.bin, a0 = ac - 0.5 * top.bin, a1 = ac + 0.5 * top.bin;
+    for (const auto& [r, a] : {std::pair{top.inner[k], a0}, std::pair{top.outer[k], a0},
+                               std::pair{top.outer[k], a1}, std::pair{top.inner[k], a1}})
+      fill << r * std::cos(a) << ' ' << r * std::sin(a) << '\n';
+    fill << "\n";
+    outline << top.outer[k] * std::cos(ac) << ' ' << top.outer[k] * std::sin(ac) << '\n';
+  }
+  if (!out || !fill || !outline) throw Error("drawing: writing the data files failed");
+}
+
+/// A length as the drawing labels it: number() and the unit.
+std::string length(double value, const std::string& unit) { return number(value) + " " + unit; }
+
+/// The gnuplot commands of the side view: the section, the axis, reach in front and behind,
+/// highest and lowest point.
+void writeSideView(std::ostream& gp, const EnvelopeSection& side, const std::string& unit,
+                   const DrawingFiles& files) {
+  const double width = side.front_reach + side.back_reach;
+  const double tall = side.highest - side.lowest, gap = 0.08 * std::max(width, tall);
+  const double level = side.lowest - gap, right = side.front_reach + gap;
+  gp << "set title "
+     << io::gnuplotQuoted("side view: section through the first joint's axis at " +
+                          number(degrees(side.azimuth)) + " deg")
+     << "\nset xlabel " << io::gnuplotQuoted("horizontal distance from the axis [" + unit + "]")
+     << "\nset ylabel " << io::gnuplotQuoted("z [" + unit + "]") << "\n"
+     << "set xrange [" << -side.back_reach - 2 * gap << ":" << right + 2.5 * gap << "]\n"
+     << "set yrange [" << level - gap << ":" << side.highest + gap << "]\n"
+     << "set arrow 1 from 0," << level - gap << " to 0," << side.highest + gap
+     << " nohead dt '-.' lc rgb '#555555'\n"
+     << "set arrow 2 from 0," << level << " to " << side.front_reach << "," << level
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 1 " << io::gnuplotQuoted(length(side.front_reach, unit)) << " at "
+     << 0.5 * side.front_reach << "," << level + 0.25 * gap << " center\n"
+     << "set arrow 3 from " << right << ",0 to " << right << "," << side.highest
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 2 " << io::gnuplotQuoted(length(side.highest, unit)) << " at "
+     << right + 0.15 * gap << "," << 0.5 * side.highest << " left\n"
+     << "set arrow 4 from " << right << ",0 to " << right << "," << side.lowest
+     << " heads size screen 0.008,20 lw 1.5\n"
+     << "set label 3 " << io::gnuplotQuoted(length(side.lowest, unit)) << " at "
+     << right + 0.15 * gap << "," << 0.5 * side.lowest << " left\n"
+     << "set arrow 5 from 0,0 to " << right + 0.5 * gap << ",0 nohead dt 3 lc rgb '#555555'\n"
+     << "set arrow 6 from " << side.front_reach << "," << side.lowest << " to " << right + 0.5 * gap
+     << "," << side.lowest << " nohead dt 3 lc rgb '#555555'\n"
+     << "set arrow 7 from " << side.front_reach << "," << side.highest << " to "
+     << right + 0.5 * gap << "," << side.highest << " nohead dt 3 lc rgb '#555555'\n";
+  if (side.back_reach > 0.0) {
+    gp << "set arrow 8 from " << -side.back_reach << "," << level << " to 0," << level
+       << " heads size screen 0.008,20 lw 1.5\n"
+       << "set label 4 " << io::gnuplotQuoted(length(side.back_reach, unit)) << " at "
+       << -0.5 * side.back_reach << "," << level - 0.45 * gap << " center\n";
+  }
+  gp << "set label 5 " << io::gnuplotQuoted("section area " + number(side.area) + " " + unit + "^2")
+     << " at graph 0.02, graph 0.97 left\n"
+     << "plot " << io::gnuplotQuoted(files.section_data)
+     << " with filledcurves closed lc rgb '#5b8fc9', '' with lines lw 1.5 lc rgb '#1f4e8c'\n"
+     << "unset arrow\nunset label\n";
+}
+
+/// The gnuplot commands of the top view: the projection, the swept arc at full reach, maximum
+/// and minimum reach, and the highest and lowest point of the surface.
+void writeTopView(std::ostream& gp, const EnvelopeDrawing& drawing, const std::string& unit,
+                  const DrawingFiles& files) {
+  const EnvelopeTopView& top = drawing.top;
+  const double reach = top.max_reach, middle = top.sweep_from + 0.5 * top.sweep;
+  const double margin = 0.12 * reach;
+  gp << "set title 'top view: projection on the horizontal plane'\n"
+     << "set xlabel " << io::gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "
+     << io::gnuplotQuoted("y [" + unit + "]") << "\n"
+     << "set xrange [" << -reach - margin << ":" << reach + margin << "]\n"
+     << "set yrange [" << -reach - margin << ":" << reach + margin << "]\n"
+     << "set arrow 1 from 0,0 to " << reach * std::cos(middle) << "," << reach * std::sin(middle)
+     << " head size screen 0.01,20 lw 1.5\n"
+     << "set label 1 " << io::gnuplotQuoted("R " + length(reach, unit)) << " at "
+     << 0.6 * reach * std::cos(middle) << "," << 0.6 * reach * std::sin(middle)
+     << " center offset 0,1\n"
+     << "set label 2 "
+     << io::gnuplotQuoted("max reach " + length(reach, unit) + ", min reach " +
+                          length(top.min_reach, unit))
+     << " at graph 0.02, graph 0.97 left\n"
+     << "set label 3 "
+     << io::gnuplotQuoted("swept at full reach " + number(degrees(top.sweep)) + " deg")
+     << " at graph 0.02, graph 0.93 left\n"
+     << "set label 4 "
+     << io::gnuplotQuoted("highest " + length(drawing.highest, unit) + ", lowest " +
+                          length(drawing.lowest, unit))
+     << " at graph 0.02, graph 0.89 left\n";
+  if (top.sweep < 2.0 * kPi) {
+    for (const double a : {top.sweep_from, top.sweep_to}) {
+      gp << "set arrow from 0,0 to " << 1.08 * reach * std::cos(a) << ","
+         << 1.08 * reach * std::sin(a) << " nohead dt '-.' lc rgb '#555555'\n";
+    }
+  }
+  gp << "set object 1 circle at 0,0 size " << reach << " arc [" << degrees(top.sweep_from) << ":"
+     << degrees(top.sweep_from + top.sweep) << "] fs empty border lc rgb '#555555' dt 2\n"
+     << "plot " << io::gnuplotQuoted(files.top_data)
+     << " with filledcurves closed lc rgb '#5b8fc9', " << io::gnuplotQuoted(files.outline_data)
+     << " with lines lw 1.5 lc rgb '#1f4e8c'\n";
+}
+
 }  // namespace
 
 EnvelopeSection envelopeSection(const TriangleSurface& surface, double azimuth) {
@@ -192,123 +317,23 @@ DrawingFormat drawingFormatOf(const std::string& path) {
 
 std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat format,
                                   const std::string& title, const std::string& unit) {
-  const EnvelopeSection& side = drawing.side;
-  const EnvelopeTopView& top = drawing.top;
   io::ScratchDir dir;
-  const std::string section_data = dir.file("section.dat"), top_data = dir.file("top.dat"),
-                    outline_data = dir.file("outline.dat"),
-                    picture = dir.file(format == DrawingFormat::kPng ? "d.png" : "d.svg");
-  {
-    std::ofstream out(section_data);
-    out.precision(8);
-    for (const auto& loop : side.loops) {
-      for (const auto& p : loop) out << p.x() << ' ' << p.y() << '\n';
-      out << loop.front().x() << ' ' << loop.front().y() << "\n\n";
-    }
-    std::ofstream fill(top_data), outline(outline_data);
-    fill.precision(8);
-    outline.precision(8);
-    const int bins = static_cast<int>(top.outer.size());
-    for (int k = 0; k < bins; ++k) {  // each bin a quadrilateral from inner to outer distance
-      if (std::isnan(top.outer[k])) {
-        outline << '\n';
-        continue;
-      }
-      const double ac = -kPi + k * top.bin, a0 = ac - 0.5 * top.bin, a1 = ac + 0.5 * top.bin;
-      for (const auto& [r, a] : {std::pair{top.inner[k], a0}, std::pair{top.outer[k], a0},
-                                 std::pair{top.outer[k], a1}, std::pair{top.inner[k], a1}})
-        fill << r * std::cos(a) << ' ' << r * std::sin(a) << '\n';
-      fill << "\n";
-      outline << top.outer[k] * std::cos(ac) << ' ' << top.outer[k] * std::sin(ac) << '\n';
-    }
-    if (!out || !fill || !outline) throw Error("drawing: writing the data files failed");
-  }
-  const auto length = [&](double value) { return number(value) + " " + unit; };
-  const double width = side.front_reach + side.back_reach;
-  const double tall = side.highest - side.lowest, gap = 0.08 * std::max(width, tall);
+  const DrawingFiles files{dir.file("section.dat"), dir.file("top.dat"), dir.file("outline.dat"),
+                           dir.file(format == DrawingFormat::kPng ? "d.png" : "d.svg")};
+  writeDrawingData(drawing, files);
   std::ostringstream gp;
   gp << (format == DrawingFormat::kPng
              ? "set terminal pngcairo noenhanced size 1600,800 font 'Sans,11'\n"
              : "set terminal svg noenhanced size 1600,800 font 'Sans,11'\n")
-     << "set output " << io::gnuplotQuoted(picture) << "\n"
+     << "set output " << io::gnuplotQuoted(files.picture) << "\n"
      << "set multiplot layout 1,2 title "
      << io::gnuplotQuoted(title + ": working range (lengths in " + unit + ")") << "\n"
      << "set size ratio -1\nset grid lc rgb '#dddddd'\nunset key\n"
      << "set style fill transparent solid 0.35 noborder\n";
-  // Side view: the section, the axis, reach in front and behind, highest and lowest point.
-  const double level = side.lowest - gap, right = side.front_reach + gap;
-  gp << "set title "
-     << io::gnuplotQuoted("side view: section through the first joint's axis at " +
-                          number(degrees(side.azimuth)) + " deg")
-     << "\nset xlabel " << io::gnuplotQuoted("horizontal distance from the axis [" + unit + "]")
-     << "\nset ylabel " << io::gnuplotQuoted("z [" + unit + "]") << "\n"
-     << "set xrange [" << -side.back_reach - 2 * gap << ":" << right + 2.5 * gap << "]\n"
-     << "set yrange [" << level - gap << ":" << side.highest + gap << "]\n"
-     << "set arrow 1 from 0," << level - gap << " to 0," << side.highest + gap
-     << " nohead dt '-.' lc rgb '#555555'\n"
-     << "set arrow 2 from 0," << level << " to " << side.front_reach << "," << level
-     << " heads size screen 0.008,20 lw 1.5\n"
-     << "set label 1 " << io::gnuplotQuoted(length(side.front_reach)) << " at "
-     << 0.5 * side.front_reach << "," << level + 0.25 * gap << " center\n"
-     << "set arrow 3 from " << right << ",0 to " << right << "," << side.highest
-     << " heads size screen 0.008,20 lw 1.5\n"
-     << "set label 2 " << io::gnuplotQuoted(length(side.highest)) << " at " << right + 0.15 * gap
-     << "," << 0.5 * side.highest << " left\n"
-     << "set arrow 4 from " << right << ",0 to " << right << "," << side.lowest
-     << " heads size screen 0.008,20 lw 1.5\n"
-     << "set label 3 " << io::gnuplotQuoted(length(side.lowest)) << " at " << right + 0.15 * gap
-     << "," << 0.5 * side.lowest << " left\n"
-     << "set arrow 5 from 0,0 to " << right + 0.5 * gap << ",0 nohead dt 3 lc rgb '#555555'\n"
-     << "set arrow 6 from " << side.front_reach << "," << side.lowest << " to " << right + 0.5 * gap
-     << "," << side.lowest << " nohead dt 3 lc rgb '#555555'\n"
-     << "set arrow 7 from " << side.front_reach << "," << side.highest << " to "
-     << right + 0.5 * gap << "," << side.highest << " nohead dt 3 lc rgb '#555555'\n";
-  if (side.back_reach > 0.0) {
-    gp << "set arrow 8 from " << -side.back_reach << "," << level << " to 0," << level
-       << " heads size screen 0.008,20 lw 1.5\n"
-       << "set label 4 " << io::gnuplotQuoted(length(side.back_reach)) << " at "
-       << -0.5 * side.back_reach << "," << level - 0.45 * gap << " center\n";
-  }
-  gp << "set label 5 " << io::gnuplotQuoted("section area " + number(side.area) + " " + unit + "^2")
-     << " at graph 0.02, graph 0.97 left\n"
-     << "plot " << io::gnuplotQuoted(section_data)
-     << " with filledcurves closed lc rgb '#5b8fc9', '' with lines lw 1.5 lc rgb '#1f4e8c'\n"
-     << "unset arrow\nunset label\n";
-  // Top view: the projection, the swept arc at full reach, maximum and minimum reach.
-  const double reach = top.max_reach, middle = top.sweep_from + 0.5 * top.sweep;
-  const double margin = 0.12 * reach;
-  gp << "set title 'top view: projection on the horizontal plane'\n"
-     << "set xlabel " << io::gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "
-     << io::gnuplotQuoted("y [" + unit + "]") << "\n"
-     << "set xrange [" << -reach - margin << ":" << reach + margin << "]\n"
-     << "set yrange [" << -reach - margin << ":" << reach + margin << "]\n"
-     << "set arrow 1 from 0,0 to " << reach * std::cos(middle) << "," << reach * std::sin(middle)
-     << " head size screen 0.01,20 lw 1.5\n"
-     << "set label 1 " << io::gnuplotQuoted("R " + length(reach)) << " at "
-     << 0.6 * reach * std::cos(middle) << "," << 0.6 * reach * std::sin(middle)
-     << " center offset 0,1\n"
-     << "set label 2 "
-     << io::gnuplotQuoted("max reach " + length(reach) + ", min reach " + length(top.min_reach))
-     << " at graph 0.02, graph 0.97 left\n"
-     << "set label 3 "
-     << io::gnuplotQuoted("swept at full reach " + number(degrees(top.sweep)) + " deg")
-     << " at graph 0.02, graph 0.93 left\n"
-     << "set label 4 "
-     << io::gnuplotQuoted("highest " + length(drawing.highest) + ", lowest " +
-                          length(drawing.lowest))
-     << " at graph 0.02, graph 0.89 left\n";
-  if (top.sweep < 2.0 * kPi) {
-    for (const double a : {top.sweep_from, top.sweep_to}) {
-      gp << "set arrow from 0,0 to " << 1.08 * reach * std::cos(a) << ","
-         << 1.08 * reach * std::sin(a) << " nohead dt '-.' lc rgb '#555555'\n";
-    }
-  }
-  gp << "set object 1 circle at 0,0 size " << reach << " arc [" << degrees(top.sweep_from) << ":"
-     << degrees(top.sweep_from + top.sweep) << "] fs empty border lc rgb '#555555' dt 2\n"
-     << "plot " << io::gnuplotQuoted(top_data) << " with filledcurves closed lc rgb '#5b8fc9', "
-     << io::gnuplotQuoted(outline_data) << " with lines lw 1.5 lc rgb '#1f4e8c'\n"
-     << "unset multiplot\n";
-  return io::runGnuplot(dir, gp.str(), picture);
+  writeSideView(gp, drawing.side, unit, files);
+  writeTopView(gp, drawing, unit, files);
+  gp << "unset multiplot\n";
+  return io::runGnuplot(dir, gp.str(), files.picture);
 }
 
 }  // namespace mcws

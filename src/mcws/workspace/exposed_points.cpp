@@ -7,7 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mcws/core/error.h"
 
@@ -246,6 +249,89 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   return cover;
 }
 
+/// The radius of the smallest class: of the finite positive radii, the one with a share
+/// kBelowSmallestClass of them below it; none when no radius is finite and positive.
+std::optional<double> smallestClassRadius(const std::vector<double>& radius) {
+  std::vector<double> finite;
+  finite.reserve(radius.size());
+  for (const double r : radius) {
+    if (r > 0.0 && std::isfinite(r)) finite.push_back(r);
+  }
+  if (finite.empty()) return std::nullopt;
+  const std::size_t rank = static_cast<std::size_t>(kBelowSmallestClass * (finite.size() - 1));
+  std::nth_element(finite.begin(), finite.begin() + rank, finite.end());
+  return finite[rank];
+}
+
+/// The class of radius r (>= smallest): the largest j with smallest * kClassRatio^j <= r.
+int radiusClass(double r, double smallest) {
+  int j = static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio)));
+  // The rounding of the logarithm must not put a radius in a class above it.
+  while (j > 0 && smallest * std::pow(kClassRatio, j) > r) --j;
+  return j;
+}
+
+/// The box that spans the balls of radius `high` around the points `members` (lo, hi; the third
+/// axis 0 in 2-D).
+template <int D>
+std::pair<std::array<double, 3>, std::array<double, 3>> spanOfBalls(
+    const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<std::uint32_t>& members,
+    double high) {
+  std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) {
+    lo[a] = std::numeric_limits<double>::infinity();
+    hi[a] = -lo[a];
+  }
+  for (const std::uint32_t i : members) {
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min<double>(lo[a], cloud[i].data[a] - high);
+      hi[a] = std::max<double>(hi[a], cloud[i].data[a] + high);
+    }
+  }
+  return {lo, hi};
+}
+
+/// The points of the cloud in the box [lo, hi], in index order.
+template <int D>
+std::vector<std::uint32_t> pointsInBox(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                                       const std::array<double, 3>& lo,
+                                       const std::array<double, 3>& hi) {
+  std::vector<std::uint32_t> nearby;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    bool in = true;
+    for (int a = 0; a < D; ++a) in = in && cloud[i].data[a] >= lo[a] && cloud[i].data[a] <= hi[a];
+    if (in) nearby.push_back(static_cast<std::uint32_t>(i));
+  }
+  return nearby;
+}
+
+/// Marks not exposed the points of class j among `members` (by `class_of`) that a ball of radius r
+/// around them cannot reach out of the cloud: every cell of `grid` that may meet that ball is full
+/// (its cover radius, `cover`, below r).
+template <int D>
+void markCovered(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
+                 const std::vector<float>& cover, int j, double r,
+                 const std::vector<std::uint32_t>& members, const std::vector<int>& class_of,
+                 int threads, ExposedPoints& result) {
+  // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
+  // radius is below r (that point is not the one the ball's sphere passes through, at r).
+  const auto r2 = static_cast<float>(r * r);
+  std::vector<std::uint8_t> covered(grid.size()), scratch;
+  for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
+  // A point is covered when every cell that may meet the ball of radius r around it is full.
+  const Element element = elementFor<D>(r / grid.cell);
+  for (int axis = 0; axis < D; ++axis) {
+    erodeAlong(grid, axis, -element.box, element.box, covered, threads);
+  }
+  for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
+  for (const std::uint32_t i : members) {
+    if (class_of[i] == j && covered[cellOf<D>(grid, cloud[i])]) {
+      result.exposed[i] = 0;
+      --result.count;
+    }
+  }
+}
+
 template <int D>
 ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
                       const std::vector<double>& radius, int threads) {
@@ -253,16 +339,9 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   ExposedPoints result;
   result.exposed.assign(points, 1);
   result.count = points;
-  std::vector<double> finite;
-  finite.reserve(points);
-  for (const double r : radius) {
-    if (r > 0.0 && std::isfinite(r)) finite.push_back(r);
-  }
-  if (finite.empty() || points < 2) return result;
-  const std::size_t rank = static_cast<std::size_t>(kBelowSmallestClass * (finite.size() - 1));
-  std::nth_element(finite.begin(), finite.begin() + rank, finite.end());
-  const double smallest = finite[rank];
-  finite = {};
+  const std::optional<double> smallest_class = smallestClassRadius(radius);
+  if (!smallest_class || points < 2) return result;
+  const double smallest = *smallest_class;
   // Radius classes r_j = r_0 1.25^j from the smallest radius but 1 %, kClassesPerGrid to a
   // grid: a grid's cells are half its smallest class's radius (a cloud's density may vary by
   // orders of magnitude: refined clouds).
@@ -271,11 +350,8 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   for (std::size_t i = 0; i < points; ++i) {
     const double r = radius[i];
     if (!(r >= smallest && std::isfinite(r))) continue;
-    int j = static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio)));
-    // The rounding of the logarithm must not put a radius in a class above it.
-    while (j > 0 && smallest * std::pow(kClassRatio, j) > r) --j;
-    class_of[i] = j;
-    classes = std::max(classes, j + 1);
+    class_of[i] = radiusClass(r, smallest);
+    classes = std::max(classes, class_of[i] + 1);
   }
   const int grids = (classes + kClassesPerGrid - 1) / kClassesPerGrid;
   std::vector<std::vector<std::uint32_t>> members(grids);
@@ -283,8 +359,6 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     if (class_of[i] >= 0)
       members[class_of[i] / kClassesPerGrid].push_back(static_cast<std::uint32_t>(i));
   }
-  std::vector<std::uint8_t> covered, scratch;
-  std::vector<std::uint32_t> nearby;
   for (int g = 0; g < grids; ++g) {
     // A grid whose points are a few scattered ones (the edge's, in a uniform cloud) is not worth
     // its pass over the cloud: they stay exposed.
@@ -292,45 +366,14 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     const double low = smallest * std::pow(kClassRatio, g * kClassesPerGrid);
     const double high = low * std::pow(kClassRatio, kClassesPerGrid);
     // The grid spans the members' balls; every point in it bounds the cover radii.
-    std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0};
-    for (int a = 0; a < D; ++a) {
-      lo[a] = std::numeric_limits<double>::infinity();
-      hi[a] = -lo[a];
-    }
-    for (const std::uint32_t i : members[g]) {
-      for (int a = 0; a < D; ++a) {
-        lo[a] = std::min<double>(lo[a], cloud[i].data[a] - high);
-        hi[a] = std::max<double>(hi[a], cloud[i].data[a] + high);
-      }
-    }
-    nearby.clear();
-    for (std::size_t i = 0; i < points; ++i) {
-      bool in = true;
-      for (int a = 0; a < D; ++a) in = in && cloud[i].data[a] >= lo[a] && cloud[i].data[a] <= hi[a];
-      if (in) nearby.push_back(static_cast<std::uint32_t>(i));
-    }
+    const auto [lo, hi] = spanOfBalls<D>(cloud, members[g], high);
+    const std::vector<std::uint32_t> nearby = pointsInBox<D>(cloud, lo, hi);
     const double cap = std::max(kCellsPerPoint * static_cast<double>(nearby.size()), 4096.0);
     const Grid grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
     const std::vector<float> cover = coverRadius<D>(cloud, nearby, grid, threads);
     for (int j = g * kClassesPerGrid; j < std::min(classes, (g + 1) * kClassesPerGrid); ++j) {
-      const double r = smallest * std::pow(kClassRatio, j);
-      // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
-      // radius is below r (that point is not the one the ball's sphere passes through, at r).
-      const auto r2 = static_cast<float>(r * r);
-      covered.resize(grid.size());
-      for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
-      // A point is covered when every cell that may meet the ball of radius r around it is full.
-      const Element element = elementFor<D>(r / grid.cell);
-      for (int axis = 0; axis < D; ++axis) {
-        erodeAlong(grid, axis, -element.box, element.box, covered, threads);
-      }
-      for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
-      for (const std::uint32_t i : members[g]) {
-        if (class_of[i] == j && covered[cellOf<D>(grid, cloud[i])]) {
-          result.exposed[i] = 0;
-          --result.count;
-        }
-      }
+      markCovered<D>(cloud, grid, cover, j, smallest * std::pow(kClassRatio, j), members[g],
+                     class_of, threads, result);
     }
   }
   return result;

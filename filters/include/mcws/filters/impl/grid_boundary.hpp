@@ -46,6 +46,87 @@ inline void checkCellSize(const std::string& filter_name, const char* what, doub
   }
 }
 
+/// (cell key, point index) for every point of `projected`, sorted: the points of a cell are
+/// consecutive, in input order. Keys are packCell() of 1 + the cell coordinates from the low
+/// corner of the points' bounding box.
+inline std::vector<std::pair<std::uint64_t, pcl::index_t>> keyedByCell(
+    const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensions, double cell) {
+  const std::size_t n = projected.size();
+  std::vector<std::pair<std::uint64_t, pcl::index_t>> keyed(n);
+  if (n == 0) return keyed;
+  pcl::PointXYZ min, max;
+  pcl::getMinMax3D(projected, min, max);
+  for (std::size_t k = 0; k < n; ++k) {
+    std::uint64_t c[3] = {0, 0, 0};
+    for (int a = 0; a < dimensions; ++a) {
+      c[a] = 1 + static_cast<std::uint64_t>(
+                     std::floor((static_cast<double>(projected[k].data[a]) - min.data[a]) / cell));
+    }
+    keyed[k] = {packCell(c[0], c[1], c[2]), static_cast<pcl::index_t>(k)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  return keyed;
+}
+
+/// Offsets of the 8 (26) neighbours in packed keys; coordinates never leave [0, 2^21).
+inline std::vector<std::int64_t> neighbourOffsets(int dimensions) {
+  std::vector<std::int64_t> offsets;
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = (dimensions == 3 ? -1 : 0); dz <= (dimensions == 3 ? 1 : 0); ++dz) {
+        if (dx != 0 || dy != 0 || dz != 0) {
+          offsets.push_back(dx * (std::int64_t{1} << 42) + dy * (std::int64_t{1} << 21) + dz);
+        }
+      }
+    }
+  }
+  return offsets;
+}
+
+/// Whether a neighbour of occupied cell `key` (by `offsets`) is not among the occupied `cells`
+/// (sorted).
+inline bool hasEmptyNeighbour(const std::vector<std::uint64_t>& cells, std::uint64_t key,
+                              const std::vector<std::int64_t>& offsets) {
+  return std::any_of(offsets.begin(), offsets.end(), [&](auto d) {
+    return !std::binary_search(cells.begin(), cells.end(),
+                               static_cast<std::uint64_t>(static_cast<std::int64_t>(key) + d));
+  });
+}
+
+/// Of the points of one cell, entries [begin, end) of `keyed`: appends their mean in the input
+/// to `cell_means` and returns the one nearest their mean in the method's plane (`projected`;
+/// the lowest index wins a tie).
+template <typename PointT>
+pcl::index_t nearestToCellMean(const pcl::PointCloud<pcl::PointXYZ>& projected,
+                               const pcl::PointCloud<PointT>& input, const pcl::Indices& source,
+                               const std::vector<std::pair<std::uint64_t, pcl::index_t>>& keyed,
+                               std::size_t begin, std::size_t end,
+                               pcl::PointCloud<pcl::PointXYZ>& cell_means) {
+  Eigen::Vector3d mean_projected = Eigen::Vector3d::Zero(), mean_input = Eigen::Vector3d::Zero();
+  for (std::size_t k = begin; k < end; ++k) {
+    const pcl::index_t i = keyed[k].second;
+    mean_projected += projected[i].getVector3fMap().template cast<double>();
+    mean_input += input[source[i]].getVector3fMap().template cast<double>();
+  }
+  const double count = static_cast<double>(end - begin);
+  mean_projected /= count;
+  mean_input /= count;
+  cell_means.emplace_back(static_cast<float>(mean_input.x()), static_cast<float>(mean_input.y()),
+                          static_cast<float>(mean_input.z()));
+  pcl::index_t nearest = keyed[begin].second;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = begin; k < end; ++k) {
+    const pcl::index_t i = keyed[k].second;
+    const double d2 =
+        (projected[i].getVector3fMap().template cast<double>() - mean_projected).squaredNorm();
+    if (d2 < best) {  // strict: the lowest index wins a tie
+      best = d2;
+      nearest = i;
+    }
+  }
+  return nearest;
+}
+
 }  // namespace detail
 
 template <typename PointT>
@@ -68,20 +149,8 @@ void GridBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   used_cell_size_ = cell;
 
   // (cell key, point) sorted: the points of a cell are consecutive, in input order.
-  std::vector<std::pair<std::uint64_t, pcl::index_t>> keyed(n);
-  if (n > 0) {
-    pcl::PointXYZ min, max;
-    pcl::getMinMax3D(projected, min, max);
-    for (std::size_t k = 0; k < n; ++k) {
-      std::uint64_t c[3] = {0, 0, 0};
-      for (int a = 0; a < dimensions; ++a) {
-        c[a] = 1 + static_cast<std::uint64_t>(std::floor(
-                       (static_cast<double>(projected[k].data[a]) - min.data[a]) / cell));
-      }
-      keyed[k] = {detail::packCell(c[0], c[1], c[2]), static_cast<pcl::index_t>(k)};
-    }
-    std::sort(keyed.begin(), keyed.end());
-  }
+  const std::vector<std::pair<std::uint64_t, pcl::index_t>> keyed =
+      detail::keyedByCell(projected, dimensions, cell);
   std::vector<std::uint64_t> cells;  // occupied cells, sorted
   std::vector<std::size_t> first;    // first entry of each cell in `keyed`
   for (std::size_t k = 0; k < n; ++k) {
@@ -93,50 +162,13 @@ void GridBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   first.push_back(n);
   occupied_cells_ = cells.size();
 
-  // Offsets of the 8 (26) neighbours in packed keys; coordinates never leave [0, 2^21).
-  std::vector<std::int64_t> offsets;
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dz = (dimensions == 3 ? -1 : 0); dz <= (dimensions == 3 ? 1 : 0); ++dz) {
-        if (dx != 0 || dy != 0 || dz != 0) {
-          offsets.push_back(dx * (std::int64_t{1} << 42) + dy * (std::int64_t{1} << 21) + dz);
-        }
-      }
-    }
-  }
-
+  const std::vector<std::int64_t> offsets = detail::neighbourOffsets(dimensions);
   std::vector<char> boundary(n, 0);
   cell_means_.clear();
   for (std::size_t c = 0; c < cells.size(); ++c) {
-    const bool has_empty_neighbour = std::any_of(offsets.begin(), offsets.end(), [&](auto d) {
-      return !std::binary_search(
-          cells.begin(), cells.end(),
-          static_cast<std::uint64_t>(static_cast<std::int64_t>(cells[c]) + d));
-    });
-    if (!has_empty_neighbour) continue;
-    Eigen::Vector3d mean_projected = Eigen::Vector3d::Zero(), mean_input = Eigen::Vector3d::Zero();
-    for (std::size_t k = first[c]; k < first[c + 1]; ++k) {
-      const pcl::index_t i = keyed[k].second;
-      mean_projected += projected[i].getVector3fMap().template cast<double>();
-      mean_input += (*input_)[source[i]].getVector3fMap().template cast<double>();
-    }
-    const double count = static_cast<double>(first[c + 1] - first[c]);
-    mean_projected /= count;
-    mean_input /= count;
-    cell_means_.emplace_back(static_cast<float>(mean_input.x()), static_cast<float>(mean_input.y()),
-                             static_cast<float>(mean_input.z()));
-    pcl::index_t nearest = keyed[first[c]].second;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t k = first[c]; k < first[c + 1]; ++k) {
-      const pcl::index_t i = keyed[k].second;
-      const double d2 =
-          (projected[i].getVector3fMap().template cast<double>() - mean_projected).squaredNorm();
-      if (d2 < best) {  // strict: the lowest index wins a tie
-        best = d2;
-        nearest = i;
-      }
-    }
-    boundary[nearest] = 1;
+    if (!detail::hasEmptyNeighbour(cells, cells[c], offsets)) continue;
+    boundary[detail::nearestToCellMean(projected, *input_, source, keyed, first[c], first[c + 1],
+                                       cell_means_)] = 1;
   }
 
   splitByBoundary(

@@ -1,0 +1,299 @@
+#pragma once
+/// \file
+/// \brief The machinery of delaunayMeasure() (measure.h) that its parts share: CGAL's Delaunay
+/// triangulations of a cloud in 2-D and 3-D, the alpha test of a simplex, the order-free sum of
+/// the kept simplices, the boundary vertices and the leave-one-out count from a vertex's star.
+/// Private to mcws_workspace (namespace mcws::detail).
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "mcws/core/error.h"
+
+namespace mcws::detail {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// Cells per side of the lock grid of the parallel 3-D triangulation (CGAL's examples use 50).
+constexpr int kLockGridCells = 50;
+
+/// A simplex's vertex points in the order of their indices (the vertex info), so that what is
+/// computed from them does not depend on how the triangulation happens to store the simplex
+/// (which differs with the thread count of a parallel triangulation).
+template <int D, typename Simplex>
+auto canonicalPoints(const Simplex& s) {
+  std::array<std::pair<std::uint32_t, int>, D + 1> order;
+  for (int k = 0; k <= D; ++k) order[k] = {s->vertex(k)->info(), k};
+  std::sort(order.begin(), order.end());
+  std::array<typename std::decay_t<decltype(s->vertex(0)->point())>, D + 1> p;
+  for (int k = 0; k <= D; ++k) p[k] = s->vertex(order[k].second)->point();
+  return p;
+}
+
+/// Whether a triangle (D = 2) or tetrahedron (D = 3) belongs to the region: its circumradius is
+/// at most `alpha_factor` times the local spacing at its sparsest vertex.
+template <int D, typename Simplex>
+bool withinAlpha(const Simplex& s, const std::vector<double>& spacing, double alpha_factor) {
+  double local = 0.0;
+  for (int k = 0; k <= D; ++k) local = std::max(local, spacing[s->vertex(k)->info()]);
+  const double limit = alpha_factor * local;
+  const auto p = canonicalPoints<D>(s);
+  if constexpr (D == 2) {
+    return CGAL::squared_radius(p[0], p[1], p[2]) <= limit * limit;
+  } else {
+    return CGAL::squared_radius(p[0], p[1], p[2], p[3]) <= limit * limit;
+  }
+}
+
+/// Area of a triangle (D = 2) or volume of a tetrahedron (D = 3).
+template <int D, typename Simplex>
+double simplexMeasure(const Simplex& s) {
+  const auto p = canonicalPoints<D>(s);
+  if constexpr (D == 2) {
+    return std::abs(CGAL::area(p[0], p[1], p[2]));
+  } else {
+    return std::abs(CGAL::volume(p[0], p[1], p[2], p[3]));
+  }
+}
+
+/// A sum of non-negative terms that does not depend on their order (a parallel triangulation
+/// lists its simplices in an order that depends on the thread count): each term is rounded to a
+/// multiple of 2^-61 of a bound on the total (the bounding box's area or volume) and the
+/// multiples add exactly as integers. The rounding, at most 2^-62 of the bound per term, is far
+/// below what adding doubles loses over millions of terms.
+class OrderFreeSum {
+ public:
+  explicit OrderFreeSum(double bound) : shift_(0) {
+    if (!(bound > 0.0 && std::isfinite(bound))) {
+      throw Error("the bound of a sum must be a positive number, got " + std::to_string(bound));
+    }
+    shift_ = 61 - std::ilogb(bound);
+  }
+  void add(double term) { total_ += std::llround(std::ldexp(term, shift_)); }
+  /// Adds another sum of the same bound (partial sums of threads).
+  void add(const OrderFreeSum& other) { total_ += other.total_; }
+  double value() const { return std::ldexp(static_cast<double>(total_), -shift_); }
+
+ private:
+  int shift_;
+  __int128 total_{0};
+};
+
+/// Area (D = 2) or volume (D = 3) of the points' bounding box.
+inline double boundingMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions) {
+  Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& p : points) {
+    const Eigen::Array3d q(p.x, p.y, p.z);
+    lo = lo.min(q);
+    hi = hi.max(q);
+  }
+  const Eigen::Array3d extent = hi - lo;
+  return dimensions == 2 ? extent[0] * extent[1] : extent.prod();
+}
+
+/// The types that differ between an area (D = 2: triangles, CGAL's faces) and a volume (D = 3:
+/// tetrahedra, CGAL's cells); the measuring below is written once over D. `Concurrency` chooses
+/// CGAL's parallel (CGAL::Parallel_tag, TBB) or sequential 3-D triangulation; the 2-D
+/// triangulation is always sequential. Vertex info: the point's index; simplex info: 1 for a kept
+/// simplex, 0 for a dropped one. `Local`: the small triangulation of one vertex's neighbours
+/// (LeaveOneOut::kStar).
+template <int D, typename Concurrency = CGAL::Sequential_tag>
+struct Simplices;
+
+template <typename Concurrency>
+struct Simplices<2, Concurrency> {
+  using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+  using Delaunay = CGAL::Delaunay_triangulation_2<
+      Kernel, CGAL::Triangulation_data_structure_2<
+                  VertexBase, CGAL::Triangulation_face_base_with_info_2<char, Kernel>>>;
+  using Local =
+      CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<VertexBase>>;
+};
+
+template <typename Concurrency>
+struct Simplices<3, Concurrency> {
+  using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Kernel>;
+  using Delaunay = CGAL::Delaunay_triangulation_3<
+      Kernel,
+      CGAL::Triangulation_data_structure_3<
+          VertexBase, CGAL::Triangulation_cell_base_with_info_3<char, Kernel>, Concurrency>>;
+  using Local =
+      CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
+};
+
+/// Every triangle (D = 2) or tetrahedron (D = 3) of `dt`, the infinite ones included.
+template <int D, typename Delaunay>
+auto allSimplices(const Delaunay& dt) {
+  if constexpr (D == 2) {
+    return dt.all_face_handles();
+  } else {
+    return dt.all_cell_handles();
+  }
+}
+
+/// The finite triangles (D = 2) or tetrahedra (D = 3) of `dt`.
+template <int D, typename Delaunay>
+auto finiteSimplices(const Delaunay& dt) {
+  if constexpr (D == 2) {
+    return dt.finite_face_handles();
+  } else {
+    return dt.finite_cell_handles();
+  }
+}
+
+/// The vertices that share an edge with v, the infinite one included. Read-only (in 3-D without
+/// CGAL's visit flags), so threads may call it at once.
+template <int D, typename Delaunay>
+void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+                      std::vector<typename Delaunay::Vertex_handle>& out) {
+  if constexpr (D == 2) {
+    auto u = dt.incident_vertices(v), done = u;
+    do {
+      out.push_back(u);
+    } while (++u != done);
+  } else {
+    dt.adjacent_vertices_threadsafe(v, std::back_inserter(out));
+  }
+}
+
+/// Inserts the points, each with its index, into `dt`. A parallel triangulation
+/// (`Concurrency` = CGAL::Parallel_tag) inserts spatially sorted points on TBB's threads, each
+/// locking the cells of a grid over the points' bounding box.
+template <typename Concurrency, typename Delaunay, typename Input>
+void insertPoints(Delaunay& dt, const Input& input) {
+  if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
+    CGAL::Bbox_3 box;
+    for (const auto& item : input) box += item.first.bbox();
+    typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
+    dt.set_lock_data_structure(&locks);
+    try {
+      dt.insert(input.begin(), input.end());
+    } catch (...) {
+      dt.set_lock_data_structure(nullptr);  // the locks end with this scope
+      throw;
+    }
+    dt.set_lock_data_structure(nullptr);  // what follows only reads
+  } else {
+    dt.insert(input.begin(), input.end());
+  }
+}
+
+/// The vertices between kept and dropped simplices (info 1 and 0; the infinite ones are dropped),
+/// in the triangulation's vertex order. A vertex has both kinds around it exactly when some facet
+/// through it separates a kept simplex from a dropped one (its star is connected through such
+/// facets), so one pass over the kept simplices' facets finds them all.
+template <int D, typename Delaunay>
+std::vector<typename Delaunay::Vertex_handle> boundaryVertices(const Delaunay& dt,
+                                                               std::size_t points) {
+  std::vector<char> on_boundary(points, 0);  // by vertex info, the point's index
+  for (const auto s : finiteSimplices<D>(dt)) {
+    if (!s->info()) continue;
+    for (int i = 0; i <= D; ++i) {
+      if (s->neighbor(i)->info()) continue;
+      for (int j = 0; j <= D; ++j) {
+        if (j != i) on_boundary[s->vertex(j)->info()] = 1;  // the facet opposite vertex i
+      }
+    }
+  }
+  std::vector<typename Delaunay::Vertex_handle> boundary;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    if (on_boundary[v->info()]) boundary.push_back(v);
+  }
+  return boundary;
+}
+
+/// Whether `p` lies in the region of the points of `dt`: in a finite simplex within the alpha
+/// limit. Where the points span only a line (2-D) or a plane (3-D), no simplex holds p.
+template <int D, typename Delaunay>
+bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
+              const std::vector<double>& spacing, double alpha_factor) {
+  if (dt.dimension() < D) return false;
+  const auto s = dt.locate(p);
+  return !dt.is_infinite(s) && withinAlpha<D>(s, spacing, alpha_factor);
+}
+
+// Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
+// triangulation changes only its star: the hole is filled by the part of the Delaunay
+// triangulation of v's neighbours that lies in it (Devillers, "On deletion in Delaunay
+// triangulations", 1999). v's point lies in its own star, so the simplex that holds it once v
+// is gone is the simplex of that small triangulation that holds it; a vertex on the convex hull
+// lies outside the hull of the others. Each vertex is read-only work on the big triangulation,
+// so the vertices are shared among threads; the count does not depend on their number. The
+// neighbours are sorted by index before the small triangulation is built: a parallel
+// triangulation lists them in an order that depends on the thread count, and where v's point
+// lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
+// returns depends on how that triangulation was built.
+template <int D, typename Delaunay>
+std::size_t outsideByStar(const Delaunay& dt,
+                          const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                          const std::vector<double>& spacing, double alpha_factor, int threads) {
+  using Local = typename Simplices<D>::Local;
+  std::size_t outside = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : outside)
+  {
+    std::vector<typename Delaunay::Vertex_handle> neighbours;
+    std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
+      const auto v = boundary[i];
+      neighbours.clear();
+      adjacentVertices<D>(dt, v, neighbours);
+      if (std::any_of(neighbours.begin(), neighbours.end(),
+                      [&](const auto& u) { return dt.is_infinite(u); })) {
+        ++outside;  // on the convex hull
+        continue;
+      }
+      star.clear();
+      for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
+      std::sort(star.begin(), star.end(),
+                [](const auto& a, const auto& b) { return a.second < b.second; });
+      const Local local(star.begin(), star.end());
+      outside += !inRegion<D>(local, v->point(), spacing, alpha_factor);
+    }
+  }
+  return outside;
+}
+
+/// Triangulates the points whose flag in `take` is set (all of them when `take` is empty), each
+/// vertex carrying its point's index in `points`.
+template <int D, typename Concurrency, typename Delaunay>
+void triangulate(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                 const std::vector<char>& take) {
+  std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!take.empty() && !take[i]) continue;
+    const pcl::PointXYZ& p = points[i];
+    if constexpr (D == 2) {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y), static_cast<std::uint32_t>(i));
+    } else {
+      input.emplace_back(typename Delaunay::Point(p.x, p.y, p.z), static_cast<std::uint32_t>(i));
+    }
+  }
+  insertPoints<Concurrency>(dt, input);
+  if (dt.dimension() < D) {
+    throw Error(D == 2 ? "the points lie on a line: no area"
+                       : "the points lie in a plane: no volume");
+  }
+}
+
+}  // namespace mcws::detail

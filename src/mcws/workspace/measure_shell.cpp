@@ -1,0 +1,381 @@
+#include "mcws/workspace/detail/measure_shell.h"
+
+#include <nanoflann.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "mcws/workspace/detail/alpha_triangulation.h"
+#include "mcws/workspace/exposed_points.h"
+
+namespace mcws::detail {
+namespace {
+
+/// The points left out of a shell triangulation (MeasureOptions::shell), in a kd-tree (nanoflann),
+/// to tell the shell's simplices that are simplices of every point's triangulation (no left-out
+/// point inside their circumsphere) from those that fill in for the left-out points. Points that
+/// join the shell later are removed from the searches, not from the tree.
+template <int D>
+class LeftOut {
+ public:
+  LeftOut(const pcl::PointCloud<pcl::PointXYZ>& points, const std::vector<char>& in_shell)
+      : slot_of_(points.size(), kNone),
+        adaptor_{coordinates_},
+        tree_(D, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (in_shell[i]) continue;
+      slot_of_[i] = static_cast<std::uint32_t>(index_.size());
+      coordinates_.push_back({points[i].x, points[i].y, points[i].z});
+      index_.push_back(static_cast<std::uint32_t>(i));
+    }
+    removed_.assign(index_.size(), 0);
+    tree_.buildIndex();
+  }
+
+  /// Point `i` of the cloud joins the shell: no longer searched.
+  void remove(std::uint32_t i) {
+    if (slot_of_[i] != kNone) removed_[slot_of_[i]] = 1;
+  }
+
+  /// Appends to `found` the left-out points inside the circumcircle (D = 2) or circumsphere
+  /// (D = 3) of finite simplex `s` of `dt`: all of them with `all`, else at most the first.
+  /// Exact (CGAL's perturbed in-sphere test, as the triangulation breaks ties) for the points near
+  /// the sphere. \return whether there is one.
+  template <typename Delaunay, typename Simplex>
+  bool inside(const Delaunay& dt, const Simplex& s, bool all,
+              std::vector<std::uint32_t>* found) const {
+    if (index_.empty()) return false;
+    const auto p = canonicalPoints<D>(s);
+    std::array<double, 3> centre{0.0, 0.0, 0.0};
+    double radius2 = 0.0;
+    if constexpr (D == 2) {
+      const auto c = CGAL::circumcenter(p[0], p[1], p[2]);
+      centre = {c.x(), c.y(), 0.0};
+      radius2 = CGAL::squared_distance(c, p[0]);
+    } else {
+      const auto c = CGAL::circumcenter(p[0], p[1], p[2], p[3]);
+      centre = {c.x(), c.y(), c.z()};
+      radius2 = CGAL::squared_distance(c, p[0]);
+    }
+    const double radius = std::sqrt(radius2);
+    // Slack for the float coordinates of the tree and the rounding of the centre.
+    const double slack =
+        1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])}));
+    const std::array<float, 3> query{static_cast<float>(centre[0]), static_cast<float>(centre[1]),
+                                     static_cast<float>(centre[2])};
+    Nearest nearest{removed_};
+    tree_.findNeighbors(nearest, query.data(), nanoflann::SearchParams());
+    if (!nearest.full()) return false;  // every left-out point has joined
+    const double distance = std::sqrt(static_cast<double>(nearest.worstDist()));
+    if (distance > radius + slack) return false;
+    if (distance < radius - slack && !all) {
+      if (found) found->push_back(index_[nearest.slot]);
+      return true;
+    }
+    std::vector<std::pair<std::uint32_t, float>> near;
+    const double reach = radius + slack;
+    tree_.radiusSearch(query.data(), static_cast<float>(reach * reach), near,
+                       nanoflann::SearchParams(32, 0.0f, false));
+    bool any = false;
+    for (const auto& [k, d2] : near) {
+      if (removed_[k]) continue;
+      bool in = std::sqrt(static_cast<double>(d2)) < radius - slack;
+      if (!in) {
+        const auto& q = coordinates_[k];
+        if constexpr (D == 2) {
+          in = dt.side_of_oriented_circle(s, typename Delaunay::Point(q[0], q[1]), true) ==
+               CGAL::ON_POSITIVE_SIDE;
+        } else {
+          in = dt.side_of_sphere(s, typename Delaunay::Point(q[0], q[1], q[2]), true) ==
+               CGAL::ON_BOUNDED_SIDE;
+        }
+      }
+      if (!in) continue;
+      any = true;
+      if (found) found->push_back(index_[k]);
+      if (!all) break;
+    }
+    return any;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  struct Adaptor {
+    const std::vector<std::array<float, 3>>& points;
+    std::size_t kdtree_get_point_count() const { return points.size(); }
+    float kdtree_get_pt(std::size_t i, std::size_t axis) const { return points[i][axis]; }
+    template <typename Box>
+    bool kdtree_get_bbox(Box& /*box*/) const {
+      return false;
+    }
+  };
+  /// nanoflann result set: the nearest point not removed.
+  struct Nearest {
+    using DistanceType = float;
+    using IndexType = std::uint32_t;
+    const std::vector<char>& removed;
+    float best{std::numeric_limits<float>::max()};
+    std::uint32_t slot{kNone};
+    bool full() const { return slot != kNone; }
+    std::size_t size() const { return full() ? 1 : 0; }
+    float worstDist() const { return best; }
+    bool addPoint(float d2, std::uint32_t k) {
+      if (!removed[k] && d2 < best) {
+        best = d2;
+        slot = k;
+      }
+      return true;
+    }
+  };
+  using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>,
+                                                   Adaptor, D, std::uint32_t>;
+  std::vector<std::array<float, 3>> coordinates_;
+  std::vector<std::uint32_t> index_;    // the point's index in the whole cloud
+  std::vector<std::uint32_t> slot_of_;  // the point's place in the tree, by its index
+  std::vector<char> removed_;           // by place in the tree: joined the shell
+  Adaptor adaptor_;
+  Tree tree_;
+};
+
+/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
+template <int D, typename Delaunay>
+struct SimplexOf {
+  using Handle = typename Delaunay::Face_handle;
+};
+template <typename Delaunay>
+struct SimplexOf<3, Delaunay> {
+  using Handle = typename Delaunay::Cell_handle;
+};
+
+/// The finite simplices around vertex v, and the infinite ones with `infinite` (read-only, so
+/// threads may call it at once).
+template <int D, typename Delaunay>
+void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+                       std::vector<typename SimplexOf<D, Delaunay>::Handle>& out,
+                       bool infinite = false) {
+  out.clear();
+  if constexpr (D == 2) {
+    auto f = dt.incident_faces(v), done = f;
+    do {
+      out.push_back(f);
+    } while (++f != done);
+  } else {
+    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+  }
+  if (!infinite) {
+    out.erase(
+        std::remove_if(out.begin(), out.end(), [&](const auto& s) { return dt.is_infinite(s); }),
+        out.end());
+  }
+}
+
+/// The points an empty ball of alpha radius may touch (exposedPoints()): 1 for a point of the
+/// shell, 0 for a point left out.
+std::vector<char> shellPoints(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
+                              const std::vector<double>& spacing, double alpha_factor,
+                              int threads) {
+  std::vector<double> reach(spacing.size());
+  for (std::size_t i = 0; i < spacing.size(); ++i) reach[i] = alpha_factor * spacing[i];
+  return exposedPoints(points, dimensions, reach, threads).exposed;
+}
+
+/// Flags every simplex of `dt` kept (1) or dropped (0) as `keep` says, the infinite ones dropped.
+/// \return the finite simplices.
+template <int D, typename Delaunay, typename Keep>
+std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(Delaunay& dt, const Keep& keep,
+                                                                   int threads) {
+  std::vector<typename SimplexOf<D, Delaunay>::Handle> finite;
+  finite.reserve(D == 2 ? 2 * dt.number_of_vertices() : 7 * dt.number_of_vertices());
+  for (const auto s : allSimplices<D>(dt)) {
+    s->info() = 0;
+    if (!dt.is_infinite(s)) finite.push_back(s);
+  }
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
+    finite[i]->info() = keep(finite[i]);
+  }
+  return finite;
+}
+
+/// The kept simplices of the boundary vertices' stars (a simplex is in the stars of up to D + 1
+/// vertices, so it may come more than once).
+template <int D, typename Delaunay>
+std::vector<typename SimplexOf<D, Delaunay>::Handle> keptStars(
+    const Delaunay& dt, const std::vector<typename Delaunay::Vertex_handle>& boundary) {
+  std::vector<typename SimplexOf<D, Delaunay>::Handle> around, stars;
+  for (const auto v : boundary) {
+    incidentSimplices<D>(dt, v, around);
+    for (const auto& s : around) {
+      if (s->info()) stars.push_back(s);
+    }
+  }
+  return stars;
+}
+
+/// The left-out points in the circumspheres of `stars` (searched on all threads), sorted, each
+/// once. `stars` is sorted and its repeats dropped first.
+template <int D, typename Delaunay, typename Simplex>
+std::vector<std::uint32_t> leftOutInStars(const Delaunay& dt, std::vector<Simplex>& stars,
+                                          const LeftOut<D>& left_out, int threads) {
+  std::sort(stars.begin(), stars.end());
+  stars.erase(std::unique(stars.begin(), stars.end()), stars.end());
+  std::vector<std::uint32_t> joining;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<std::uint32_t> found;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(stars.size()); ++i) {
+      left_out.inside(dt, stars[i], true, &found);
+    }
+#pragma omp critical
+    joining.insert(joining.end(), found.begin(), found.end());
+  }
+  std::sort(joining.begin(), joining.end());
+  joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
+  return joining;
+}
+
+/// Inserts the points `joining` into `dt`, each vertex carrying its point's index, and takes them
+/// off the left-out points. \return their vertices.
+template <int D, typename Delaunay>
+std::vector<typename Delaunay::Vertex_handle> insertJoining(
+    Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+    const std::vector<std::uint32_t>& joining, LeftOut<D>& left_out) {
+  std::vector<typename Delaunay::Vertex_handle> joined;
+  for (const std::uint32_t k : joining) {
+    left_out.remove(k);
+    const pcl::PointXYZ& p = points[k];
+    typename Delaunay::Vertex_handle v;
+    if constexpr (D == 2) {
+      v = dt.insert(typename Delaunay::Point(p.x, p.y));
+    } else {
+      v = dt.insert(typename Delaunay::Point(p.x, p.y, p.z));
+    }
+    v->info() = k;
+    joined.push_back(v);
+  }
+  return joined;
+}
+
+/// Flags the simplices around the vertices `joined` (the new ones insertion made) as `keep` says,
+/// the infinite ones dropped. \return the kept ones in a boundary vertex's star (`on_boundary`, by
+/// point index): the others were checked before.
+template <int D, typename Delaunay, typename Keep>
+std::vector<typename SimplexOf<D, Delaunay>::Handle> retestAround(
+    Delaunay& dt, const std::vector<typename Delaunay::Vertex_handle>& joined, const Keep& keep,
+    const std::vector<char>& on_boundary) {
+  std::vector<typename SimplexOf<D, Delaunay>::Handle> around, stars;
+  for (const auto v : joined) {
+    incidentSimplices<D>(dt, v, around, true);
+    for (const auto& s : around) {
+      s->info() = dt.is_infinite(s) ? 0 : keep(s);
+      if (!s->info()) continue;
+      for (int k = 0; k <= D; ++k) {
+        if (on_boundary[s->vertex(k)->info()]) {
+          stars.push_back(s);
+          break;
+        }
+      }
+    }
+  }
+  return stars;
+}
+
+/// Makes each boundary vertex's star the whole triangulation's: a star simplex with left-out
+/// points in its circumsphere is not the whole triangulation's, so those points join (inserted,
+/// the simplices around them flagged by `keep`), round by round until no star simplex has one.
+/// `finite` is listed anew after each round (some of its simplices are gone).
+template <int D, typename Delaunay, typename Keep>
+void completeStars(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                   const std::vector<typename Delaunay::Vertex_handle>& boundary,
+                   LeftOut<D>& left_out, const Keep& keep,
+                   std::vector<typename SimplexOf<D, Delaunay>::Handle>& finite, int threads) {
+  std::vector<typename SimplexOf<D, Delaunay>::Handle> stars = keptStars<D>(dt, boundary);
+  std::vector<char> on_boundary(points.size(), 0);
+  for (const auto v : boundary) on_boundary[v->info()] = 1;
+  for (;;) {
+    const std::vector<std::uint32_t> joining = leftOutInStars<D>(dt, stars, left_out, threads);
+    if (joining.empty()) break;
+    const auto joined = insertJoining<D>(dt, points, joining, left_out);
+    stars = retestAround<D>(dt, joined, keep, on_boundary);
+    finite.clear();
+    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
+  }
+}
+
+/// The kept simplices' total area (D = 2) or volume (D = 3), summed on all threads (OrderFreeSum
+/// of `bound`).
+template <int D, typename Simplex>
+double keptTotal(const std::vector<Simplex>& finite, double bound, int threads) {
+  OrderFreeSum kept(bound);
+#pragma omp parallel num_threads(threads)
+  {
+    OrderFreeSum part(bound);  // not a copy of `kept`, which other threads may be adding to
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
+      if (finite[i]->info()) part.add(simplexMeasure<D>(finite[i]));
+    }
+#pragma omp critical
+    kept.add(part);
+  }
+  return kept.value();
+}
+
+}  // namespace
+
+template <int D, typename Concurrency>
+RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
+                           const std::vector<double>& spacing, const MeasureOptions& options) {
+  using Delaunay = typename Simplices<D, Concurrency>::Delaunay;
+  using Simplex = typename SimplexOf<D, Delaunay>::Handle;
+  const double alpha_factor = options.alpha_factor;
+  const int threads = options.threads;
+  if (options.phase) options.phase("exposed points");
+  const std::vector<char> in_shell = shellPoints(points, D, spacing, alpha_factor, threads);
+  LeftOut<D> left_out(points, in_shell);
+  if (options.phase) options.phase("triangulation");
+  Delaunay dt;
+  triangulate<D, Concurrency>(dt, points, in_shell);
+
+  if (options.phase) options.phase("alpha test");
+  // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).
+  const auto keep = [&](const Simplex& s) -> char {
+    return withinAlpha<D>(s, spacing, alpha_factor) || left_out.inside(dt, s, false, nullptr);
+  };
+  std::vector<Simplex> finite = flagSimplices<D>(dt, keep, threads);
+  // Joins below replace only kept simplices (a dropped one has no left-out point in its
+  // circumsphere, and a simplex around a covered point is within its alpha limit), so the
+  // boundary vertices are final.
+  const auto boundary = boundaryVertices<D>(dt, points.size());
+  if (options.edge_correction) {
+    completeStars<D>(dt, points, boundary, left_out, keep, finite, threads);
+  }
+  RegionMeasure result;
+  result.uncorrected = keptTotal<D>(finite, boundingMeasure(points, D), threads);
+  result.points = points.size();
+  result.triangulated = dt.number_of_vertices();
+  result.boundary_vertices = boundary.size();
+  if (options.edge_correction) {
+    if (options.phase) options.phase("edge correction");
+    result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads);
+  }
+  return result;
+}
+
+template RegionMeasure measureShell<2, CGAL::Sequential_tag>(const pcl::PointCloud<pcl::PointXYZ>&,
+                                                             const std::vector<double>&,
+                                                             const MeasureOptions&);
+template RegionMeasure measureShell<3, CGAL::Sequential_tag>(const pcl::PointCloud<pcl::PointXYZ>&,
+                                                             const std::vector<double>&,
+                                                             const MeasureOptions&);
+template RegionMeasure measureShell<3, CGAL::Parallel_tag>(const pcl::PointCloud<pcl::PointXYZ>&,
+                                                           const std::vector<double>&,
+                                                           const MeasureOptions&);
+
+}  // namespace mcws::detail
