@@ -1,5 +1,4 @@
-/// \file
-/// \brief buildReachMap: a reachability map filled from joint samples, in parallel.
+#include "mcws/reach/reach_map.h"
 
 #include <omp.h>
 
@@ -13,7 +12,6 @@
 #include "mcws/collision/collision_checker.h"
 #include "mcws/core/first_error.h"
 #include "mcws/reach/pose_batch.h"
-#include "mcws/reach/reach_map.h"
 #include "mcws/workspace/sampler.h"
 
 namespace mcws {
