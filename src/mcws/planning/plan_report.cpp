@@ -143,7 +143,10 @@ std::string pathCsv(const Scenario& scenario, const PathSafety& path) {
   return out;
 }
 
-nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& result) {
+namespace {
+
+/// The units of every number of the JSON report.
+nlohmann::json unitsJson(const Scenario& scenario) {
   const SwayPlanningProblem& problem = scenario.problem;
   nlohmann::json units{{"length", unitName(problem.robot.length_unit)},
                        {"angle", "rad"},
@@ -153,10 +156,202 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
   nlohmann::json joint_units = nlohmann::json::array();
   for (int j = 0; j < problem.robot.dof(); ++j) joint_units.push_back(jointUnit(scenario, j));
   units["configuration"] = joint_units;
+  return units;
+}
+
+/// A shared node of a round: where it is, the paths through it and the one that dominates.
+nlohmann::json sharedNodeJson(const PlanningRound& round, const SharedNodeDecision& decision) {
+  nlohmann::json node{{"vertex", decision.vertex},
+                      {"configuration", vectorJson(vertexConfiguration(round, decision.vertex))},
+                      {"winner", decision.winner},
+                      {"loops_cut", decision.looped},
+                      {"paths", nlohmann::json::array()}};
+  for (std::size_t k = 0; k < decision.paths.size(); ++k) {
+    node["paths"].push_back({{"candidate", decision.paths[k]},
+                             {"distance", decision.values[k].distance},
+                             {"probability", decision.values[k].probability},
+                             {"score", decision.scores[k]}});
+  }
+  return node;
+}
+
+nlohmann::json roundJson(const PlanningRound& round) {
+  nlohmann::json r{{"base_offset", round.base_offset},
+                   {"goal_displacement", round.goal_displacement},
+                   {"roadmap_status", roadmapStatusName(round.status)},
+                   {"roadmap_vertices", round.roadmap_vertices},
+                   {"roadmap_edges", round.roadmap_edges},
+                   {"reference_distance", round.reference_distance},
+                   {"seconds", round.seconds},
+                   {"roadmap_seconds", round.roadmap_seconds},
+                   {"evaluation_seconds", round.evaluation_seconds},
+                   {"candidates", nlohmann::json::array()},
+                   {"shared_nodes", nlohmann::json::array()}};
+  for (const PathSafety& path : round.candidates) r["candidates"].push_back(pathJson(path));
+  for (const SharedNodeDecision& decision : round.decisions)
+    r["shared_nodes"].push_back(sharedNodeJson(round, decision));
+  if (round.best) {
+    r["best"] = pathJson(*round.best);
+    r["best"]["accepted"] = round.accepted;
+  }
+  return r;
+}
+
+/// The validation's rows, and the planned rows' numbers by name.
+nlohmann::json validationJson(const SwayPlanningProblem& problem,
+                              const SwayPlanningResult& result) {
+  nlohmann::json v{{"poses", problem.validation_poses},
+                   {"seconds", result.validation_seconds},
+                   {"rows", nlohmann::json::array()}};
+  for (const ValidationRow& row : result.validation) {
+    // A row whose planner found no path has a status and no numbers: no length 0 or
+    // probability 0 that reads as a perfect path.
+    nlohmann::json item{{"name", row.name},
+                        {"planned", row.planned},
+                        {"status", row.planned ? "planned" : "no_path"},
+                        {"roadmap_status", row.status},
+                        {"seconds", row.seconds}};
+    if (row.planned) {
+      item["length"] = row.length;
+      item["poses"] = row.poses;
+      item["colliding_poses"] = row.colliding;
+      item["collision_probability"] = row.collision_probability;
+      item["interval_95"] = {row.interval.low, row.interval.high};
+    }
+    if (row.name == "padded") {
+      item["padding"] = row.padding;
+      item["planning_seconds"] = row.planning_seconds;
+    }
+    v["rows"].push_back(item);
+    if (row.planned) {
+      v[row.name + "_collision_probability"] = row.collision_probability;
+      v[row.name + "_interval_95"] = {row.interval.low, row.interval.high};
+      v[row.name + "_length"] = row.length;
+    }
+    if (row.name == "padded") v["padding"] = row.padding;
+  }
+  return v;
+}
+
+/// The report's head: the scenario, the acceptance criterion and the units.
+void reportHeader(const Scenario& scenario, std::ostream& out) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  out << "scenario " << scenario.name << " (" << scenario.robot_path
+      << "): n = " << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
+      << " % region, m = " << problem.candidates << " candidates, rule "
+      << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
+      << ", w = " << problem.score.weight << "\n"
+      << "acceptance " << criterion(problem) << "\n"
+      << "units: lengths " << unitName(problem.robot.length_unit)
+      << ", angles rad, times s; D = " << scenario.distance_unit
+      << " (dimensionless, as are D0, w and the scores); P, the threshold and the free and "
+         "collision rates are fractions in [0, 1]; so is max_collision_probability; P is the "
+         "patent's mean of segment free rates, not the probability that the whole path is free; a "
+         "path's whole-path collision rate is the share of base poses for which it collides "
+         "anywhere along its length\n";
+}
+
+/// A round's candidates, one table line each.
+void reportCandidates(const SwayPlanningProblem& problem, const PlanningRound& round,
+                      std::ostream& out) {
+  out << "  cand  length D  P (patent)  whole path collides: poses, rate [95 % CI]  "
+         "worst segment: index, P\n";
+  for (std::size_t c = 0; c < round.candidates.size(); ++c) {
+    const PathSafety& path = round.candidates[c];
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "  %4zu  %8.3f  %10.4f  %5zu of %-5zu %.3f [%.3f, %.3f]        %4zu, %.3f\n", c,
+                  path.length, path.probability, path.colliding_poses, problem.base_poses,
+                  path.collision_rate, path.collision_interval.low, path.collision_interval.high,
+                  path.worst_segment, path.worst_probability);
+    out << line;
+  }
+}
+
+/// A round's shared nodes, one line each: the paths through it and the one that dominates.
+void reportSharedNodes(const Scenario& scenario, const PlanningRound& round, std::ostream& out) {
+  for (const SharedNodeDecision& decision : round.decisions) {
+    out << "  shared node " << decision.vertex << " "
+        << configuration(scenario, vertexConfiguration(round, decision.vertex)) << ":";
+    for (std::size_t k = 0; k < decision.paths.size(); ++k) {
+      out << " cand " << decision.paths[k] << " (D " << format("%.3f", decision.values[k].distance)
+          << ", P " << format("%.4f", decision.values[k].probability) << ", score "
+          << format("%.4f", decision.scores[k]) << ")";
+    }
+    out << " -> cand " << decision.winner << " dominates";
+    if (!decision.looped.empty()) {
+      out << "; loop cut from cand";
+      for (std::size_t c : decision.looped) out << " " << c;
+    }
+    out << "\n";
+  }
+}
+
+/// Round r (from 0): its roadmap and, when it found paths, its candidates, shared nodes and best
+/// path with the verdict.
+void reportRound(const Scenario& scenario, std::size_t r, const PlanningRound& round,
+                 std::ostream& out) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  const std::string length_unit = unitName(problem.robot.length_unit);
+  out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
+      << " along the line (goal's tool point " << format("%.4g", round.goal_displacement) << " "
+      << length_unit << " from the target): roadmap " << round.roadmap_vertices << " vertices, "
+      << round.roadmap_edges << " edges (" << roadmapStatusName(round.status)
+      << "), D0 = " << format("%.4g", round.reference_distance) << ", "
+      << format("%.2f", round.seconds) << " s (roadmap " << format("%.2f", round.roadmap_seconds)
+      << " s, segments " << format("%.2f", round.evaluation_seconds) << " s)\n";
+  if (!round.best) return;
+  reportCandidates(problem, round, out);
+  reportSharedNodes(scenario, round, out);
+  const PathSafety& best = *round.best;
+  out << "  best path: length " << format("%.3f", best.length) << ", P "
+      << format("%.4f", best.probability) << ", whole path collides for " << best.colliding_poses
+      << " of " << problem.base_poses << " poses (rate " << format("%.3f", best.collision_rate)
+      << " [" << format("%.3f", best.collision_interval.low) << ", "
+      << format("%.3f", best.collision_interval.high) << "]), worst segment " << best.worst_segment
+      << " of " << best.segments << " (P " << format("%.3f", best.worst_probability) << ", from "
+      << configuration(scenario, best.worst_from) << " to "
+      << configuration(scenario, best.worst_to) << ")\n";
+  out << "  " << verdict(problem, best, round.accepted) << "\n";
+}
+
+/// The validation's rows, one line each.
+void reportValidation(const Scenario& scenario, const SwayPlanningResult& result,
+                      std::ostream& out) {
+  const SwayPlanningProblem& problem = scenario.problem;
+  out << "\nvalidation on " << problem.validation_poses
+      << " fresh base poses (another seed), whole-path collision probability";
+  if (!result.accepted)
+    out << " (\"chosen\": round " << *result.validated + 1 << "'s best path, refused)";
+  out << ":\n";
+  for (const ValidationRow& row : result.validation) {
+    char line[200];
+    if (!row.planned) {
+      std::snprintf(line, sizeof line, "  %-9s no path (roadmap %s)", row.name.c_str(),
+                    row.status.c_str());
+    } else {
+      std::snprintf(line, sizeof line,
+                    "  %-9s length %8.3f  collides %.4f [%.4f, %.4f] (%zu of %zu)",
+                    row.name.c_str(), row.length, row.collision_probability, row.interval.low,
+                    row.interval.high, row.colliding, row.poses);
+    }
+    out << line;
+    if (row.name == "padded") {
+      out << ", obstacles padded by " << format("%.3g", row.padding) << " "
+          << unitName(problem.robot.length_unit);
+    }
+    out << ", " << format("%.2f", row.seconds) << " s\n";
+  }
+}
+
+}  // namespace
+
+nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& result) {
+  const SwayPlanningProblem& problem = scenario.problem;
   nlohmann::json out{{"scenario", scenario.name},
                      {"robot", scenario.robot_path},
                      {"length_unit", unitName(problem.robot.length_unit)},
-                     {"units", units},
+                     {"units", unitsJson(scenario)},
                      {"status", overallStatus(problem, result)},
                      {"rule", problem.score.rule == ScoreRule::kLiteral ? "literal" : "weighted"},
                      {"weight", problem.score.weight},
@@ -168,40 +363,7 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
                      {"candidates_requested", problem.candidates},
                      {"confidence", problem.sway.confidence},
                      {"rounds", nlohmann::json::array()}};
-  for (const PlanningRound& round : result.rounds) {
-    nlohmann::json r{{"base_offset", round.base_offset},
-                     {"goal_displacement", round.goal_displacement},
-                     {"roadmap_status", roadmapStatusName(round.status)},
-                     {"roadmap_vertices", round.roadmap_vertices},
-                     {"roadmap_edges", round.roadmap_edges},
-                     {"reference_distance", round.reference_distance},
-                     {"seconds", round.seconds},
-                     {"roadmap_seconds", round.roadmap_seconds},
-                     {"evaluation_seconds", round.evaluation_seconds},
-                     {"candidates", nlohmann::json::array()},
-                     {"shared_nodes", nlohmann::json::array()}};
-    for (const PathSafety& path : round.candidates) r["candidates"].push_back(pathJson(path));
-    for (const SharedNodeDecision& decision : round.decisions) {
-      nlohmann::json node{
-          {"vertex", decision.vertex},
-          {"configuration", vectorJson(vertexConfiguration(round, decision.vertex))},
-          {"winner", decision.winner},
-          {"loops_cut", decision.looped},
-          {"paths", nlohmann::json::array()}};
-      for (std::size_t k = 0; k < decision.paths.size(); ++k) {
-        node["paths"].push_back({{"candidate", decision.paths[k]},
-                                 {"distance", decision.values[k].distance},
-                                 {"probability", decision.values[k].probability},
-                                 {"score", decision.scores[k]}});
-      }
-      r["shared_nodes"].push_back(node);
-    }
-    if (round.best) {
-      r["best"] = pathJson(*round.best);
-      r["best"]["accepted"] = round.accepted;
-    }
-    out["rounds"].push_back(r);
-  }
+  for (const PlanningRound& round : result.rounds) out["rounds"].push_back(roundJson(round));
   if (result.validated) out["validated_round"] = *result.validated;
   if (result.accepted) {
     const PlanningRound& round = result.rounds[*result.accepted];
@@ -213,39 +375,7 @@ nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& resu
                                   {"base_offset", round.base_offset}};
     }
   }
-  if (!result.validation.empty()) {
-    nlohmann::json v{{"poses", problem.validation_poses},
-                     {"seconds", result.validation_seconds},
-                     {"rows", nlohmann::json::array()}};
-    for (const ValidationRow& row : result.validation) {
-      // A row whose planner found no path has a status and no numbers: no length 0 or
-      // probability 0 that reads as a perfect path.
-      nlohmann::json item{{"name", row.name},
-                          {"planned", row.planned},
-                          {"status", row.planned ? "planned" : "no_path"},
-                          {"roadmap_status", row.status},
-                          {"seconds", row.seconds}};
-      if (row.planned) {
-        item["length"] = row.length;
-        item["poses"] = row.poses;
-        item["colliding_poses"] = row.colliding;
-        item["collision_probability"] = row.collision_probability;
-        item["interval_95"] = {row.interval.low, row.interval.high};
-      }
-      if (row.name == "padded") {
-        item["padding"] = row.padding;
-        item["planning_seconds"] = row.planning_seconds;
-      }
-      v["rows"].push_back(item);
-      if (row.planned) {
-        v[row.name + "_collision_probability"] = row.collision_probability;
-        v[row.name + "_interval_95"] = {row.interval.low, row.interval.high};
-        v[row.name + "_length"] = row.length;
-      }
-      if (row.name == "padded") v["padding"] = row.padding;
-    }
-    out["validation"] = v;
-  }
+  if (!result.validation.empty()) out["validation"] = validationJson(problem, result);
   return out;
 }
 
@@ -253,91 +383,10 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
   const SwayPlanningProblem& problem = scenario.problem;
   const std::string length_unit = unitName(problem.robot.length_unit);
   std::ostringstream out;
-  out << "scenario " << scenario.name << " (" << scenario.robot_path
-      << "): n = " << problem.base_poses << " base poses in the " << problem.sway.confidence * 100
-      << " % region, m = " << problem.candidates << " candidates, rule "
-      << (problem.score.rule == ScoreRule::kLiteral ? "literal (P - D)" : "weighted (P - w D / D0)")
-      << ", w = " << problem.score.weight << "\n"
-      << "acceptance " << criterion(problem) << "\n"
-      << "units: lengths " << length_unit << ", angles rad, times s; D = " << scenario.distance_unit
-      << " (dimensionless, as are D0, w and the scores); P, the threshold and the free and "
-         "collision rates are fractions in [0, 1]; so is max_collision_probability; P is the "
-         "patent's mean of segment free rates, not the probability that the whole path is free; a "
-         "path's whole-path collision rate is the share of base poses for which it collides "
-         "anywhere along its length\n";
-  for (std::size_t r = 0; r < result.rounds.size(); ++r) {
-    const PlanningRound& round = result.rounds[r];
-    out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
-        << " along the line (goal's tool point " << format("%.4g", round.goal_displacement) << " "
-        << length_unit << " from the target): roadmap " << round.roadmap_vertices << " vertices, "
-        << round.roadmap_edges << " edges (" << roadmapStatusName(round.status)
-        << "), D0 = " << format("%.4g", round.reference_distance) << ", "
-        << format("%.2f", round.seconds) << " s (roadmap " << format("%.2f", round.roadmap_seconds)
-        << " s, segments " << format("%.2f", round.evaluation_seconds) << " s)\n";
-    if (!round.best) continue;
-    out << "  cand  length D  P (patent)  whole path collides: poses, rate [95 % CI]  "
-           "worst segment: index, P\n";
-    for (std::size_t c = 0; c < round.candidates.size(); ++c) {
-      const PathSafety& path = round.candidates[c];
-      char line[200];
-      std::snprintf(line, sizeof line,
-                    "  %4zu  %8.3f  %10.4f  %5zu of %-5zu %.3f [%.3f, %.3f]        %4zu, %.3f\n", c,
-                    path.length, path.probability, path.colliding_poses, problem.base_poses,
-                    path.collision_rate, path.collision_interval.low, path.collision_interval.high,
-                    path.worst_segment, path.worst_probability);
-      out << line;
-    }
-    for (const SharedNodeDecision& decision : round.decisions) {
-      out << "  shared node " << decision.vertex << " "
-          << configuration(scenario, vertexConfiguration(round, decision.vertex)) << ":";
-      for (std::size_t k = 0; k < decision.paths.size(); ++k) {
-        out << " cand " << decision.paths[k] << " (D "
-            << format("%.3f", decision.values[k].distance) << ", P "
-            << format("%.4f", decision.values[k].probability) << ", score "
-            << format("%.4f", decision.scores[k]) << ")";
-      }
-      out << " -> cand " << decision.winner << " dominates";
-      if (!decision.looped.empty()) {
-        out << "; loop cut from cand";
-        for (std::size_t c : decision.looped) out << " " << c;
-      }
-      out << "\n";
-    }
-    const PathSafety& best = *round.best;
-    out << "  best path: length " << format("%.3f", best.length) << ", P "
-        << format("%.4f", best.probability) << ", whole path collides for " << best.colliding_poses
-        << " of " << problem.base_poses << " poses (rate " << format("%.3f", best.collision_rate)
-        << " [" << format("%.3f", best.collision_interval.low) << ", "
-        << format("%.3f", best.collision_interval.high) << "]), worst segment "
-        << best.worst_segment << " of " << best.segments << " (P "
-        << format("%.3f", best.worst_probability) << ", from "
-        << configuration(scenario, best.worst_from) << " to "
-        << configuration(scenario, best.worst_to) << ")\n";
-    out << "  " << verdict(problem, best, round.accepted) << "\n";
-  }
-  if (!result.validation.empty()) {
-    out << "\nvalidation on " << problem.validation_poses
-        << " fresh base poses (another seed), whole-path collision probability";
-    if (!result.accepted)
-      out << " (\"chosen\": round " << *result.validated + 1 << "'s best path, refused)";
-    out << ":\n";
-    for (const ValidationRow& row : result.validation) {
-      char line[200];
-      if (!row.planned) {
-        std::snprintf(line, sizeof line, "  %-9s no path (roadmap %s)", row.name.c_str(),
-                      row.status.c_str());
-      } else {
-        std::snprintf(line, sizeof line,
-                      "  %-9s length %8.3f  collides %.4f [%.4f, %.4f] (%zu of %zu)",
-                      row.name.c_str(), row.length, row.collision_probability, row.interval.low,
-                      row.interval.high, row.colliding, row.poses);
-      }
-      out << line;
-      if (row.name == "padded")
-        out << ", obstacles padded by " << format("%.3g", row.padding) << " " << length_unit;
-      out << ", " << format("%.2f", row.seconds) << " s\n";
-    }
-  }
+  reportHeader(scenario, out);
+  for (std::size_t r = 0; r < result.rounds.size(); ++r)
+    reportRound(scenario, r, result.rounds[r], out);
+  if (!result.validation.empty()) reportValidation(scenario, result, out);
   out << "\nstatus: ";
   if (result.accepted) {
     const PlanningRound& round = result.rounds[*result.accepted];

@@ -166,10 +166,11 @@ double scaledDistance(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
   return (b - a).cwiseProduct(scale).norm();
 }
 
-Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
-                     const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                     const RoadmapOptions& options) {
-  const Robot& robot = certifier.robot();
+namespace {
+
+/// buildRoadmap's arguments checked.
+void checkArguments(const Robot& robot, const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                    const RoadmapOptions& options) {
   checkEnd(robot, start, "start");
   checkEnd(robot, goal, "goal");
   const Eigen::VectorXd& scale = options.joint_scale;
@@ -180,7 +181,73 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   if (options.nodes == 0 || options.neighbours == 0) {
     throw Error("roadmap: nodes and neighbours must be at least 1");
   }
+}
 
+/// The joint space scaled by options.joint_scale, its states and motions checked by the
+/// certifier at T_world_base, sampled by the counter-based sampler of options.seed. The
+/// arguments must outlive it.
+ob::SpaceInformationPtr scaledSpace(const MotionCertifier& certifier,
+                                    const Eigen::Isometry3d& T_world_base,
+                                    const RoadmapOptions& options,
+                                    CollisionChecker::Scratch& scratch) {
+  const Robot& robot = certifier.robot();
+  const Eigen::VectorXd& scale = options.joint_scale;
+  auto space = std::make_shared<ob::RealVectorStateSpace>(robot.dof());
+  ob::RealVectorBounds bounds(robot.dof());
+  for (int j = 0; j < robot.dof(); ++j) {
+    bounds.setLow(j, robot.joints[j].lower * scale[j]);
+    bounds.setHigh(j, robot.joints[j].upper * scale[j]);
+  }
+  space->setBounds(bounds);
+  auto si = std::make_shared<ob::SpaceInformation>(space);
+  si->setStateValidityChecker([&certifier, &T_world_base, &options,
+                               &scratch](const ob::State* state) {
+    return certifier.configurationFree(jointsOf(state, options.joint_scale), T_world_base, scratch);
+  });
+  si->setMotionValidator(
+      std::make_shared<CertifiedMotionValidator>(si, certifier, T_world_base, scale));
+  si->setValidStateSamplerAllocator([&certifier, &options](const ob::SpaceInformation* info) {
+    return std::make_shared<CounterSampler>(info, certifier.robot(), options.joint_scale,
+                                            options.seed);
+  });
+  si->setup();
+  return si;
+}
+
+/// Copies PRM's graph into the roadmap (edges weighted by the scaled distance) with the roadmap
+/// distances from the start. \return whether the goal is reached.
+bool copyRoadmap(const og::PRM::Graph& g, std::size_t start, std::size_t goal,
+                 const Eigen::VectorXd& scale, Roadmap& roadmap) {
+  const std::size_t n = boost::num_vertices(g);
+  roadmap.configurations.resize(n);
+  const auto states = boost::get(og::PRM::vertex_state_t(), g);
+  for (std::size_t v = 0; v < n; ++v) roadmap.configurations[v] = jointsOf(states[v], scale);
+  roadmap.graph = RoadmapGraph(n);
+  for (auto [e, end] = boost::edges(g); e != end; ++e) {
+    const std::size_t a = boost::source(*e, g), b = boost::target(*e, g);
+    boost::add_edge(a, b,
+                    scaledDistance(roadmap.configurations[a], roadmap.configurations[b], scale),
+                    roadmap.graph);
+  }
+  roadmap.start = start;
+  roadmap.goal = goal;
+  roadmap.distance_from_start.assign(n, std::numeric_limits<double>::infinity());
+  boost::dijkstra_shortest_paths(
+      roadmap.graph, roadmap.start,
+      boost::distance_map(boost::make_iterator_property_map(
+          roadmap.distance_from_start.begin(), boost::get(boost::vertex_index, roadmap.graph))));
+  for (double& d : roadmap.distance_from_start) {  // Boost marks the unreached with max()
+    if (d == std::numeric_limits<double>::max()) d = std::numeric_limits<double>::infinity();
+  }
+  return std::isfinite(roadmap.distance_from_start[roadmap.goal]);
+}
+
+}  // namespace
+
+Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
+                     const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
+                     const RoadmapOptions& options) {
+  checkArguments(certifier.robot(), start, goal, options);
   Roadmap roadmap;
   CollisionChecker::Scratch scratch;
   if (!certifier.configurationFree(start, T_world_base, scratch)) {
@@ -193,25 +260,9 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   }
 
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  auto space = std::make_shared<ob::RealVectorStateSpace>(robot.dof());
-  ob::RealVectorBounds bounds(robot.dof());
-  for (int j = 0; j < robot.dof(); ++j) {
-    bounds.setLow(j, robot.joints[j].lower * scale[j]);
-    bounds.setHigh(j, robot.joints[j].upper * scale[j]);
-  }
-  space->setBounds(bounds);
-  auto si = std::make_shared<ob::SpaceInformation>(space);
-  si->setStateValidityChecker([&](const ob::State* state) {
-    return certifier.configurationFree(jointsOf(state, scale), T_world_base, scratch);
-  });
-  si->setMotionValidator(
-      std::make_shared<CertifiedMotionValidator>(si, certifier, T_world_base, scale));
-  si->setValidStateSamplerAllocator([&](const ob::SpaceInformation* info) {
-    return std::make_shared<CounterSampler>(info, robot, scale, options.seed);
-  });
-  si->setup();
-
-  ob::ScopedState<> start_state(space), goal_state(space);
+  const ob::SpaceInformationPtr si = scaledSpace(certifier, T_world_base, options, scratch);
+  const Eigen::VectorXd& scale = options.joint_scale;
+  ob::ScopedState<> start_state(si->getStateSpace()), goal_state(si->getStateSpace());
   setJoints(start_state.get(), start, scale);
   setJoints(goal_state.get(), goal, scale);
   auto problem = std::make_shared<ob::ProblemDefinition>(si);
@@ -228,38 +279,12 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
         ob::PlannerTerminationCondition([&prm, count] { return prm.milestoneCount() >= count; }));
   };
   grow_to(options.nodes);
-  const og::PRM::Graph& g = prm.getRoadmap();
   const auto start_vertex = prm.add(start_state.get());
   const auto goal_vertex = prm.add(goal_state.get());
-
-  auto copy = [&] {
-    const std::size_t n = boost::num_vertices(g);
-    roadmap.configurations.resize(n);
-    const auto states = boost::get(og::PRM::vertex_state_t(), g);
-    for (std::size_t v = 0; v < n; ++v) roadmap.configurations[v] = jointsOf(states[v], scale);
-    roadmap.graph = RoadmapGraph(n);
-    for (auto [e, end] = boost::edges(g); e != end; ++e) {
-      const std::size_t a = boost::source(*e, g), b = boost::target(*e, g);
-      boost::add_edge(a, b,
-                      scaledDistance(roadmap.configurations[a], roadmap.configurations[b], scale),
-                      roadmap.graph);
-    }
-    roadmap.start = start_vertex;
-    roadmap.goal = goal_vertex;
-    roadmap.distance_from_start.assign(n, std::numeric_limits<double>::infinity());
-    boost::dijkstra_shortest_paths(
-        roadmap.graph, roadmap.start,
-        boost::distance_map(boost::make_iterator_property_map(
-            roadmap.distance_from_start.begin(), boost::get(boost::vertex_index, roadmap.graph))));
-    for (double& d : roadmap.distance_from_start) {  // Boost marks the unreached with max()
-      if (d == std::numeric_limits<double>::max()) d = std::numeric_limits<double>::infinity();
-    }
-    return std::isfinite(roadmap.distance_from_start[roadmap.goal]);
-  };
-  bool connected = copy();
+  bool connected = copyRoadmap(prm.getRoadmap(), start_vertex, goal_vertex, scale, roadmap);
   while (!connected && prm.milestoneCount() < options.max_nodes) {
     grow_to(std::min(options.max_nodes, prm.milestoneCount() + options.nodes));
-    connected = copy();
+    connected = copyRoadmap(prm.getRoadmap(), start_vertex, goal_vertex, scale, roadmap);
   }
   roadmap.status = connected ? RoadmapStatus::kConnected : RoadmapStatus::kNotConnected;
   return roadmap;

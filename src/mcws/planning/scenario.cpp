@@ -289,6 +289,14 @@ class ScenarioReader : YamlReader {
                "roadmap_seed", "segment_length", "rule", "weight", "acceptance",
                "max_collision_probability", "threshold", "threshold_on", "allow_goal_shift",
                "base_step", "base_range", "padding"});
+    readSearch(node, problem);
+    readRule(node, problem);
+    readAcceptance(node, problem);
+    readBaseShift(node, problem);
+  }
+
+  /// The planner's paths and roadmap: candidates, diversity, roadmap sizes and seed, segments.
+  void readSearch(const YAML::Node& node, SwayPlanningProblem& problem) {
     if (node["candidates"]) problem.candidates = count(node["candidates"], "planner: candidates");
     if (node["diversity"]) problem.diversity = nonNegative(node["diversity"], "planner: diversity");
     if (node["roadmap_nodes"])
@@ -307,6 +315,10 @@ class ScenarioReader : YamlReader {
         fail(node["segment_length"],
              "planner: segment_length " + node["segment_length"].Scalar() + " must be > 0");
     }
+  }
+
+  /// The score at shared nodes: rule and weight.
+  void readRule(const YAML::Node& node, SwayPlanningProblem& problem) {
     if (const YAML::Node rule = node["rule"]) {
       const std::string name = scalar(rule, "planner: rule");
       if (name == "literal") {
@@ -318,6 +330,10 @@ class ScenarioReader : YamlReader {
       }
     }
     if (node["weight"]) problem.score.weight = nonNegative(node["weight"], "planner: weight");
+  }
+
+  /// Step s50's criterion: acceptance, threshold, max_collision_probability.
+  void readAcceptance(const YAML::Node& node, SwayPlanningProblem& problem) {
     if (const YAML::Node threshold = node["threshold"]) {
       problem.threshold = number(threshold, "planner: threshold");
       if (problem.threshold < 0.0 || problem.threshold > 1.0) {
@@ -347,6 +363,10 @@ class ScenarioReader : YamlReader {
                        " is outside (0, 1) (a fraction, e.g. 0.05)");
       }
     }
+  }
+
+  /// Step s70's base shift: allow_goal_shift, base_step, base_range, and the comparison's padding.
+  void readBaseShift(const YAML::Node& node, SwayPlanningProblem& problem) {
     if (const YAML::Node shift = node["allow_goal_shift"]) {
       const std::string value = scalar(shift, "planner: allow_goal_shift");
       if (value != "true" && value != "false") {

@@ -9,6 +9,7 @@
 
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 
 namespace mcws {
@@ -166,11 +167,10 @@ struct EdgeStates {
   std::vector<Eigen::VectorXd> points;
 };
 
-}  // namespace
+/// The evaluated edges of a round, by edgeKey.
+using EdgeMap = std::map<std::pair<std::size_t, std::size_t>, EdgeStates>;
 
-struct SwayPlanner::Evaluation {
-  std::map<std::pair<std::size_t, std::size_t>, EdgeStates> edges;
-};
+}  // namespace
 
 SwayPlanner::SwayPlanner(SwayPlanningProblem problem) : problem_(std::move(problem)) {
   const SwayPlanningProblem& p = problem_;
@@ -251,8 +251,7 @@ double SwayPlanner::collisionFraction(const Eigen::VectorXd& q) const {
 namespace {
 
 /// Safety numbers of a vertex path from the edges' free states.
-PathSafety pathSafety(const VertexPath& path, const Roadmap& roadmap,
-                      const std::map<std::pair<std::size_t, std::size_t>, EdgeStates>& edges,
+PathSafety pathSafety(const VertexPath& path, const Roadmap& roadmap, const EdgeMap& edges,
                       std::size_t poses) {
   PathSafety safety;
   safety.vertices = path;
@@ -286,6 +285,106 @@ PathSafety pathSafety(const VertexPath& path, const Roadmap& roadmap,
   safety.collision_rate = static_cast<double>(safety.colliding_poses) / static_cast<double>(poses);
   safety.collision_interval = wilsonInterval(safety.colliding_poses, poses);
   return safety;
+}
+
+/// The straight edge from a to b cut into segments of at most segment_length, each segment's
+/// free state for every pose (checked exactly) and its free-state probability.
+EdgeStates edgeStates(const MotionCertifier& certifier, const SwayPlanningProblem& p,
+                      const Eigen::Isometry3d& T_nominal, const PoseSet& poses,
+                      const Eigen::VectorXd& a, const Eigen::VectorXd& b,
+                      CollisionChecker::Scratch& scratch) {
+  const Eigen::VectorXd& scale = p.roadmap.joint_scale;
+  EdgeStates edge;
+  edge.length = scaledDistance(a, b, scale);
+  const PolylineCheck check(certifier, T_nominal, poses, subdivide(a, b, scale, p.segment_length),
+                            scratch);
+  edge.points = check.points();
+  edge.free.assign(check.segments(), std::vector<std::uint8_t>(poses.T_world_base.size()));
+  edge.probability.assign(check.segments(), 0.0);
+  for (std::size_t s = 0; s < check.segments(); ++s) {
+    std::size_t free = 0;
+    for (std::size_t j = 0; j < poses.T_world_base.size(); ++j) {
+      edge.free[s][j] = check.segmentFree(s, j, scratch);
+      free += edge.free[s][j];
+    }
+    edge.probability[s] = static_cast<double>(free) / static_cast<double>(p.base_poses);
+  }
+  return edge;
+}
+
+/// The free states of every edge of the candidate paths, the edges in parallel.
+EdgeMap evaluateEdges(const MotionCertifier& certifier, const SwayPlanningProblem& p,
+                      const Roadmap& roadmap, const std::vector<VertexPath>& candidates,
+                      const Eigen::Isometry3d& T_nominal, const PoseSet& poses,
+                      const PlanningProgress& progress) {
+  EdgeMap edges;
+  for (const VertexPath& path : candidates)
+    for (std::size_t k = 0; k + 1 < path.size(); ++k) edges[edgeKey(path[k], path[k + 1])];
+  std::vector<EdgeMap::value_type*> work;
+  for (auto& item : edges) work.push_back(&item);
+  std::size_t done = 0;
+  FirstError error;
+#pragma omp parallel
+  {
+    CollisionChecker::Scratch scratch;
+#pragma omp for schedule(dynamic)
+    for (std::size_t w = 0; w < work.size(); ++w) {
+      error.run(w, [&] {
+        const auto [u, v] = work[w]->first;
+        work[w]->second = edgeStates(certifier, p, T_nominal, poses, roadmap.configurations[u],
+                                     roadmap.configurations[v], scratch);
+      });
+      // Nothing may leave a critical region: the guard stays inside it.
+#pragma omp critical(mcws_plan_progress)
+      error.run(w, [&] {
+        if (progress) progress("segments", ++done, work.size());
+      });
+    }
+  }
+  error.rethrow();
+  return edges;
+}
+
+/// Steps s43 to s47 for a round's candidate paths: the merge at shared nodes, and the safety
+/// numbers of each candidate and of the best path.
+void chooseBest(const std::vector<VertexPath>& candidates, const Roadmap& roadmap,
+                const EdgeMap& edges, const ScoreOptions& score, std::size_t poses,
+                PlanningRound& round) {
+  const EdgeValuesFn values = [&](std::size_t u, std::size_t v) {
+    const EdgeStates& edge = edges.at(edgeKey(u, v));
+    EdgeValues out;
+    out.length = edge.length;
+    out.segments = static_cast<int>(edge.probability.size());
+    for (double q : edge.probability) out.probability_sum += q;
+    return out;
+  };
+  const MergeResult merged = mergeAtSharedNodes(
+      candidates, values, [&](std::size_t v) { return roadmap.distance_from_start[v]; }, score);
+  for (const VertexPath& path : candidates)
+    round.candidates.push_back(pathSafety(path, roadmap, edges, poses));
+  round.decisions = merged.decisions;
+  round.best = pathSafety(merged.paths[merged.best], roadmap, edges, poses);
+}
+
+/// The round whose best path comes closest to the acceptance criterion (the lowest upper end of
+/// the collision interval, or the highest P); empty when no round found a path.
+std::optional<std::size_t> closestRound(const std::vector<PlanningRound>& rounds,
+                                        Acceptance acceptance) {
+  std::optional<std::size_t> closest;
+  for (std::size_t r = 0; r < rounds.size(); ++r) {
+    const std::optional<PathSafety>& best = rounds[r].best;
+    if (!best) continue;
+    if (!closest) {
+      closest = r;
+      continue;
+    }
+    const PathSafety& held = *rounds[*closest].best;
+    const bool closer = acceptance == Acceptance::kPatentP
+                            ? best->probability > held.probability
+                            : best->collision_interval.high < held.collision_interval.high;
+    if (closer) closest = r;
+  }
+  return closest;
 }
 
 }  // namespace
@@ -337,41 +436,8 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // s42: "获得相邻节点构型之间路径段在n组基座位姿数据下的自由状态 ...
   // 将n组自由状态累加除以n获得路径段 的第二自由状态概率" (each segment's free state for the n base
   // poses, summed and divided by n): free states for every pose, checked exactly.
-  Evaluation evaluation;
-  for (const VertexPath& path : candidates)
-    for (std::size_t k = 0; k + 1 < path.size(); ++k)
-      evaluation.edges[edgeKey(path[k], path[k + 1])];
-  std::vector<std::pair<const std::pair<std::size_t, std::size_t>, EdgeStates>*> work;
-  for (auto& item : evaluation.edges) work.push_back(&item);
-  std::size_t done = 0;
-#pragma omp parallel
-  {
-    CollisionChecker::Scratch scratch;
-#pragma omp for schedule(dynamic)
-    for (std::size_t w = 0; w < work.size(); ++w) {
-      const auto [u, v] = work[w]->first;
-      EdgeStates& edge = work[w]->second;
-      edge.length = scaledDistance(roadmap.configurations[u], roadmap.configurations[v], scale);
-      const PolylineCheck check(
-          *certifier_, T_nominal, poses,
-          subdivide(roadmap.configurations[u], roadmap.configurations[v], scale, p.segment_length),
-          scratch);
-      edge.points = check.points();
-      edge.free.assign(check.segments(), std::vector<std::uint8_t>(poses.T_world_base.size()));
-      edge.probability.assign(check.segments(), 0.0);
-      for (std::size_t s = 0; s < check.segments(); ++s) {
-        std::size_t free = 0;
-        for (std::size_t j = 0; j < poses.T_world_base.size(); ++j) {
-          edge.free[s][j] = check.segmentFree(s, j, scratch);
-          free += edge.free[s][j];
-        }
-        edge.probability[s] = static_cast<double>(free) / static_cast<double>(p.base_poses);
-      }
-#pragma omp critical(mcws_plan_progress)
-      if (progress) progress("segments", ++done, work.size());
-    }
-  }
-
+  const EdgeMap edges =
+      evaluateEdges(*certifier_, p, roadmap, candidates, T_nominal, poses, progress);
   round.evaluation_seconds = elapsed() - round.roadmap_seconds;
 
   // s43 - s47: "判断节点构型是否有2条或2条以上非碰撞路径经过 ...
@@ -382,20 +448,7 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // distance from the start.
   ScoreOptions score = p.score;
   score.reference_distance = round.reference_distance;
-  const EdgeValuesFn values = [&](std::size_t u, std::size_t v) {
-    const EdgeStates& edge = evaluation.edges.at(edgeKey(u, v));
-    EdgeValues out;
-    out.length = edge.length;
-    out.segments = static_cast<int>(edge.probability.size());
-    for (double q : edge.probability) out.probability_sum += q;
-    return out;
-  };
-  const MergeResult merged = mergeAtSharedNodes(
-      candidates, values, [&](std::size_t v) { return roadmap.distance_from_start[v]; }, score);
-  for (const VertexPath& path : candidates)
-    round.candidates.push_back(pathSafety(path, roadmap, evaluation.edges, p.base_poses));
-  round.decisions = merged.decisions;
-  round.best = pathSafety(merged.paths[merged.best], roadmap, evaluation.edges, p.base_poses);
+  chooseBest(candidates, roadmap, edges, score, p.base_poses, round);
   round.accepted = accepts(*round.best);
   round.seconds = elapsed();
   return round;
@@ -428,12 +481,15 @@ ValidationRow SwayPlanner::validate(const std::string& name,
   CollisionChecker::Scratch scratch;
   const PolylineCheck check(*certifier_, T_nominal, poses, std::move(points), scratch);
   std::size_t colliding = 0;
+  FirstError error;
 #pragma omp parallel reduction(+ : colliding)
   {
     CollisionChecker::Scratch local;
 #pragma omp for schedule(dynamic, 64)
-    for (std::size_t j = 0; j < p.validation_poses; ++j) colliding += !check.pathFree(j, local);
+    for (std::size_t j = 0; j < p.validation_poses; ++j)
+      error.run(j, [&] { colliding += !check.pathFree(j, local); });
   }
+  error.rethrow();
   row.colliding = colliding;
   row.collision_probability =
       static_cast<double>(colliding) / static_cast<double>(p.validation_poses);
@@ -455,9 +511,8 @@ double SwayPlanner::goalDisplacement(double offset) const {
       .norm();
 }
 
-SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
+std::vector<double> SwayPlanner::baseOffsets() const {
   const SwayPlanningProblem& p = problem_;
-  SwayPlanningResult result;
   std::vector<double> offsets{0.0};
   if (p.base_step > 0.0) {
     for (int k = 1; k * p.base_step <= p.base_range * (1.0 + 1e-12); ++k) {
@@ -465,11 +520,17 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
       offsets.push_back(-k * p.base_step);
     }
   }
+  return offsets;
+}
+
+SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
+  const SwayPlanningProblem& p = problem_;
+  SwayPlanningResult result;
   // s50: "判断全局最优路径的自由状态概率是否大于等于预设自由状态概率阈值" (is the best path's
   // free-state probability at least the threshold?); s60: if so it is executed; s70: "如果否，
   // 则调整所述机器人的所述第一静态位姿，然后重新进行所述操作臂的运动路径规划" (if not, adjust the
   // robot's first static pose and plan again): the base moves along the line, both ways.
-  for (double offset : offsets) {
+  for (double offset : baseOffsets()) {
     result.rounds.push_back(planRound(offset, progress));
     const PlanningRound& round = result.rounds.back();
     if (round.accepted) {
@@ -485,23 +546,14 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
     // A roadmap that does not connect, a goal in collision (when allowed) or a path refused at
     // this offset: the next offset may do better, so step s70 goes on.
   }
-  // The round to validate: the accepted one, or else the one whose best path comes closest to
-  // the criterion (the lowest upper end of the collision interval, or the highest P).
-  result.validated = result.accepted;
-  for (std::size_t r = 0; r < result.rounds.size() && !result.accepted; ++r) {
-    const std::optional<PathSafety>& best = result.rounds[r].best;
-    if (!best) continue;
-    if (!result.validated) {
-      result.validated = r;
-      continue;
-    }
-    const PathSafety& held = *result.rounds[*result.validated].best;
-    const bool closer = p.acceptance == Acceptance::kPatentP
-                            ? best->probability > held.probability
-                            : best->collision_interval.high < held.collision_interval.high;
-    if (closer) result.validated = r;
-  }
-  if (!validate_paths || !result.validated) return result;
+  // The round to validate: the accepted one, or else the one closest to the criterion.
+  result.validated = result.accepted ? result.accepted : closestRound(result.rounds, p.acceptance);
+  if (validate_paths && result.validated) validateRound(result, progress);
+  return result;
+}
+
+void SwayPlanner::validateRound(SwayPlanningResult& result,
+                                const PlanningProgress& progress) const {
   const auto started = std::chrono::steady_clock::now();
   const PlanningRound& round = result.rounds[*result.validated];
   if (progress) progress("validation", 0, 3);
@@ -510,22 +562,28 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   result.validation.push_back(
       validate("shortest", round.candidates.front().waypoints, round.base_offset));
   if (progress) progress("validation", 2, 3);
+  result.validation.push_back(validatePadded(round.base_offset));
+  if (progress) progress("validation", 3, 3);
+  result.validation_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+}
 
+ValidationRow SwayPlanner::validatePadded(double offset) const {
   // The usual answer: the shortest path for obstacles padded by the 2-sigma displacement.
-  const auto padded_started = std::chrono::steady_clock::now();
+  const SwayPlanningProblem& p = problem_;
+  const auto started = std::chrono::steady_clock::now();
   MotionCertifierOptions padded_options;
   padded_options.environment_margin = padding();
   const MotionCertifier padded(p.robot, *checker_, padded_options);
-  const Roadmap roadmap =
-      buildRoadmap(padded, measuredBase(round.base_offset), p.start, p.goal, p.roadmap);
+  const Roadmap roadmap = buildRoadmap(padded, measuredBase(offset), p.start, p.goal, p.roadmap);
   ValidationRow row;
   const double planning_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - padded_started).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (roadmap.status == RoadmapStatus::kConnected) {
     const VertexPath path = kShortestPaths(roadmap.graph, roadmap.start, roadmap.goal, 1).front();
     std::vector<Eigen::VectorXd> waypoints;
     for (std::size_t v : path) waypoints.push_back(roadmap.configurations[v]);
-    row = validate("padded", waypoints, round.base_offset);
+    row = validate("padded", waypoints, offset);
   } else {
     row.name = "padded";
     row.status = roadmapStatusName(roadmap.status);
@@ -533,13 +591,8 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   }
   row.padding = padded_options.environment_margin;
   row.planning_seconds = planning_seconds;
-  row.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - padded_started).count();
-  result.validation.push_back(row);
-  if (progress) progress("validation", 3, 3);
-  result.validation_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  return result;
+  row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return row;
 }
 
 }  // namespace mcws

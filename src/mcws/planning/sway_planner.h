@@ -182,8 +182,13 @@ class SwayPlanner {
   const std::vector<Eigen::Isometry3d>& displacements() const { return displacements_; }
 
  private:
-  struct Evaluation;
   Eigen::Isometry3d measuredBase(double offset) const;
+  /// Base offsets in the order step s70 tries them: 0, +step, -step, +2 step, ... [length unit].
+  std::vector<double> baseOffsets() const;
+  /// Validates the best path of result.validated against the shortest and the padded path.
+  void validateRound(SwayPlanningResult& result, const PlanningProgress& progress) const;
+  /// The padded comparison planner's path at a base offset, validated.
+  ValidationRow validatePadded(double offset) const;
   /// The n planning displacements about the sway frame moved by `offset`.
   std::vector<Eigen::Isometry3d> movedDisplacements(const std::vector<Eigen::Isometry3d>& base,
                                                     double offset) const;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 #include "mcws/io/gnuplot.h"
 
 namespace mcws {
@@ -109,14 +110,11 @@ std::vector<BaseCandidate> placeBase(
     FirstError error;
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
     for (std::size_t i = 0; i < results.size(); ++i) {
-      if (error.failed()) continue;
-      try {
+      error.run(i, [&] {
         Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
         move.translation() = candidates[order[first + i / n_targets]].offset;
         results[i] = study.evaluate(targets[i % n_targets], move);
-      } catch (const std::exception& e) {
-        error.record(i, e.what());
-      }
+      });
     }
     error.rethrow();
     for (std::size_t k = 0; k < count; ++k) {

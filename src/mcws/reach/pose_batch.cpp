@@ -74,6 +74,43 @@ void choleskyDiagonalProduct(double* G, int m, double* out) {
   for (int k = 0; k < L; ++k) out[k] = singular[k] != 0.0 ? 0.0 : product[k];
 }
 
+/// Manipulability of each lane's Jacobian J[column][row][lane] (n columns, the tool frame) as
+/// mcws::manipulability() measures it with `quality`: the rows the task measures, velocity rows
+/// scaled by 1 / L for the full twist (in place), then sqrt det of J^T J or J J^T.
+void manipulabilities(double (*J)[6][L], int n, const QualityOptions& quality,
+                      double* manipulability) {
+  // The rows the task measures, velocity rows scaled by 1 / L for the full twist.
+  const int rows = quality.task == QualityTask::kPosition ? 3 : 6;
+  if (rows == 6) {
+    const double scale = 1.0 / quality.characteristic_length;
+    for (int j = 0; j < n; ++j) {
+      for (int r = 0; r < 3; ++r) {
+        for (int k = 0; k < L; ++k) J[j][r][k] *= scale;
+      }
+    }
+  }
+  const int m = std::min(rows, n);
+  double G[8 * 8 * L];
+  for (int a = 0; a < m; ++a) {
+    for (int b = 0; b <= a; ++b) {
+      double* g = G + (a * m + b) * L;
+      for (int k = 0; k < L; ++k) g[k] = 0.0;
+      if (n <= rows) {  // J^T J: columns a and b
+        for (int r = 0; r < rows; ++r) {
+#pragma omp simd
+          for (int k = 0; k < L; ++k) g[k] += J[a][r][k] * J[b][r][k];
+        }
+      } else {  // J J^T: rows a and b
+        for (int j = 0; j < n; ++j) {
+#pragma omp simd
+          for (int k = 0; k < L; ++k) g[k] += J[j][a][k] * J[j][b][k];
+        }
+      }
+    }
+  }
+  choleskyDiagonalProduct(G, m, manipulability);
+}
+
 }  // namespace
 
 PoseBatch::PoseBatch(const Robot& robot) {
@@ -156,36 +193,7 @@ void PoseBatch::poses(const double* q, double* p, double* approach, double* x_ax
   std::copy_n(R[0], 3 * L, x_axis);
   if (!quality) return;
 
-  // The rows the task measures, velocity rows scaled by 1 / L for the full twist.
-  const int rows = quality->task == QualityTask::kPosition ? 3 : 6;
-  if (rows == 6) {
-    const double scale = 1.0 / quality->characteristic_length;
-    for (int j = 0; j < n; ++j) {
-      for (int r = 0; r < 3; ++r) {
-        for (int k = 0; k < L; ++k) J[j][r][k] *= scale;
-      }
-    }
-  }
-  const int m = std::min(rows, n);
-  double G[8 * 8 * L];
-  for (int a = 0; a < m; ++a) {
-    for (int b = 0; b <= a; ++b) {
-      double* g = G + (a * m + b) * L;
-      for (int k = 0; k < L; ++k) g[k] = 0.0;
-      if (n <= rows) {  // J^T J: columns a and b
-        for (int r = 0; r < rows; ++r) {
-#pragma omp simd
-          for (int k = 0; k < L; ++k) g[k] += J[a][r][k] * J[b][r][k];
-        }
-      } else {  // J J^T: rows a and b
-        for (int j = 0; j < n; ++j) {
-#pragma omp simd
-          for (int k = 0; k < L; ++k) g[k] += J[j][a][k] * J[j][b][k];
-        }
-      }
-    }
-  }
-  choleskyDiagonalProduct(G, m, manipulability);
+  manipulabilities(J, n, *quality, manipulability);
 }
 
 }  // namespace mcws

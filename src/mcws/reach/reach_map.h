@@ -135,8 +135,7 @@ class ReachMap {
   void checkBin(int bin) const;
   bool inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const;
   void record(std::size_t v, int bin, float manipulability);
-  friend ReachMap buildReachMap(const Robot&, const ReachGrid&, const ReachSampling&,
-                                const std::function<void(std::uint64_t, std::uint64_t)>&);
+  friend class ReachMapBuilder;  ///< buildReachMap's steps (reach_map_build.cpp)
   std::uint64_t* bitsOf(std::size_t v) { return records_.data() + v * stride_ + 2; }
   const std::uint64_t* bitsOf(std::size_t v) const { return records_.data() + v * stride_ + 2; }
   std::uint64_t keyOf(const Eigen::Vector3d& p) const;

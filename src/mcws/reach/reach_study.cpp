@@ -10,6 +10,7 @@
 
 #include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/reach/orientation_bins.h"
@@ -81,19 +82,6 @@ void ReachStudyOptions::check() const {
     return;
   }
   throw Error(msg.str());
-}
-
-void FirstError::record(std::size_t item, const std::string& message) {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  if (!failed_ || item < item_) {
-    item_ = item;
-    message_ = message;
-  }
-  failed_ = true;
-}
-
-void FirstError::rethrow() const {
-  if (failed_) throw Error(message_);
 }
 
 ReachSummary summarize(const std::vector<TargetReach>& results) {
@@ -205,14 +193,11 @@ std::vector<TargetReach> ReachStudy::evaluate(
   FirstError error;
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    if (error.failed()) continue;
-    try {
+    error.run(i, [&] {
       results[i] = evaluate(targets[i], T_move);
       const std::size_t finished = ++done;
       if (progress && omp_get_thread_num() == 0) progress(finished, targets.size());
-    } catch (const std::exception& e) {
-      error.record(i, e.what());
-    }
+    });
   }
   error.rethrow();
   if (progress) progress(targets.size(), targets.size());

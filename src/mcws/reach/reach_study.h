@@ -9,12 +9,10 @@
 #include <pcl/register_point_struct.h>
 
 #include <Eigen/Geometry>
-#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -83,23 +81,6 @@ struct TargetReach {
   double clearance{std::numeric_limits<double>::infinity()};
   /// The target's score: the manipulability when reached, 0 otherwise.
   double score() const { return reached ? manipulability : 0.0; }
-};
-
-/// \brief The error of the lowest-numbered failing item of a parallel loop, so the message does
-/// not depend on the thread count or the schedule. Thread-safe.
-class FirstError {
- public:
-  /// \brief Whether any item failed (items after a failure may be skipped).
-  bool failed() const { return failed_.load(std::memory_order_relaxed); }
-  void record(std::size_t item, const std::string& message);
-  /// \brief Throws mcws::Error with the lowest item's message, if any failed.
-  void rethrow() const;
-
- private:
-  std::atomic<bool> failed_{false};
-  std::mutex mutex_;
-  std::size_t item_{0};
-  std::string message_;
 };
 
 /// \brief Share reached and mean score of a study's results.

@@ -1,0 +1,377 @@
+#include "mcws/reach/reach_map.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <utility>
+
+#include "mcws/collision/collision_checker.h"
+#include "mcws/core/first_error.h"
+#include "mcws/reach/pose_batch.h"
+#include "mcws/workspace/sampler.h"
+
+namespace mcws {
+
+namespace {
+
+/// A sample waiting to be recorded: its voxel's key (ReachMap's packing), orientation bin and
+/// manipulability.
+struct PendingSample {
+  std::uint64_t key;
+  int bin;
+  float manipulability;
+};
+
+/// One part of the map being filled: open addressing with each voxel's record inside its slot
+/// ([key + 1 (0: empty), count, best manipulability's float bits, bit set], padded to 4 or 8
+/// words), so a sample touches one cache line where ReachMap's index and records touch two.
+/// The voxels are split between the parts by their hash, so no voxel is stored twice. Any
+/// thread posts samples to a part; whichever thread finds a part due records its samples.
+class SlotTable {
+ public:
+  /// A table of voxels with `words` words of bits, one of `parts`.
+  SlotTable(int words, int parts)
+      : slot_words_(3 + words <= 4 ? 4 : (3 + words + 7) / 8 * 8), parts_(parts) {
+    grow(1024);
+  }
+
+  /// The part holding a key's voxel.
+  static int partOf(std::uint64_t key, int parts) {
+    return static_cast<int>(scaled(key, parts) >> 64);
+  }
+
+  /// Hands over samples of this part (thread-safe).
+  void post(std::vector<PendingSample>&& samples) {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    inbox_size_ += samples.size();
+    inbox_.push_back(std::move(samples));
+  }
+  /// Whether enough samples wait to be recorded together: many for a table swept in order,
+  /// any for one that fits in the cache.
+  bool due() {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    return inbox_size_ >= due_at_;
+  }
+
+  /// Records the samples posted, unless another thread is recording this part (then false).
+  bool tryRecord() {
+    const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
+    if (!recording.owns_lock()) return false;
+    std::vector<std::vector<PendingSample>> batches;
+    {
+      const std::lock_guard<std::mutex> lock(inbox_mutex_);
+      batches.swap(inbox_);
+      inbox_size_ = 0;
+    }
+    record(batches);
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    due_at_ = cached() ? 1 : kPending;
+    return true;
+  }
+
+  /// Voxels in the table.
+  std::size_t size() const { return used_; }
+
+  /// Calls f(key, record) for every voxel, record as ReachMap stores it (count, best, bits).
+  template <typename F>
+  void forEach(F&& f) const {
+    for (std::size_t s = 0; s < capacity_; ++s) {
+      const std::uint64_t* r = table_.data() + s * slot_words_;
+      if (r[0] != 0) f(r[0] - 1, r + 1);
+    }
+  }
+
+ private:
+  /// Records samples in the order of their slots: sorted by the hash's leading bits (one
+  /// counting pass), they sweep the table in one direction, so its pages and lines are fetched
+  /// ahead instead of at random (a random slot per sample cost about one memory latency each,
+  /// prefetched or not, on this machine).
+  void record(const std::vector<std::vector<PendingSample>>& batches) {
+    // Voxels already in the table first; then room for the new ones at once and those: growing
+    // while part of the hash range is in would pack it into the front of the table (one cluster).
+    fresh_.clear();
+    const auto lookup = [&](const PendingSample& s) {
+      if (std::uint64_t* r = slot(s.key, false)) {
+        apply(r, s);
+      } else {
+        fresh_.push_back(s);
+      }
+    };
+    constexpr std::size_t kAhead = 16;  // slots fetched ahead of their sample
+    if (cached()) {
+      for (const auto& batch : batches) {
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+          if (i + kAhead < batch.size()) {
+            __builtin_prefetch(table_.data() + home(batch[i + kAhead].key) * slot_words_, 1);
+          }
+          lookup(batch[i]);
+        }
+      }
+    } else {
+      constexpr int kBucketBits = 11;
+      std::array<std::size_t, (1 << kBucketBits) + 1> start{};
+      for (const auto& batch : batches) {
+        for (const PendingSample& s : batch) ++start[(fraction(s.key) >> (64 - kBucketBits)) + 1];
+      }
+      for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+      sorted_.resize(start.back());
+      for (const auto& batch : batches) {
+        for (const PendingSample& s : batch) {
+          sorted_[start[fraction(s.key) >> (64 - kBucketBits)]++] = s;
+        }
+      }
+      for (std::size_t i = 0; i < sorted_.size(); ++i) {
+        if (i + kAhead < sorted_.size()) {
+          __builtin_prefetch(table_.data() + home(sorted_[i + kAhead].key) * slot_words_, 1);
+        }
+        lookup(sorted_[i]);
+      }
+    }
+    std::sort(fresh_.begin(), fresh_.end(), [this](const PendingSample& a, const PendingSample& b) {
+      return fraction(a.key) < fraction(b.key);
+    });
+    std::size_t distinct = 0;
+    for (std::size_t i = 0; i < fresh_.size(); ++i) {
+      distinct += i == 0 || fresh_[i].key != fresh_[i - 1].key;
+    }
+    std::size_t capacity = capacity_;
+    while (4 * (used_ + distinct) > 3 * capacity) capacity += capacity / 2;  // load <= 3/4
+    if (capacity != capacity_) grow(capacity);
+    for (const PendingSample& f : fresh_) apply(slot(f.key, true), f);
+  }
+
+  bool cached() const { return capacity_ * slot_words_ * sizeof(std::uint64_t) <= kCached; }
+
+  /// Fibonacci hashing: the product's leading bits choose the part, the bits after them (the
+  /// fraction) the slot within it, mapped onto [0, capacity) by a multiply (capacities grow by
+  /// 1.5).
+  static unsigned __int128 scaled(std::uint64_t key, int parts) {
+    return static_cast<unsigned __int128>(key * 0x9E3779B97F4A7C15ull) *
+           static_cast<unsigned>(parts);
+  }
+  std::uint64_t fraction(std::uint64_t key) const {
+    return static_cast<std::uint64_t>(scaled(key, parts_));
+  }
+  std::size_t home(std::uint64_t key) const {
+    return static_cast<std::size_t>((static_cast<unsigned __int128>(fraction(key)) * capacity_) >>
+                                    64);
+  }
+
+  /// The slot of a key; when it is not in the table, nullptr or (insert) a new slot for it.
+  std::uint64_t* slot(std::uint64_t key, bool insert) {
+    for (std::size_t s = home(key);; s = s + 1 == capacity_ ? 0 : s + 1) {
+      std::uint64_t* r = table_.data() + s * slot_words_;
+      if (r[0] == key + 1) return r;
+      if (r[0] == 0) {
+        if (!insert) return nullptr;
+        ++used_;
+        r[0] = key + 1;
+        return r;
+      }
+    }
+  }
+
+  static void apply(std::uint64_t* r, const PendingSample& s) {
+    ++r[1];
+    float best;
+    std::memcpy(&best, &r[2], sizeof best);
+    if (s.manipulability > best) std::memcpy(&r[2], &s.manipulability, sizeof best);
+    r[3 + s.bin / 64] |= std::uint64_t{1} << (s.bin % 64);
+  }
+
+  void grow(std::size_t capacity) {
+    std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> old(capacity * slot_words_, 0);
+    old.swap(table_);
+    const std::size_t old_capacity = capacity_;
+    capacity_ = capacity;
+    for (std::size_t s = 0; s < old_capacity; ++s) {
+      const std::uint64_t* r = old.data() + s * slot_words_;
+      if (r[0] == 0) continue;
+      std::size_t t = home(r[0] - 1);
+      while (table_[t * slot_words_] != 0) t = t + 1 == capacity_ ? 0 : t + 1;
+      std::copy_n(r, slot_words_, table_.data() + t * slot_words_);
+    }
+  }
+
+  int slot_words_;
+  std::size_t capacity_{0}, used_{0};
+  std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> table_;
+  static constexpr std::size_t kPending = std::size_t{1} << 20;  ///< samples swept at once
+  static constexpr std::size_t kCached = std::size_t{4} << 20;   ///< table bytes not swept
+  int parts_;
+  std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_
+  std::mutex record_mutex_;  ///< held by the thread recording into the table
+  std::vector<std::vector<PendingSample>> inbox_;
+  std::size_t inbox_size_{0}, due_at_{1};
+  std::vector<PendingSample> sorted_, fresh_;
+};
+
+}  // namespace
+
+/// buildReachMap's steps: blocks of samples drawn and mapped to voxel keys and orientation bins
+/// in parallel, posted to the SlotTable of each voxel's part; then each table's voxels sorted by
+/// key and merged into the map, which comes out in its final order.
+class ReachMapBuilder {
+ public:
+  using Progress = std::function<void(std::uint64_t, std::uint64_t)>;
+  /// A voxel's key and its record in a table.
+  using Voxel = std::pair<std::uint64_t, const std::uint64_t*>;
+
+  ReachMapBuilder(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling)
+      : empty_(grid),
+        sampling_(sampling),
+        sampler_(robot, samplerOptions(sampling)),
+        n_(robot.dof()),
+        batch_(robot),
+        quality_(sampling.manipulability ? &sampling.quality : nullptr) {
+    if (quality_) quality_->check();
+    threads_ = sampling.threads > 0 ? sampling.threads : omp_get_num_procs();
+    for (int t = 0; t < threads_; ++t) tables_.emplace_back(empty_.words_, threads_);
+    outgoing_.assign(threads_, std::vector<std::vector<PendingSample>>(threads_));
+  }
+
+  /// Records every sample in the tables, a chunk at a time (progress after each).
+  void fill(const Progress& progress) {
+    for (std::uint64_t begin = 0; begin < sampling_.samples; begin += kChunk) {
+      const std::uint64_t end = std::min(sampling_.samples, begin + kChunk);
+      const auto blocks = static_cast<std::int64_t>((end - begin + kBlock - 1) / kBlock);
+      FirstError error;
+#pragma omp parallel for schedule(dynamic) num_threads(threads_)
+      for (std::int64_t b = 0; b < blocks; ++b) {
+        error.run(static_cast<std::size_t>(b), [&] {
+          const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * kBlock;
+          sampleBlock(first, std::min(end, first + kBlock), omp_get_thread_num());
+          for (SlotTable& table : tables_) {
+            if (table.due()) table.tryRecord();
+          }
+        });
+      }
+      error.rethrow();
+      if (progress) progress(end, sampling_.samples);
+    }
+  }
+
+  /// The voxels of each table after the samples still on their way are recorded, sorted by key
+  /// (a thread each).
+  std::vector<std::vector<Voxel>> sortedVoxels() {
+    for (int t = 0; t < threads_; ++t) {
+      for (int u = 0; u < threads_; ++u) tables_[u].post(std::move(outgoing_[t][u]));
+    }
+    std::vector<std::vector<Voxel>> lists(threads_);
+    FirstError error;
+#pragma omp parallel for schedule(static, 1) num_threads(threads_)
+    for (int t = 0; t < threads_; ++t) {
+      error.run(static_cast<std::size_t>(t), [&] {
+        tables_[t].tryRecord();
+        lists[t].reserve(tables_[t].size());
+        tables_[t].forEach([&](std::uint64_t key, const std::uint64_t* record) {
+          lists[t].emplace_back(key, record);
+        });
+        std::sort(lists[t].begin(), lists[t].end(),
+                  [](const Voxel& a, const Voxel& b) { return a.first < b.first; });
+      });
+    }
+    error.rethrow();
+    return lists;
+  }
+
+  /// The map of the sorted lists, merged (no voxel is in two lists).
+  ReachMap merge(const std::vector<std::vector<Voxel>>& lists) const {
+    std::size_t voxels = 0;
+    for (const auto& list : lists) voxels += list.size();
+    ReachMap map(empty_.grid());
+    map.keys_.reserve(voxels);
+    map.records_.reserve(voxels * map.stride_);
+    std::vector<std::size_t> next(lists.size(), 0);
+    for (;;) {
+      int first = -1;  // the list whose next voxel has the lowest key
+      for (int t = 0; t < static_cast<int>(lists.size()); ++t) {
+        if (next[t] < lists[t].size() &&
+            (first < 0 || lists[t][next[t]].first < lists[first][next[first]].first)) {
+          first = t;
+        }
+      }
+      if (first < 0) break;
+      const auto [key, record] = lists[first][next[first]++];
+      map.keys_.push_back(key);
+      map.records_.insert(map.records_.end(), record, record + map.stride_);
+    }
+    map.rebuildIndex(map.keys_.size());
+    return map;
+  }
+
+ private:
+  static constexpr int kLanes = PoseBatch::kLanes;
+  static constexpr std::size_t kPost = std::size_t{1} << 16;  ///< samples handed to a part at once
+  static constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22;
+
+  static RobotSamplerOptions samplerOptions(const ReachSampling& sampling) {
+    RobotSamplerOptions options;
+    options.seed = sampling.seed;
+    return options;
+  }
+
+  /// Samples [first, last) mapped to their voxels and bins, posted from thread t.
+  void sampleBlock(std::uint64_t first, std::uint64_t last, int t) {
+    CollisionChecker::Scratch scratch;
+    double sample_q[kMaxJoints], q[kMaxJoints * kLanes], p[3 * kLanes], a[3 * kLanes],
+        x[3 * kLanes], w[kLanes] = {};
+    bool counted[kLanes];
+    int bins[kLanes];
+    for (std::uint64_t i = first; i < last; i += kLanes) {
+      // A last, partial batch repeats its last sample in the unused lanes (not counted).
+      const int lanes = static_cast<int>(std::min<std::uint64_t>(kLanes, last - i));
+      for (int k = 0; k < kLanes; ++k) {
+        sampler_.jointValues(
+            sampling_.first + i + static_cast<std::uint64_t>(std::min(k, lanes - 1)), sample_q);
+        for (int j = 0; j < n_; ++j) q[j * kLanes + k] = sample_q[j];
+        counted[k] = k < lanes && (!sampling_.collision ||
+                                   sampling_.collision->label(sample_q, scratch) == kLabelFree);
+      }
+      batch_.poses(q, p, a, x, quality_, w);
+      empty_.bins().bins(a, x, kLanes, bins);
+      for (int k = 0; k < kLanes; ++k) {
+        if (!counted[k]) continue;
+        empty_.checkBin(bins[k]);
+        post(t, empty_.keyOf(Eigen::Vector3d(p[k], p[kLanes + k], p[2 * kLanes + k])), bins[k],
+             static_cast<float>(w[k]));
+      }
+    }
+  }
+
+  /// Adds a sample to thread t's batch for its voxel's part, handing the batch over when full.
+  void post(int t, std::uint64_t key, int bin, float manipulability) {
+    const int part = SlotTable::partOf(key, threads_);
+    auto& out = outgoing_[t][part];
+    out.push_back({key, bin, manipulability});
+    if (out.size() >= kPost) {
+      tables_[part].post(std::move(out));
+      out = {};
+      out.reserve(kPost);
+    }
+  }
+
+  const ReachMap empty_;  ///< the grid's map: bins, keys
+  const ReachSampling& sampling_;
+  const RobotSampler sampler_;
+  const int n_;
+  const PoseBatch batch_;
+  const QualityOptions* quality_;
+  int threads_{1};
+  std::deque<SlotTable> tables_;
+  /// outgoing_[t][u]: thread t's samples for part u.
+  std::vector<std::vector<std::vector<PendingSample>>> outgoing_;
+};
+
+ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                       const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
+  ReachMapBuilder builder(robot, grid, sampling);
+  builder.fill(progress);
+  return builder.merge(builder.sortedVoxels());
+}
+
+}  // namespace mcws
