@@ -15,7 +15,7 @@
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
 #include "mcws/reach/quality_sampler.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws::bench {
 

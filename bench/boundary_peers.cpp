@@ -40,7 +40,7 @@
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/workspace/measure.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 
 #include "boundary_metrics.h"
 #include "mcws/filters/orthant_boundary.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 int main(int argc, char** argv) {
   if (argc < 4) {

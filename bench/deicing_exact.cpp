@@ -11,7 +11,7 @@
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/measure.h"
 #include "mcws/workspace/refine.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 int main(int argc, char** argv) {
   std::printf("exact (grid integration of the closed-form region):\n");

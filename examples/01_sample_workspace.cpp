@@ -3,14 +3,13 @@
 // The de-icing arm of Yin, Wang & Yu 2010 (robots/deicing.yaml, lengths in cm) in the X-Z plane:
 // joint values uniform within their limits, the shoulder yaw pinned at 0, mapped to the tool
 // point. Usage: example_01_sample_workspace [OUTPUT.pcd]  (default deicing_xz.pcd)
-#include <pcl/io/pcd_io.h>
-
 #include <cmath>
 #include <iostream>
 #include <string>
 
+#include "mcws/io/cloud_io.h"
 #include "mcws/kinematics/robot_yaml.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 int main(int argc, char** argv) {
   const mcws::Robot robot = mcws::loadRobot(MCWS_ROBOTS_DIR "/deicing.yaml");
@@ -31,11 +30,12 @@ int main(int argc, char** argv) {
             << "x in [" << summary.min.x() << ", " << summary.max.x() << "] " << unit << ", z in ["
             << summary.min.z() << ", " << summary.max.z() << "] " << unit << "\n";
 
-  // Check: the file holds every sample, each in the X-Z plane and within the reach
-  // a1 + a2,max = 50 + 70 cm of the shoulder.
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  if (pcl::io::loadPCDFile(path, cloud) != 0 || cloud.size() != samples) return 1;
-  for (const pcl::PointXYZ& p : cloud) {
+  // Check, through the library's checked reader (io::readCloud: header, data size, field types and
+  // coordinates checked before PCL reads the file): the file holds every sample, each in the X-Z
+  // plane and within the reach a1 + a2,max = 50 + 70 cm of the shoulder.
+  const mcws::io::WorkspaceCloud::Ptr cloud = mcws::io::readCloud(path);
+  if (cloud->size() != samples) return 1;
+  for (const mcws::WorkspacePoint& p : *cloud) {
     if (std::abs(p.y) > 1e-3f || p.getVector3fMap().norm() > 120.0f + 1e-3f) return 1;
   }
   return 0;

@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "mcws/filters/orthant_boundary.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 int main() {
   constexpr std::size_t kPoints = 20000;

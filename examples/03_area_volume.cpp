@@ -9,7 +9,7 @@
 #include <iostream>
 
 #include "mcws/workspace/measure.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace {
 /// delaunayMeasure() of `points` samples of `shape`, as a relative error [%] against its closed

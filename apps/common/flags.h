@@ -15,7 +15,7 @@
 #include "mcws/kinematics/robot.h"
 #include "mcws/reach/quality.h"
 #include "mcws/workspace/measure.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws::app {
 

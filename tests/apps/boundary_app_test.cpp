@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "mcws/io/pcd_stream_writer.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -8,7 +8,7 @@
 #include "mcws/collision/collision_checker.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -5,7 +5,7 @@
 
 #include "mcws/distributed/processes.h"
 #include "mcws/distributed/sample_writer.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

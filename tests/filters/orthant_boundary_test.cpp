@@ -12,7 +12,7 @@
 #include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
 #include "mcws/filters/impl/orthant_boundary.hpp"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 namespace {

@@ -30,7 +30,7 @@
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/reach/pose_batch.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

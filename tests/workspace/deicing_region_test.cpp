@@ -7,7 +7,7 @@
 #include "deicing_region.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/workspace/measure.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -18,7 +18,7 @@
 #include <filesystem>
 
 #include "mcws/core/error.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 #include "test_support.h"
 
 namespace mcws {

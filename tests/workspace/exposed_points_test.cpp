@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 namespace {

@@ -1,4 +1,4 @@
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>

@@ -3,7 +3,7 @@
 /// \brief Monte Carlo workspace samples labelled by collision (Fu, Hu, Chen & Pan 2016, section 2).
 
 #include "mcws/collision/collision_checker.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 

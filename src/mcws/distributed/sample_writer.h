@@ -10,7 +10,7 @@
 
 #include "mcws/distributed/processes.h"
 #include "mcws/io/provenance.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws::distributed {
 

@@ -10,7 +10,7 @@
 #include <limits>
 
 #include "mcws/core/error.h"
-#include "mcws/filters/grid_then_tree_search.h"
+#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/points/unique_positions.h"
 

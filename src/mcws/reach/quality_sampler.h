@@ -4,7 +4,7 @@
 
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/reach/quality.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 

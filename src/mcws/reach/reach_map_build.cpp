@@ -12,7 +12,7 @@
 #include "mcws/collision/collision_checker.h"
 #include "mcws/core/first_error.h"
 #include "mcws/reach/pose_batch.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 

@@ -14,7 +14,7 @@
 #include <string>
 
 #include "mcws/core/error.h"
-#include "mcws/filters/cell_grid.h"
+#include "mcws/search/cell_grid.h"
 
 namespace mcws {
 namespace {

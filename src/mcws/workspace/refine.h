@@ -14,7 +14,7 @@
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/points/point_types.h"
-#include "mcws/workspace/sampler.h"
+#include "mcws/sampling/sampler.h"
 
 namespace mcws {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
-#include "mcws/filters/grid_then_tree_search.h"
+#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/points/unique_positions.h"

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "mcws/filters/grid_then_tree_search.h"
+#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/point_test.h"
 
 namespace mcws::orthant {

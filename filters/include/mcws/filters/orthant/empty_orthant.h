@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "mcws/filters/neighbour_search.h"
+#include "mcws/search/neighbour_search.h"
 #include "mcws/filters/orthant/frames.h"
 
 namespace mcws::orthant {

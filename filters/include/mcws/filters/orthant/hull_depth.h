@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "mcws/filters/neighbour_search.h"
+#include "mcws/search/neighbour_search.h"
 
 namespace mcws::orthant {
 

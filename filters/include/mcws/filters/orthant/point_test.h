@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "mcws/filters/neighbour_search.h"
+#include "mcws/search/neighbour_search.h"
 #include "mcws/filters/orthant/empty_orthant.h"
 #include "mcws/filters/orthant/empty_sector.h"
 #include "mcws/filters/orthant/frames.h"

@@ -10,8 +10,8 @@
 #include <memory>
 #include <vector>
 
-#include "mcws/filters/cell_grid.h"
-#include "mcws/filters/kdtree_search.h"
+#include "mcws/search/cell_grid.h"
+#include "mcws/search/kdtree_search.h"
 
 namespace mcws {
 

@@ -11,7 +11,7 @@
 #include <limits>
 #include <vector>
 
-#include "mcws/filters/neighbour_search.h"
+#include "mcws/search/neighbour_search.h"
 
 namespace mcws {
 

@@ -1,4 +1,4 @@
-#include "mcws/filters/grid_then_tree_search.h"
+#include "mcws/search/grid_then_tree_search.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "mcws/filters/cell_grid.h"
+#include "mcws/search/cell_grid.h"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
