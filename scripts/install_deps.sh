@@ -28,6 +28,7 @@ packages=(
   libssl-dev                    # SHA-256 of the robot file recorded in every cloud (libcrypto)
   libopenmpi-dev openmpi-bin    # mpirun -np K mcws_sample / mcws_refine: MPI and MPI-IO
   procps                        # pgrep: the test that kills one process of an MPI run
+  python3                       # scripts/check_layers.py: the floors of docs/architecture.md (CTest)
   clang-14 libclang-rt-14-dev   # libFuzzer targets of fuzz/ (scripts/run_fuzzers.sh)
 )
 
