@@ -37,14 +37,29 @@ build=$root/build-fuzz
 # Leaks inside libraries that mcws cannot free, each explained in the file.
 export LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 work=$(mktemp -d /tmp/mcws_fuzz_run.XXXXXX)
-failed=()
-for name in "${names[@]}"; do
+# One fuzzer per core at a time (each is one process); the reports follow in the order of names.
+run_one() {
+  local name=$1
   mkdir -p "$work/$name/corpus"
   cp "$root/fuzz/corpus/$name/"* "$work/$name/corpus/"
-  log=$work/$name/log
   if "$build/fuzz/${name}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
       -max_len=65536 -print_final_stats=1 -artifact_prefix="$work/$name/" \
-      "$work/$name/corpus" >"$log" 2>&1; then
+      "$work/$name/corpus" >"$work/$name/log" 2>&1; then
+    echo ok >"$work/$name/status"
+  else
+    echo failed >"$work/$name/status"
+  fi
+}
+cores=$(nproc)
+for name in "${names[@]}"; do
+  while (($(jobs -rp | wc -l) >= cores)); do wait -n || true; done
+  run_one "$name" &
+done
+wait
+failed=()
+for name in "${names[@]}"; do
+  log=$work/$name/log
+  if [[ $(cat "$work/$name/status" 2>/dev/null) == ok ]]; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log")
     corpus=$(find "$work/$name/corpus" -type f | wc -l)

@@ -3,18 +3,22 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <new>
 #include <stdexcept>
 #include <string>
 
 namespace mcws {
 namespace {
 
-/// The message FirstError::rethrow() throws, or "" when it throws nothing.
+/// The message FirstError::rethrow() throws ("unknown exception" for what is not a
+/// std::exception), or "" when it throws nothing.
 std::string rethrown(const FirstError& error) {
   try {
     error.rethrow();
-  } catch (const Error& e) {
+  } catch (const std::exception& e) {
     return e.what();
+  } catch (...) {
+    return "unknown exception";
   }
   return "";
 }
@@ -50,6 +54,21 @@ TEST(FirstError, CatchesWhatIsNotAStdException) {
   FirstError error;
   error.run(2, [] { throw 42; });
   EXPECT_EQ(rethrown(error), "unknown exception");
+  EXPECT_THROW(error.rethrow(), int);
+}
+
+// The exception comes back as it was thrown: running out of memory stays std::bad_alloc (the
+// tools name what they were doing), a bad command line stays a UsageError (exit code 2).
+TEST(FirstError, RethrowsTheExceptionItself) {
+  FirstError memory;
+  memory.run(0, [] { throw std::bad_alloc(); });
+  EXPECT_THROW(memory.rethrow(), std::bad_alloc);
+  FirstError usage;
+  usage.run(0, [] { throw UsageError("--threads: bad"); });
+  EXPECT_THROW(usage.rethrow(), UsageError);
+  FirstError recorded;
+  recorded.record(1, "item 1");
+  EXPECT_THROW(recorded.rethrow(), Error);
 }
 
 // A parallel loop of 1000 items on 4 threads in which item 613 throws: the exception stays

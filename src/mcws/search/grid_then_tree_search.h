@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "mcws/core/first_error.h"
 #include "mcws/search/cell_grid.h"
 #include "mcws/search/kdtree_search.h"
 
@@ -54,16 +55,20 @@ class GridThenTreeSearch {
   template <typename Scratch, typename Task>
   void forEachPoint(const std::vector<pcl::index_t>& points, int threads, Task task) {
     std::vector<char> declined(points.size(), 0);
+    FirstError error;  // what a task throws leaves the parallel regions through it
 #pragma omp parallel num_threads(threads)
     {
       CellGridSearch search = gridSearch();
       Scratch scratch;
 #pragma omp for schedule(dynamic, 1024)
       for (std::int64_t k = 0; k < static_cast<std::int64_t>(points.size()); ++k) {
-        const pcl::index_t i = points[k];
-        declined[k] = !servedByGrid(i) || !task(search, i, scratch);
+        error.run(k, [&] {
+          const pcl::index_t i = points[k];
+          declined[k] = !servedByGrid(i) || !task(search, i, scratch);
+        });
       }
     }
+    error.rethrow();
     std::vector<pcl::index_t> rest;
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (declined[k]) rest.push_back(points[k]);
@@ -76,9 +81,10 @@ class GridThenTreeSearch {
       Scratch scratch;
 #pragma omp for schedule(dynamic, 256)
       for (std::int64_t k = 0; k < static_cast<std::int64_t>(rest.size()); ++k) {
-        task(search, rest[k], scratch);
+        error.run(k, [&] { task(search, rest[k], scratch); });
       }
     }
+    error.rethrow();
   }
 
  private:

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/core/first_error.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
 #include "mcws/workspace/exposed_points.h"
 
@@ -226,16 +227,18 @@ std::vector<std::uint32_t> leftOutInStars(const Delaunay& dt, std::vector<Simple
   std::sort(stars.begin(), stars.end());
   stars.erase(std::unique(stars.begin(), stars.end()), stars.end());
   std::vector<std::uint32_t> joining;
+  FirstError error;  // running out of memory leaves the parallel region through it
 #pragma omp parallel num_threads(threads)
   {
     std::vector<std::uint32_t> found;
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(stars.size()); ++i) {
-      left_out.inside(dt, stars[i], true, &found);
+      error.run(i, [&] { left_out.inside(dt, stars[i], true, &found); });
     }
 #pragma omp critical
-    joining.insert(joining.end(), found.begin(), found.end());
+    error.run(stars.size(), [&] { joining.insert(joining.end(), found.begin(), found.end()); });
   }
+  error.rethrow();
   std::sort(joining.begin(), joining.end());
   joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
   return joining;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 #include "mcws/search/cell_grid.h"
 
 namespace mcws {
@@ -96,23 +97,27 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
   if (crowding / static_cast<double>(n) > kCrowdedCells) return false;
   result.assign(n, 0.0f);
   std::vector<pcl::index_t> declined;
+  FirstError error;  // running out of memory leaves the parallel region through it
 #pragma omp parallel num_threads(threads)
   {
     CellGridSearch search(grid, cloud, reach, 4.0 * grid.cellSize());
     std::vector<pcl::index_t> own;
 #pragma omp for schedule(dynamic, 4096)
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
-      const pcl::index_t i = grid.order()[k];
-      const std::optional<float> d2 = search.kthDistance2(i, static_cast<int>(wanted), nullptr);
-      if (d2) {
-        result[i] = *d2;
-      } else {
-        own.push_back(i);
-      }
+      error.run(k, [&] {
+        const pcl::index_t i = grid.order()[k];
+        const std::optional<float> d2 = search.kthDistance2(i, static_cast<int>(wanted), nullptr);
+        if (d2) {
+          result[i] = *d2;
+        } else {
+          own.push_back(i);
+        }
+      });
     }
 #pragma omp critical
-    declined.insert(declined.end(), own.begin(), own.end());
+    error.run(n, [&] { declined.insert(declined.end(), own.begin(), own.end()); });
   }
+  error.rethrow();
   if (!declined.empty()) {
     const std::vector<float> tree =
         kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, &declined);

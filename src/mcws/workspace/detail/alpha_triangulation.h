@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 
 namespace mcws::detail {
 
@@ -248,28 +249,32 @@ std::size_t outsideByStar(const Delaunay& dt,
                           const std::vector<double>& spacing, double alpha_factor, int threads) {
   using Local = typename Simplices<D>::Local;
   std::size_t outside = 0;
+  FirstError error;  // running out of memory leaves the parallel region through it
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<typename Delaunay::Vertex_handle> neighbours;
     std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
 #pragma omp for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
-      const auto v = boundary[i];
-      neighbours.clear();
-      adjacentVertices<D>(dt, v, neighbours);
-      if (std::any_of(neighbours.begin(), neighbours.end(),
-                      [&](const auto& u) { return dt.is_infinite(u); })) {
-        ++outside;  // on the convex hull
-        continue;
-      }
-      star.clear();
-      for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
-      std::sort(star.begin(), star.end(),
-                [](const auto& a, const auto& b) { return a.second < b.second; });
-      const Local local(star.begin(), star.end());
-      outside += !inRegion<D>(local, v->point(), spacing, alpha_factor);
+      error.run(i, [&] {
+        const auto v = boundary[i];
+        neighbours.clear();
+        adjacentVertices<D>(dt, v, neighbours);
+        if (std::any_of(neighbours.begin(), neighbours.end(),
+                        [&](const auto& u) { return dt.is_infinite(u); })) {
+          ++outside;  // on the convex hull
+          return;
+        }
+        star.clear();
+        for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
+        std::sort(star.begin(), star.end(),
+                  [](const auto& a, const auto& b) { return a.second < b.second; });
+        const Local local(star.begin(), star.end());
+        outside += !inRegion<D>(local, v->point(), spacing, alpha_factor);
+      });
     }
   }
+  error.rethrow();
   return outside;
 }
 
