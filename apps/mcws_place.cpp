@@ -14,6 +14,7 @@
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/placement_map.h"
+#include "mcws/reach/reach_report.h"
 
 namespace {
 
@@ -110,7 +111,7 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
     std::uint64_t samples = 0;
     ReachMap map = readPlacementMap(
         path, robot, cli.required("robot"),
-        app::qualitySummary(app::readQualityOptions(cli, robot), robot).dump(), samples);
+        qualitySummary(app::readQualityOptions(cli, robot), robot).dump(), samples);
     about = {{"source", path}, {"samples", samples}};
     return map;
   }
@@ -125,47 +126,6 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
   });
   about = {{"source", "built"}, {"samples", sampling.samples}, {"self_collision", self != nullptr}};
   return map;
-}
-
-nlohmann::json candidateJson(const BaseCandidate& c) {
-  nlohmann::json j = {{"offset", {c.offset.x(), c.offset.y(), c.offset.z()}},
-                      {"map_share", c.map_share},
-                      {"map_score", c.map_score}};
-  j["ik_share"] = c.confirmed ? nlohmann::json(c.ik.share_reached) : nullptr;
-  j["ik_score"] = c.confirmed ? nlohmann::json(c.ik.mean_score) : nullptr;
-  return j;
-}
-
-/// The JSON summary (without "seconds" and "output").
-nlohmann::json placementJson(const Robot& robot, std::size_t targets, const ReachMap& map,
-                             const nlohmann::json& map_about, const ReachStudyOptions& options,
-                             bool collision, const std::vector<BaseCandidate>& candidates,
-                             int best) {
-  nlohmann::json table = nlohmann::json::array();
-  for (const BaseCandidate& c : candidates) table.push_back(candidateJson(c));
-  nlohmann::json best_json = nullptr;
-  if (best >= 0) {
-    const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
-    best_json = candidateJson(b);
-    best_json["reached"] = b.ik.reached;
-    const Eigen::Vector3d base = robot.T_world_base.translation() + b.offset;
-    best_json["base_position"] = {base.x(), base.y(), base.z()};
-  }
-  return {{"robot", robot.name},
-          {"length_unit", unitName(robot.length_unit)},
-          {"targets", targets},
-          {"positions", candidates.size()},
-          {"map",
-           {{"resolution", map.grid().resolution},
-            {"orientations", map.grid().directions},
-            {"rolls", map.grid().rolls},
-            {"about", map_about}}},
-          {"score", "manipulability where reached, 0 elsewhere"},
-          {"manipulability", app::qualitySummary(options.quality, robot)},
-          {"collision", collision},
-          {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
-          {"best", best_json},
-          {"candidates", table}};
 }
 
 void printTable(const std::vector<BaseCandidate>& candidates, int best, std::size_t targets,
@@ -230,7 +190,7 @@ int main(int argc, char** argv) {
     outputs.commit();
 
     if (cli.has("json")) {
-      nlohmann::json json = placementJson(robot, targets.size(), map, map_about, options,
+      nlohmann::json json = placementSummary(robot, targets.size(), map, map_about, options,
                                           checker != nullptr, candidates, best);
       json["seconds"] = clock.seconds();
       json["output"] = output;

@@ -21,6 +21,7 @@
 #include "mcws/reach/reach_checkpoint.h"
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_plot.h"
+#include "mcws/reach/reach_report.h"
 #include "mcws/reach/reach_study.h"
 
 namespace {
@@ -119,7 +120,7 @@ std::optional<ReachCheckpoint> readCheckpoint(const app::CommandLine& cli, const
                      {"samples", samples},
                      {"seed", sampling.seed},
                      {"collision", cli.has("collision")},
-                     {"manipulability", app::qualitySummary(sampling.quality, robot)},
+                     {"manipulability", qualitySummary(sampling.quality, robot)},
                      {"with_manipulability", sampling.manipulability},
                      {"processes", processes.size()},
                      {"rank", processes.rank()}}
@@ -174,32 +175,6 @@ void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const Reach
   outputs.commit();
 }
 
-/// The JSON summary of a map (without the processes, the resumed samples and the seconds).
-nlohmann::json mapSummary(const app::CommandLine& cli, const Robot& robot, const ReachGrid& grid,
-                          const ReachSampling& sampling, std::uint64_t samples,
-                          const ReachMap& map) {
-  const std::string unit = unitName(robot.length_unit);
-  const double voxel_volume = std::pow(grid.resolution, 3);
-  return {{"robot", robot.name},
-          {"length_unit", unit},
-          {"resolution", grid.resolution},
-          {"orientations", grid.directions},
-          {"rolls", grid.rolls},
-          {"orientation_bins", map.bins().size()},
-          {"direction_partition", "EQ (Leopardi 2006), approach = tool z axis"},
-          {"samples", samples},
-          {"samples_counted", map.samples()},
-          {"seed", sampling.seed},
-          {"voxels", map.size()},
-          {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
-          {"occupied_volume_unit", unit + "^3"},
-          {"mean_reachability", map.meanReachability()},
-          {"manipulability", sampling.manipulability ? app::qualitySummary(sampling.quality, robot)
-                                                     : nlohmann::json(nullptr)},
-          {"collision", cli.has("collision")},
-          {"output", cli.required("output")}};
-}
-
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
 void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProvenance& provenance,
             distributed::Processes& processes) {
@@ -251,7 +226,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   if (processes.rank() != 0) return removeCheckpoint();  // rank 0 writes and reports for all
   if (map.size() == 0) throw Error("no sample counted: every sample collides");
 
-  nlohmann::json summary = mapSummary(cli, robot, grid, sampling, samples, map);
+  nlohmann::json summary = mapSummary(robot, grid, sampling, samples, map, cli.has("collision"));
+  summary["output"] = output;
   summary["processes"] = processes.size();
   summary["resumed_samples"] = resumed_all[0];
   saveMapOutputs(cli, robot, map, provenance, summary);
@@ -288,46 +264,17 @@ void runStudy(const app::CommandLine& cli, const Robot& robot,
                      [&](std::size_t done, std::size_t all) { progress.update(done, all); });
 
   pcl::PointCloud<ReachTargetPoint> heat;
-  nlohmann::json unreached = nlohmann::json::array();
-  for (std::size_t i = 0; i < targets.size(); ++i) {
+  for (std::size_t i = 0; i < targets.size(); ++i)
     heat.push_back(reachTargetPoint(targets[i], results[i]));
-    if (!results[i].reached) {
-      unreached.push_back({{"target", i},
-                           {"solved", results[i].solved},
-                           {"label", results[i].solved ? nlohmann::json(labelName(results[i].label))
-                                                       : nlohmann::json(nullptr)},
-                           {"position_error", results[i].position_error},
-                           {"orientation_error_deg", results[i].orientation_error * 180.0 / M_PI}});
-    }
-  }
   io::PcdStreamWriter<ReachTargetPoint> cloud(output, heat.size(), io::PcdFormat::kBinary,
                                               provenance);
   cloud.write(heat.data(), heat.size());
   cloud.commit();
 
+  nlohmann::json json = studySummary(robot, options, results, checker != nullptr);
+  json["seconds"] = progress.seconds();
+  json["output"] = output;
   const ReachSummary summary = summarize(results);
-  const std::string unit = unitName(robot.length_unit);
-  const auto finiteOrNull = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
-  const nlohmann::json json = {
-      {"robot", robot.name},
-      {"length_unit", unit},
-      {"targets", summary.targets},
-      {"reached", summary.reached},
-      {"solved", summary.solved},
-      {"share_reached", summary.share_reached},
-      {"mean_score", summary.mean_score},
-      {"score", "manipulability where reached, 0 elsewhere"},
-      {"mean_manipulability_reached", summary.mean_manipulability_reached},
-      {"manipulability", app::qualitySummary(options.quality, robot)},
-      {"min_clearance_reached", finiteOrNull(summary.min_clearance_reached)},
-      {"clearance_unit", unit},
-      {"collision", checker != nullptr},
-      {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
-      {"ik_starts", options.starts},
-      {"seed", options.ik.seed},
-      {"unreached", unreached},
-      {"seconds", progress.seconds()},
-      {"output", output}};
   if (cli.has("json")) {
     std::cout << json.dump() << "\n";
   } else {
