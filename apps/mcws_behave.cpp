@@ -4,12 +4,11 @@
 // and the safety invariant checked at every step.
 #include <algorithm>
 #include <iostream>
-#include <optional>
-#include <sstream>
 
 #include "common/app.h"
 #include "common/flags.h"
 #include "mcws/behavior/behavior_report.h"
+#include "mcws/behavior/rehearsal.h"
 #include "mcws/io/atomic_file.h"
 
 namespace {
@@ -98,49 +97,6 @@ Settings readSettings(const app::CommandLine& cli) {
   return s;
 }
 
-/// A text output: written under a temporary name, handed to the run's io::OutputSet at the end.
-struct Output {
-  std::optional<io::AtomicFile> file;
-  explicit Output(const std::string& path) {
-    if (!path.empty()) file.emplace(path);
-  }
-  void write(const std::string& bytes) {
-    if (file) file->write(bytes.data(), bytes.size());
-  }
-  void commit() {
-    if (file) file->commit();
-  }
-};
-
-/// Runs the job, writing the log as it goes and the timeline and plot at the end.
-RunSummary rehearse(const BehaviorModel& model, const RunOptions& options, const Settings& s,
-                    bool plot_all) {
-  Output log(s.log), timeline(s.timeline), plot(s.plot);
-  log.write(logHeaderJson(s.model, s.insulators, s.faults) + "\n");
-  TimelineRecorder recorder(s.period, options.simulator.dt);
-  RunObserver observer;
-  if (!s.log.empty())
-    observer.on_log = [&](const LogRecord& r) { log.write(logRecordJson(r) + "\n"); };
-  if (!s.timeline.empty() || !s.plot.empty()) observer.on_step = std::ref(recorder);
-  const RunSummary summary = runCleaningJob(model, options, observer);
-  if (!s.timeline.empty()) {
-    std::ostringstream csv;
-    writeTimelineCsv(csv, recorder.rows());
-    timeline.write(csv.str());
-  }
-  if (!s.plot.empty()) {
-    const auto window =
-        plot_all ? std::make_pair(0.0, summary.duration_s) : firstDiscWindow(recorder.rows());
-    plot.write(plotJointSpeeds(recorder.rows(), window.first, window.second,
-                               model.name + ": " + std::to_string(s.insulators) + " disc(s), " +
-                                   runStatusName(summary.status)));
-  }
-  log.commit();
-  timeline.commit();
-  plot.commit();
-  return summary;
-}
-
 /// Exit code of a run, with the reason for a failed one on stderr.
 int runExitCode(const RunSummary& summary) {
   switch (summary.status) {
@@ -202,7 +158,10 @@ int main(int argc, char** argv) {
     std::cerr << "mcws_behave: plan for " << settings.insulators << " disc(s):\n"
               << describePlan(planCleaningTask(settings.insulators));
 
-    const RunSummary summary = rehearse(model, options, settings, cli.has("plot-all"));
+    const RunSummary summary = rehearseCleaningJob(
+        model, options, settings.insulators,
+        {settings.model, settings.faults, settings.log, settings.timeline, settings.plot,
+         settings.period, cli.has("plot-all")});
     commitOutputs();
     std::cout << (cli.has("json") ? summaryJson(summary).dump() + "\n" : summaryText(summary));
     return runExitCode(summary);

@@ -16,6 +16,7 @@
 #include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/distributed/tiled_boundary.h"
+#include "mcws/distributed/tiled_boundary_output.h"
 #include "common/units.h"
 #include "mcws/distributed/processes.h"
 #include "mcws/filters/extremum_boundary.h"
@@ -366,22 +367,27 @@ nlohmann::json summaryOf(const app::CommandLine& cli, const Method& method, std:
 
 /// --tiles: the boundary slab by slab (distributed::tiledBoundary()), the outputs written by rank 0 in
 /// one more pass over the input.
-int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
-  const std::string input = cli.required("input"), output = cli.required("output");
-  const int tiles = static_cast<int>(app::parseInteger(cli.required("tiles"), "tiles", 1, 100000));
-  const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
-  const Method method = methodFromFlags(cli, threads);
+/// The flags a tiled run cannot take.
+void checkTiledMethod(const app::CommandLine& cli, const Method& method) {
   if (method.name != "orthant") throw app::UsageError("--tiles works with --method orthant");
   if (cli.has("auto-radius")) {
     throw app::UsageError(
         "--auto-radius needs the whole cloud's spacing: with --tiles give --radius or --adaptive");
   }
-  const auto& prototype = static_cast<const Filter&>(*method.filter);
-  if (prototype.getHullDepth() > 0.0) {
+  if (static_cast<const Filter&>(*method.filter).getHullDepth() > 0.0) {
     throw app::UsageError(
         "--tiles: the hull-depth stage looks past the neighbourhood of a point; give "
         "--hull-depth 0 with --plane");
   }
+}
+
+int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
+  const std::string input = cli.required("input"), output = cli.required("output");
+  const int tiles = static_cast<int>(app::parseInteger(cli.required("tiles"), "tiles", 1, 100000));
+  const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
+  const Method method = methodFromFlags(cli, threads);
+  checkTiledMethod(cli, method);
+  const auto& prototype = static_cast<const Filter&>(*method.filter);
   if (processes.rank() == 0) checkOutputs(cli);
   const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(input), input);
   app::Progress clock("mcws_boundary", "slabs");
@@ -417,32 +423,8 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
 
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
-  const std::optional<io::CloudProvenance> recorded =
-      boundaryProvenance(input, reader.size(), found.kept);
-  io::OutputSet outputs;
-  io::PcdStreamWriter<WorkspacePoint> boundary_file(output, found.kept, io::PcdFormat::kBinary,
-                                                    recorded);
-  std::optional<io::PcdStreamWriter<WorkspacePoint>> interior_file;
-  if (with_interior) {
-    interior_file.emplace(cli.required("interior"), interior, io::PcdFormat::kBinary, recorded);
-  }
-  io::WorkspaceCloud kept, rest;
-  distributed::forEachPiece(reader, [&](std::uint64_t first, const io::WorkspaceCloud& piece) {
-    kept.clear();
-    rest.clear();
-    for (std::size_t k = 0; k < piece.size(); ++k) {
-      if (found.boundary[first + k]) {
-        kept.push_back(piece[k]);
-      } else if (with_interior && pcl::isFinite(piece[k])) {
-        rest.push_back(piece[k]);
-      }
-    }
-    boundary_file.write(kept.data(), kept.size());
-    if (with_interior) interior_file->write(rest.data(), rest.size());
-  });
-  boundary_file.commit();
-  if (with_interior) interior_file->commit();
-  outputs.commit();
+  distributed::writeTiledBoundary(reader, found, output, cli.text("interior", ""), interior,
+                                  boundaryProvenance(input, reader.size(), found.kept));
 
   nlohmann::json summary = summaryOf(cli, method, reader.size(), found.kept, clock);
   summary.update(lengths(

@@ -14,6 +14,7 @@
 #include "mcws/io/atomic_file.h"
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
+#include "mcws/workspace/envelope_report.h"
 
 namespace {
 
@@ -65,6 +66,119 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
+/// The files of a run and how to write them.
+struct Files {
+  std::string input, output, plot, drawing;
+  MeshFormat format{};
+  DrawingFormat drawing_format{};
+};
+
+Files readFiles(const app::CommandLine& cli) {
+  Files files{cli.required("input"), cli.text("output", ""), cli.text("plot", ""),
+              cli.text("drawing", "")};
+  if (files.output.empty() && files.drawing.empty() && files.plot.empty())
+    throw app::UsageError("give at least one of --output, --plot and --drawing");
+  if (!files.output.empty())
+    files.format = app::asUsageError("output", [&] { return meshFormatOf(files.output); });
+  if (!files.drawing.empty()) {
+    files.drawing_format =
+        app::asUsageError("drawing", [&] { return drawingFormatOf(files.drawing); });
+  }
+  return files;
+}
+
+/// The cloud's points, checked to span a volume.
+pcl::PointCloud<pcl::PointXYZ> loadPoints(const std::string& input) {
+  const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
+  requireRegionPoints(summarizeCloud(*cloud, BoundaryPlane::k3D), input);
+  io::requireVolume(*cloud, input);
+  pcl::Indices all(cloud->size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  pcl::PointCloud<pcl::PointXYZ> points;
+  projectToPlane(*cloud, all, BoundaryPlane::k3D, points, source);
+  return points;
+}
+
+/// Every file complete under a temporary name before any gets its own.
+void saveOutputs(const Files& files, const TriangleSurface& shown,
+                 const std::optional<EnvelopeDrawing>& drawing, const ResultUnits& units) {
+  const std::string name = std::filesystem::path(files.input).filename().string();
+  io::OutputSet outputs;
+  if (!files.output.empty()) {
+    io::AtomicFile file(files.output);
+    try {
+      writeSurface(shown, files.format,
+                   "mcws_envelope of " + files.input + ", lengths in " + units.lengthName(),
+                   file.stream());
+    } catch (const Error& e) {
+      throw Error("cannot write '" + files.output + "': " + e.what());
+    }
+    file.commit();
+  }
+  if (!files.plot.empty())
+    io::writeWholeFile(files.plot, renderEnvelopePng(shown, name, units.lengthName()));
+  if (drawing) {
+    io::writeWholeFile(files.drawing, renderEnvelopeDrawing(*drawing, files.drawing_format, name,
+                                                            units.lengthName()));
+  }
+  outputs.commit();
+}
+
+/// Each value under its name in `out` and its unit under `prefix` + name in `units`.
+void addValues(const std::vector<ReportValue>& values, const std::string& prefix,
+               nlohmann::json& out, nlohmann::json& units) {
+  for (const ReportValue& value : values) {
+    out[value.name] = value.value;
+    units[prefix + value.name] = value.unit;
+  }
+}
+
+nlohmann::json summary(const Files& files, const Envelope& envelope,
+                       const MeasureOptions& options, const std::optional<EnvelopeDrawing>& drawing,
+                       const ResultUnits& units, double seconds) {
+  const SurfaceTopology topology = surfaceTopology(envelope.mesh);
+  nlohmann::json out{{"input", files.input},
+                     {"output", files.output.empty() ? nlohmann::json() : nlohmann::json(files.output)},
+                     {"correction", options.edge_correction ? "efron" : "none"},
+                     {"points", envelope.measure.points},
+                     {"vertices", topology.vertices},
+                     {"triangles", topology.triangles},
+                     {"edges", topology.edges},
+                     {"euler_characteristic", topology.euler_characteristic},
+                     {"closed_and_oriented", topology.closedAndOriented()},
+                     {"non_manifold_edges", topology.non_manifold_edges},
+                     {"seconds", seconds},
+                     {"length_unit", units.lengthName()}};
+  out["units"]["seconds"] = "s";
+  addValues(envelopeValues(envelope, options, units), "", out, out["units"]);
+  if (drawing) {
+    out["drawing"]["file"] = files.drawing;
+    addValues(drawingValues(*drawing, units), "drawing.", out["drawing"], out["units"]);
+  }
+  return out;
+}
+
+void printText(const Files& files, const nlohmann::json& out, const SurfaceTopology& topology,
+               const ResultUnits& units, double seconds) {
+  std::cout.precision(10);
+  std::cout << "volume " << out["volume"].get<double>() << " " << units.volumeName() << "\n";
+  if (out.contains("drawing")) {
+    const std::string unit = " " + units.lengthName();
+    const auto& d = out["drawing"];
+    std::cout << "max reach " << d["max_reach"].get<double>() << unit << ", min reach "
+              << d["min_reach"].get<double>() << unit << ", highest "
+              << d["highest"].get<double>() << unit << ", lowest " << d["lowest"].get<double>()
+              << unit << ", swept " << d["swept_angle"].get<double>() << " deg\n";
+  }
+  std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << topology.triangles
+            << " triangles, " << topology.vertices << " vertices"
+            << (topology.closedAndOriented() ? "" : ", surface touches itself") << "] ->";
+  for (const std::string& file : {files.output, files.plot, files.drawing}) {
+    if (!file.empty()) std::cerr << " " << file;
+  }
+  std::cerr << "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,32 +186,16 @@ int main(int argc, char** argv) {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
-    const std::string input = cli.required("input"), output = cli.text("output", "");
-    const std::string drawing_file = cli.text("drawing", "");
-    if (output.empty() && drawing_file.empty() && !cli.has("plot"))
-      throw app::UsageError("give at least one of --output, --plot and --drawing");
-    MeshFormat format{};
-    if (!output.empty()) format = app::asUsageError("output", [&] { return meshFormatOf(output); });
-    DrawingFormat drawing_format{};
-    if (!drawing_file.empty())
-      drawing_format = app::asUsageError("drawing", [&] { return drawingFormatOf(drawing_file); });
+    const Files files = readFiles(cli);
     const double azimuth = app::parseNumber(cli.text("azimuth", "0"), "azimuth") * kDegree;
     MeasureOptions options = app::readRegionOptions(cli);
-    app::checkOutputs(
-        {{"output", output}, {"plot", cli.text("plot", "")}, {"drawing", drawing_file}},
-        {{"input", input}});
-    const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(input), input);
+    app::checkOutputs({{"output", files.output}, {"plot", files.plot}, {"drawing", files.drawing}},
+                      {{"input", files.input}});
+    const ResultUnits units =
+        app::readResultUnits(cli, io::recordedUnit(files.input), files.input);
 
     app::Progress clock("mcws_envelope", "points");
-    pcl::PointCloud<pcl::PointXYZ> points;
-    {
-      const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
-      requireRegionPoints(summarizeCloud(*cloud, BoundaryPlane::k3D), input);
-      io::requireVolume(*cloud, input);
-      pcl::Indices all(cloud->size()), source;
-      for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-      projectToPlane(*cloud, all, BoundaryPlane::k3D, points, source);
-    }
+    const pcl::PointCloud<pcl::PointXYZ> points = loadPoints(files.input);
     if (points.size() >= kProgressPoints) {
       options.phase = [&](const std::string& phase) {
         std::cerr << "mcws_envelope: " << phase << " (" << points.size() << " points, "
@@ -107,91 +205,16 @@ int main(int argc, char** argv) {
     const Envelope envelope = workspaceEnvelope(points, options);
     TriangleSurface shown = envelope.mesh;
     for (auto& v : shown.vertices) v *= units.length(1.0);
-    const std::string name = std::filesystem::path(input).filename().string();
     std::optional<EnvelopeDrawing> drawing;
-    if (!drawing_file.empty()) {
+    if (!files.drawing.empty()) {
       pcl::PointCloud<pcl::PointXYZ> samples = points;
       for (auto& p : samples) p.getVector3fMap() *= static_cast<float>(units.length(1.0));
       drawing =
           app::asUsageError("azimuth", [&] { return envelopeDrawing(shown, samples, azimuth); });
     }
-    // Every file complete under a temporary name before any gets its own.
-    io::OutputSet outputs;
-    if (!output.empty()) {
-      io::AtomicFile file(output);
-      try {
-        writeSurface(shown, format,
-                     "mcws_envelope of " + input + ", lengths in " + units.lengthName(),
-                     file.stream());
-      } catch (const Error& e) {
-        throw Error("cannot write '" + output + "': " + e.what());
-      }
-      file.commit();
-    }
-    if (cli.has("plot")) {
-      io::writeWholeFile(cli.required("plot"), renderEnvelopePng(shown, name, units.lengthName()));
-    }
-    if (drawing) {
-      io::writeWholeFile(drawing_file,
-                         renderEnvelopeDrawing(*drawing, drawing_format, name, units.lengthName()));
-    }
-    outputs.commit();
+    saveOutputs(files, shown, drawing, units);
 
-    const SurfaceTopology topology = surfaceTopology(envelope.mesh);
-    const std::string volume = units.volumeName();
-    nlohmann::json out{{"input", input},
-                       {"output", output.empty() ? nlohmann::json() : nlohmann::json(output)},
-                       {"volume", units.volume(envelope.volume)},
-                       {"measure_volume", units.volume(envelope.measure.measure)},
-                       {"uncorrected", units.volume(envelope.measure.uncorrected)},
-                       {"area", units.area(envelope.area)},
-                       {"offset", units.length(envelope.offset)},
-                       {"alpha", options.alpha_factor},
-                       {"correction", options.edge_correction ? "efron" : "none"},
-                       {"points", envelope.measure.points},
-                       {"vertices", topology.vertices},
-                       {"triangles", topology.triangles},
-                       {"edges", topology.edges},
-                       {"euler_characteristic", topology.euler_characteristic},
-                       {"closed_and_oriented", topology.closedAndOriented()},
-                       {"non_manifold_edges", topology.non_manifold_edges},
-                       {"filled_volume", units.volume(envelope.filled)},
-                       {"seconds", clock.seconds()},
-                       {"length_unit", units.lengthName()},
-                       {"units",
-                        {{"volume", volume},
-                         {"measure_volume", volume},
-                         {"uncorrected", volume},
-                         {"area", units.areaName()},
-                         {"offset", units.lengthName()},
-                         {"filled_volume", volume},
-                         {"alpha", "local spacings"},
-                         {"seconds", "s"}}}};
-    if (drawing) {
-      const EnvelopeSection& side = drawing->side;
-      const EnvelopeTopView& top = drawing->top;
-      const auto deg = [](double radians) { return radians / kDegree; };
-      out["drawing"] = {{"file", drawing_file},
-                        {"azimuth", deg(side.azimuth)},
-                        {"section_area", side.area},
-                        {"front_reach", side.front_reach},
-                        {"back_reach", side.back_reach},
-                        {"section_highest", side.highest},
-                        {"section_lowest", side.lowest},
-                        {"max_reach", top.max_reach},
-                        {"min_reach", top.min_reach},
-                        {"swept_angle", deg(top.sweep)},
-                        {"sweep_from", deg(top.sweep_from)},
-                        {"sweep_to", deg(top.sweep_to)},
-                        {"highest", drawing->highest},
-                        {"lowest", drawing->lowest}};
-      for (const char* key : {"front_reach", "back_reach", "section_highest", "section_lowest",
-                              "max_reach", "min_reach", "highest", "lowest"})
-        out["units"][std::string("drawing.") + key] = units.lengthName();
-      out["units"]["drawing.section_area"] = units.areaName();
-      for (const char* key : {"azimuth", "swept_angle", "sweep_from", "sweep_to"})
-        out["units"][std::string("drawing.") + key] = "deg";
-    }
+    const nlohmann::json out = summary(files, envelope, options, drawing, units, clock.seconds());
     if (std::abs(envelope.filled) > kFilledWarning * envelope.measure.uncorrected) {
       std::cerr << "mcws_envelope: warning: making the surface a closed 2-manifold changed "
                 << app::shortNumber(100.0 * envelope.filled / envelope.measure.uncorrected)
@@ -201,24 +224,7 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       std::cout << out.dump() << "\n";
     } else {
-      std::cout.precision(10);
-      std::cout << "volume " << out["volume"].get<double>() << " " << volume << "\n";
-      if (drawing) {
-        const std::string unit = " " + units.lengthName();
-        const auto& d = out["drawing"];
-        std::cout << "max reach " << d["max_reach"].get<double>() << unit << ", min reach "
-                  << d["min_reach"].get<double>() << unit << ", highest "
-                  << d["highest"].get<double>() << unit << ", lowest " << d["lowest"].get<double>()
-                  << unit << ", swept " << d["swept_angle"].get<double>() << " deg\n";
-      }
-      std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000)
-                << " ms : " << topology.triangles << " triangles, " << topology.vertices
-                << " vertices" << (topology.closedAndOriented() ? "" : ", surface touches itself")
-                << "] ->";
-      for (const std::string& file : {output, cli.text("plot", ""), drawing_file}) {
-        if (!file.empty()) std::cerr << " " << file;
-      }
-      std::cerr << "\n";
+      printText(files, out, surfaceTopology(envelope.mesh), units, clock.seconds());
     }
     return app::kExitOk;
   });

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "common/app.h"
+#include "mcws/io/boundary_record.h"
 #include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
@@ -131,50 +132,11 @@ io::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
   return cloud;
 }
 
-/// "20000 points, sha256 0123456789ab..." for a message.
-std::string describeCloud(std::uint64_t points, const std::string& sha256) {
-  return std::to_string(points) + " points, sha256 " + sha256.substr(0, 12) + "...";
-}
-
-/// Checks that the --boundary is the boundary of the --input cloud itself, not of a subset of it
-/// or of an older cloud whose points it shares, nor a part of it: mcws_boundary records the point
-/// count and SHA-256 of the cloud it was found in, which must be those of --input (or the boundary
-/// is --input's own bytes), and the number of points it wrote, which must be the boundary's. A
-/// boundary without the record is refused when --input records its robot (mcws made it, so
-/// mcws_boundary would have recorded it); clouds that record nothing (--shape, other tools) are
-/// checked only point by point (loadBoundary()).
-void requireBoundaryOf(const std::string& path, const std::string& input, std::uint64_t points,
-                       std::uint64_t boundary_points) {
-  const std::optional<io::CloudProvenance> boundary = io::readProvenance(path);
-  const std::optional<io::CloudProvenance> cloud = io::readProvenance(input);
-  if (!boundary && !cloud) return;
-  const std::string sha256 = io::sha256OfFile(input);
-  if (io::sha256OfFile(path) == sha256) return;  // the cloud is its own boundary
-  const std::string remake = ": re-make it with mcws_boundary --input " + input;
-  if (!boundary || !boundary->input) {
-    throw Error("--boundary " + path + " does not record the cloud it is the boundary of (" +
-                (boundary ? "its '# mcws' line predates input_points=, input_sha256="
-                          : "no '# mcws' header line, but --input records its robot") +
-                ")" + remake);
-  }
-  if (boundary->input->points != points || boundary->input->sha256 != sha256) {
-    throw Error("--boundary " + path + " is the boundary of a cloud of " +
-                describeCloud(boundary->input->points, boundary->input->sha256) +
-                ", not of --input " + input + " (" + describeCloud(points, sha256) + ")" + remake);
-  }
-  if (boundary->input->boundary_points != boundary_points) {
-    throw Error("--boundary " + path + " has " + std::to_string(boundary_points) +
-                " points, but mcws_boundary found " +
-                std::to_string(boundary->input->boundary_points) + " on the boundary of --input " +
-                input + ": a part of the boundary (mcws_select?) or its --interior" + remake);
-  }
-}
-
 /// The --boundary points, checked to be points of the --input cloud and to be a region.
 io::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
                                       const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
   io::WorkspaceCloud::Ptr boundary = io::readCloud(path);
-  requireBoundaryOf(path, input, cloud.size(), boundary->size());
+  io::requireBoundaryOf(path, input, cloud.size(), boundary->size());
   if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
     const auto& p = (*boundary)[*i];
     throw Error("--boundary " + path + ": point " + std::to_string(*i) + " (" +

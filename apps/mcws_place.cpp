@@ -1,7 +1,6 @@
 // mcws_place: where to put the robot's base (stop the line robot) so its arm reaches a set of
 // targets: candidate base positions scored from the reachability map, the best confirmed by IK.
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -11,10 +10,11 @@
 #include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
-#include "mcws/core/input_files.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
+#include "mcws/reach/placement_map.h"
+#include "mcws/reach/reach_report.h"
 
 namespace {
 
@@ -100,7 +100,6 @@ std::vector<Eigen::Vector3d> offsets(const app::CommandLine& cli) {
 
 /// The map from --map (checked against the robot) or built from the map flags.
 ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about) {
-  const std::string unit = unitName(robot.length_unit);
   if (cli.has("map")) {
     for (const char* flag :
          {"resolution", "orientations", "rolls", "samples", "no-manipulability"}) {
@@ -109,58 +108,11 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
                               " is for a map built here, not with --map");
     }
     const std::string path = cli.required("map");
-    requireInputFile(path, "reachability map");  // regular file, noted as an input of the run
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open the reachability map");
-    std::string header;
-    ReachMap map = ReachMap::read(in, path, &header);
-    const nlohmann::json h = nlohmann::json::parse(header, nullptr, false);
-    // A header member of the wrong type (a number for "robot") throws nlohmann's own exception,
-    // whose message names no file: one line naming the map instead.
-    try {
-      if (!h.is_object() || h.value("robot", "") != robot.name ||
-          h.value("length_unit", "") != unit) {
-        throw Error(path + ": the map is of robot '" +
-                    (h.is_object() ? h.value("robot", "?") : "?") + "' in " +
-                    (h.is_object() ? h.value("length_unit", "?") : "?") + ", not of '" +
-                    robot.name + "' in " + unit);
-      }
-      // The same name and unit are not the same robot: its file may have been edited since.
-      const io::CloudProvenance robot_file = robotProvenance(robot);
-      if (!h.contains("robot_sha256") || !h["robot_sha256"].is_string()) {
-        throw Error(path +
-                    ": the map predates the record of its robot file's SHA-256; re-make it "
-                    "with mcws_reach --robot " +
-                    cli.required("robot") + " --map " + path);
-      }
-      if (h["robot_sha256"].get<std::string>() != robot_file.sha256) {
-        throw Error(path + ": the map was made from robot file " + h.value("robot_file", "?") +
-                    " (sha256 " + h["robot_sha256"].get<std::string>().substr(0, 12) +
-                    "...), not from --robot " + cli.required("robot") + " (sha256 " +
-                    robot_file.sha256.substr(0, 12) +
-                    "...): the robot file has changed since, or "
-                    "is another; re-make the map with mcws_reach");
-      }
-      // Samples colliding with the environment at the robot's own base are missing from such a
-      // map: moved with the base, the environment's shadow would move too.
-      if (h.value("collision", false)) {
-        throw Error(path +
-                    ": the map counts only samples free of the environment at the robot's "
-                    "base (mcws_reach --collision); placement needs a map without it");
-      }
-      const nlohmann::json wanted = app::qualitySummary(app::readQualityOptions(cli, robot), robot);
-      if (h.contains("manipulability") && !h["manipulability"].is_null() &&
-          h["manipulability"] != wanted) {
-        throw Error(path + ": the map's manipulability is measured as " +
-                    h["manipulability"].dump() + ", not as " + wanted.dump() +
-                    " (--quality-task, --length)");
-      }
-      about = {{"source", path}, {"samples", h.value("samples", 0ULL)}};
-    } catch (const nlohmann::json::exception& e) {
-      const std::string what = e.what();  // "[json.exception.type_error.302] type must be ..."
-      throw Error(path + ": the map's header has a member of the wrong type: " +
-                  what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2));
-    }
+    std::uint64_t samples = 0;
+    ReachMap map = readPlacementMap(
+        path, robot, cli.required("robot"),
+        qualitySummary(app::readQualityOptions(cli, robot), robot).dump(), samples);
+    about = {{"source", path}, {"samples", samples}};
     return map;
   }
   if (!cli.has("resolution")) throw app::UsageError("missing --map or --resolution");
@@ -176,13 +128,20 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
   return map;
 }
 
-nlohmann::json candidateJson(const BaseCandidate& c) {
-  nlohmann::json j = {{"offset", {c.offset.x(), c.offset.y(), c.offset.z()}},
-                      {"map_share", c.map_share},
-                      {"map_score", c.map_score}};
-  j["ik_share"] = c.confirmed ? nlohmann::json(c.ik.share_reached) : nullptr;
-  j["ik_score"] = c.confirmed ? nlohmann::json(c.ik.mean_score) : nullptr;
-  return j;
+void printTable(const std::vector<BaseCandidate>& candidates, int best, std::size_t targets,
+                const std::string& unit) {
+  std::cerr << "offset x y z [" << unit << "]   map share   IK share   (fractions of the "
+            << targets << " targets)\n";
+  for (const BaseCandidate& c : candidates) {
+    std::cerr << std::setw(8) << c.offset.x() << ' ' << std::setw(8) << c.offset.y() << ' '
+              << std::setw(8) << c.offset.z() << "   " << std::setw(9) << c.map_share << "   "
+              << (c.confirmed ? std::to_string(c.ik.share_reached) : std::string("-")) << "\n";
+  }
+  if (best >= 0) {
+    const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
+    std::cerr << "best: move the base by (" << b.offset.transpose() << ") " << unit << ": "
+              << b.ik.reached << " of " << targets << " targets reached\n";
+  }
 }
 
 }  // namespace
@@ -230,49 +189,14 @@ int main(int argc, char** argv) {
     cloud.commit();
     outputs.commit();
 
-    nlohmann::json table = nlohmann::json::array();
-    for (const BaseCandidate& c : candidates) table.push_back(candidateJson(c));
-    nlohmann::json best_json = nullptr;
-    if (best >= 0) {
-      const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
-      best_json = candidateJson(b);
-      best_json["reached"] = b.ik.reached;
-      const Eigen::Vector3d base = robot.T_world_base.translation() + b.offset;
-      best_json["base_position"] = {base.x(), base.y(), base.z()};
-    }
-    const nlohmann::json json = {
-        {"robot", robot.name},
-        {"length_unit", unit},
-        {"targets", targets.size()},
-        {"positions", candidates.size()},
-        {"map",
-         {{"resolution", map.grid().resolution},
-          {"orientations", map.grid().directions},
-          {"rolls", map.grid().rolls},
-          {"about", map_about}}},
-        {"score", "manipulability where reached, 0 elsewhere"},
-        {"manipulability", app::qualitySummary(options.quality, robot)},
-        {"collision", checker != nullptr},
-        {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
-        {"best", best_json},
-        {"candidates", table},
-        {"seconds", clock.seconds()},
-        {"output", output}};
     if (cli.has("json")) {
+      nlohmann::json json = placementSummary(robot, targets.size(), map, map_about, options,
+                                          checker != nullptr, candidates, best);
+      json["seconds"] = clock.seconds();
+      json["output"] = output;
       std::cout << json.dump() << "\n";
     } else {
-      std::cerr << "offset x y z [" << unit << "]   map share   IK share   (fractions of the "
-                << targets.size() << " targets)\n";
-      for (const BaseCandidate& c : candidates) {
-        std::cerr << std::setw(8) << c.offset.x() << ' ' << std::setw(8) << c.offset.y() << ' '
-                  << std::setw(8) << c.offset.z() << "   " << std::setw(9) << c.map_share << "   "
-                  << (c.confirmed ? std::to_string(c.ik.share_reached) : std::string("-")) << "\n";
-      }
-      if (best >= 0) {
-        const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
-        std::cerr << "best: move the base by (" << b.offset.transpose() << ") " << unit << ": "
-                  << b.ik.reached << " of " << targets.size() << " targets reached\n";
-      }
+      printTable(candidates, best, targets.size(), unit);
     }
     return app::kExitOk;
   });

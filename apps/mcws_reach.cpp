@@ -21,6 +21,7 @@
 #include "mcws/reach/reach_checkpoint.h"
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_plot.h"
+#include "mcws/reach/reach_report.h"
 #include "mcws/reach/reach_study.h"
 
 namespace {
@@ -94,6 +95,86 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
+/// --checkpoint and --checkpoint-every, with the identity of the run a checkpoint records.
+std::optional<ReachCheckpoint> readCheckpoint(const app::CommandLine& cli, const Robot& robot,
+                                              const io::CloudProvenance& provenance,
+                                              const ReachGrid& grid, const ReachSampling& sampling,
+                                              std::uint64_t samples,
+                                              const distributed::Processes& processes) {
+  if (!cli.has("checkpoint")) {
+    if (cli.has("checkpoint-every")) throw app::UsageError("--checkpoint-every needs --checkpoint");
+    return std::nullopt;
+  }
+  return ReachCheckpoint{
+      processes.distributed()
+          ? cli.required("checkpoint") + "." + std::to_string(processes.rank())
+          : cli.required("checkpoint"),
+      static_cast<std::uint64_t>(app::parseInteger(cli.text("checkpoint-every", "100000000"),
+                                                   "checkpoint-every", 1,
+                                                   std::numeric_limits<std::int64_t>::max())),
+      nlohmann::json{{"robot", robot.name},
+                     {"robot_sha256", provenance.sha256},
+                     {"resolution", grid.resolution},
+                     {"orientations", grid.directions},
+                     {"rolls", grid.rolls},
+                     {"samples", samples},
+                     {"seed", sampling.seed},
+                     {"collision", cli.has("collision")},
+                     {"manipulability", qualitySummary(sampling.quality, robot)},
+                     {"with_manipulability", sampling.manipulability},
+                     {"processes", processes.size()},
+                     {"rank", processes.rank()}}
+          .dump()};
+}
+
+/// Merges the maps of every process into rank 0's along a binary tree, sorted as one process's.
+void mergeOnFirst(distributed::Processes& processes, ReachMap& map) {
+  distributed::reduceToFirst(
+      processes,
+      [&] {
+        std::ostringstream bytes;
+        map.write(bytes, "{}");
+        return bytes.str();
+      },
+      [&](const std::string& bytes) {
+        std::istringstream in(bytes);
+        map.merge(ReachMap::read(in, "the map of another process"));
+      });
+  map.sort();
+}
+
+/// Every output rendered and written under a temporary name before any is renamed; the map
+/// file's header records what `summary` says of the run.
+void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const ReachMap& map,
+                    const io::CloudProvenance& provenance, const nlohmann::json& summary) {
+  const std::string unit = unitName(robot.length_unit);
+  io::OutputSet outputs;
+  if (cli.has("halfcut"))
+    io::writeWholeFile(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
+  if (cli.has("histogram")) {
+    io::writeWholeFile(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
+  }
+  if (cli.has("map")) {
+    std::ostringstream bytes;
+    map.write(bytes, nlohmann::json{{"robot", robot.name},
+                                    {"robot_file", provenance.file},
+                                    {"robot_sha256", provenance.sha256},
+                                    {"length_unit", unit},
+                                    {"samples", summary["samples"]},
+                                    {"seed", summary["seed"]},
+                                    {"collision", summary["collision"]},
+                                    {"manipulability", summary["manipulability"]}}
+                         .dump());
+    io::writeWholeFile(cli.required("map"), bytes.str());
+  }
+  const auto points = reachPoints(map);
+  io::PcdStreamWriter<ReachPoint> cloud(cli.required("output"), points.size(),
+                                        io::PcdFormat::kBinary, provenance);
+  cloud.write(points.data(), points.size());
+  cloud.commit();
+  outputs.commit();
+}
+
 /// The reachability map: samples through forward kinematics into voxels x orientation bins.
 void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProvenance& provenance,
             distributed::Processes& processes) {
@@ -125,32 +206,9 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
     if (processes.rank() == 0)
       progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
   };
-  std::optional<ReachCheckpoint> checkpoint;
+  const std::optional<ReachCheckpoint> checkpoint =
+      readCheckpoint(cli, robot, provenance, grid, sampling, samples, processes);
   std::uint64_t resumed = 0;
-  if (cli.has("checkpoint")) {
-    checkpoint = ReachCheckpoint{
-        processes.distributed()
-            ? cli.required("checkpoint") + "." + std::to_string(processes.rank())
-            : cli.required("checkpoint"),
-        static_cast<std::uint64_t>(app::parseInteger(cli.text("checkpoint-every", "100000000"),
-                                                     "checkpoint-every", 1,
-                                                     std::numeric_limits<std::int64_t>::max())),
-        nlohmann::json{{"robot", robot.name},
-                       {"robot_sha256", provenance.sha256},
-                       {"resolution", grid.resolution},
-                       {"orientations", grid.directions},
-                       {"rolls", grid.rolls},
-                       {"samples", samples},
-                       {"seed", sampling.seed},
-                       {"collision", cli.has("collision")},
-                       {"manipulability", app::qualitySummary(sampling.quality, robot)},
-                       {"with_manipulability", sampling.manipulability},
-                       {"processes", processes.size()},
-                       {"rank", processes.rank()}}
-            .dump()};
-  } else if (cli.has("checkpoint-every")) {
-    throw app::UsageError("--checkpoint-every needs --checkpoint");
-  }
   // A bad flag or file on any process ends them all here; so does another robot file.
   processes.setUpDone({{"robot", provenance.sha256}});
   ReachMap map = checkpoint
@@ -158,20 +216,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
                      : buildReachMap(robot, grid, sampling, report);
   std::vector<std::uint64_t> resumed_all{resumed};
   processes.sum(resumed_all);
-  if (processes.distributed()) {
-    distributed::reduceToFirst(
-        processes,
-        [&] {
-          std::ostringstream bytes;
-          map.write(bytes, "{}");
-          return bytes.str();
-        },
-        [&](const std::string& bytes) {
-          std::istringstream in(bytes);
-          map.merge(ReachMap::read(in, "the map of another process"));
-        });
-    map.sort();
-  }
+  if (processes.distributed()) mergeOnFirst(processes, map);
   // Every checkpoint stays until rank 0 has written the outputs (a failure there keeps them).
   const auto removeCheckpoint = [&] {
     processes.barrier();
@@ -181,62 +226,18 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   if (processes.rank() != 0) return removeCheckpoint();  // rank 0 writes and reports for all
   if (map.size() == 0) throw Error("no sample counted: every sample collides");
 
-  const std::string unit = unitName(robot.length_unit);
-  const double voxel_volume = std::pow(grid.resolution, 3);
-  nlohmann::json summary = {
-      {"robot", robot.name},
-      {"length_unit", unit},
-      {"resolution", grid.resolution},
-      {"orientations", grid.directions},
-      {"rolls", grid.rolls},
-      {"orientation_bins", map.bins().size()},
-      {"direction_partition", "EQ (Leopardi 2006), approach = tool z axis"},
-      {"samples", samples},
-      {"samples_counted", map.samples()},
-      {"seed", sampling.seed},
-      {"processes", processes.size()},
-      {"resumed_samples", resumed_all[0]},
-      {"voxels", map.size()},
-      {"occupied_volume", static_cast<double>(map.size()) * voxel_volume},
-      {"occupied_volume_unit", unit + "^3"},
-      {"mean_reachability", map.meanReachability()},
-      {"manipulability", sampling.manipulability ? app::qualitySummary(sampling.quality, robot)
-                                                 : nlohmann::json(nullptr)},
-      {"collision", cli.has("collision")},
-      {"output", output}};
-
-  // Every output is rendered and written under a temporary name before any is renamed.
-  io::OutputSet outputs;
-  if (cli.has("halfcut"))
-    io::writeWholeFile(cli.required("halfcut"), renderHalfCutPng(map, 0.0, robot.name, unit));
-  if (cli.has("histogram")) {
-    io::writeWholeFile(cli.required("histogram"), renderReachabilityHistogramPng(map, robot.name));
-  }
-  if (cli.has("map")) {
-    std::ostringstream bytes;
-    map.write(bytes, nlohmann::json{{"robot", robot.name},
-                                    {"robot_file", provenance.file},
-                                    {"robot_sha256", provenance.sha256},
-                                    {"length_unit", unit},
-                                    {"samples", samples},
-                                    {"seed", sampling.seed},
-                                    {"collision", cli.has("collision")},
-                                    {"manipulability", summary["manipulability"]}}
-                         .dump());
-    io::writeWholeFile(cli.required("map"), bytes.str());
-  }
-  const auto points = reachPoints(map);
-  io::PcdStreamWriter<ReachPoint> cloud(output, points.size(), io::PcdFormat::kBinary, provenance);
-  cloud.write(points.data(), points.size());
-  cloud.commit();
-  outputs.commit();
+  nlohmann::json summary = mapSummary(robot, grid, sampling, samples, map, cli.has("collision"));
+  summary["output"] = output;
+  summary["processes"] = processes.size();
+  summary["resumed_samples"] = resumed_all[0];
+  saveMapOutputs(cli, robot, map, provenance, summary);
   removeCheckpoint();
   summary["seconds"] = progress.seconds();
   if (cli.has("json")) {
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << map.size()
-              << " voxels of edge " << grid.resolution << " " << unit << ", mean D "
+              << " voxels of edge " << grid.resolution << " " << unitName(robot.length_unit) << ", mean D "
               << summary["mean_reachability"].get<double>() << " (fraction of the "
               << map.bins().size() << " orientation bins)] -> " << output << "\n";
   }
@@ -263,46 +264,17 @@ void runStudy(const app::CommandLine& cli, const Robot& robot,
                      [&](std::size_t done, std::size_t all) { progress.update(done, all); });
 
   pcl::PointCloud<ReachTargetPoint> heat;
-  nlohmann::json unreached = nlohmann::json::array();
-  for (std::size_t i = 0; i < targets.size(); ++i) {
+  for (std::size_t i = 0; i < targets.size(); ++i)
     heat.push_back(reachTargetPoint(targets[i], results[i]));
-    if (!results[i].reached) {
-      unreached.push_back({{"target", i},
-                           {"solved", results[i].solved},
-                           {"label", results[i].solved ? nlohmann::json(labelName(results[i].label))
-                                                       : nlohmann::json(nullptr)},
-                           {"position_error", results[i].position_error},
-                           {"orientation_error_deg", results[i].orientation_error * 180.0 / M_PI}});
-    }
-  }
   io::PcdStreamWriter<ReachTargetPoint> cloud(output, heat.size(), io::PcdFormat::kBinary,
                                               provenance);
   cloud.write(heat.data(), heat.size());
   cloud.commit();
 
+  nlohmann::json json = studySummary(robot, options, results, checker != nullptr);
+  json["seconds"] = progress.seconds();
+  json["output"] = output;
   const ReachSummary summary = summarize(results);
-  const std::string unit = unitName(robot.length_unit);
-  const auto finiteOrNull = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nullptr; };
-  const nlohmann::json json = {
-      {"robot", robot.name},
-      {"length_unit", unit},
-      {"targets", summary.targets},
-      {"reached", summary.reached},
-      {"solved", summary.solved},
-      {"share_reached", summary.share_reached},
-      {"mean_score", summary.mean_score},
-      {"score", "manipulability where reached, 0 elsewhere"},
-      {"mean_manipulability_reached", summary.mean_manipulability_reached},
-      {"manipulability", app::qualitySummary(options.quality, robot)},
-      {"min_clearance_reached", finiteOrNull(summary.min_clearance_reached)},
-      {"clearance_unit", unit},
-      {"collision", checker != nullptr},
-      {"approach_tolerance_deg", options.approach_tolerance * 180.0 / M_PI},
-      {"ik_starts", options.starts},
-      {"seed", options.ik.seed},
-      {"unreached", unreached},
-      {"seconds", progress.seconds()},
-      {"output", output}};
   if (cli.has("json")) {
     std::cout << json.dump() << "\n";
   } else {

@@ -1,8 +1,5 @@
 // mcws_refine: boundary refinement (Liu et al. 2013): new samples in
 // small joint-space neighbourhoods of the configurations that produced boundary points.
-#include <pcl/io/pcd_io.h>
-
-#include <algorithm>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -15,9 +12,11 @@
 #include "common/flags.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
+#include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
 #include "mcws/io/provenance.h"
 #include "mcws/workspace/refine.h"
+#include "mcws/workspace/refine_inputs.h"
 
 namespace {
 
@@ -59,66 +58,59 @@ void declareFlags(mcws::app::CommandLine& cli) {
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
 
-/// RefineSampler's samples labelled by CollisionChecker::label() of the joint values that produced
-/// them, as mcws_sample --collision labels its own (LabelledRobotSampler).
-class LabelledRefineSampler : public mcws::PointGenerator {
- public:
-  LabelledRefineSampler(const mcws::RefineSampler& sampler, const mcws::CollisionChecker& checker)
-      : sampler_(sampler), checker_(checker) {}
-  void generate(std::uint64_t first, std::size_t count, mcws::WorkspacePoint* out) const override {
-    sampler_.generate(first, count, out);
-    mcws::CollisionChecker::Scratch scratch;
-    double q[mcws::kMaxJoints];
-    for (std::size_t k = 0; k < count; ++k) {
-      sampler_.jointValues(first + k, q);
-      out[k].label = checker_.label(q, scratch);
-    }
-  }
-
- private:
-  const mcws::RefineSampler& sampler_;
-  const mcws::CollisionChecker& checker_;
-};
-
-/// Checks that the cloud of --`flag` has the joint fields q1..qn of an n-joint robot: clouds
-/// without them (a mcws_reach map, a PCL cloud) would load with every joint at 0.
-void requireJointFields(const std::string& flag, const std::string& path, int dof) {
-  pcl::PCLPointCloud2 header;
-  if (pcl::PCDReader().readHeader(path, header) < 0) {
-    throw mcws::Error("--" + flag + " '" + path + "': cannot read the PCD header");
-  }
-  for (int j = 1; j <= dof; ++j) {
-    const std::string name = "q" + std::to_string(j);
-    const bool found = std::any_of(header.fields.begin(), header.fields.end(),
-                                   [&](const pcl::PCLPointField& f) { return f.name == name; });
-    if (!found) {
-      throw mcws::Error("--" + flag + " '" + path + "' has no field " + name +
-                        ": refinement needs the joint values of each point (fields q1..q" +
-                        std::to_string(dof) +
-                        ", as mcws_sample writes them; a mcws_reach map "
-                        "cloud has none)");
-    }
-  }
+mcws::RefineOptions readOptions(const mcws::app::CommandLine& cli) {
+  mcws::RefineOptions options;
+  options.seed = mcws::app::readSeed(cli);
+  options.spread = mcws::app::parseNumber(cli.text("spread", "0.1"), "spread");
+  if (!(options.spread > 0.0 && options.spread <= 1.0))
+    throw mcws::app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
+  return options;
 }
 
-/// How the cloud of --`flag` was sampled, as its header records it.
-/// \throws mcws::Error when it records nothing or predates the record.
-mcws::io::SamplingRecord recordedSampling(
-    const std::string& flag, const std::string& path,
-    const std::optional<mcws::io::CloudProvenance>& recorded) {
-  if (!recorded) {
-    throw mcws::Error("--" + flag + " '" + path +
-                      "' does not record how it was sampled (no '# mcws' header line): refine "
-                      "draws new samples the same way; make the cloud with mcws_sample (then "
-                      "mcws_boundary)");
+/// Sets the point and the pinned joints of `options` to the cloud's; a --point other than the
+/// recorded one is refused.
+void drawAsRecorded(const mcws::app::CommandLine& cli, const mcws::io::SamplingRecord& sampling,
+                    mcws::SamplePoint asked_point, mcws::RefineOptions& options) {
+  using mcws::SamplePoint;
+  const SamplePoint recorded_point =
+      sampling.point == "flange" ? SamplePoint::kFlange : SamplePoint::kTool;
+  if (cli.has("point") && asked_point != recorded_point) {
+    throw mcws::app::UsageError("--point " + cli.required("point") + ": --input '" +
+                                cli.required("input") + "' was sampled at the " + sampling.point +
+                                " (point=" + sampling.point +
+                                "); leave out --point to refine it there");
   }
-  if (!recorded->sampling) {
-    throw mcws::Error("--" + flag + " '" + path +
-                      "' predates the record of how it was sampled (its '# mcws' header line has "
-                      "no point=, collision=, fix=): re-make it with mcws_sample (then "
-                      "mcws_boundary) of this version");
+  options.point = recorded_point;
+  options.fixed = sampling.fixed;
+}
+
+void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
+                  std::size_t boundary_points, std::size_t samples, std::size_t kept,
+                  const mcws::RefineOptions& options, const std::vector<std::string>& pinned,
+                  const mcws::io::SamplingRecord& sampling, int processes, double seconds) {
+  const std::string output = cli.required("output");
+  if (cli.has("json")) {
+    nlohmann::json summary{{"robot", robot.name},
+                           {"boundary_points", boundary_points},
+                           {"samples", samples},
+                           {"copied", kept},
+                           {"points", kept + samples},
+                           {"spread", options.spread},
+                           {"length_unit", unitName(robot.length_unit)},
+                           {"pinned", pinned},
+                           {"point", sampling.point},
+                           {"collision", sampling.collision},
+                           {"seed", options.seed},
+                           {"output", output},
+                           {"processes", processes},
+                           {"seconds", seconds},
+                           {"units", {{"spread", "joint ranges"}, {"seconds", "s"}}}};
+    std::cout << summary.dump() << "\n";
+  } else {
+    std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << samples
+              << " new samples near " << boundary_points << " boundary points, "
+              << kept + samples << " points] -> " << output << "\n";
   }
-  return *recorded->sampling;
 }
 
 }  // namespace
@@ -133,11 +125,7 @@ int main(int argc, char** argv) {
 
     const auto samples = static_cast<std::size_t>(
         app::parseInteger(cli.required("samples"), "samples", 1, std::numeric_limits<int>::max()));
-    RefineOptions options;
-    options.seed = app::readSeed(cli);
-    options.spread = app::parseNumber(cli.text("spread", "0.1"), "spread");
-    if (!(options.spread > 0.0 && options.spread <= 1.0))
-      throw app::UsageError("--spread: " + cli.text("spread", "") + " is not in (0, 1]");
+    RefineOptions options = readOptions(cli);
     const SamplePoint asked_point = app::readPoint(cli);  // checked now; compared below
     const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
@@ -148,40 +136,19 @@ int main(int argc, char** argv) {
     const Robot robot = app::readRobot(cli);
     io::CloudProvenance provenance = robotProvenance(robot);
     const auto boundary = io::readCloud(cli.required("input"));
-    for (const char* flag : {"input", "cloud"}) {
-      if (cli.has(flag)) {
-        const std::string path = cli.required(flag);
-        const std::optional<io::CloudProvenance> recorded = io::readProvenance(path);
-        io::requireSameRobot(flag, path, recorded, provenance);
-        requireJointFields(flag, path, robot.dof());
-        const io::SamplingRecord sampling = recordedSampling(flag, path, recorded);
-        if (provenance.sampling && sampling != *provenance.sampling) {
-          throw Error("--cloud '" + path + "' was sampled with " + io::describeSampling(sampling) +
-                      " but --input '" + cli.required("input") + "' with " +
-                      io::describeSampling(*provenance.sampling));
-        }
-        provenance.sampling = sampling;
-      }
-    }
+    std::vector<RefineCloud> clouds{{"input", cli.required("input")}};
+    if (cli.has("cloud")) clouds.emplace_back("cloud", cli.required("cloud"));
+    recordRefineSampling(clouds, robot.dof(), provenance);
     // New samples are drawn as the cloud's were: the same point, pinned joints and labels.
     const io::SamplingRecord& sampling = *provenance.sampling;
-    const SamplePoint recorded_point =
-        sampling.point == "flange" ? SamplePoint::kFlange : SamplePoint::kTool;
-    if (cli.has("point") && asked_point != recorded_point) {
-      throw app::UsageError("--point " + cli.required("point") + ": --input '" +
-                            cli.required("input") + "' was sampled at the " + sampling.point +
-                            " (point=" + sampling.point +
-                            "); leave out --point to refine it there");
-    }
-    options.point = recorded_point;
-    options.fixed = sampling.fixed;
+    drawAsRecorded(cli, sampling, asked_point, options);
     const RefineSampler refine(robot, *boundary, options);
     std::unique_ptr<CollisionChecker> checker;
-    std::unique_ptr<LabelledRefineSampler> labelled;
+    std::unique_ptr<LabelledSampler<RefineSampler>> labelled;
     if (sampling.collision) {
       checker = std::make_unique<CollisionChecker>(
           robot, loadRequiredCollisionModel(robot, cli.required("robot")));
-      labelled = std::make_unique<LabelledRefineSampler>(refine, *checker);
+      labelled = std::make_unique<LabelledSampler<RefineSampler>>(refine, *checker);
     }
     const PointGenerator& sampler = labelled ? static_cast<const PointGenerator&>(*labelled)
                                              : static_cast<const PointGenerator&>(refine);
@@ -207,28 +174,8 @@ int main(int argc, char** argv) {
     }
     if (processes.rank() != 0) return app::kExitOk;  // rank 0 reports for all
 
-    if (cli.has("json")) {
-      nlohmann::json summary{{"robot", robot.name},
-                             {"boundary_points", boundary->size()},
-                             {"samples", samples},
-                             {"copied", kept},
-                             {"points", kept + samples},
-                             {"spread", options.spread},
-                             {"length_unit", unitName(robot.length_unit)},
-                             {"pinned", refine.pinnedJoints()},
-                             {"point", sampling.point},
-                             {"collision", sampling.collision},
-                             {"seed", options.seed},
-                             {"output", output},
-                             {"processes", processes.size()},
-                             {"seconds", progress.seconds()},
-                             {"units", {{"spread", "joint ranges"}, {"seconds", "s"}}}};
-      std::cout << summary.dump() << "\n";
-    } else {
-      std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << samples
-                << " new samples near " << boundary->size() << " boundary points, "
-                << kept + samples << " points] -> " << output << "\n";
-    }
+    printSummary(cli, robot, boundary->size(), samples, kept, options, refine.pinnedJoints(),
+                 sampling, processes.size(), progress.seconds());
     return app::kExitOk;
   });
 }

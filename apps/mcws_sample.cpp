@@ -15,6 +15,7 @@
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
 #include "mcws/reach/quality_sampler.h"
+#include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sampler.h"
 
 namespace {
@@ -106,7 +107,7 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
   if (cli.has("quality")) {
     const QualityOptions quality = app::readQualityOptions(cli, robot);
     source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
-    source.summary["quality"] = app::qualitySummary(quality, robot);
+    source.summary["quality"] = qualitySummary(quality, robot);
   }
   return source;
 }

@@ -10,8 +10,8 @@
 #include "common/pose_args.h"
 #include "common/units.h"
 #include "mcws/io/atomic_file.h"
-#include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/trajectory/cartesian_line.h"
+#include "mcws/trajectory/tool_path.h"
 #include "mcws/trajectory/joint_trajectory.h"
 #include "mcws/trajectory/trajectory_io.h"
 
@@ -126,25 +126,6 @@ Eigen::VectorXd readMaxVelocity(const app::CommandLine& cli, const Robot& robot)
   return v;
 }
 
-/// The straight tool line from q_start to the pose T_goal, each sample solved by IK seeded with
-/// the previous one.
-SampledTrajectory toolLine(const Robot& robot, const Move& move, const Eigen::VectorXd& q_start,
-                           const Eigen::Isometry3d& T_goal) {
-  IkOptions ik_options;
-  ik_options.restarts = 2;  // seeded with the previous sample: a restart means a new branch
-  const IkFunction ik = [&](const Eigen::Isometry3d& T, const Eigen::VectorXd& seed) {
-    const IkResult r = solveIk(robot, T, seed, ik_options);
-    return r.converged() ? std::optional<Eigen::VectorXd>(r.q) : std::nullopt;
-  };
-  CartesianLineOptions options;
-  options.duration = move.duration;
-  options.rate = move.rate;
-  options.profile = profileFromName(move.profile);
-  CartesianLineResult result = cartesianLine(robot, q_start, T_goal, ik, options);
-  if (result.status != CartesianLineStatus::kSuccess) throw Error(result.message);
-  return std::move(result.trajectory);
-}
-
 /// What the move is, for the plot's title and --json.
 std::string moveShape(const Move& move) {
   if (move.line) return "straight tool line, " + move.profile + " timing";
@@ -170,12 +151,6 @@ void saveMove(const Robot& robot, const Move& move, const SampledTrajectory& sam
                                                           move.duration_text + " s"));
   }
   outputs.commit();
-}
-
-double pathLength(const Eigen::MatrixXd& xyz) {
-  double length = 0.0;
-  for (Eigen::Index i = 1; i < xyz.rows(); ++i) length += (xyz.row(i) - xyz.row(i - 1)).norm();
-  return length;
 }
 
 nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTrajectory& samples,
@@ -233,7 +208,11 @@ int main(int argc, char** argv) {
 
     SampledTrajectory samples;
     if (move.line) {
-      samples = toolLine(robot, move, points.front(), T_goal);
+      CartesianLineOptions line;
+      line.duration = move.duration;
+      line.rate = move.rate;
+      line.profile = profileFromName(move.profile);
+      samples = ikToolLine(robot, points.front(), T_goal, line);
     } else {
       const JointTrajectory trajectory =
           move.vias.empty() ? pointToPoint(points.front(), points.back(), move.duration,

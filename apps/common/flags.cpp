@@ -120,22 +120,6 @@ QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot) {
   return quality;
 }
 
-nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot) {
-  // Position task: each of the k = min(n, 3) singular values is a length per rad; a prismatic
-  // joint's column has no length, so the unit is then a mixture the JSON says it is.
-  const bool prismatic =
-      std::any_of(robot.joints.begin(), robot.joints.end(),
-                  [](const Joint& joint) { return joint.type == JointType::kPrismatic; });
-  const std::string unit = unitName(robot.length_unit);
-  return {{"task", qualityTaskName(quality.task)},
-          {"characteristic_length", quality.characteristic_length},
-          {"characteristic_length_unit", unit},
-          {"manipulability_unit",
-           quality.task == QualityTask::kFull ? std::string("1")
-           : prismatic ? "mixed: " + unit + " per rad for each revolute joint, 1 for each prismatic"
-                       : unit + "^" + std::to_string(std::min(robot.dof(), 3))}};
-}
-
 BoundaryPlane readPlane(const CommandLine& cli) {
   if (!cli.has("plane")) return BoundaryPlane::k3D;
   return asUsageError("plane", [&] { return parseBoundaryPlane(cli.required("plane")); });

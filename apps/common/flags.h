@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <initializer_list>
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "common/app.h"
@@ -94,9 +93,6 @@ void declareQualityFlags(CommandLine& cli);
 /// defaults (defaultQualityOptions()).
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);
 
-/// \brief The JSON of how manipulability is measured: task, characteristic length and the unit of
-/// the manipulability values (1 for the full task; length^k for the position task).
-nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot);
 
 /// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
 BoundaryPlane readPlane(const CommandLine& cli);

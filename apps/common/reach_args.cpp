@@ -1,12 +1,13 @@
 #include "common/reach_args.h"
 
-#include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
 #include "common/flags.h"
 #include "mcws/reach/targets_file.h"
 #include "mcws/collision/collision_model.h"
+#include "mcws/collision/robot_bodies.h"
 
 namespace mcws::app {
 
@@ -92,19 +93,7 @@ std::unique_ptr<CollisionChecker> studyChecker(const CommandLine& cli, const Rob
                                                bool environment) {
   if (cli.has("no-collision")) return nullptr;
   CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
-  if (!environment) {
-    auto inEnvironment = [&](const std::string& name) {
-      return std::any_of(model.environment.begin(), model.environment.end(),
-                         [&](const BodySpec& body) { return body.name == name; });
-    };
-    model.allowed.erase(std::remove_if(model.allowed.begin(), model.allowed.end(),
-                                       [&](const auto& pair) {
-                                         return inEnvironment(pair.first) ||
-                                                inEnvironment(pair.second);
-                                       }),
-                        model.allowed.end());
-    model.environment.clear();
-  }
+  if (!environment) model = robotBodiesOnly(std::move(model));
   if (!hasGeometry(model)) return nullptr;
   return std::make_unique<CollisionChecker>(robot, model);
 }

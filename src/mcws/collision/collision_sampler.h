@@ -26,4 +26,30 @@ class LabelledRobotSampler : public PointGenerator {
   const CollisionChecker& checker_;
 };
 
+/// \brief The samples of another generator labelled as LabelledRobotSampler labels its own: for
+/// a sampler in a module above collision, such as the refinement's RefineSampler (mcws_refine
+/// labels the new samples of a cloud mcws_sample --collision made).
+/// \tparam Sampler a PointGenerator with `void jointValues(std::uint64_t index, double* q) const`
+///   giving the joint values of sample `index` exactly as generate() draws them.
+template <class Sampler>
+class LabelledSampler : public PointGenerator {
+ public:
+  /// \param sampler and \param checker must outlive this sampler.
+  LabelledSampler(const Sampler& sampler, const CollisionChecker& checker)
+      : sampler_(sampler), checker_(checker) {}
+  void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override {
+    sampler_.generate(first, count, out);
+    CollisionChecker::Scratch scratch;
+    double q[kMaxJoints];
+    for (std::size_t k = 0; k < count; ++k) {
+      sampler_.jointValues(first + k, q);
+      out[k].label = checker_.label(q, scratch);
+    }
+  }
+
+ private:
+  const Sampler& sampler_;
+  const CollisionChecker& checker_;
+};
+
 }  // namespace mcws
