@@ -12,6 +12,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
 #include "mcws/core/input_files.h"
@@ -42,13 +43,6 @@ std::string quoted(std::string_view word) {
     }
   }
   return out + (word.size() > kQuotedBytes ? "...'" : "'");
-}
-
-/// A float as the shortest text that reads back the same ("nan", "inf", "1e+38").
-std::string floatText(float value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", double(value));
-  return text;
 }
 
 bool isSpace(char c) {
@@ -143,7 +137,7 @@ TriangleMesh parseBinaryStl(const std::string& bytes, const std::string& source)
         checkCoordinate(value,
                         where + ": triangle " + std::to_string(t + 1) + " corner " +
                             std::to_string(c + 1) + ": " + std::string(1, "xyz"[k]),
-                        floatText(value));
+                        formatNumber(value, 9));  // 9 digits read back as the same float
         p[k] = value;
       }
       corners[c] = merger.add(p);
