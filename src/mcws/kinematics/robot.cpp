@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -70,16 +71,12 @@ void Robot::checkJointVector(const Eigen::VectorXd& q) const {
 }
 
 std::string describeLimits(const Joint& joint, LengthUnit unit) {
-  std::ostringstream text;
-  text.precision(10);
-  text << "[" << joint.lower << ", " << joint.upper << "] ";
-  if (joint.type == JointType::kRevolute) {
-    text << "rad ([" << joint.lower * 180.0 / M_PI << ", " << joint.upper * 180.0 / M_PI
-         << "] deg)";
-  } else {
-    text << unitName(unit);
-  }
-  return text.str();
+  const auto limits = [](double lower, double upper) {
+    return "[" + formatNumber(lower, 10) + ", " + formatNumber(upper, 10) + "]";
+  };
+  const std::string text = limits(joint.lower, joint.upper) + " ";
+  if (joint.type != JointType::kRevolute) return text + unitName(unit);
+  return text + "rad (" + limits(joint.lower * 180.0 / M_PI, joint.upper * 180.0 / M_PI) + " deg)";
 }
 
 bool hasControlByte(const std::string& text) {
