@@ -8,7 +8,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
@@ -16,6 +15,7 @@
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
 #include "mcws/core/input_files.h"
+#include "mcws/core/text_file.h"
 
 namespace mcws {
 namespace {
@@ -397,10 +397,9 @@ TriangleMesh readMeshFile(const std::string& path) {
   requireInputFile(path, "collision mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("'" + path + "': cannot open: " + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
+  const std::string bytes = readRest(in);
   if (in.bad()) throw Error("'" + path + "': cannot read");
-  return parseMesh(bytes.str(), extension == ".stl" ? MeshFormat::kStl : MeshFormat::kObj, path);
+  return parseMesh(bytes, extension == ".stl" ? MeshFormat::kStl : MeshFormat::kObj, path);
 }
 
 }  // namespace mcws
