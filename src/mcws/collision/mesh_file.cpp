@@ -3,7 +3,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -11,6 +10,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
@@ -31,18 +31,8 @@ constexpr std::size_t kQuotedBytes = 32;
 /// `word` in quotes for a message: cut to kQuotedBytes, control bytes written as \xNN so that a
 /// binary file's bytes cannot break the one-line message.
 std::string quoted(std::string_view word) {
-  std::string out = "'";
-  for (std::size_t k = 0; k < word.size() && k < kQuotedBytes; ++k) {
-    const auto byte = static_cast<unsigned char>(word[k]);
-    if (byte < 0x20 || byte == 0x7f) {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    } else {
-      out += word[k];
-    }
-  }
-  return out + (word.size() > kQuotedBytes ? "...'" : "'");
+  return "'" + escapedControlBytes(word.substr(0, kQuotedBytes)) +
+         (word.size() > kQuotedBytes ? "...'" : "'");
 }
 
 bool isSpace(char c) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "mcws/core/decimal.h"
@@ -77,28 +76,6 @@ std::string describeLimits(const Joint& joint, LengthUnit unit) {
   const std::string text = limits(joint.lower, joint.upper) + " ";
   if (joint.type != JointType::kRevolute) return text + unitName(unit);
   return text + "rad (" + limits(joint.lower * 180.0 / M_PI, joint.upper * 180.0 / M_PI) + " deg)";
-}
-
-bool hasControlByte(const std::string& text) {
-  return std::any_of(text.begin(), text.end(), [](char c) {
-    const auto byte = static_cast<unsigned char>(c);
-    return byte < 0x20 || byte == 0x7f;
-  });
-}
-
-std::string escapedControlBytes(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 void checkPrintableName(const std::string& name, const std::string& where) {
