@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <vector>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/points/unique_positions.h"
 
@@ -105,13 +105,6 @@ double meanSpacing(const pcl::PointCloud<pcl::PointXYZ>& projected, int dimensio
 
 namespace {
 
-/// A number in a short form for messages (0.00079, 2, 1e+30).
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-
 /// Whether the cloud extends along axis k: more than kFlatExtentShare of its largest extent.
 bool extendsAlong(const CloudSummary& cloud, int k) {
   return cloud.extent[k] > kFlatExtentShare * cloud.extent.maxCoeff();
@@ -165,8 +158,8 @@ void requirePlaneFits(const CloudSummary& cloud, const std::string& what) {
     std::string lies;
     for (int k = 0; k < 3; ++k) lies += extendsAlong(cloud, k) ? kAxisName[k] : "";
     throw Error(what + ": the cloud is flat in " + kAxisName[flat] + " (extent " +
-                shortNumber(cloud.extent[flat]) + ", its largest " +
-                shortNumber(cloud.extent.maxCoeff()) + "), so in the " +
+                formatNumber(cloud.extent[flat]) + ", its largest " +
+                formatNumber(cloud.extent.maxCoeff()) + "), so in the " +
                 boundaryPlaneName(cloud.plane) +
                 " plane every point is on its boundary and the area is 0; it lies in the " + lies +
                 " plane");

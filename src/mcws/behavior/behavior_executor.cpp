@@ -1,8 +1,8 @@
 #include "mcws/behavior/cleaning_run.h"
 
 #include <algorithm>
-#include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -22,12 +22,6 @@ bool eventFitsJoint(const std::string& event, SimJoint joint) {
 
 }  // namespace
 
-std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
-
 CleaningRun::CleaningRun(const BehaviorModel& model, const RunOptions& options,
                          const RunObserver& observer)
     : model_(model), options_(options), observer_(observer), sim_(options.simulator) {
@@ -36,7 +30,7 @@ CleaningRun::CleaningRun(const BehaviorModel& model, const RunOptions& options,
     throw Error("insulators: " + std::to_string(options_.insulators) + " discs; must be >= 1");
   }
   if (!(options_.max_time_s > 0.0)) {
-    throw Error("max_time: " + number(options_.max_time_s) + " s; must be > 0");
+    throw Error("max_time: " + formatNumber(options_.max_time_s) + " s; must be > 0");
   }
   summary_.plan = planCleaningTask(options_.insulators);
   summary_.discs_requested = options_.insulators;
@@ -60,7 +54,7 @@ RunSummary CleaningRun::run() {
   while (mode_ != Mode::kDone) {
     if (sim_.time() >= options_.max_time_s) {
       finish(RunStatus::kTimeLimit,
-             "simulated time limit " + number(options_.max_time_s) + " s reached");
+             "simulated time limit " + formatNumber(options_.max_time_s) + " s reached");
       break;
     }
     applyFaults();

@@ -6,11 +6,11 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <utility>
 
 #include "mcws/core/error.h"
 #include "mcws/core/input_files.h"
+#include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -371,9 +371,7 @@ BehaviorModel loadBehaviorModel(const std::string& path) {
   requireInputFile(path, "behaviour model file");  // noted: no output of the run replaces it
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot read the behaviour model file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseBehaviorModel(text.str(), path);
+  return parseBehaviorModel(readRest(in), path);
 }
 
 }  // namespace mcws

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/gnuplot.h"
@@ -46,12 +47,7 @@ double roundedTime(double t) {
 }
 
 /// A number with up to 9 significant digits ("0" for negative zero).
-std::string number(double value) {
-  if (value == 0.0) return "0";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9g", value);
-  return buffer;
-}
+std::string number(double value) { return value == 0.0 ? "0" : formatNumber(value, 9); }
 
 /// A CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
 std::string csvField(const std::string& text) {
@@ -424,37 +420,26 @@ std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const
   return written;
 }
 
-namespace {
-
-std::string fixed(double value, int decimals) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(decimals);
-  out << value;
-  return out.str();
-}
-
-}  // namespace
-
 std::string summaryText(const RunSummary& s) {
   std::ostringstream out;
   out << "status: " << runStatusName(s.status) << "\n"
       << "discs cleaned: " << s.discs_cleaned << " of " << s.discs_requested << "; at the end "
       << s.final_disc << " disc(s) below the start\n"
-      << "duration: " << fixed(s.duration_s, 2)
-      << " s simulated (phase I, moving: " << fixed(s.phase_one_s, 2)
-      << " s; phase II, cleaning: " << fixed(s.phase_two_s, 2) << " s), " << s.steps << " steps\n"
+      << "duration: " << formatFixed(s.duration_s, 2)
+      << " s simulated (phase I, moving: " << formatFixed(s.phase_one_s, 2)
+      << " s; phase II, cleaning: " << formatFixed(s.phase_two_s, 2) << " s), " << s.steps
+      << " steps\n"
       << "sub-tasks completed: " << s.subtasks_completed
       << "; basic behaviours run: " << s.behaviors_run << "; commands sent: " << s.commands_sent
       << "\n"
-      << "battery: " << fixed(s.battery_voltage_end, 2) << " V at the end, "
-      << fixed(s.battery_charge_used, 3) << " A h used; "
-      << (s.battery_alarm_t ? "low-battery alarm at " + fixed(*s.battery_alarm_t, 2) + " s"
+      << "battery: " << formatFixed(s.battery_voltage_end, 2) << " V at the end, "
+      << formatFixed(s.battery_charge_used, 3) << " A h used; "
+      << (s.battery_alarm_t ? "low-battery alarm at " + formatFixed(*s.battery_alarm_t, 2) + " s"
                             : std::string("no alarm"))
       << "\n";
   out << "faults: " << (s.faults.empty() ? "none" : std::to_string(s.faults.size())) << "\n";
   const auto time = [](const std::optional<double>& t) {
-    return t ? fixed(*t, 2) + " s" : std::string("-");
+    return t ? formatFixed(*t, 2) + " s" : std::string("-");
   };
   for (const FaultReaction& f : s.faults) {
     out << "  " << f.fault << " (injected " << time(f.injected_t) << ", detected "

@@ -17,9 +17,6 @@
 namespace mcws {
 namespace cleaning {
 
-/// `value` as `std::ostream` writes it ("0.5", "1e-05").
-std::string number(double value);
-
 /// What a segment (one run of a combined behaviour) is for.
 struct Segment {
   std::string combined;

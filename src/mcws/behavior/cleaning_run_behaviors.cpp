@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -204,7 +205,7 @@ void CleaningRun::superviseBehavior() {
   if (a.timeout && sim_.time() - a.entered_at >= *a.timeout - 1e-9) {
     stopAll();
     const std::string what =
-        a.behavior + " did not end on " + a.event + " within " + number(*a.timeout) + " s";
+        a.behavior + " did not end on " + a.event + " within " + formatNumber(*a.timeout) + " s";
     log("timeout", a.behavior, what);
     handOver("timeout", what, sensorFaultAt(a.joint));
   }

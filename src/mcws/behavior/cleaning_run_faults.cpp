@@ -6,6 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include "mcws/core/decimal.h"
+
 namespace mcws {
 namespace cleaning {
 
@@ -23,7 +25,7 @@ void CleaningRun::applyFaults() {
         } else {
           link_down_for_good_ = true;
         }
-        detail += f.duration_s ? " for " + number(*f.duration_s) + " s" : " for good";
+        detail += f.duration_s ? " for " + formatNumber(*f.duration_s) + " s" : " for good";
         break;
       case FaultKind::kZeroSwitchStuck: {
         const bool fixed = f.clamp == kFixedClamp;
@@ -40,7 +42,7 @@ void CleaningRun::applyFaults() {
       case FaultKind::kBatteryDrain:
         drain_ += f.current_a;
         sim_.setFault(SimFault::kBatteryDrain, drain_);
-        detail += ": +" + number(f.current_a) + " A";
+        detail += ": +" + formatNumber(f.current_a) + " A";
         break;
       case FaultKind::kCorruptCommand:
       case FaultKind::kWrongCommand:
@@ -83,14 +85,14 @@ void CleaningRun::superviseLink() {
     mode_ = Mode::kWaitingForLink;
     fireTask("link_lost");
     log("link_lost", active_ ? active_->behavior : "",
-        "every joint stopped; waiting up to " + number(options_.faults.link_wait_s) +
+        "every joint stopped; waiting up to " + formatNumber(options_.faults.link_wait_s) +
             " s for the link");
     return;
   }
   if (mode_ != Mode::kWaitingForLink) return;
   if (up) {
     const double waited = sim_.time() - link_lost_at_;
-    react("link_down", "stopped, link back after " + number(waited) + " s, resumed",
+    react("link_down", "stopped, link back after " + formatNumber(waited) + " s, resumed",
           outage_injected_at_, link_lost_at_, sim_.time());
     mode_ = Mode::kRunning;
     fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
@@ -98,12 +100,13 @@ void CleaningRun::superviseLink() {
     startBehavior(true);
   } else if (sim_.time() - link_lost_at_ >= options_.faults.link_wait_s - 1e-9) {
     until_start_.push_back(react("link_down",
-                                 "stopped, no link after " + number(options_.faults.link_wait_s) +
+                                 "stopped, no link after " +
+                                     formatNumber(options_.faults.link_wait_s) +
                                      " s, returned to the start on its own",
                                  outage_injected_at_, link_lost_at_, std::nullopt));
     mode_ = Mode::kRunning;
     fireTask("resume_" + segment_->combined);  // back to the interrupted superstate
-    startReturn("no link for " + number(options_.faults.link_wait_s) + " s");
+    startReturn("no link for " + formatNumber(options_.faults.link_wait_s) + " s");
   }
 }
 
@@ -124,7 +127,7 @@ void CleaningRun::handOver(const std::string& fault, const std::string& what,
   until_operator_.push_back(react(fault,
                                   what + "; control to the operator; scripted response " +
                                       operatorActionName(response_->action) + " after " +
-                                      number(response_->after_s) + " s",
+                                      formatNumber(response_->after_s) + " s",
                                   injected, detected, std::nullopt));
   log("manual", "", "control to the operator: " + what);
 }
@@ -163,7 +166,7 @@ void CleaningRun::superviseBattery() {
   if (battery_alarm_ || !sim_.snapshot().battery_low) return;
   battery_alarm_ = true;
   summary_.battery_alarm_t = sim_.time();
-  const std::string voltage = number(sim_.snapshot().battery_voltage) + " V";
+  const std::string voltage = formatNumber(sim_.snapshot().battery_voltage) + " V";
   log("battery_low", active_ ? active_->behavior : "", "alarm: battery at " + voltage);
   if (options_.faults.low_battery == LowBatteryPolicy::kAlarmOnly) {
     react("battery_low", "alarm at " + voltage + "; the job goes on (policy alarm_only)",
@@ -189,10 +192,10 @@ std::optional<std::pair<SimJoint, std::string>> CleaningRun::sensorMismatch() co
     if (!j.zero_switch || std::abs(static_cast<double>(j.encoder)) <= 0.5 * c.counts_per_deg) {
       continue;
     }
-    return std::make_pair(clamp, std::string(simJointName(clamp)) +
-                                     "'s zero switch reads pressed but its encoder reads " +
-                                     number(static_cast<double>(j.encoder) / c.counts_per_deg) +
-                                     " deg");
+    return std::make_pair(
+        clamp, std::string(simJointName(clamp)) +
+                   "'s zero switch reads pressed but its encoder reads " +
+                   formatNumber(static_cast<double>(j.encoder) / c.counts_per_deg) + " deg");
   }
   return std::nullopt;
 }

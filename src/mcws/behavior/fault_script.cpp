@@ -8,11 +8,11 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <utility>
 
 #include "mcws/core/error.h"
 #include "mcws/core/input_files.h"
+#include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
 
 namespace mcws {
@@ -329,10 +329,9 @@ FaultScript loadFaultScript(const std::string& path) {
     in.open(path, std::ios::binary);
   }
   if (!in.is_open() || !in) throw Error(path + ": cannot read");
-  std::ostringstream text;
-  text << in.rdbuf();
+  const std::string text = readRest(in);
   if (in.bad()) throw Error(path + ": cannot read");
-  return parseFaultScript(text.str(), path);
+  return parseFaultScript(text, path);
 }
 
 }  // namespace mcws

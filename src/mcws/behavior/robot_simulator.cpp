@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -18,12 +18,6 @@ constexpr const char* kFaultNames[] = {
     "fixed_zero_switch_never_pressed", "fixed_zero_switch_always_pressed",
     "moving_zero_switch_never_pressed", "moving_zero_switch_always_pressed", "battery_drain"};
 constexpr std::size_t kFaultCount = sizeof(kFaultNames) / sizeof(kFaultNames[0]);
-
-std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 bool validJoint(SimJoint joint) {
   const int i = static_cast<int>(joint);
@@ -52,7 +46,7 @@ const char* unitOf(SimJoint joint) {
 
 [[noreturn]] void fail(const std::string& field, double value, const char* unit,
                        const std::string& rule) {
-  throw Error("simulator config: " + field + " = " + number(value) +
+  throw Error("simulator config: " + field + " = " + formatNumber(value) +
               (unit[0] ? std::string(" ") + unit : std::string()) + ", " + rule);
 }
 void requirePositive(const std::string& field, double value, const char* unit) {
@@ -67,12 +61,12 @@ void validateClamp(const std::string& name, const SimClampConfig& c) {
   requirePositive(name + ".contact_angle", c.contact_angle, "deg");
   if (!(c.end_stop_angle > c.contact_angle) || !std::isfinite(c.end_stop_angle)) {
     fail(name + ".end_stop_angle", c.end_stop_angle, "deg",
-         "must be > contact_angle " + number(c.contact_angle) + " deg");
+         "must be > contact_angle " + formatNumber(c.contact_angle) + " deg");
   }
   requireNonNegative(name + ".running_current", c.running_current, "A");
   if (!(c.stall_current > c.running_current) || !std::isfinite(c.stall_current)) {
     fail(name + ".stall_current", c.stall_current, "A",
-         "must be > running_current " + number(c.running_current) + " A");
+         "must be > running_current " + formatNumber(c.running_current) + " A");
   }
   requirePositive(name + ".time_constant", c.time_constant, "s");
   requirePositive(name + ".counts_per_deg", c.counts_per_deg, "counts/deg");
@@ -90,7 +84,7 @@ void validateAxis(const std::string& name, const SimAxisConfig& a, const char* u
   }
   if (!(a.max_position > a.min_position)) {
     fail(name + ".max_position", a.max_position, unit,
-         "must be > min_position " + number(a.min_position) + " " + unit);
+         "must be > min_position " + formatNumber(a.min_position) + " " + unit);
   }
   requirePositive(name + ".counts_per_unit", a.counts_per_unit,
                   (std::string("counts/") + unit).c_str());
@@ -139,10 +133,10 @@ SimFault faultFromName(const std::string& name) {
 std::string describe(const SimCommand& command) {
   std::string text = std::string(simJointName(command.joint)) + " " + commandKindName(command.kind);
   if (command.kind == SimCommandKind::kMoveTo || command.kind == SimCommandKind::kSpin) {
-    text += " " + number(command.value) + " " + unitOf(command.joint);
+    text += " " + formatNumber(command.value) + " " + unitOf(command.joint);
   }
   if (command.kind == SimCommandKind::kMoveTo && command.speed != 0.0) {
-    text += " at " + number(command.speed) + " " + unitOf(command.joint) + "/s";
+    text += " at " + formatNumber(command.speed) + " " + unitOf(command.joint) + "/s";
   }
   return text;
 }
@@ -167,7 +161,7 @@ void validateSimulatorConfig(const RobotSimulatorConfig& config) {
   if (s.disc_count < 1) fail("string.disc_count", s.disc_count, "", "must be >= 1");
   if (!(s.tolerance >= 0.0 && s.tolerance < 0.5 * s.pitch)) {
     fail("string.tolerance", s.tolerance, "mm",
-         "must be in [0, pitch / 2 = " + number(0.5 * s.pitch) + " mm)");
+         "must be in [0, pitch / 2 = " + formatNumber(0.5 * s.pitch) + " mm)");
   }
   if (s.initial_disc < 0 || s.initial_disc > s.disc_count) {
     fail("string.initial_disc", s.initial_disc, "",
@@ -178,7 +172,7 @@ void validateSimulatorConfig(const RobotSimulatorConfig& config) {
   const double nearest = std::round(moving / s.pitch);
   if (nearest > s.disc_count || std::abs(moving - nearest * s.pitch) > s.tolerance) {
     fail("string.home_gap", s.home_gap, "mm",
-         "puts the moving clamp at " + number(moving) + " mm, at no grip position 0 .. " +
+         "puts the moving clamp at " + formatNumber(moving) + " mm, at no grip position 0 .. " +
              std::to_string(s.disc_count));
   }
 
@@ -192,12 +186,12 @@ void validateSimulatorConfig(const RobotSimulatorConfig& config) {
   }
   if (!(b.full_voltage > b.empty_voltage) || !std::isfinite(b.full_voltage)) {
     fail("battery.full_voltage", b.full_voltage, "V",
-         "must be > empty_voltage " + number(b.empty_voltage) + " V");
+         "must be > empty_voltage " + formatNumber(b.empty_voltage) + " V");
   }
   if (!(b.low_voltage >= b.empty_voltage && b.low_voltage <= b.full_voltage)) {
     fail("battery.low_voltage", b.low_voltage, "V",
-         "must be in [empty_voltage, full_voltage] = [" + number(b.empty_voltage) + ", " +
-             number(b.full_voltage) + "] V");
+         "must be in [empty_voltage, full_voltage] = [" + formatNumber(b.empty_voltage) + ", " +
+             formatNumber(b.full_voltage) + "] V");
   }
   requireNonNegative("battery.idle_current", b.idle_current, "A");
 }
@@ -359,29 +353,29 @@ std::optional<std::string> RobotSimulator::refuse(const SimCommand& command) con
       if (!isAxis(command.joint)) return kind + " is not a command of " + joint;
       const char* unit = unitOf(command.joint);
       if (!std::isfinite(command.value)) {
-        return std::string(joint) + " move_to target " + number(command.value) + " " + unit +
+        return std::string(joint) + " move_to target " + formatNumber(command.value) + " " + unit +
                " is not finite";
       }
       const SimAxisConfig& a = axisConfig(static_cast<int>(simJointIndex(command.joint)) - 2);
       if (command.value < a.min_position || command.value > a.max_position) {
-        return std::string(joint) + " move_to target " + number(command.value) + " " + unit +
-               " is outside the limits [" + number(a.min_position) + ", " + number(a.max_position) +
-               "] " + unit;
+        return std::string(joint) + " move_to target " + formatNumber(command.value) + " " + unit +
+               " is outside the limits [" + formatNumber(a.min_position) + ", " +
+               formatNumber(a.max_position) + "] " + unit;
       }
       if (!(command.speed >= 0.0 && command.speed <= a.max_speed)) {
-        return std::string(joint) + " move_to speed " + number(command.speed) + " " + unit +
-               "/s is outside [0, max_speed = " + number(a.max_speed) + "] " + unit + "/s";
+        return std::string(joint) + " move_to speed " + formatNumber(command.speed) + " " + unit +
+               "/s is outside [0, max_speed = " + formatNumber(a.max_speed) + "] " + unit + "/s";
       }
       return std::nullopt;
     }
     case SimCommandKind::kSpin:
       if (command.joint != SimJoint::kJ6) return kind + " is not a command of " + joint;
       if (!std::isfinite(command.value)) {
-        return "J6 spin speed " + number(command.value) + " rpm is not finite";
+        return "J6 spin speed " + formatNumber(command.value) + " rpm is not finite";
       }
       if (std::abs(command.value) > config_.j6.max_speed) {
-        return "J6 spin speed " + number(command.value) + " rpm is above the limit " +
-               number(config_.j6.max_speed) + " rpm";
+        return "J6 spin speed " + formatNumber(command.value) + " rpm is above the limit " +
+               formatNumber(config_.j6.max_speed) + " rpm";
       }
       return std::nullopt;
   }
@@ -616,7 +610,7 @@ void RobotSimulator::setFault(SimFault fault, double value) {
   const auto i = static_cast<std::size_t>(fault);
   if (i >= kFaultCount) throw Error("unknown fault " + std::to_string(i));
   if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw Error(std::string("fault ") + faultName(fault) + " value " + number(value) +
+    throw Error(std::string("fault ") + faultName(fault) + " value " + formatNumber(value) +
                 ", must be >= 0");
   }
   if (fault == SimFault::kBatteryDrain) {

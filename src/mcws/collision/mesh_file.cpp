@@ -3,18 +3,19 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string_view>
 #include <unordered_map>
 
+#include "mcws/core/control_bytes.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
 #include "mcws/core/input_files.h"
+#include "mcws/core/text_file.h"
 
 namespace mcws {
 namespace {
@@ -30,25 +31,8 @@ constexpr std::size_t kQuotedBytes = 32;
 /// `word` in quotes for a message: cut to kQuotedBytes, control bytes written as \xNN so that a
 /// binary file's bytes cannot break the one-line message.
 std::string quoted(std::string_view word) {
-  std::string out = "'";
-  for (std::size_t k = 0; k < word.size() && k < kQuotedBytes; ++k) {
-    const auto byte = static_cast<unsigned char>(word[k]);
-    if (byte < 0x20 || byte == 0x7f) {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    } else {
-      out += word[k];
-    }
-  }
-  return out + (word.size() > kQuotedBytes ? "...'" : "'");
-}
-
-/// A float as the shortest text that reads back the same ("nan", "inf", "1e+38").
-std::string floatText(float value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", double(value));
-  return text;
+  return "'" + escapedControlBytes(word.substr(0, kQuotedBytes)) +
+         (word.size() > kQuotedBytes ? "...'" : "'");
 }
 
 bool isSpace(char c) {
@@ -143,7 +127,7 @@ TriangleMesh parseBinaryStl(const std::string& bytes, const std::string& source)
         checkCoordinate(value,
                         where + ": triangle " + std::to_string(t + 1) + " corner " +
                             std::to_string(c + 1) + ": " + std::string(1, "xyz"[k]),
-                        floatText(value));
+                        formatNumber(value, 9));  // 9 digits read back as the same float
         p[k] = value;
       }
       corners[c] = merger.add(p);
@@ -403,10 +387,9 @@ TriangleMesh readMeshFile(const std::string& path) {
   requireInputFile(path, "collision mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("'" + path + "': cannot open: " + std::strerror(errno));
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
+  const std::string bytes = readRest(in);
   if (in.bad()) throw Error("'" + path + "': cannot read");
-  return parseMesh(bytes.str(), extension == ".stl" ? MeshFormat::kStl : MeshFormat::kObj, path);
+  return parseMesh(bytes, extension == ".stl" ? MeshFormat::kStl : MeshFormat::kObj, path);
 }
 
 }  // namespace mcws

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// \brief Strict parsing of a plain decimal number from configuration text, and the short form
-/// of a number in messages.
+/// \brief Strict parsing of a plain decimal number from configuration text, and the text of a
+/// number in messages and files (significant digits or fixed decimals).
 
 #include <cctype>
 #include <cmath>
@@ -40,11 +40,26 @@ inline bool parseDecimal(const std::string& text, double& value, bool allow_sign
   return true;
 }
 
+/// \brief A number to `significant_digits` significant digits without trailing zeros, in fixed or
+/// exponent form, whichever printf's "%.Ng" picks: 17 digits read back as the same double
+/// (0.10000000000000001), 3 suit a limit in a message (3.4e+38). "nan", "inf", "-inf" as printf.
+/// \param significant_digits at least 1 (0 counts as 1, as in printf), at most 17 for a double.
+inline std::string formatNumber(double value, int significant_digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", significant_digits, value);
+  return text;
+}
+
 /// \brief A number for a message: 6 significant digits, no trailing zeros (0.102375, 39, 1e-09,
 /// 1e+30), so that a small value never reads as 0.000000 (std::to_string's fixed 6 decimals).
-inline std::string formatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
+/// The same text as `std::ostream << value` with the stream's default format.
+inline std::string formatNumber(double value) { return formatNumber(value, 6); }
+
+/// \brief A number with exactly `decimals` digits after the point ("%.Nf": 2.50, 0.000, 1234.5),
+/// for reports whose columns line up; the same text as `std::ostream` with `std::fixed`.
+inline std::string formatFixed(double value, int decimals) {
+  char text[352];  // "%.Nf" of the largest double has 309 digits before the point
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
   return text;
 }
 

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <istream>
 #include <sstream>
 #include <string>
 
@@ -13,6 +14,14 @@
 #include "mcws/core/input_files.h"
 
 namespace mcws {
+
+/// \brief What is left of an open stream, byte for byte: the reading step of readTextFile(), for
+/// readers whose messages are their own. A read that fails part way sets `in.bad()`.
+inline std::string readRest(std::istream& in) {
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
 
 /// \brief Reads a whole text file.
 /// \param path the file.
@@ -25,10 +34,9 @@ inline std::string readTextFile(const std::string& path, const std::string& kind
   requireInputFile(path, kind);
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open " + kind + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text = readRest(in);
   if (in.bad()) throw Error(path + ": cannot read " + kind);
-  return text.str();
+  return text;
 }
 
 }  // namespace mcws

@@ -10,13 +10,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
@@ -171,10 +171,8 @@ inline YAML::Node loadYamlDocument(const std::string& text, const std::string& s
     if (byte == '\n') {
       ++line;
       line_start = k + 1;
-    } else if ((byte < 0x20 && byte != '\t' && byte != '\r') || byte == 0x7f) {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      throw Error(atLine(source, line) + ": control byte " + escaped + " at column " +
+    } else if (isControlByte(byte) && byte != '\t' && byte != '\r') {
+      throw Error(atLine(source, line) + ": control byte " + escapedByte(byte) + " at column " +
                   std::to_string(k - line_start + 1) + " (" + what + " is text)");
     }
   }

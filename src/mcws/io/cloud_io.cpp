@@ -34,13 +34,6 @@ constexpr float kMaxCoordinate = 1e18f;
 /// precision and then flush to zero.
 constexpr float kMinExtent = 1e-19f;
 
-/// A number to three significant digits for messages (3e+38).
-std::string threeDigits(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", value);
-  return text;
-}
-
 /// A field's type as a PCD header gives it (TYPE F SIZE 4 COUNT 1).
 std::string describe(std::uint8_t datatype, std::uint32_t count) {
   const bool is_float =
@@ -188,15 +181,15 @@ void CoordinateRange::add(const WorkspaceCloud& cloud) {
 
 void CoordinateRange::check(const std::string& path) const {
   if (largest_ > kMaxCoordinate) {
-    throw Error(
-        path + ": coordinates up to " + threeDigits(largest_) +
-        " are beyond what the geometry can represent (|x| <= " + threeDigits(kMaxCoordinate) + ")");
+    throw Error(path + ": coordinates up to " + formatNumber(largest_, 3) +
+                " are beyond what the geometry can represent (|x| <= " +
+                formatNumber(kMaxCoordinate, 3) + ")");
   }
   const float extent = (max_ - min_).maxCoeff();
   if (extent > 0.0f && extent < kMinExtent) {
-    throw Error(path + ": the points span only " + threeDigits(extent) +
+    throw Error(path + ": the points span only " + formatNumber(extent, 3) +
                 ", too little for the geometry to resolve (an extent >= " +
-                threeDigits(kMinExtent) + ", or all points at one place)");
+                formatNumber(kMinExtent, 3) + ", or all points at one place)");
   }
 }
 

@@ -8,7 +8,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -17,6 +16,7 @@
 #include <map>
 #include <vector>
 
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/input_files.h"
@@ -50,9 +50,7 @@ std::string printable(const std::string& text) {
     if (c >= 0x20 && c < 0x7f) {
       out += static_cast<char>(c);
     } else {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-      out += escaped;
+      out += escapedByte(c);
     }
   }
   return text.size() > 40 ? out + "..." : out;

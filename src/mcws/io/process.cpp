@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "mcws/core/text_file.h"
+
 extern char** environ;
 
 namespace mcws::io {
@@ -62,9 +64,7 @@ std::string findOnPath(const std::string& name) {
 
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return readRest(in);
 }
 
 std::string lastLine(const std::string& text, const std::string& blank) {

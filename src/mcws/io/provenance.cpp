@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws::io {
@@ -105,20 +106,13 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-/// A double printed to read back exactly.
-std::string exactNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
-}
-
 /// "name:value,..." or "none".
 std::string encodeFixed(const std::vector<std::pair<std::string, double>>& fixed) {
   if (fixed.empty()) return "none";
   std::string out;
   for (const auto& [name, value] : fixed) {
     if (!out.empty()) out += ',';
-    out += encode(name) + ":" + exactNumber(value);
+    out += encode(name) + ":" + formatNumber(value, 17);
   }
   return out;
 }
@@ -186,7 +180,7 @@ std::string provenanceComment(const CloudProvenance& p) {
     for (const auto& pinned : p.sampling->fixed) {
       if (pinned.first.empty() || !std::isfinite(pinned.second)) {
         throw Error("cannot record how a cloud was sampled: fixed joint '" + pinned.first +
-                    "' = " + exactNumber(pinned.second));
+                    "' = " + formatNumber(pinned.second, 17));
       }
     }
     line += " point=" + p.sampling->point + " collision=" + (p.sampling->collision ? "1" : "0") +

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -70,38 +70,12 @@ void Robot::checkJointVector(const Eigen::VectorXd& q) const {
 }
 
 std::string describeLimits(const Joint& joint, LengthUnit unit) {
-  std::ostringstream text;
-  text.precision(10);
-  text << "[" << joint.lower << ", " << joint.upper << "] ";
-  if (joint.type == JointType::kRevolute) {
-    text << "rad ([" << joint.lower * 180.0 / M_PI << ", " << joint.upper * 180.0 / M_PI
-         << "] deg)";
-  } else {
-    text << unitName(unit);
-  }
-  return text.str();
-}
-
-bool hasControlByte(const std::string& text) {
-  return std::any_of(text.begin(), text.end(), [](char c) {
-    const auto byte = static_cast<unsigned char>(c);
-    return byte < 0x20 || byte == 0x7f;
-  });
-}
-
-std::string escapedControlBytes(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    } else {
-      out += c;
-    }
-  }
-  return out;
+  const auto limits = [](double lower, double upper) {
+    return "[" + formatNumber(lower, 10) + ", " + formatNumber(upper, 10) + "]";
+  };
+  const std::string text = limits(joint.lower, joint.upper) + " ";
+  if (joint.type != JointType::kRevolute) return text + unitName(unit);
+  return text + "rad (" + limits(joint.lower * 180.0 / M_PI, joint.upper * 180.0 / M_PI) + " deg)";
 }
 
 void checkPrintableName(const std::string& name, const std::string& where) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/length_unit.h"
 
 namespace mcws {
@@ -69,15 +70,7 @@ std::string describeLimits(const Joint& joint, LengthUnit unit);
 /// followed by `per` (e.g. "/s" for velocities).
 std::vector<std::string> jointUnits(const Robot& robot, const std::string& per = "");
 
-/// \brief Whether `text` holds a control byte (below 0x20, or 0x7f). A robot, joint or link name
-/// must not: it would break the one-line messages of the tools and the headers of the files they
-/// write, which every later tool then refuses. Bytes from 0x80 up are kept (UTF-8 names).
-bool hasControlByte(const std::string& text);
-
-/// \brief `text` with its control bytes written as \xNN ("arm\x0a2"), for messages.
-std::string escapedControlBytes(const std::string& text);
-
-/// \brief Throws unless `name` is free of control bytes (hasControlByte()).
+/// \brief Throws unless `name` is free of control bytes (hasControlByte(), core/control_bytes.h).
 /// \param where names the field in the message: "bad.urdf: link".
 /// \throws mcws::Error "where name 'arm\x0a2' holds a control byte (names are printable text)".
 void checkPrintableName(const std::string& name, const std::string& where);

@@ -5,15 +5,14 @@
 #include <boost/graph/filtered_graph.hpp>
 #include <boost/property_map/property_map.hpp>
 #include <cmath>
-#include <iomanip>
 #include <limits>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 #include <tuple>
 #include <utility>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
@@ -23,13 +22,6 @@ using Edge = boost::graph_traits<RoadmapGraph>::edge_descriptor;
 
 /// Distance Boost's Dijkstra leaves on a vertex it did not reach (its default "infinity").
 constexpr double kUnreached = std::numeric_limits<double>::max();
-
-/// A weight or penalty as text: up to 15 significant digits, so -0.1 reads "-0.1".
-std::string formatValue(double value) {
-  std::ostringstream out;
-  out << std::setprecision(15) << value;
-  return out.str();
-}
 
 void checkVertex(const RoadmapGraph& graph, std::size_t vertex, const std::string& what) {
   const std::size_t n = boost::num_vertices(graph);
@@ -65,7 +57,7 @@ RoadmapGraph simpleCopy(const RoadmapGraph& graph, const std::string& function) 
     const double w = boost::get(weight, *it);
     if (!std::isfinite(w) || w < 0.0) {
       throw Error(function + ": edge (" + std::to_string(u) + ", " + std::to_string(v) +
-                  ") has weight " + formatValue(w) + "; weights must be finite and >= 0");
+                  ") has weight " + formatNumber(w, 15) + "; weights must be finite and >= 0");
     }
     if (u != v) edges.emplace_back(std::min(u, v), std::max(u, v), w);
   }
@@ -269,7 +261,7 @@ std::vector<VertexPath> diversePaths(const RoadmapGraph& graph, std::size_t sour
   checkVertex(graph, source, "diversePaths: source vertex");
   checkVertex(graph, target, "diversePaths: target vertex");
   if (!std::isfinite(penalty) || penalty < 0.0) {
-    throw Error("diversePaths: penalty " + formatValue(penalty) + " must be finite and >= 0");
+    throw Error("diversePaths: penalty " + formatNumber(penalty, 15) + " must be finite and >= 0");
   }
   RoadmapGraph penalised = simpleCopy(graph, "diversePaths");
   const auto weight = boost::get(boost::edge_weight, penalised);

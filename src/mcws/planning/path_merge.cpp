@@ -4,21 +4,14 @@
 #include <cmath>
 #include <cstdint>
 #include <set>
-#include <sstream>
 #include <string>
 #include <utility>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
 namespace {
-
-/// A number as the messages print it ("0.5", "-1", "nan", "inf").
-std::string str(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 std::string edgeName(std::size_t u, std::size_t v) {
   return "edge (" + std::to_string(u) + ", " + std::to_string(v) + ")";
@@ -32,11 +25,12 @@ EdgeValues checkedEdge(const EdgeValuesFn& edges, std::size_t u, std::size_t v) 
     throw Error(edgeName(u, v) + ": segments " + std::to_string(e.segments) + " is not >= 1");
   }
   if (!std::isfinite(e.length) || e.length < 0.0) {
-    throw Error(edgeName(u, v) + ": length " + str(e.length) + " is not a finite number >= 0");
+    throw Error(edgeName(u, v) + ": length " + formatNumber(e.length) +
+                " is not a finite number >= 0");
   }
   if (!std::isfinite(e.probability_sum) || e.probability_sum < 0.0 ||
       e.probability_sum > static_cast<double>(e.segments)) {
-    throw Error(edgeName(u, v) + ": probability_sum " + str(e.probability_sum) +
+    throw Error(edgeName(u, v) + ": probability_sum " + formatNumber(e.probability_sum) +
                 " is not in [0, segments = " + std::to_string(e.segments) + "]");
   }
   return e;
@@ -68,10 +62,11 @@ std::vector<NodeValues> prefixValues(const VertexPath& path, std::size_t count,
 void checkOptions(const ScoreOptions& options) {
   if (options.rule != ScoreRule::kWeighted) return;
   if (!std::isfinite(options.weight) || options.weight < 0.0) {
-    throw Error("score options: weight " + str(options.weight) + " is not a finite number >= 0");
+    throw Error("score options: weight " + formatNumber(options.weight) +
+                " is not a finite number >= 0");
   }
   if (!std::isfinite(options.reference_distance) || options.reference_distance <= 0.0) {
-    throw Error("score options: reference_distance " + str(options.reference_distance) +
+    throw Error("score options: reference_distance " + formatNumber(options.reference_distance) +
                 " is not a finite number > 0");
   }
 }
@@ -147,7 +142,7 @@ std::vector<std::size_t> visitOrder(const std::vector<VertexPath>& candidates,
   for (std::size_t v : vertices) {
     const double key = order_key(v);
     if (!std::isfinite(key)) {
-      throw Error(where + "order_key of vertex " + std::to_string(v) + " is " + str(key) +
+      throw Error(where + "order_key of vertex " + std::to_string(v) + " is " + formatNumber(key) +
                   ", not a finite number");
     }
     keyed.emplace_back(key, v);

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/io/gnuplot.h"
 
@@ -14,12 +15,6 @@ namespace mcws {
 namespace {
 
 using io::gnuplotQuoted;
-
-std::string format(const char* pattern, double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, pattern, value);
-  return text;
-}
 
 std::string jointUnit(const Scenario& scenario, int j) {
   return scenario.problem.robot.joints[j].type == JointType::kRevolute
@@ -30,7 +25,7 @@ std::string jointUnit(const Scenario& scenario, int j) {
 std::string configuration(const Scenario& scenario, const Eigen::VectorXd& q) {
   std::string out = "[";
   for (int j = 0; j < q.size(); ++j) {
-    out += (j ? ", " : "") + format("%.4g", q[j]) + " " + jointUnit(scenario, j);
+    out += (j ? ", " : "") + formatNumber(q[j], 4) + " " + jointUnit(scenario, j);
   }
   return out + "]";
 }
@@ -85,11 +80,11 @@ std::string overallStatus(const SwayPlanningProblem& problem, const SwayPlanning
 /// The acceptance criterion in words.
 std::string criterion(const SwayPlanningProblem& problem) {
   if (problem.acceptance == Acceptance::kPatentP)
-    return "patent_p: the patent's P >= threshold " + format("%g", problem.threshold);
+    return "patent_p: the patent's P >= threshold " + formatNumber(problem.threshold);
   return "whole_path: the upper end of the 95 % Wilson interval of the whole-path collision rate "
          "over the n = " +
          std::to_string(problem.base_poses) + " planning poses <= max_collision_probability " +
-         format("%g", problem.max_collision_probability);
+         formatNumber(problem.max_collision_probability);
 }
 
 /// When even a path free for all n poses is refused (the upper end at 0 of n is z^2 / (n + z^2)),
@@ -112,13 +107,13 @@ std::string fewestPoses(const SwayPlanningProblem& problem) {
 std::string verdict(const SwayPlanningProblem& problem, const PathSafety& path, bool accepted) {
   if (problem.acceptance == Acceptance::kPatentP) {
     return std::string(accepted ? "accepted" : "refused") + ": P " +
-           format("%.4f", path.probability) + (accepted ? " >= " : " < ") + "threshold " +
-           format("%g", problem.threshold) + " (patent_p)";
+           formatFixed(path.probability, 4) + (accepted ? " >= " : " < ") + "threshold " +
+           formatNumber(problem.threshold) + " (patent_p)";
   }
   return std::string(accepted ? "accepted" : "refused") +
          ": the upper end of the 95 % interval of the whole-path collision rate, " +
-         format("%.4f", path.collision_interval.high) + (accepted ? ", is at most" : ", exceeds") +
-         " max_collision_probability " + format("%g", problem.max_collision_probability) +
+         formatFixed(path.collision_interval.high, 4) + (accepted ? ", is at most" : ", exceeds") +
+         " max_collision_probability " + formatNumber(problem.max_collision_probability) +
          " (whole_path)";
 }
 
@@ -136,8 +131,8 @@ std::string pathCsv(const Scenario& scenario, const PathSafety& path) {
       distance += scaledDistance(path.waypoints[k - 1], path.waypoints[k],
                                  scenario.problem.roadmap.joint_scale);
     }
-    out += format("%.12g", distance);
-    for (int j = 0; j < robot.dof(); ++j) out += "," + format("%.12g", path.waypoints[k][j]);
+    out += formatNumber(distance, 12);
+    for (int j = 0; j < robot.dof(); ++j) out += "," + formatNumber(path.waypoints[k][j], 12);
     out += "\n";
   }
   return out;
@@ -274,9 +269,9 @@ void reportSharedNodes(const Scenario& scenario, const PlanningRound& round, std
     out << "  shared node " << decision.vertex << " "
         << configuration(scenario, vertexConfiguration(round, decision.vertex)) << ":";
     for (std::size_t k = 0; k < decision.paths.size(); ++k) {
-      out << " cand " << decision.paths[k] << " (D " << format("%.3f", decision.values[k].distance)
-          << ", P " << format("%.4f", decision.values[k].probability) << ", score "
-          << format("%.4f", decision.scores[k]) << ")";
+      out << " cand " << decision.paths[k] << " (D " << formatFixed(decision.values[k].distance, 3)
+          << ", P " << formatFixed(decision.values[k].probability, 4) << ", score "
+          << formatFixed(decision.scores[k], 4) << ")";
     }
     out << " -> cand " << decision.winner << " dominates";
     if (!decision.looped.empty()) {
@@ -294,22 +289,22 @@ void reportRound(const Scenario& scenario, std::size_t r, const PlanningRound& r
   const SwayPlanningProblem& problem = scenario.problem;
   const std::string length_unit = unitName(problem.robot.length_unit);
   out << "\nround " << r + 1 << ": base offset " << round.base_offset << " " << length_unit
-      << " along the line (goal's tool point " << format("%.4g", round.goal_displacement) << " "
+      << " along the line (goal's tool point " << formatNumber(round.goal_displacement, 4) << " "
       << length_unit << " from the target): roadmap " << round.roadmap_vertices << " vertices, "
       << round.roadmap_edges << " edges (" << roadmapStatusName(round.status)
-      << "), D0 = " << format("%.4g", round.reference_distance) << ", "
-      << format("%.2f", round.seconds) << " s (roadmap " << format("%.2f", round.roadmap_seconds)
-      << " s, segments " << format("%.2f", round.evaluation_seconds) << " s)\n";
+      << "), D0 = " << formatNumber(round.reference_distance, 4) << ", "
+      << formatFixed(round.seconds, 2) << " s (roadmap " << formatFixed(round.roadmap_seconds, 2)
+      << " s, segments " << formatFixed(round.evaluation_seconds, 2) << " s)\n";
   if (!round.best) return;
   reportCandidates(problem, round, out);
   reportSharedNodes(scenario, round, out);
   const PathSafety& best = *round.best;
-  out << "  best path: length " << format("%.3f", best.length) << ", P "
-      << format("%.4f", best.probability) << ", whole path collides for " << best.colliding_poses
-      << " of " << problem.base_poses << " poses (rate " << format("%.3f", best.collision_rate)
-      << " [" << format("%.3f", best.collision_interval.low) << ", "
-      << format("%.3f", best.collision_interval.high) << "]), worst segment " << best.worst_segment
-      << " of " << best.segments << " (P " << format("%.3f", best.worst_probability) << ", from "
+  out << "  best path: length " << formatFixed(best.length, 3) << ", P "
+      << formatFixed(best.probability, 4) << ", whole path collides for " << best.colliding_poses
+      << " of " << problem.base_poses << " poses (rate " << formatFixed(best.collision_rate, 3)
+      << " [" << formatFixed(best.collision_interval.low, 3) << ", "
+      << formatFixed(best.collision_interval.high, 3) << "]), worst segment " << best.worst_segment
+      << " of " << best.segments << " (P " << formatFixed(best.worst_probability, 3) << ", from "
       << configuration(scenario, best.worst_from) << " to "
       << configuration(scenario, best.worst_to) << ")\n";
   out << "  " << verdict(problem, best, round.accepted) << "\n";
@@ -337,10 +332,10 @@ void reportValidation(const Scenario& scenario, const SwayPlanningResult& result
     }
     out << line;
     if (row.name == "padded") {
-      out << ", obstacles padded by " << format("%.3g", row.padding) << " "
+      out << ", obstacles padded by " << formatNumber(row.padding, 3) << " "
           << unitName(problem.robot.length_unit);
     }
-    out << ", " << format("%.2f", row.seconds) << " s\n";
+    out << ", " << formatFixed(row.seconds, 2) << " s\n";
   }
 }
 
@@ -393,8 +388,8 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
     out << "ok: round " << *result.accepted + 1 << "'s best path is accepted ("
         << acceptanceName(problem.acceptance) << ")";
     if (round.base_offset != 0.0) {
-      out << "; the base is shifted " << format("%g", round.base_offset) << " " << length_unit
-          << " along the line, so the tool ends " << format("%.4g", round.goal_displacement) << " "
+      out << "; the base is shifted " << formatNumber(round.base_offset) << " " << length_unit
+          << " along the line, so the tool ends " << formatNumber(round.goal_displacement, 4) << " "
           << length_unit << " from the target it reaches from the measured base pose "
           << "(goal_displacement)";
     }
@@ -414,14 +409,14 @@ std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& res
     const PathSafety& best = *result.rounds[*result.validated].best;
     if (problem.acceptance == Acceptance::kPatentP) {
       return status + ": the best path's P stays below the threshold " +
-             format("%g", problem.threshold) + " " + range + " (highest " +
-             format("%.4f", best.probability) + ")";
+             formatNumber(problem.threshold) + " " + range + " (highest " +
+             formatFixed(best.probability, 4) + ")";
     }
     return status + ": the best path's whole-path collision rate over the " +
            std::to_string(problem.base_poses) +
            " planning poses has the upper end of its 95 % interval above " +
-           "max_collision_probability " + format("%g", problem.max_collision_probability) + " " +
-           range + " (lowest " + format("%.4f", best.collision_interval.high) + ", " +
+           "max_collision_probability " + formatNumber(problem.max_collision_probability) + " " +
+           range + " (lowest " + formatFixed(best.collision_interval.high, 4) + ", " +
            std::to_string(best.colliding_poses) + " of " + std::to_string(problem.base_poses) +
            " poses colliding)" + fewestPoses(problem);
   }

@@ -4,21 +4,14 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <cmath>
-#include <sstream>
 
 #include "mcws/core/counter_rng.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 
 namespace mcws {
 
 namespace {
-
-std::string number(double value) {
-  std::ostringstream text;
-  text.precision(6);
-  text << value;
-  return text.str();
-}
 
 }  // namespace
 
@@ -54,7 +47,7 @@ Eigen::Isometry3d swayDisplacement(const Eigen::Isometry3d& T_world_sway, const 
 
 double chiSquareQuantile(double p, int dof) {
   if (!(p > 0.0 && p < 1.0))
-    throw Error("chi-square quantile: probability " + number(p) + " is outside (0, 1)");
+    throw Error("chi-square quantile: probability " + formatNumber(p) + " is outside (0, 1)");
   if (dof < 1) throw Error("chi-square quantile: " + std::to_string(dof) + " degrees of freedom");
   return boost::math::quantile(boost::math::chi_squared(dof), p);
 }
@@ -66,7 +59,7 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials, dou
                 std::to_string(trials) + " trials");
   }
   if (!(confidence > 0.0 && confidence < 1.0)) {
-    throw Error("Wilson interval: confidence " + number(confidence) + " is outside (0, 1)");
+    throw Error("Wilson interval: confidence " + formatNumber(confidence) + " is outside (0, 1)");
   }
   const double z =
       boost::math::quantile(boost::math::normal(), 0.5 + 0.5 * confidence);  // 1.96 at 95 %
@@ -82,7 +75,7 @@ ProportionInterval wilsonInterval(std::size_t successes, std::size_t trials, dou
 
 SwaySampler::SwaySampler(const SwayModel& model) : model_(model) {
   if (!(model.confidence > 0.0 && model.confidence < 1.0)) {
-    throw Error("sway: confidence " + number(model.confidence) + " is outside (0, 1)");
+    throw Error("sway: confidence " + formatNumber(model.confidence) + " is outside (0, 1)");
   }
   T_world_sway_ = swayFrame(model);
   const Eigen::Matrix<double, 6, 6>& C = model.covariance;
@@ -96,7 +89,7 @@ SwaySampler::SwaySampler(const SwayModel& model) : model_(model) {
   const double tolerance = 1e-12 * std::max(scale, 1e-300);
   if (lambda.minCoeff() < -tolerance) {
     throw Error("sway: covariance is not positive semi-definite (eigenvalue " +
-                number(lambda.minCoeff()) + ")");
+                formatNumber(lambda.minCoeff()) + ")");
   }
   for (int k = 0; k < 6; ++k) rank_ += lambda[k] > tolerance ? 1 : 0;
   factor_.resize(6, rank_);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 
@@ -36,11 +37,7 @@ Eigen::VectorXd stepLimits(const Robot& robot, const CartesianLineOptions& optio
   return limits;
 }
 
-std::string at(double t) {
-  std::ostringstream text;
-  text << "t = " << t << " s";
-  return text.str();
-}
+std::string at(double t) { return "t = " + formatNumber(t) + " s"; }
 
 }  // namespace
 

@@ -1,12 +1,12 @@
 #include "mcws/trajectory/trajectory_io.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <vector>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/io/gnuplot.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -53,19 +53,14 @@ void writeTrajectoryCsv(const Robot& robot, const SampledTrajectory& tr,
   }
   for (const char* axis : {"x", "y", "z"}) out += "," + std::string(axis) + "_" + length;
   out += "\n";
-  char number[32];
-  auto put = [&](double value) {
-    std::snprintf(number, sizeof number, ",%.12g", value);
-    out += number;
-  };
+  auto put = [&](double value) { out += "," + formatNumber(value, 12); };
   const auto n = static_cast<std::size_t>(tr.size());
   rows = std::max<std::size_t>(rows, 1);
   std::size_t begin = 0;
   do {  // once with the header alone for no samples
     const std::size_t end = begin + std::min(rows, n - begin);
     for (auto i = static_cast<Eigen::Index>(begin); i < static_cast<Eigen::Index>(end); ++i) {
-      std::snprintf(number, sizeof number, "%.12g", tr.t[i]);
-      out += number;
+      out += formatNumber(tr.t[i], 12);
       for (const Eigen::MatrixXd* m : {&tr.q, &tr.qd, &tr.qdd}) {
         for (Eigen::Index j = 0; j < m->cols(); ++j) put((*m)(i, j));
       }
