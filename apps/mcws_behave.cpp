@@ -158,10 +158,10 @@ int main(int argc, char** argv) {
     std::cerr << "mcws_behave: plan for " << settings.insulators << " disc(s):\n"
               << describePlan(planCleaningTask(settings.insulators));
 
-    const RunSummary summary = rehearseCleaningJob(
-        model, options, settings.insulators,
-        {settings.model, settings.faults, settings.log, settings.timeline, settings.plot,
-         settings.period, cli.has("plot-all")});
+    const RunSummary summary =
+        rehearseCleaningJob(model, options, settings.insulators,
+                            {settings.model, settings.faults, settings.log, settings.timeline,
+                             settings.plot, settings.period, cli.has("plot-all")});
     commitOutputs();
     std::cout << (cli.has("json") ? summaryJson(summary).dump() + "\n" : summaryText(summary));
     return runExitCode(summary);

@@ -13,17 +13,17 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
-#include "mcws/distributed/tiled_boundary.h"
-#include "mcws/distributed/tiled_boundary_output.h"
 #include "common/units.h"
 #include "mcws/distributed/processes.h"
+#include "mcws/distributed/tiled_boundary.h"
+#include "mcws/distributed/tiled_boundary_output.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/cloud_io.h"
 
 namespace {
 using namespace mcws;
@@ -365,9 +365,8 @@ nlohmann::json summaryOf(const app::CommandLine& cli, const Method& method, std:
           {"seconds", clock.seconds()}};
 }
 
-/// --tiles: the boundary slab by slab (distributed::tiledBoundary()), the outputs written by rank 0 in
-/// one more pass over the input.
-/// The flags a tiled run cannot take.
+/// --tiles: the boundary slab by slab (distributed::tiledBoundary()), the outputs written by rank 0
+/// in one more pass over the input. The flags a tiled run cannot take.
 void checkTiledMethod(const app::CommandLine& cli, const Method& method) {
   if (method.name != "orthant") throw app::UsageError("--tiles works with --method orthant");
   if (cli.has("auto-radius")) {

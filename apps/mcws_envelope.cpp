@@ -7,11 +7,11 @@
 #include <optional>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
 #include "mcws/workspace/envelope_report.h"
@@ -133,22 +133,23 @@ void addValues(const std::vector<ReportValue>& values, const std::string& prefix
   }
 }
 
-nlohmann::json summary(const Files& files, const Envelope& envelope,
-                       const MeasureOptions& options, const std::optional<EnvelopeDrawing>& drawing,
-                       const ResultUnits& units, double seconds) {
+nlohmann::json summary(const Files& files, const Envelope& envelope, const MeasureOptions& options,
+                       const std::optional<EnvelopeDrawing>& drawing, const ResultUnits& units,
+                       double seconds) {
   const SurfaceTopology topology = surfaceTopology(envelope.mesh);
-  nlohmann::json out{{"input", files.input},
-                     {"output", files.output.empty() ? nlohmann::json() : nlohmann::json(files.output)},
-                     {"correction", options.edge_correction ? "efron" : "none"},
-                     {"points", envelope.measure.points},
-                     {"vertices", topology.vertices},
-                     {"triangles", topology.triangles},
-                     {"edges", topology.edges},
-                     {"euler_characteristic", topology.euler_characteristic},
-                     {"closed_and_oriented", topology.closedAndOriented()},
-                     {"non_manifold_edges", topology.non_manifold_edges},
-                     {"seconds", seconds},
-                     {"length_unit", units.lengthName()}};
+  nlohmann::json out{
+      {"input", files.input},
+      {"output", files.output.empty() ? nlohmann::json() : nlohmann::json(files.output)},
+      {"correction", options.edge_correction ? "efron" : "none"},
+      {"points", envelope.measure.points},
+      {"vertices", topology.vertices},
+      {"triangles", topology.triangles},
+      {"edges", topology.edges},
+      {"euler_characteristic", topology.euler_characteristic},
+      {"closed_and_oriented", topology.closedAndOriented()},
+      {"non_manifold_edges", topology.non_manifold_edges},
+      {"seconds", seconds},
+      {"length_unit", units.lengthName()}};
   out["units"]["seconds"] = "s";
   addValues(envelopeValues(envelope, options, units), "", out, out["units"]);
   if (drawing) {
@@ -166,9 +167,9 @@ void printText(const Files& files, const nlohmann::json& out, const SurfaceTopol
     const std::string unit = " " + units.lengthName();
     const auto& d = out["drawing"];
     std::cout << "max reach " << d["max_reach"].get<double>() << unit << ", min reach "
-              << d["min_reach"].get<double>() << unit << ", highest "
-              << d["highest"].get<double>() << unit << ", lowest " << d["lowest"].get<double>()
-              << unit << ", swept " << d["swept_angle"].get<double>() << " deg\n";
+              << d["min_reach"].get<double>() << unit << ", highest " << d["highest"].get<double>()
+              << unit << ", lowest " << d["lowest"].get<double>() << unit << ", swept "
+              << d["swept_angle"].get<double>() << " deg\n";
   }
   std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << topology.triangles
             << " triangles, " << topology.vertices << " vertices"
@@ -191,8 +192,7 @@ int main(int argc, char** argv) {
     MeasureOptions options = app::readRegionOptions(cli);
     app::checkOutputs({{"output", files.output}, {"plot", files.plot}, {"drawing", files.drawing}},
                       {{"input", files.input}});
-    const ResultUnits units =
-        app::readResultUnits(cli, io::recordedUnit(files.input), files.input);
+    const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(files.input), files.input);
 
     app::Progress clock("mcws_envelope", "points");
     const pcl::PointCloud<pcl::PointXYZ> points = loadPoints(files.input);

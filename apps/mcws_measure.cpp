@@ -5,11 +5,11 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "mcws/io/boundary_record.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/filters/boundary_geometry.h"
+#include "mcws/io/boundary_record.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/workspace/measure.h"
 
 namespace {
@@ -123,7 +123,7 @@ Settings readSettings(const app::CommandLine& cli) {
 /// The cloud at `path`, checked to be a region in the plane (or 3-D): requireRegionPoints(), and
 /// a --plane that fits it (a usage error).
 io::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
-                                    SummaryDetail detail, CloudSummary& summary) {
+                                   SummaryDetail detail, CloudSummary& summary) {
   io::WorkspaceCloud::Ptr cloud = io::readCloud(path);
   summary = summarizeCloud(*cloud, plane, detail);
   requireRegionPoints(summary, path);
@@ -134,7 +134,7 @@ io::WorkspaceCloud::Ptr loadRegion(const std::string& path, BoundaryPlane plane,
 
 /// The --boundary points, checked to be points of the --input cloud and to be a region.
 io::WorkspaceCloud::Ptr loadBoundary(const std::string& path, const std::string& input,
-                                      const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
+                                     const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
   io::WorkspaceCloud::Ptr boundary = io::readCloud(path);
   io::requireBoundaryOf(path, input, cloud.size(), boundary->size());
   if (const std::optional<std::size_t> i = firstPointNotIn(*boundary, cloud)) {
@@ -183,8 +183,7 @@ nlohmann::json delaunayJson(const RegionMeasure& m, const Settings& s, const cha
           {"units", {{key, unit}, {"uncorrected", unit}, {"alpha", "local spacings"}}}};
 }
 
-nlohmann::json columnJson(const ColumnArea& column, const char* key,
-                          const ResultUnits& units) {
+nlohmann::json columnJson(const ColumnArea& column, const char* key, const ResultUnits& units) {
   return {{key, units.area(column.area)},
           {"column_width", units.length(column.width)},
           {"crossing_gap", units.length(column.gap)},

@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/placement_map.h"
@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
 
     if (cli.has("json")) {
       nlohmann::json json = placementSummary(robot, targets.size(), map, map_about, options,
-                                          checker != nullptr, candidates, best);
+                                             checker != nullptr, candidates, best);
       json["seconds"] = clock.seconds();
       json["output"] = output;
       std::cout << json.dump() << "\n";

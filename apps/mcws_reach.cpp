@@ -10,13 +10,13 @@
 #include <sstream>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/distributed/processes.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/reach_checkpoint.h"
 #include "mcws/reach/reach_map.h"
@@ -106,9 +106,8 @@ std::optional<ReachCheckpoint> readCheckpoint(const app::CommandLine& cli, const
     return std::nullopt;
   }
   return ReachCheckpoint{
-      processes.distributed()
-          ? cli.required("checkpoint") + "." + std::to_string(processes.rank())
-          : cli.required("checkpoint"),
+      processes.distributed() ? cli.required("checkpoint") + "." + std::to_string(processes.rank())
+                              : cli.required("checkpoint"),
       static_cast<std::uint64_t>(app::parseInteger(cli.text("checkpoint-every", "100000000"),
                                                    "checkpoint-every", 1,
                                                    std::numeric_limits<std::int64_t>::max())),
@@ -237,8 +236,8 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(progress.seconds() * 1000) << " ms : " << map.size()
-              << " voxels of edge " << grid.resolution << " " << unitName(robot.length_unit) << ", mean D "
-              << summary["mean_reachability"].get<double>() << " (fraction of the "
+              << " voxels of edge " << grid.resolution << " " << unitName(robot.length_unit)
+              << ", mean D " << summary["mean_reachability"].get<double>() << " (fraction of the "
               << map.bins().size() << " orientation bins)] -> " << output << "\n";
   }
 }

@@ -8,12 +8,12 @@
 #include <optional>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/io/provenance.h"
 #include "mcws/workspace/refine.h"
 #include "mcws/workspace/refine_inputs.h"
@@ -108,8 +108,8 @@ void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << samples
-              << " new samples near " << boundary_points << " boundary points, "
-              << kept + samples << " points] -> " << output << "\n";
+              << " new samples near " << boundary_points << " boundary points, " << kept + samples
+              << " points] -> " << output << "\n";
   }
 }
 
@@ -154,8 +154,8 @@ int main(int argc, char** argv) {
                                              : static_cast<const PointGenerator&>(refine);
     // Several processes: rank 0 alone holds the copied cloud and writes it.
     const bool holds_cloud = cli.has("cloud") && processes.rank() == 0;
-    const auto refined = holds_cloud ? io::readCloud(cli.required("cloud"))
-                                     : std::make_shared<io::WorkspaceCloud>();
+    const auto refined =
+        holds_cloud ? io::readCloud(cli.required("cloud")) : std::make_shared<io::WorkspaceCloud>();
     // A bad flag or file on any process ends them all here; so do other robot or input files.
     processes.setUpDone(
         {{"robot", provenance.sha256}, {"input", io::sha256OfFile(cli.required("input"))}});

@@ -9,11 +9,11 @@
 #include <optional>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
+#include "mcws/io/cloud_io.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sampler.h"
@@ -122,8 +122,7 @@ Source shapeSource(const app::CommandLine& cli, std::uint64_t seed) {
       {"shape", name},
       {measure, shapeMeasure(shape)},
       {"length_unit", kUnrecordedUnit},
-      {"units",
-       {{measure, std::string(kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
+      {"units", {{measure, std::string(kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
   return source;
 }
 

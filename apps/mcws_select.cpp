@@ -8,8 +8,8 @@
 #include <set>
 
 #include "common/app.h"
-#include "mcws/io/cloud_io.h"
 #include "common/units.h"
+#include "mcws/io/cloud_io.h"
 
 namespace {
 
@@ -63,18 +63,17 @@ int main(int argc, char** argv) {
     }
     io::writeCloud(*cloud, kept, output, io::readProvenance(input));  // the input's robot
     if (cli.has("json")) {
-      std::cout
-          << nlohmann::json{{"input", input},
-                            {"output", output},
-                            {"points_in", cloud->size()},
-                            {"points_out", kept.size()},
-                            {"labels", labels},
-                            {"length_unit",
-                             ResultUnits(io::recordedUnit(input), std::nullopt).lengthName()},
-                            {"seconds", clock.seconds()},
-                            {"units", {{"seconds", "s"}}}}
-                 .dump()
-          << "\n";
+      std::cout << nlohmann::json{{"input", input},
+                                  {"output", output},
+                                  {"points_in", cloud->size()},
+                                  {"points_out", kept.size()},
+                                  {"labels", labels},
+                                  {"length_unit",
+                                   ResultUnits(io::recordedUnit(input), std::nullopt).lengthName()},
+                                  {"seconds", clock.seconds()},
+                                  {"units", {{"seconds", "s"}}}}
+                       .dump()
+                << "\n";
     } else {
       std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000) << " ms : " << kept.size()
                 << " of " << cloud->size() << " points] -> " << output << "\n";

@@ -11,8 +11,8 @@
 #include "common/units.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/trajectory/cartesian_line.h"
-#include "mcws/trajectory/tool_path.h"
 #include "mcws/trajectory/joint_trajectory.h"
+#include "mcws/trajectory/tool_path.h"
 #include "mcws/trajectory/trajectory_io.h"
 
 namespace {

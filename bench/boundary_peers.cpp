@@ -39,8 +39,8 @@
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant_boundary.h"
-#include "mcws/workspace/measure.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/measure.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include "deicing_region.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "mcws/sampling/sampler.h"
 #include "mcws/workspace/measure.h"
 #include "mcws/workspace/refine.h"
-#include "mcws/sampling/sampler.h"
 
 int main(int argc, char** argv) {
   std::printf("exact (grid integration of the closed-form region):\n");

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <iostream>
 
-#include "mcws/workspace/measure.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/measure.h"
 
 namespace {
 /// delaunayMeasure() of `points` samples of `shape`, as a relative error [%] against its closed

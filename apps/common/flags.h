@@ -13,8 +13,8 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/reach/quality.h"
-#include "mcws/workspace/measure.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/measure.h"
 
 namespace mcws::app {
 
@@ -92,7 +92,6 @@ void declareQualityFlags(CommandLine& cli);
 /// \brief --quality-task (position | full) and --length (parseLength()) over the robot's
 /// defaults (defaultQualityOptions()).
 QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);
-
 
 /// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
 BoundaryPlane readPlane(const CommandLine& cli);

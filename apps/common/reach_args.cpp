@@ -1,13 +1,13 @@
 #include "common/reach_args.h"
 
-#include <utility>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "common/flags.h"
-#include "mcws/reach/targets_file.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/collision/robot_bodies.h"
+#include "mcws/reach/targets_file.h"
 
 namespace mcws::app {
 

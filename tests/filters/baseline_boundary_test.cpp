@@ -14,8 +14,8 @@
 #include "mcws/core/error.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
-#include "mcws/workspace/measure.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/measure.h"
 
 namespace mcws {
 namespace {

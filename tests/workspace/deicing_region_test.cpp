@@ -6,8 +6,8 @@
 
 #include "deicing_region.h"
 #include "mcws/kinematics/robot_yaml.h"
-#include "mcws/workspace/measure.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/measure.h"
 #include "test_support.h"
 
 namespace mcws {

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "mcws/core/error.h"
@@ -94,6 +95,23 @@ class BehaviorModelReader : YamlReader {
     if (model_.events.empty()) fail(node, "events: Sigma must not be empty");
   }
 
+  /// One entry of a list of named entries (state-vector components, pose rules): its keys
+  /// checked against `keys`, its line, its name, and the label messages give it after the name
+  /// is known ("pose rule 'clamp'"; before: "pose rule 2").
+  struct NamedRow {
+    YAML::Node node;
+    int line{0};
+    std::string name, label;
+  };
+  NamedRow namedRow(const YAML::Node& row, const std::string& kind, std::size_t i,
+                    const std::set<std::string>& keys) const {
+    const std::string where = kind + " " + std::to_string(i + 1);
+    checkKeys(row, where, keys);
+    NamedRow named{row, lineOf(row), text(require(row, "name", where), where + ": name"), ""};
+    named.label = kind + " '" + named.name + "'";
+    return named;
+  }
+
   void readStateVector(const YAML::Node& node) {
     if (!node.IsSequence() || node.size() == 0) {
       fail(node, "state_vector: must be a non-empty list of components");
@@ -101,13 +119,13 @@ class BehaviorModelReader : YamlReader {
     StateVectorSpec& spec = model_.state_vector;
     spec.line = lineOf(node);
     for (std::size_t i = 0; i < node.size(); ++i) {
-      const YAML::Node row = node[i];
-      const std::string where = "state vector: component " + std::to_string(i + 1);
-      checkKeys(row, where, {"name", "actuator", "values"});
+      const NamedRow named =
+          namedRow(node[i], "state vector: component", i, {"name", "actuator", "values"});
+      const YAML::Node& row = named.node;
+      const std::string& label = named.label;
       StateComponent c;
-      c.line = lineOf(row);
-      c.name = text(require(row, "name", where), where + ": name");
-      const std::string label = "state vector: component '" + c.name + "'";
+      c.line = named.line;
+      c.name = named.name;
       if (spec.componentIndex(c.name) >= 0) fail(row["name"], label + ": given twice");
       c.actuator = text(require(row, "actuator", label), label + ": actuator");
       const YAML::Node values = require(row, "values", label);
@@ -168,13 +186,12 @@ class BehaviorModelReader : YamlReader {
   void readRules(const YAML::Node& node) {
     if (!node.IsSequence()) fail(node, "pose_rules: must be a list of rules");
     for (std::size_t i = 0; i < node.size(); ++i) {
-      const YAML::Node row = node[i];
-      const std::string where = "pose rule " + std::to_string(i + 1);
-      checkKeys(row, where, {"name", "when", "require"});
+      const NamedRow named = namedRow(node[i], "pose rule", i, {"name", "when", "require"});
+      const YAML::Node& row = named.node;
+      const std::string& label = named.label;
       PoseRule rule;
-      rule.line = lineOf(row);
-      rule.name = text(require(row, "name", where), where + ": name");
-      const std::string label = "pose rule '" + rule.name + "'";
+      rule.line = named.line;
+      rule.name = named.name;
       if (row["when"]) rule.when = conditions(row["when"], label + ": when");
       rule.require = conditions(require(row, "require", label), label + ": require");
       model_.state_vector.rules.push_back(rule);

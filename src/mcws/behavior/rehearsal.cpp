@@ -44,8 +44,8 @@ RunSummary rehearseCleaningJob(const BehaviorModel& model, const RunOptions& opt
     timeline.write(csv.str());
   }
   if (!files.plot.empty()) {
-    const auto window = files.plot_all ? std::make_pair(0.0, summary.duration_s)
-                                       : firstDiscWindow(recorder.rows());
+    const auto window =
+        files.plot_all ? std::make_pair(0.0, summary.duration_s) : firstDiscWindow(recorder.rows());
     plot.write(plotJointSpeeds(recorder.rows(), window.first, window.second,
                                model.name + ": " + std::to_string(insulators) + " disc(s), " +
                                    runStatusName(summary.status)));

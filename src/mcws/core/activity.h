@@ -11,8 +11,8 @@
 namespace mcws {
 
 /// \brief Names what a tool is doing while the object lives, e.g. "reading --input 'a.pcd'", for
-/// the message of app::run() when memory runs out. Activities nest; header-only so that the loaders'
-/// fuzz build, which has no app.cpp, links.
+/// the message of app::run() when memory runs out. Activities nest; header-only so that the
+/// loaders' fuzz build, which has no app.cpp, links.
 class Activity {
  public:
   explicit Activity(std::string what) : unwinding_(std::uncaught_exceptions()) {

@@ -10,9 +10,9 @@
 #include <limits>
 
 #include "mcws/core/error.h"
-#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/points/unique_positions.h"
+#include "mcws/search/grid_then_tree_search.h"
 
 namespace mcws::distributed {
 
@@ -253,8 +253,7 @@ TiledBoundary tiledBoundary(
   const std::uint64_t stride = std::max<std::uint64_t>(1, summary.points / kRadiusSamples);
   Found found;
   TiledBoundary result;
-  const Block mine =
-      blockOf(static_cast<std::uint64_t>(tiles), processes.rank(), processes.size());
+  const Block mine = blockOf(static_cast<std::uint64_t>(tiles), processes.rank(), processes.size());
   for (auto t = static_cast<int>(mine.begin); t < static_cast<int>(mine.end); ++t) {
     for (double halo = first_halo;;) {
       LoadedTile tile = loadTile(reader, slabs, t, halo);

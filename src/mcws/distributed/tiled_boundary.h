@@ -20,7 +20,7 @@ namespace mcws::distributed {
 
 /// \brief A cloud file seen in one pass (summarizeFile()).
 struct FileSummary {
-  CloudSummary cloud;     ///< counts and extents in the plane, as summarizeCloud() gives them
+  CloudSummary cloud;         ///< counts and extents in the plane, as summarizeCloud() gives them
   io::CoordinateRange range;  ///< for the coordinate checks of io::readCloud()
   Eigen::Vector3d low{Eigen::Vector3d::Zero()};  ///< the finite points' lowest x, y, z
 };

@@ -150,9 +150,8 @@ void requireSameRobot(const std::string& flag, const std::string& path,
 }
 
 void writeCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const std::string& path,
-               const std::optional<CloudProvenance>& provenance) {
-  PcdStreamWriter<WorkspacePoint> writer(path, indices.size(), PcdFormat::kBinary,
-                                             provenance);
+                const std::optional<CloudProvenance>& provenance) {
+  PcdStreamWriter<WorkspacePoint> writer(path, indices.size(), PcdFormat::kBinary, provenance);
   std::vector<WorkspacePoint, Eigen::aligned_allocator<WorkspacePoint>> chunk;
   chunk.reserve(std::min<std::size_t>(indices.size(), 1u << 16));
   for (std::size_t begin = 0; begin < indices.size(); begin += 1u << 16) {

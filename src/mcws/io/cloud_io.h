@@ -46,8 +46,7 @@ std::optional<CloudProvenance> readProvenance(const std::string& path);
 /// \throws mcws::Error "--input 'a.pcd' was made from robot 'x' (x.yaml, sha256 0123456789ab...)
 ///   but --robot is 'y' (y.yaml, sha256 ...)".
 void requireSameRobot(const std::string& flag, const std::string& path,
-                      const std::optional<CloudProvenance>& recorded,
-                      const CloudProvenance& robot);
+                      const std::optional<CloudProvenance>& recorded, const CloudProvenance& robot);
 
 /// \brief Loads a PCD file into WorkspacePoint (fields the file lacks are zero, so pcl::PointXYZ
 /// and pcl::PointXYZL files load too) whose coordinates the float geometry can handle.
@@ -131,6 +130,6 @@ std::optional<LengthUnit> recordedUnit(const std::string& cloud_path);
 /// workspace/sampler.h), or that of the input (readProvenance()) so that it travels through a
 /// pipeline.
 void writeCloud(const WorkspaceCloud& cloud, const pcl::Indices& indices, const std::string& path,
-               const std::optional<CloudProvenance>& provenance = std::nullopt);
+                const std::optional<CloudProvenance>& provenance = std::nullopt);
 
 }  // namespace mcws::io

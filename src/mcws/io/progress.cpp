@@ -6,7 +6,9 @@
 namespace mcws::io {
 
 Progress::Progress(std::string program, std::string what)
-    : program_(std::move(program)), what_(std::move(what)), last_(std::chrono::steady_clock::now()) {}
+    : program_(std::move(program)),
+      what_(std::move(what)),
+      last_(std::chrono::steady_clock::now()) {}
 
 void Progress::update(std::size_t done, std::size_t total) {
   const auto now = std::chrono::steady_clock::now();

@@ -11,9 +11,7 @@
 
 namespace mcws {
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 Eigen::Isometry3d swayFrame(const SwayModel& model) {
   const double length = model.line_direction.norm();

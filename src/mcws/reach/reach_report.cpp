@@ -24,9 +24,8 @@ nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot)
                        : unit + "^" + std::to_string(std::min(robot.dof(), 3))}};
 }
 
-nlohmann::json mapSummary(const Robot& robot, const ReachGrid& grid,
-                          const ReachSampling& sampling, std::uint64_t samples,
-                          const ReachMap& map, bool collision) {
+nlohmann::json mapSummary(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                          std::uint64_t samples, const ReachMap& map, bool collision) {
   const std::string unit = unitName(robot.length_unit);
   const double voxel_volume = std::pow(grid.resolution, 3);
   return {{"robot", robot.name},

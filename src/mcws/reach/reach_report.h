@@ -24,9 +24,8 @@ nlohmann::json qualitySummary(const QualityOptions& quality, const Robot& robot)
 /// occupied volume (voxels times the voxel's volume) [length unit^3], the mean reachability
 /// index [1], how manipulability was measured (null without it) and whether only
 /// collision-free samples counted.
-nlohmann::json mapSummary(const Robot& robot, const ReachGrid& grid,
-                          const ReachSampling& sampling, std::uint64_t samples,
-                          const ReachMap& map, bool collision);
+nlohmann::json mapSummary(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                          std::uint64_t samples, const ReachMap& map, bool collision);
 
 /// \brief The summary of a reach study (mcws_reach --targets): the counts and means of
 /// summarize(), the smallest clearance of a reached target [length unit] (null when none),

@@ -21,18 +21,12 @@ std::vector<ReportValue> drawingValues(const EnvelopeDrawing& drawing, const Res
   const EnvelopeTopView& top = drawing.top;
   const auto deg = [](double radians) { return radians / (M_PI / 180.0); };
   const std::string length = units.lengthName();
-  return {{"azimuth", deg(side.azimuth), "deg"},
-          {"section_area", side.area, units.areaName()},
-          {"front_reach", side.front_reach, length},
-          {"back_reach", side.back_reach, length},
-          {"section_highest", side.highest, length},
-          {"section_lowest", side.lowest, length},
-          {"max_reach", top.max_reach, length},
-          {"min_reach", top.min_reach, length},
-          {"swept_angle", deg(top.sweep), "deg"},
-          {"sweep_from", deg(top.sweep_from), "deg"},
-          {"sweep_to", deg(top.sweep_to), "deg"},
-          {"highest", drawing.highest, length},
+  return {{"azimuth", deg(side.azimuth), "deg"},     {"section_area", side.area, units.areaName()},
+          {"front_reach", side.front_reach, length}, {"back_reach", side.back_reach, length},
+          {"section_highest", side.highest, length}, {"section_lowest", side.lowest, length},
+          {"max_reach", top.max_reach, length},      {"min_reach", top.min_reach, length},
+          {"swept_angle", deg(top.sweep), "deg"},    {"sweep_from", deg(top.sweep_from), "deg"},
+          {"sweep_to", deg(top.sweep_to), "deg"},    {"highest", drawing.highest, length},
           {"lowest", drawing.lowest, length}};
 }
 

@@ -36,7 +36,6 @@ int main() {
   for (const pcl::PointXYZ& p : rim) near_rim += 1.0 - std::hypot(p.x, p.y) <= 2.0 * h;
   std::cout << rim.size() << " boundary points, " << near_rim << " within " << 2.0 * h
             << " m of the rim, " << inside.size() << " inside\n";
-  return !rim.empty() && rim.size() + inside.size() == kPoints && near_rim >= 0.95 * rim.size()
-             ? 0
-             : 1;
+  return !rim.empty() && rim.size() + inside.size() == kPoints && near_rim >= 0.95 * rim.size() ? 0
+                                                                                                : 1;
 }

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "mcws/core/error.h"
-#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/points/unique_positions.h"
+#include "mcws/search/grid_then_tree_search.h"
 
 namespace mcws {
 

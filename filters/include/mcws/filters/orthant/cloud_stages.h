@@ -6,8 +6,8 @@
 #include <optional>
 #include <vector>
 
-#include "mcws/search/grid_then_tree_search.h"
 #include "mcws/filters/orthant/point_test.h"
+#include "mcws/search/grid_then_tree_search.h"
 
 namespace mcws::orthant {
 

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "mcws/search/neighbour_search.h"
 #include "mcws/filters/orthant/frames.h"
+#include "mcws/search/neighbour_search.h"
 
 namespace mcws::orthant {
 

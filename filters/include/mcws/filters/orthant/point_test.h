@@ -9,11 +9,11 @@
 #include <optional>
 #include <vector>
 
-#include "mcws/search/neighbour_search.h"
 #include "mcws/filters/orthant/empty_orthant.h"
 #include "mcws/filters/orthant/empty_sector.h"
 #include "mcws/filters/orthant/frames.h"
 #include "mcws/filters/orthant/hull_depth.h"
+#include "mcws/search/neighbour_search.h"
 
 namespace mcws::orthant {
 
