@@ -142,7 +142,7 @@ TEST(CollisionModelBadInput, NegativeRadiusOrSize) {
                          "to: [1, 0, 0], radius: -0.1}]\n"),
               HasSubstr("two.yaml:9: collision: link 'j2' shape 1: radius -0.1 must be > 0"));
   EXPECT_THAT(parseError("collision:\n  tool: [{type: box, size: [0.1, -0.2, 0.1]}]\n"),
-              HasSubstr("collision: tool shape 1: size -0.200000 must be > 0"));
+              HasSubstr("collision: tool shape 1: size -0.2 must be > 0"));
   EXPECT_THAT(parseError("collision:\n  tool: [{type: cylinder, radius: 0.1, length: 0}]\n"),
               HasSubstr("collision: tool shape 1: length 0 must be > 0"));
 }

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
 #include "mcws/core/text_file.h"
@@ -191,7 +192,7 @@ class CollisionYamlReader : YamlReader {
       shape.size = vector3(node, "size", where, true);
       for (int k = 0; k < 3; ++k) {
         if (shape.size[k] <= 0.0)
-          fail(node["size"], where + ": size " + std::to_string(shape.size[k]) + " must be > 0");
+          fail(node["size"], where + ": size " + formatNumber(shape.size[k]) + " must be > 0");
       }
     } else if (type == "cylinder") {
       checkKeys(node, where, {"type", "name", "radius", "length", "xyz", "rpy"});

@@ -28,7 +28,7 @@ MotionCertifier::MotionCertifier(const Robot& robot, const CollisionChecker& che
                                  const MotionCertifierOptions& options)
     : robot_(robot), checker_(checker), options_(options) {
   if (!(options.environment_margin >= 0.0) || !std::isfinite(options.environment_margin)) {
-    throw Error("motion check: environment margin " + std::to_string(options.environment_margin) +
+    throw Error("motion check: environment margin " + formatNumber(options.environment_margin) +
                 " must be >= 0");
   }
   if (!(options.resolution > 0.0) || !std::isfinite(options.resolution)) {

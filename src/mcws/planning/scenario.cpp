@@ -277,7 +277,7 @@ class ScenarioReader : YamlReader {
     }
     for (int k = 0; k < 6; ++k) {
       if (sway.covariance(k, k) < 0.0) {
-        fail(matrix[k], "sway: covariance: variance " + std::to_string(sway.covariance(k, k)) +
+        fail(matrix[k], "sway: covariance: variance " + formatNumber(sway.covariance(k, k)) +
                             " of row " + std::to_string(k + 1) + " is negative");
       }
     }

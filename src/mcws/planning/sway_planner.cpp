@@ -179,7 +179,7 @@ SwayPlanner::SwayPlanner(SwayPlanningProblem problem) : problem_(std::move(probl
   if (!(p.segment_length > 0.0) || !std::isfinite(p.segment_length))
     throw Error("segment_length " + formatNumber(p.segment_length) + " must be > 0");
   if (!(p.diversity >= 0.0) || !std::isfinite(p.diversity))
-    throw Error("diversity " + std::to_string(p.diversity) + " must be >= 0");
+    throw Error("diversity " + formatNumber(p.diversity) + " must be >= 0");
   if (!(p.base_step >= 0.0) || !(p.base_range >= 0.0) || !std::isfinite(p.base_step) ||
       !std::isfinite(p.base_range))
     throw Error("base adjustment step and range must be >= 0");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/points/unique_positions.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
@@ -174,7 +175,7 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
     throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +
                 " passes the alpha limit: the points are (nearly) " +
                 (dimensions == 2 ? "collinear" : "coplanar") + " or too sparse for alpha " +
-                std::to_string(alpha_factor));
+                formatNumber(alpha_factor));
   }
   if (!options.edge_correction) {
     result.measure = result.uncorrected;

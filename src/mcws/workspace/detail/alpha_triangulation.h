@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
 
@@ -85,7 +86,7 @@ class OrderFreeSum {
  public:
   explicit OrderFreeSum(double bound) : shift_(0) {
     if (!(bound > 0.0 && std::isfinite(bound))) {
-      throw Error("the bound of a sum must be a positive number, got " + std::to_string(bound));
+      throw Error("the bound of a sum must be a positive number, got " + formatNumber(bound));
     }
     shift_ = 61 - std::ilogb(bound);
   }
