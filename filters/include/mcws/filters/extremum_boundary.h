@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "mcws/filters/boundary_geometry.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 
@@ -117,3 +118,11 @@ class ExtremumBoundary : public pcl::FilterIndices<PointT> {
 #ifdef PCL_NO_PRECOMPILE
 #include "mcws/filters/impl/extremum_boundary.hpp"
 #endif
+
+// The point types the filters library instantiates (filters/src/extremum_boundary.cpp): other
+// translation units use those instantiations instead of compiling the implementation again.
+namespace mcws {
+extern template class ExtremumBoundary<pcl::PointXYZ>;
+extern template class ExtremumBoundary<pcl::PointXYZL>;
+extern template class ExtremumBoundary<WorkspacePoint>;
+}  // namespace mcws

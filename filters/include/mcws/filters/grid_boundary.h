@@ -8,6 +8,7 @@
 #include <cstddef>
 
 #include "mcws/filters/boundary_geometry.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 
@@ -120,3 +121,11 @@ double baselineCellSize(std::size_t n, double spacing, int dimensions);
 #ifdef PCL_NO_PRECOMPILE
 #include "mcws/filters/impl/grid_boundary.hpp"
 #endif
+
+// The point types the filters library instantiates (filters/src/grid_boundary.cpp): other
+// translation units use those instantiations instead of compiling the implementation again.
+namespace mcws {
+extern template class GridBoundary<pcl::PointXYZ>;
+extern template class GridBoundary<pcl::PointXYZL>;
+extern template class GridBoundary<WorkspacePoint>;
+}  // namespace mcws

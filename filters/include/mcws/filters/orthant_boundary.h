@@ -12,6 +12,7 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/filters/orthant/frames.h"
 #include "mcws/filters/orthant/point_test.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 
@@ -201,3 +202,11 @@ double orthantAutoFactor(std::size_t n, int dimensions);
 #ifdef PCL_NO_PRECOMPILE
 #include "mcws/filters/impl/orthant_boundary.hpp"
 #endif
+
+// The point types the filters library instantiates (filters/src/orthant_boundary.cpp): other
+// translation units use those instantiations instead of compiling the implementation again.
+namespace mcws {
+extern template class OrthantBoundary<pcl::PointXYZ>;
+extern template class OrthantBoundary<pcl::PointXYZL>;
+extern template class OrthantBoundary<WorkspacePoint>;
+}  // namespace mcws
