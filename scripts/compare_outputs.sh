@@ -69,6 +69,14 @@ commands=$(cat <<'EOF'
 @B@/mcws_traj --robot @R@/robots/ta1400.yaml --from "0 0 0" --to "1 1 1" --duration 1 --rate 10 --output @O@/bad9.csv
 @B@/mcws_ik --robot @R@/robots/ta1400.yaml --pose "1 2 3"
 @B@/mcws_fk --robot @R@/robots/ta1400.yaml --q "0 0"
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --radius 1e6 --output @O@/bad10.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --auto-radius 1e9 --output @O@/bad11.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --radius 0.08 --outer-radius 0.05 --output @O@/bad12.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --adaptive 12 --outer-radius 1e6 --output @O@/bad13.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --method grid --cell 1e-9 --output @O@/bad14.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --method extremum --gap 1e6 --output @O@/bad15.pcd
+@B@/mcws_sample --shape disk --samples 50 --seed 5 --output @O@/small.pcd
+@B@/mcws_boundary --input @O@/small.pcd --plane xy --adaptive 60 --output @O@/bad16.pcd
 @B@/mcws_sample --robot @R@/robots/deicing.yaml --samples 30000 --seed 2 --output @O@/d3e.pcd
 @B@/mcws_envelope --input @O@/d3e.pcd --output @O@/env.ply --json
 @B@/mcws_sample --robot @R@/robots/inspection6.yaml --samples 3000 --quality --output @O@/q.pcd --json
