@@ -97,27 +97,6 @@ Settings readSettings(const app::CommandLine& cli) {
   return s;
 }
 
-/// Exit code of a run, with the reason for a failed one on stderr.
-int runExitCode(const RunSummary& summary) {
-  switch (summary.status) {
-    case RunStatus::kInvariantViolated:
-      std::cerr << "mcws_behave: safety invariant violated at " << summary.violation->message
-                << "\n";
-      return app::kExitFailure;
-    case RunStatus::kBatteryEmpty:
-      std::cerr << "mcws_behave: the battery ran empty; the robot is stranded on the string\n";
-      return app::kExitFailure;
-    case RunStatus::kSafetyStop:
-      std::cerr << "mcws_behave: safety stop: " << summary.safety_stop->message << "\n";
-      return app::kExitFailure;
-    case RunStatus::kTimeLimit:
-      std::cerr << "mcws_behave: the simulated time limit was reached\n";
-      return app::kExitFailure;
-    default:
-      return app::kExitOk;
-  }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -164,6 +143,9 @@ int main(int argc, char** argv) {
                              settings.plot, settings.period, cli.has("plot-all")});
     commitOutputs();
     std::cout << (cli.has("json") ? summaryJson(summary).dump() + "\n" : summaryText(summary));
-    return runExitCode(summary);
+    const std::string failure = runFailure(summary);
+    if (failure.empty()) return app::kExitOk;
+    std::cerr << "mcws_behave: " << failure << "\n";
+    return app::kExitFailure;
   });
 }

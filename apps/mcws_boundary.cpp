@@ -10,7 +10,6 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "common/app.h"
 #include "common/flags.h"
@@ -20,9 +19,11 @@
 #include "mcws/distributed/tiled_boundary_output.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
-#include "mcws/filters/orthant/cloud_stages.h"
 #include "mcws/filters/orthant_boundary.h"
+#include "mcws/filters/setting_ranges.h"
+#include "mcws/filters/used_parameters.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/boundary_record.h"
 #include "mcws/io/cloud_io.h"
 
 namespace {
@@ -71,19 +72,18 @@ struct Method {
   std::string name;
   BoundaryPlane plane;
   std::shared_ptr<pcl::FilterIndices<WorkspacePoint>> filter;
-  /// The parameters used, lengths in `units`, with their "units".
-  std::function<nlohmann::json(const ResultUnits& units)> parameters;
+  std::function<UsedParameters()> parameters;
 };
 
-/// JSON of the lengths a method used, in `units`, and their "units" entries.
-nlohmann::json lengths(std::initializer_list<std::pair<const char*, double>> values,
-                       const ResultUnits& units) {
+/// JSON of the parameters a method used, lengths in `units`, with their "units".
+nlohmann::json parametersJson(const UsedParameters& used, const ResultUnits& units) {
   nlohmann::json out, unit;
-  for (const auto& [key, value] : values) {
+  for (const auto& [key, value] : used.lengths) {
     out[key] = units.length(value);
     unit[key] = units.lengthName();
   }
   out["units"] = unit;
+  for (const auto& [key, count] : used.counts) out[key] = count;
   return out;
 }
 
@@ -170,10 +170,7 @@ Method orthantMethod(const app::CommandLine& cli, BoundaryPlane plane, int threa
   }
   boundary->setNumberOfThreads(threads);
   boundary->setGridSearch(!cli.has("tree-search"));
-  return {"orthant", plane, boundary, [boundary](const ResultUnits& units) {
-            return lengths(
-                {{"radius", boundary->usedRadius()}, {"spacing", boundary->usedSpacing()}}, units);
-          }};
+  return {"orthant", plane, boundary, [boundary] { return usedParameters(*boundary); }};
 }
 
 Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
@@ -183,13 +180,7 @@ Method gridMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   auto grid = std::make_shared<GridBoundary<WorkspacePoint>>(true);
   grid->setPlane(plane);
   if (cli.has("cell")) grid->setCellSize(app::parsePositive(cli.required("cell"), "cell"));
-  return {"grid", plane, grid, [grid](const ResultUnits& units) {
-            nlohmann::json out =
-                lengths({{"cell", grid->usedCellSize()}, {"spacing", grid->usedSpacing()}}, units);
-            out["occupied_cells"] = grid->occupiedCells();
-            out["boundary_cells"] = grid->boundaryCells();
-            return out;
-          }};
+  return {"grid", plane, grid, [grid] { return usedParameters(*grid); }};
 }
 
 Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
@@ -203,14 +194,7 @@ Method extremumMethod(const app::CommandLine& cli, BoundaryPlane plane) {
   extremum->setPlane(plane);
   if (cli.has("cell")) extremum->setColumnWidth(app::parsePositive(cli.required("cell"), "cell"));
   if (cli.has("gap")) extremum->setGapThreshold(app::parsePositive(cli.required("gap"), "gap"));
-  return {"extremum", plane, extremum, [extremum](const ResultUnits& units) {
-            nlohmann::json out = lengths({{"cell", extremum->usedColumnWidth()},
-                                          {"gap", extremum->usedGapThreshold()},
-                                          {"spacing", extremum->usedSpacing()}},
-                                         units);
-            out["columns"] = extremum->columns();
-            return out;
-          }};
+  return {"extremum", plane, extremum, [extremum] { return usedParameters(*extremum); }};
 }
 
 /// The method named by --method (default orthant), set up from its flags.
@@ -223,15 +207,12 @@ Method methodFromFlags(const app::CommandLine& cli, int threads) {
   return orthantMethod(cli, plane, threads);
 }
 
-/// Usage error unless --flag's value lies in [low, high] ((low, high] with `open_low`), `unit`
-/// and `why` telling what the range is.
-void requireWithin(const app::CommandLine& cli, const char* flag, double low, double high,
-                   bool open_low, const std::string& unit, const std::string& why) {
-  const double value = app::parseNumber(cli.required(flag), flag);
-  if ((open_low ? value > low : value >= low) && value <= high) return;
+/// Usage error unless --flag's value lies in `range` (boundarySettingRanges()).
+void requireWithin(const app::CommandLine& cli, const char* flag, const SettingRange& range) {
+  if (range.contains(app::parseNumber(cli.required(flag), flag))) return;
   throw app::UsageError("--" + std::string(flag) + ": " + cli.required(flag) + " is not in " +
-                        (open_low ? "(" : "[") + app::shortNumber(low) + ", " +
-                        app::shortNumber(high) + "] " + unit + " (" + why + ")");
+                        (range.open_low ? "(" : "[") + app::shortNumber(range.low) + ", " +
+                        app::shortNumber(range.high) + "] " + range.unit + " (" + range.why + ")");
 }
 
 /// Whether a flag given has a range in the cloud's mean spacings (checkFlagsAgainstCloud), so
@@ -243,61 +224,30 @@ bool needsSpacing(const app::CommandLine& cli) {
   return false;
 }
 
-/// Checks the numeric flags against the cloud they work on (CloudSummary): lengths within
-/// parameterLengths(), counts below the number of points, an outer radius beyond the radius. A
-/// value the filter would reject is a usage error naming its flag, never a filter's error.
+/// Checks the numeric flags against the cloud they work on (boundarySettingRanges()). A value
+/// the filter would reject is a usage error naming its flag, never a filter's error.
 void checkFlagsAgainstCloud(const app::CommandLine& cli, const Method& method,
                             const CloudSummary& cloud) {
-  if (cli.has("adaptive")) {
-    requireWithin(cli, "adaptive", 1.0, std::min<double>(1000.0, cloud.distinct - 1.0), false,
-                  "neighbours",
-                  "fewer than the cloud's " + std::to_string(cloud.distinct) +
-                      " distinct points, at most 1000");
+  BoundarySettings settings;
+  settings.baseline = method.name != "orthant";
+  settings.plane = method.plane;
+  if (!settings.baseline) {
+    settings.adaptive_neighbours =
+        static_cast<const Filter&>(*method.filter).getAdaptiveNeighbours();
+    if (cli.has("radius")) settings.radius = app::parseNumber(cli.required("radius"), "radius");
+    if (cli.has("auto-radius"))
+      settings.auto_radius_factor = app::parseNumber(cli.required("auto-radius"), "auto-radius");
   }
-  if (!needsSpacing(cli)) return;
-  const LengthRange length = parameterLengths(cloud);
-  const double h = *cloud.spacing;  // > 0: requireRegionPoints() passed
-  const std::string lengths =
-      "a tenth of the cloud's mean spacing " + app::shortNumber(h) + " to its extent";
-  auto value = [&](const char* flag) { return app::parseNumber(cli.required(flag), flag); };
-  if (method.name != "orthant") {
-    // The grid packs 21 bits per axis: a cell may not be so small that the extent needs more.
-    const double cells = cloud.largest / kMaxBaselineCellsPerAxis * (1.0 + 1e-6);
-    if (cli.has("cell")) {
-      requireWithin(cli, "cell", std::max(length.min, cells), length.max, false, "[length unit]",
-                    lengths);
-    }
-    if (cli.has("gap"))
-      requireWithin(cli, "gap", length.min, length.max, false, "[length unit]", lengths);
-    return;
-  }
-  double radius = 0.0;  // a fixed radius [length unit]; 0: adaptive
-  if (cli.has("radius")) {
-    requireWithin(cli, "radius", length.min, length.max, false, "[length unit]", lengths);
-    radius = value("radius");
-  }
-  if (cli.has("auto-radius")) {
-    requireWithin(
-        cli, "auto-radius", length.min / h, length.max / h, false, "mean spacings",
-        "the radius c x " + app::shortNumber(h) + " from a tenth of a spacing to the extent");
-    radius = value("auto-radius") * h;  // as the filter computes it
-  }
-  const auto& filter = static_cast<const Filter&>(*method.filter);
-  if (cli.has("outer-radius")) {
-    if (radius > 0.0) {
-      requireWithin(cli, "outer-radius", radius, length.max, true, "[length unit]",
-                    "beyond the radius, at most the cloud's extent");
-    } else {
-      orthant::PointTestSettings test;
-      test.dimensions = boundaryDimensions(method.plane);
-      test.adaptive =
-          orthant::AdaptiveRadius{filter.getAdaptiveNeighbours(), Filter::kRecommendedScale};
-      const double typical = orthant::typicalOuterRadius(test, h);
-      requireWithin(cli, "outer-radius", 1.0, length.max / typical, true,
-                    "times each point's radius",
-                    "a factor beyond 1 of the radius, about " + app::shortNumber(typical) +
-                        ", that keeps it within the cloud's extent");
-    }
+  const BoundarySettingRanges ranges = boundarySettingRanges(cloud, settings);
+  const std::pair<const char*, std::optional<SettingRange>> flags[] = {
+      {"adaptive", ranges.adaptive},
+      {"cell", ranges.cell},
+      {"gap", ranges.gap},
+      {"radius", ranges.radius},
+      {"auto-radius", ranges.auto_radius},
+      {"outer-radius", ranges.outer_radius}};
+  for (const auto& [flag, range] : flags) {
+    if (cli.has(flag) && range) requireWithin(cli, flag, *range);
   }
 }
 
@@ -308,26 +258,14 @@ void checkOutputs(const app::CommandLine& cli) {
                     {{"input", cli.required("input")}});
 }
 
-/// The provenance the outputs record: the input's (its robot and sampling, if it records them),
-/// the input's own identity, its point count and SHA-256, and the boundary's point count, so that
-/// mcws_measure --boundary can tell the whole boundary of this cloud from that of a subset or an
-/// older cloud, or from a part of it.
-std::optional<io::CloudProvenance> boundaryProvenance(const std::string& input,
-                                                      std::uint64_t points,
-                                                      std::uint64_t boundary_points) {
-  std::optional<io::CloudProvenance> recorded = io::readProvenance(input);
-  if (recorded) recorded->input = io::InputCloud{points, io::sha256OfFile(input), boundary_points};
-  return recorded;
-}
-
 /// Writes the boundary and, with --interior, the finite points that are not on it: both or
 /// neither.
-/// Both record the robot the input records, if any, and the input (boundaryProvenance()).
+/// Both record the robot the input records, if any, and the input (io::boundaryProvenance()).
 void saveOutputs(const app::CommandLine& cli, const io::WorkspaceCloud& cloud,
                  const pcl::Indices& kept, const pcl::Indices& removed, pcl::Indices& interior) {
   const std::string output = cli.required("output");
   const std::optional<io::CloudProvenance> robot =
-      boundaryProvenance(cli.required("input"), cloud.size(), kept.size());
+      io::boundaryProvenance(cli.required("input"), cloud.size(), kept.size());
   io::OutputSet outputs;
   io::writeCloud(cloud, kept, output, robot);
   if (cli.has("interior")) {
@@ -383,7 +321,7 @@ void checkTiledMethod(const app::CommandLine& cli, const Method& method) {
 int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   const std::string input = cli.required("input"), output = cli.required("output");
   const int tiles = static_cast<int>(app::parseInteger(cli.required("tiles"), "tiles", 1, 100000));
-  const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
+  const int threads = distributed::threadsPerProcess(app::readThreads(cli), processes);
   const Method method = methodFromFlags(cli, threads);
   checkTiledMethod(cli, method);
   const auto& prototype = static_cast<const Filter&>(*method.filter);
@@ -407,11 +345,7 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
                 " finite points, more than the 2^31 - 1 a PCD output holds");
   }
   // The same file on every process: its size and what the first pass saw of it.
-  std::ostringstream seen;
-  seen.precision(17);
-  seen << reader.size() << " points, " << region.finite << " finite, low " << file.low.transpose()
-       << ", extent " << region.extent.transpose();
-  processes.setUpDone({{"input", seen.str()}});
+  processes.setUpDone({{"input", distributed::fileFingerprint(reader, file)}});
 
   const auto make = [&] {
     return std::static_pointer_cast<Filter>(methodFromFlags(cli, threads).filter);
@@ -423,13 +357,14 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   const bool with_interior = cli.has("interior");
   const std::uint64_t interior = file.cloud.finite - found.kept;
   distributed::writeTiledBoundary(reader, found, output, cli.text("interior", ""), interior,
-                                  boundaryProvenance(input, reader.size(), found.kept));
+                                  io::boundaryProvenance(input, reader.size(), found.kept));
 
   nlohmann::json summary = summaryOf(cli, method, reader.size(), found.kept, clock);
-  summary.update(lengths(
-      {{"radius", prototype.getRadiusMode() == RadiusMode::kFixed ? prototype.getRadiusSearch()
-                                                                  : found.median_radius},
-       {"halo", found.largest_halo}},
+  summary.update(parametersJson(
+      {{{"radius", prototype.getRadiusMode() == RadiusMode::kFixed ? prototype.getRadiusSearch()
+                                                                   : found.median_radius},
+        {"halo", found.largest_halo}},
+       {}},
       units));
   summary["tiles"] = tiles;
   summary["processes"] = processes.size();
@@ -470,7 +405,7 @@ int main(int argc, char** argv) {
     saveOutputs(cli, *cloud, kept, *method.filter->getRemovedIndices(), interior);
 
     nlohmann::json summary = summaryOf(cli, method, cloud->size(), kept.size(), clock);
-    summary.update(method.parameters(units));
+    summary.update(parametersJson(method.parameters(), units));
     if (cli.has("interior")) summary["interior"] = interior.size();
     report(cli, summary, units, clock);
     return app::kExitOk;

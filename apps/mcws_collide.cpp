@@ -1,6 +1,5 @@
 // mcws_collide: checks one joint vector of a robot against its collision model (Fu, Hu, Chen & Pan
 // 2016 section 2) and names the colliding pairs with their penetration, or the nearest pair.
-#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -8,6 +7,7 @@
 #include "common/app.h"
 #include "common/flags.h"
 #include "mcws/collision/collision_checker.h"
+#include "mcws/collision/collision_report.h"
 
 namespace {
 
@@ -29,27 +29,6 @@ void declareFlags(app::CommandLine& cli) {
   cli.addSwitch("all", "list every checked pair with its distance");
   cli.addSwitch("ignore-limits", "accept joint values outside the joint limits");
   cli.addSwitch("json", "print one JSON object on stdout");
-}
-
-nlohmann::json reportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
-                          const std::vector<PairReport>& shown) {
-  nlohmann::json out;
-  out["robot"] = robot.name;
-  out["length_unit"] = unitName(robot.length_unit);
-  out["units"] = {{"pairs.distance", unitName(robot.length_unit)}};
-  out["label"] = label;
-  out["label_name"] = labelName(label);
-  out["pairs_checked"] = checked;
-  out["pairs"] = nlohmann::json::array();
-  for (const PairReport& pair : shown) {
-    nlohmann::json item{{"a", pair.body_a},
-                        {"b", pair.body_b},
-                        {"kind", labelName(pair.label)},
-                        {"colliding", pair.colliding}};
-    if (pair.depth_known) item["distance"] = pair.distance;
-    out["pairs"].push_back(item);
-  }
-  return out;
 }
 
 void printReport(const Robot& robot, std::uint32_t label, std::size_t checked,
@@ -86,20 +65,11 @@ int main(int argc, char** argv) {
         cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
     const CollisionChecker checker(robot, loadRequiredCollisionModel(robot, path));
 
-    std::vector<PairReport> pairs = checker.report(q);
-    std::sort(pairs.begin(), pairs.end(),
-              [](const PairReport& a, const PairReport& b) { return a.distance < b.distance; });
-    std::uint32_t label = kLabelFree;
-    for (const PairReport& pair : pairs) {
-      if (pair.colliding && (label == kLabelFree || pair.label < label)) label = pair.label;
-    }
-    std::vector<PairReport> shown;
-    for (const PairReport& pair : pairs) {
-      if (cli.has("all") || pair.colliding || (label == kLabelFree && shown.empty()))
-        shown.push_back(pair);
-    }
+    const std::vector<PairReport> pairs = checker.report(q);
+    const std::uint32_t label = reportedLabel(pairs);
+    const std::vector<PairReport> shown = pairsToShow(pairs, cli.has("all"));
     if (cli.has("json")) {
-      std::cout << reportJson(robot, label, pairs.size(), shown).dump() << "\n";
+      std::cout << collisionReportJson(robot, label, pairs.size(), shown).dump() << "\n";
     } else {
       printReport(robot, label, pairs.size(), shown);
     }

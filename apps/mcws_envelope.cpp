@@ -92,11 +92,7 @@ pcl::PointCloud<pcl::PointXYZ> loadPoints(const std::string& input) {
   const io::WorkspaceCloud::Ptr cloud = io::readCloud(input);
   requireRegionPoints(summarizeCloud(*cloud, BoundaryPlane::k3D), input);
   io::requireVolume(*cloud, input);
-  pcl::Indices all(cloud->size()), source;
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  pcl::PointCloud<pcl::PointXYZ> points;
-  projectToPlane(*cloud, all, BoundaryPlane::k3D, points, source);
-  return points;
+  return projectedToPlane(*cloud, BoundaryPlane::k3D);
 }
 
 /// Every file complete under a temporary name before any gets its own.
@@ -124,38 +120,16 @@ void saveOutputs(const Files& files, const TriangleSurface& shown,
   outputs.commit();
 }
 
-/// Each value under its name in `out` and its unit under `prefix` + name in `units`.
-void addValues(const std::vector<ReportValue>& values, const std::string& prefix,
-               nlohmann::json& out, nlohmann::json& units) {
-  for (const ReportValue& value : values) {
-    out[value.name] = value.value;
-    units[prefix + value.name] = value.unit;
-  }
-}
-
+/// The --json summary: the files and envelopeSummary().
 nlohmann::json summary(const Files& files, const Envelope& envelope, const MeasureOptions& options,
                        const std::optional<EnvelopeDrawing>& drawing, const ResultUnits& units,
                        double seconds) {
-  const SurfaceTopology topology = surfaceTopology(envelope.mesh);
-  nlohmann::json out{
-      {"input", files.input},
-      {"output", files.output.empty() ? nlohmann::json() : nlohmann::json(files.output)},
-      {"correction", options.edge_correction ? "efron" : "none"},
-      {"points", envelope.measure.points},
-      {"vertices", topology.vertices},
-      {"triangles", topology.triangles},
-      {"edges", topology.edges},
-      {"euler_characteristic", topology.euler_characteristic},
-      {"closed_and_oriented", topology.closedAndOriented()},
-      {"non_manifold_edges", topology.non_manifold_edges},
-      {"seconds", seconds},
-      {"length_unit", units.lengthName()}};
+  nlohmann::json out = envelopeSummary(envelope, options, drawing, units);
+  out["input"] = files.input;
+  out["output"] = files.output.empty() ? nlohmann::json() : nlohmann::json(files.output);
+  out["seconds"] = seconds;
   out["units"]["seconds"] = "s";
-  addValues(envelopeValues(envelope, options, units), "", out, out["units"]);
-  if (drawing) {
-    out["drawing"]["file"] = files.drawing;
-    addValues(drawingValues(*drawing, units), "drawing.", out["drawing"], out["units"]);
-  }
+  if (drawing) out["drawing"]["file"] = files.drawing;
   return out;
 }
 

@@ -1,9 +1,7 @@
 // mcws_ik: inverse kinematics of one tool pose: the joint vector, iterations and residual.
-#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "common/app.h"
 #include "common/flags.h"
@@ -75,27 +73,12 @@ IkOptions readOptions(const app::CommandLine& cli) {
 
 /// The error for a pose without a solution: how close the best attempt came.
 Error noSolution(const Robot& robot, const IkResult& result, const IkOptions& options) {
-  std::ostringstream msg;
-  msg.precision(4);
-  msg << "no solution (" << ikStatusName(result.status) << "): the best pose found is "
-      << result.position_error << " " << unitName(robot.length_unit) << " and "
-      << result.orientation_error << " rad away, after " << result.iterations << " iterations from "
-      << result.attempts << " starts";
+  std::string msg = describeIkFailure(robot, result);
   if (robot.dof() < 6 && !options.position_only) {
-    msg << "; the robot has " << robot.dof() << " joints, try --position-only"
-        << (options.free_roll ? "" : " or --free-roll");
+    msg += "; the robot has " + std::to_string(robot.dof()) + " joints, try --position-only" +
+           (options.free_roll ? "" : " or --free-roll");
   }
-  return Error(msg.str());
-}
-
-/// "rad" when every joint's value is in rad, else each joint's unit: "rad, rad, rad, cm".
-std::string jointUnitsText(const Robot& robot) {
-  const std::vector<std::string> units = jointUnits(robot);
-  if (std::all_of(units.begin(), units.end(), [&](const auto& u) { return u == units.front(); }))
-    return units.front();
-  std::string text;
-  for (const std::string& unit : units) text += (text.empty() ? "" : ", ") + unit;
-  return text + " (joint by joint)";
+  return Error(msg);
 }
 
 void printSolution(const Robot& robot, const IkResult& result, const IkOptions& options) {

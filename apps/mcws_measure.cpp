@@ -11,16 +11,13 @@
 #include "mcws/io/boundary_record.h"
 #include "mcws/io/cloud_io.h"
 #include "mcws/workspace/measure.h"
+#include "mcws/workspace/measure_report.h"
 
 namespace {
 
 using namespace mcws;
 
 constexpr std::size_t kProgressPoints = 200000;  ///< larger inputs report their phases on stderr
-
-/// What the column cross-check is, in its output.
-constexpr char kCrossCheckNote[] =
-    "Yin, Wang & Yu 2010's column method, biased high: for comparison, not the result";
 
 constexpr char kUsage[] =
     "mcws_measure --input CLOUD.pcd [--plane xy|xz|yz] [--boundary B.pcd] [options]";
@@ -85,7 +82,7 @@ void declareFlags(app::CommandLine& cli) {
 
 /// The command line, checked.
 struct Settings {
-  std::string input, method, correction;
+  std::string input, method;
   BoundaryPlane plane{BoundaryPlane::k3D};
   MeasureOptions delaunay;
   double column_width{0.0};  ///< 0: automatic
@@ -109,7 +106,6 @@ Settings readSettings(const app::CommandLine& cli) {
     }
   }
   s.delaunay = app::readRegionOptions(cli);
-  s.correction = s.delaunay.edge_correction ? "efron" : "none";
   s.delaunay.leave_one_out = app::parseChoice(cli.text("leave-one-out", "star"), "leave-one-out",
                                               {"star", "reinsert"}) == "star"
                                  ? LeaveOneOut::kStar
@@ -160,41 +156,6 @@ void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSumm
 }
 
 /// The finite points of `cloud` projected onto the plane (3-D: as they are).
-pcl::PointCloud<pcl::PointXYZ> projected(const io::WorkspaceCloud& cloud, BoundaryPlane plane) {
-  pcl::PointCloud<pcl::PointXYZ> points;
-  pcl::Indices all(cloud.size()), source;
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  projectToPlane(cloud, all, plane, points, source);
-  return points;
-}
-
-nlohmann::json delaunayJson(const RegionMeasure& m, const Settings& s, const char* key,
-                            const ResultUnits& units, int dimensions) {
-  auto measure = [&](double v) { return dimensions == 2 ? units.area(v) : units.volume(v); };
-  const std::string unit = units.measureName(dimensions);
-  return {{key, measure(m.measure)},
-          {"correction", s.correction},
-          {"alpha", s.delaunay.alpha_factor},
-          {"points", m.points},
-          {"triangulated", m.triangulated},
-          {"uncorrected", measure(m.uncorrected)},
-          {"boundary_vertices", m.boundary_vertices},
-          {"outside", m.outside},
-          {"units", {{key, unit}, {"uncorrected", unit}, {"alpha", "local spacings"}}}};
-}
-
-nlohmann::json columnJson(const ColumnArea& column, const char* key, const ResultUnits& units) {
-  return {{key, units.area(column.area)},
-          {"column_width", units.length(column.width)},
-          {"crossing_gap", units.length(column.gap)},
-          {"columns", column.columns},
-          {"odd_columns", column.odd_columns},
-          {"units",
-           {{key, units.areaName()},
-            {"column_width", units.lengthName()},
-            {"crossing_gap", units.lengthName()}}}};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -216,11 +177,11 @@ int main(int argc, char** argv) {
     if (cli.has("boundary")) {
       const io::WorkspaceCloud::Ptr boundary =
           loadBoundary(cli.required("boundary"), settings.input, *cloud, settings.plane);
-      column = columnArea(projected(*boundary, settings.plane), settings.column_width);
+      column = columnArea(projectedToPlane(*boundary, settings.plane), settings.column_width);
     }
     const ResultUnits units =
         app::readResultUnits(cli, io::recordedUnit(settings.input), settings.input);
-    const pcl::PointCloud<pcl::PointXYZ> region = projected(*cloud, settings.plane);
+    const pcl::PointCloud<pcl::PointXYZ> region = projectedToPlane(*cloud, settings.plane);
     cloud.reset();  // the triangulation's memory is the peak
     const int dimensions = boundaryDimensions(settings.plane);
     nlohmann::json out;
@@ -242,14 +203,10 @@ int main(int argc, char** argv) {
           throw Error(settings.input + ": " + e.what());
         }
       }();
-      out = delaunayJson(measured, settings, key, units, dimensions);
-      if (column) {
-        out["cross_check"] = {
-            {"method", "column"}, {key, units.area(column->area)}, {"note", kCrossCheckNote}};
-        out["units"]["cross_check." + std::string(key)] = units.areaName();
-      }
+      out = regionMeasureJson(measured, settings.delaunay, dimensions, units);
+      if (column) addColumnCrossCheck(out, *column, units);
     } else {
-      out = columnJson(*column, key, units);
+      out = columnAreaJson(*column, units);
     }
     out["input"] = settings.input;
     out["plane"] = boundaryPlaneName(settings.plane);
@@ -265,7 +222,7 @@ int main(int argc, char** argv) {
       std::cout << key << " " << out[key].get<double>() << " " << unit << "\n";
       if (column && settings.method == "delaunay") {
         std::cout << "cross_check " << out["cross_check"][key].get<double>() << " " << unit << " ("
-                  << kCrossCheckNote << ")\n";
+                  << kColumnCrossCheckNote << ")\n";
       }
     }
     return app::kExitOk;

@@ -89,13 +89,7 @@ std::vector<Eigen::Vector3d> offsets(const app::CommandLine& cli) {
   if (xs.size() * ys.size() * zs.size() > 1000000) {
     throw app::UsageError("--along x --across x --up: more than 1000000 base positions");
   }
-  std::vector<Eigen::Vector3d> all;
-  for (double x : xs) {
-    for (double y : ys) {
-      for (double z : zs) all.emplace_back(x, y, z);
-    }
-  }
-  return all;
+  return offsetGrid(xs, ys, zs);
 }
 
 /// The map from --map (checked against the robot) or built from the map flags.

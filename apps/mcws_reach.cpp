@@ -111,19 +111,8 @@ std::optional<ReachCheckpoint> readCheckpoint(const app::CommandLine& cli, const
       static_cast<std::uint64_t>(app::parseInteger(cli.text("checkpoint-every", "100000000"),
                                                    "checkpoint-every", 1,
                                                    std::numeric_limits<std::int64_t>::max())),
-      nlohmann::json{{"robot", robot.name},
-                     {"robot_sha256", provenance.sha256},
-                     {"resolution", grid.resolution},
-                     {"orientations", grid.directions},
-                     {"rolls", grid.rolls},
-                     {"samples", samples},
-                     {"seed", sampling.seed},
-                     {"collision", cli.has("collision")},
-                     {"manipulability", qualitySummary(sampling.quality, robot)},
-                     {"with_manipulability", sampling.manipulability},
-                     {"processes", processes.size()},
-                     {"rank", processes.rank()}}
-          .dump()};
+      checkpointRun(robot, provenance.sha256, grid, sampling, samples, cli.has("collision"),
+                    processes.size(), processes.rank())};
 }
 
 /// Merges the maps of every process into rank 0's along a binary tree, sorted as one process's.
@@ -155,15 +144,7 @@ void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const Reach
   }
   if (cli.has("map")) {
     std::ostringstream bytes;
-    map.write(bytes, nlohmann::json{{"robot", robot.name},
-                                    {"robot_file", provenance.file},
-                                    {"robot_sha256", provenance.sha256},
-                                    {"length_unit", unit},
-                                    {"samples", summary["samples"]},
-                                    {"seed", summary["seed"]},
-                                    {"collision", summary["collision"]},
-                                    {"manipulability", summary["manipulability"]}}
-                         .dump());
+    map.write(bytes, mapFileHeader(robot, provenance.file, provenance.sha256, summary));
     io::writeWholeFile(cli.required("map"), bytes.str());
   }
   const auto points = reachPoints(map);
@@ -194,7 +175,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
     sampling.collision = checker.get();
   }
 
-  sampling.threads = app::threadsPerProcess(sampling.threads, processes);
+  sampling.threads = distributed::threadsPerProcess(sampling.threads, processes);
   const distributed::Block block =
       distributed::blockOf(samples, processes.rank(), processes.size());
   sampling.first += block.begin;

@@ -17,6 +17,7 @@
 #include "mcws/io/provenance.h"
 #include "mcws/workspace/refine.h"
 #include "mcws/workspace/refine_inputs.h"
+#include "mcws/workspace/refine_report.h"
 
 namespace {
 
@@ -90,21 +91,12 @@ void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
                   const mcws::io::SamplingRecord& sampling, int processes, double seconds) {
   const std::string output = cli.required("output");
   if (cli.has("json")) {
-    nlohmann::json summary{{"robot", robot.name},
-                           {"boundary_points", boundary_points},
-                           {"samples", samples},
-                           {"copied", kept},
-                           {"points", kept + samples},
-                           {"spread", options.spread},
-                           {"length_unit", unitName(robot.length_unit)},
-                           {"pinned", pinned},
-                           {"point", sampling.point},
-                           {"collision", sampling.collision},
-                           {"seed", options.seed},
-                           {"output", output},
-                           {"processes", processes},
-                           {"seconds", seconds},
-                           {"units", {{"spread", "joint ranges"}, {"seconds", "s"}}}};
+    nlohmann::json summary =
+        mcws::refineSummary(robot, boundary_points, samples, kept, options, pinned, sampling);
+    summary["output"] = output;
+    summary["processes"] = processes;
+    summary["seconds"] = seconds;
+    summary["units"]["seconds"] = "s";
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << samples
@@ -127,7 +119,7 @@ int main(int argc, char** argv) {
         app::parseInteger(cli.required("samples"), "samples", 1, std::numeric_limits<int>::max()));
     RefineOptions options = readOptions(cli);
     const SamplePoint asked_point = app::readPoint(cli);  // checked now; compared below
-    const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
+    const int threads = distributed::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
                                              {"input", cli.required("input")},

@@ -1,7 +1,6 @@
 // mcws_sample: Monte Carlo workspace sampling of a robot (Yin, Wang & Yu 2010, section 3; Fu, Hu,
 // Chen & Pan 2016, eq. (5)), or of a validation shape with known area or volume. Writes a PCD cloud
 // of mcws::WorkspacePoint.
-#include <algorithm>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -11,11 +10,13 @@
 #include "common/app.h"
 #include "common/flags.h"
 #include "common/units.h"
+#include "mcws/collision/collision_report.h"
 #include "mcws/collision/collision_sampler.h"
 #include "mcws/distributed/sample_writer.h"
 #include "mcws/io/cloud_io.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/reach/reach_report.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
 
 namespace {
@@ -117,25 +118,8 @@ Source shapeSource(const app::CommandLine& cli, std::uint64_t seed) {
   const Shape shape = app::asUsageError("shape", [&] { return parseShape(name); });
   Source source;
   source.generator = std::make_unique<ShapeSampler>(shape, seed);
-  const char* measure = shapeIsPlanar(shape) ? "area" : "volume";
-  source.summary = {
-      {"shape", name},
-      {measure, shapeMeasure(shape)},
-      {"length_unit", kUnrecordedUnit},
-      {"units", {{measure, std::string(kUnrecordedUnit) + (shapeIsPlanar(shape) ? "^2" : "^3")}}}};
+  source.summary = shapeSummary(name, shape);
   return source;
-}
-
-/// Points per collision label, as counts and fractions of all samples.
-nlohmann::json labelSummary(const SampleSummary& result, std::size_t samples) {
-  nlohmann::json labels;
-  for (std::uint32_t label : {kLabelFree, kLabelLinkLink, kLabelToolLink, kLabelEnvironment}) {
-    const auto found = result.label_counts.find(label);
-    const std::size_t count = found == result.label_counts.end() ? 0 : found->second;
-    labels[labelName(label)] = {
-        {"label", label}, {"count", count}, {"fraction", double(count) / double(samples)}};
-  }
-  return labels;
 }
 
 }  // namespace
@@ -150,7 +134,7 @@ int main(int argc, char** argv) {
     const auto samples = static_cast<std::size_t>(app::parseInteger(
         cli.text("samples", "6000"), "samples", 1, std::numeric_limits<int>::max()));
     const std::uint64_t seed = app::readSeed(cli);
-    const int threads = app::threadsPerProcess(app::readThreads(cli), processes);
+    const int threads = distributed::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     const SamplePoint point = app::readPoint(cli);
     if (cli.has("robot") == cli.has("shape"))
@@ -195,12 +179,8 @@ int main(int argc, char** argv) {
     summary["seed"] = seed;
     summary["processes"] = processes.size();
     summary["seconds"] = progress.seconds();
-    if (source.checker) summary["labels"] = labelSummary(result, samples);
-    summary["bbox"] = {{"min", {result.min.x(), result.min.y(), result.min.z()}},
-                       {"max", {result.max.x(), result.max.y(), result.max.z()}}};
-    const std::string length = summary["length_unit"];
-    summary["units"]["bbox.min"] = length;
-    summary["units"]["bbox.max"] = length;
+    if (source.checker) summary["labels"] = labelCountsJson(result, samples);
+    addBoundingBox(summary, result, summary["length_unit"].get<std::string>());
     summary["units"]["seconds"] = "s";
     if (cli.has("json")) {
       std::cout << summary.dump() << "\n";

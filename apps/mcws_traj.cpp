@@ -14,6 +14,7 @@
 #include "mcws/trajectory/joint_trajectory.h"
 #include "mcws/trajectory/tool_path.h"
 #include "mcws/trajectory/trajectory_io.h"
+#include "mcws/trajectory/trajectory_report.h"
 
 namespace {
 
@@ -153,36 +154,19 @@ void saveMove(const Robot& robot, const Move& move, const SampledTrajectory& sam
   outputs.commit();
 }
 
+/// The --json summary: the move as asked, and what its samples do (trajectorySummary()).
 nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTrajectory& samples,
                            const Eigen::MatrixXd& xyz) {
-  nlohmann::json out;
-  out["robot"] = robot.name;
-  out["length_unit"] = unitName(robot.length_unit);
+  nlohmann::json out = trajectorySummary(robot, samples, xyz);
   out["profile"] = move.line           ? "line, " + move.profile
                    : move.vias.empty() ? move.profile
                                        : "cubic spline";
   out["duration"] = move.duration;
   out["rate"] = move.rate;
-  out["samples"] = samples.size();
   out["output"] = move.output;
   if (!move.plot.empty()) out["plot"] = move.plot;
-  for (int j = 0; j < robot.dof(); ++j) {
-    out["joints"].push_back(robot.joints[j].name);
-    out["peak_velocity"].push_back(samples.qd.col(j).cwiseAbs().maxCoeff());
-    out["peak_acceleration"].push_back(samples.qdd.col(j).cwiseAbs().maxCoeff());
-  }
-  const Eigen::Index last = xyz.rows() - 1;
-  out["tool_start"] = {xyz(0, 0), xyz(0, 1), xyz(0, 2)};
-  out["tool_end"] = {xyz(last, 0), xyz(last, 1), xyz(last, 2)};
-  out["tool_path_length"] = pathLength(xyz);
-  const std::string length = unitName(robot.length_unit);
-  out["units"] = {{"duration", "s"},
-                  {"rate", "Hz"},
-                  {"peak_velocity", jointUnits(robot, "/s")},
-                  {"peak_acceleration", jointUnits(robot, "/s^2")},
-                  {"tool_start", length},
-                  {"tool_end", length},
-                  {"tool_path_length", length}};
+  out["units"]["duration"] = "s";
+  out["units"]["rate"] = "Hz";
   return out;
 }
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Proof that a reshaping changed no output: runs the same stage-tool commands with two builds and
-# compares every file they write, their stdout (JSON and plain text, with the wall-time fields
-# taken out) and their exit codes, byte for byte. Covers every tool, the boundary of the 1e6-point
-# disk and ball, and a set of bad inputs. Prints one line per command and exits 1 on any
+# compares every file they write, their stdout and stderr (JSON and plain text, with the wall-time
+# fields and stderr's progress lines taken out) and their exit codes, byte for byte. Covers every
+# tool (envelope, reach maps and studies, base placement, the tiled boundary, traj --to-pose,
+# sample --quality, behave with plots among them), the boundary of the 1e6-point disk and ball,
+# and a set of bad inputs. Prints one line per command and exits 1 on any
 # difference.
 # Usage: scripts/compare_outputs.sh OLD_BUILD NEW_BUILD [WORK_DIR]
 set -euo pipefail
@@ -67,10 +69,44 @@ commands=$(cat <<'EOF'
 @B@/mcws_traj --robot @R@/robots/ta1400.yaml --from "0 0 0" --to "1 1 1" --duration 1 --rate 10 --output @O@/bad9.csv
 @B@/mcws_ik --robot @R@/robots/ta1400.yaml --pose "1 2 3"
 @B@/mcws_fk --robot @R@/robots/ta1400.yaml --q "0 0"
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --radius 1e6 --output @O@/bad10.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --auto-radius 1e9 --output @O@/bad11.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --radius 0.08 --outer-radius 0.05 --output @O@/bad12.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --adaptive 12 --outer-radius 1e6 --output @O@/bad13.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --method grid --cell 1e-9 --output @O@/bad14.pcd
+@B@/mcws_boundary --input @O@/annulus.pcd --plane xy --method extremum --gap 1e6 --output @O@/bad15.pcd
+@B@/mcws_sample --shape disk --samples 50 --seed 5 --output @O@/small.pcd
+@B@/mcws_boundary --input @O@/small.pcd --plane xy --adaptive 60 --output @O@/bad16.pcd
+@B@/mcws_sample --robot @R@/robots/deicing.yaml --samples 30000 --seed 2 --output @O@/d3e.pcd
+@B@/mcws_envelope --input @O@/d3e.pcd --output @O@/env.ply --json
+@B@/mcws_sample --robot @R@/robots/inspection6.yaml --samples 3000 --quality --output @O@/q.pcd --json
+@B@/mcws_sample --robot @R@/robots/maintenance4.yaml --samples 3000 --quality --quality-task full --output @O@/q2.pcd --json
+@B@/mcws_envelope --input @O@/d3e.pcd --output @O@/env.stl --drawing @O@/env.svg --azimuth 30 --json
+@B@/mcws_envelope --input @O@/d3e.pcd --drawing @O@/env2.svg --unit m
+@B@/mcws_envelope --input @O@/d3e.pcd --output @O@/env.vtk --correction none
+@B@/mcws_envelope --input @O@/d3e.pcd
+@B@/mcws_envelope --input @O@/d3e.pcd --output @O@/bad.txt
+@B@/mcws_reach --robot @R@/robots/planar2.yaml --resolution 2cm --orientations 16 --samples 200000 --output @O@/m.pcd --map @O@/m.bin --json
+@B@/mcws_reach --robot @R@/robots/inspection6.yaml --resolution 20cm --samples 30000 --output @O@/i.pcd --halfcut @O@/i.png --histogram @O@/ih.png --checkpoint @O@/ck --checkpoint-every 7000 --json
+@B@/mcws_reach --robot @R@/robots/ta1400.yaml --resolution 20cm --samples 20000 --collision --output @O@/t.pcd
+@B@/mcws_reach --robot @R@/robots/ta1400.yaml --resolution 20cm --samples 20000 --checkpoint-every 5 --output @O@/t2.pcd
+@B@/mcws_reach --robot @R@/robots/maintenance4.yaml --targets @R@/robots/maintenance4_damper_targets.pcd --output @O@/heat.pcd --json
+@B@/mcws_reach --robot @R@/robots/maintenance4.yaml --targets @R@/robots/maintenance4_damper_targets.pcd --output @O@/heat2.pcd
+@B@/mcws_place --robot @R@/robots/maintenance4.yaml --targets @R@/robots/maintenance4_damper_targets.pcd --along "-30 30 10" --resolution 5cm --samples 200000 --output @O@/bases.pcd --plot @O@/place.png --json
+@B@/mcws_place --robot @R@/robots/maintenance4.yaml --targets @R@/robots/maintenance4_damper_targets.pcd --along "-30 30 10" --resolution 5cm --samples 200000 --output @O@/bases2.pcd --confirm all
+@B@/mcws_place --robot @R@/robots/planar2.yaml --targets @R@/robots/maintenance4_damper_targets.pcd --along "-30 70 2" --map @O@/m.bin --output @O@/b3.pcd --json
+@B@/mcws_boundary --input @O@/d3e.pcd --tiles 3 --output @O@/d3_t.pcd --json
+@B@/mcws_boundary --input @O@/d3e.pcd --tiles 2 --adaptive 8 --output @O@/d3_t2.pcd
+@B@/mcws_boundary --input @O@/d3e.pcd --tiles 2 --auto-radius 3 --output @O@/d3_t3.pcd
+@B@/mcws_traj --robot @R@/robots/ta1400.yaml --from "0 0.3 0.2 0 0.5 0" --to-pose "320 50 -950 3.141592653589793 0.47640122440170124 0" --duration 1 --rate 20 --output @O@/line.csv --plot @O@/line.png --json
+@B@/mcws_traj --robot @R@/robots/ta1400.yaml --from "0 0.3 0.2 0 0.5 0" --to-pose "3200 50 -950 0 0 0" --duration 1 --rate 20 --output @O@/line2.csv
+@B@/mcws_behave --model @R@/robots/insulator_cleaner_behaviors.yaml --insulators 2 --log @O@/b2.jsonl --timeline @O@/b2.csv --plot @O@/b2.png --timeline-period 0.5 --json
+@B@/mcws_behave --model @R@/robots/insulator_cleaner_behaviors.yaml --insulators 1 --plot @O@/b3.png --plot-all
+@B@/mcws_boundary --input @O@/d3e.pcd --tiles 3 --radius 9 --output @O@/d3_t4.pcd --interior @O@/d3_t4i.pcd --json
 EOF
 )
 
-# Runs every command with one build; writes stdout (timing fields removed) and exit codes.
+# Runs every command with one build; writes stdout, stderr (timing removed) and exit codes.
 run_all() {  # build, output dir
   local apps=$1/apps out=$2 k=0 line
   rm -rf "$out" && mkdir -p "$out"
@@ -80,11 +116,15 @@ run_all() {  # build, output dir
     line=${line//@O@/$out}
     line=${line//@R@/$root}
     local rc=0
-    eval "$line" >"$out/stdout.$k" 2>/dev/null || rc=$?
+    eval "$line" >"$out/stdout.$k" 2>"$out/stderr.$k" || rc=$?
     echo "$rc" >"$out/rc.$k"
     sed -i -E 's/"[a-z_]*seconds":[-0-9.e+]+,?//g; s/, *[0-9.]+ ?(ms|s) *\)//g' "$out/stdout.$k"
-    # Paths differ between the two runs only by the output directory.
-    sed -i "s#$out#OUT#g" "$out/stdout.$k"
+    # stderr: progress lines ("mcws_x: 40% (...)") come as time allows: dropped; wall times out.
+    sed -i -E '/^mcws_[a-z]+: [0-9]+% \(/d; s/\[done, [0-9]+ ms/[done, X ms/' "$out/stderr.$k"
+    sed -i -E 's/, *[0-9.]+ ?(ms|s) *\)//g' "$out/stderr.$k"
+    # Paths differ between the two runs only by the output directory (and gnuplot's temporary
+    # names).
+    sed -i -E "s#$out#OUT#g; s#mcws_plot_[A-Za-z0-9]+#P#g" "$out/stdout.$k" "$out/stderr.$k"
   done <<<"$commands"
 }
 
@@ -97,7 +137,7 @@ status=0
 k=0
 while IFS= read -r line; do
   k=$((k + 1))
-  for f in stdout rc; do
+  for f in stdout stderr rc; do
     if ! cmp -s "$work/old/$f.$k" "$work/new/$f.$k"; then
       echo "DIFFERS ($f): $line"
       status=1
@@ -106,11 +146,12 @@ while IFS= read -r line; do
 done <<<"$commands"
 for f in "$work/old"/*; do
   name=$(basename "$f")
-  [[ $name == stdout.* || $name == rc.* ]] && continue
+  [[ $name == stdout.* || $name == stderr.* || $name == rc.* ]] && continue
   if [[ ! -e $work/new/$name ]]; then
     echo "MISSING in new: $name"
     status=1
-  elif ! cmp -s "$f" "$work/new/$name"; then
+  elif ! cmp -s <(sed -E "s#$work/old#OUT#g; s#mcws_plot_[A-Za-z0-9]+#P#g" "$f") \
+    <(sed -E "s#$work/new#OUT#g; s#mcws_plot_[A-Za-z0-9]+#P#g" "$work/new/$name"); then
     echo "DIFFERS (file): $name"
     status=1
   fi
@@ -118,7 +159,8 @@ done
 for f in "$work/new"/*; do
   [[ -e $work/old/$(basename "$f") ]] || { echo "EXTRA in new: $(basename "$f")"; status=1; }
 done
-files=$(find "$work/old" -maxdepth 1 -type f ! -name 'stdout.*' ! -name 'rc.*' | wc -l)
+files=$(find "$work/old" -maxdepth 1 -type f ! -name 'stdout.*' ! -name 'stderr.*' ! -name 'rc.*' |
+  wc -l)
 echo "compare_outputs: $k commands, $files files written;" \
   "$([[ $status == 0 ]] && echo "all byte-identical" || echo "differences above")"
 exit $status

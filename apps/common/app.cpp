@@ -2,34 +2,18 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <new>
 #include <sstream>
 
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/input_files.h"
 #include "mcws/io/atomic_file.h"
 
 namespace mcws::app {
-
-std::string escapeControlBytes(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte != 0x7f) {
-      out += c;
-    } else {
-      char escaped[5];
-      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
-      out += escaped;
-    }
-  }
-  return out;
-}
 
 namespace {
 
@@ -38,10 +22,6 @@ std::string& givenFlags() {
   static std::string given;
   return given;
 }
-
-}  // namespace
-
-namespace {
 
 /// run()'s body with the error line returned in `message` (with its newline) instead of printed.
 int runCapturing(const char* program, const std::function<int()>& body, std::string& message) {
@@ -58,13 +38,13 @@ int runCapturing(const char* program, const std::function<int()>& body, std::str
               ": a file or flag asks for more than this machine has\n";
     return kExitFailure;
   } catch (const UsageError& e) {
-    message = std::string(program) + ": " + escapeControlBytes(e.what()) + " (see --help)\n";
+    message = std::string(program) + ": " + escapedControlBytes(e.what()) + " (see --help)\n";
     return kExitUsage;
   } catch (const po::error& e) {
-    message = std::string(program) + ": " + escapeControlBytes(e.what()) + " (see --help)\n";
+    message = std::string(program) + ": " + escapedControlBytes(e.what()) + " (see --help)\n";
     return kExitUsage;
   } catch (const std::exception& e) {
-    message = std::string(program) + ": " + escapeControlBytes(e.what()) + "\n";
+    message = std::string(program) + ": " + escapedControlBytes(e.what()) + "\n";
     return kExitFailure;
   }
 }
@@ -147,7 +127,7 @@ bool CommandLine::parse(int argc, char** argv) {
   std::string& given = givenFlags();
   given.clear();
   for (int k = 1; k < argc; ++k) {
-    std::string word = escapeControlBytes(argv[k]);
+    std::string word = escapedControlBytes(argv[k]);
     if (word.size() > 60) word = word.substr(0, 60) + "...";
     given += (k > 1 ? " " : "") + word;
   }

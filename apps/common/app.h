@@ -31,15 +31,11 @@ constexpr int kExitUsage = 2;    ///< a bad command line
 /// \brief A bad command line (exit code 2).
 using UsageError = mcws::UsageError;
 
-/// \brief `text` with its control bytes (below 0x20, and 0x7f) written as \xNN, so that a value
-/// read from a file or typed as a flag cannot break a one-line message or drive the terminal.
-/// Bytes from 0x80 up are kept (UTF-8 names). run() applies it to every message.
-std::string escapeControlBytes(const std::string& text);
-
 /// \brief Runs a tool's body: mcws::app::UsageError and Boost.Program_options errors print
 /// "program: message" and return 2, every other error prints it and returns 1. Running out of
 /// memory (std::bad_alloc, which names nothing) is reported with the innermost Activity and the
 /// flags given: "out of memory while reading --input 'a.pcd' (given: --input a.pcd --radius 2)".
+/// Control bytes in a message are escaped (escapedControlBytes()), so it stays one line.
 int run(const char* program, const std::function<int()>& body);
 
 /// \brief run() for a tool that may run on several processes (mpirun): `body` calls

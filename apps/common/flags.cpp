@@ -1,12 +1,8 @@
 #include "common/flags.h"
 
-#include <sched.h>
-
-#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <thread>
 #include <utility>
 
 #include "mcws/kinematics/robot_urdf.h"
@@ -48,18 +44,6 @@ std::uint64_t readSeed(const CommandLine& cli, std::uint64_t fallback) {
 
 int readThreads(const CommandLine& cli, int minimum) {
   return static_cast<int>(parseInteger(cli.text("threads", "0"), "threads", minimum, kMaxThreads));
-}
-
-int threadsPerProcess(int requested, const distributed::Processes& processes) {
-  if (requested > 0 || !processes.distributed()) return requested;
-  const int cores = static_cast<int>(std::thread::hardware_concurrency());
-  // A launcher that binds each process to its cores (Open MPI does for up to 2 processes) says
-  // how many this one has.
-  cpu_set_t allowed;
-  const int shared = std::max(1, cores / processes.localSize());
-  if (::sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) < cores)
-    return std::max(1, std::min(CPU_COUNT(&allowed), shared));  // bound to a socket: still shared
-  return shared;
 }
 
 SamplePoint readPoint(const CommandLine& cli) {

@@ -9,7 +9,6 @@
 #include <string>
 
 #include "common/app.h"
-#include "mcws/distributed/processes.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/kinematics/robot.h"
 #include "mcws/reach/quality.h"
@@ -55,11 +54,6 @@ std::uint64_t readSeed(const CommandLine& cli, std::uint64_t fallback = 1);
 /// \brief --threads: a whole number in [minimum, kMaxThreads], 0 (the default) meaning all
 /// cores; tools that cannot take 0 pass minimum 1 and read the flag only when given.
 int readThreads(const CommandLine& cli, int minimum = 0);
-
-/// \brief The threads each process of a run on several processes runs: `requested` (from
-/// readThreads()), or for 0 the cores the launcher bound the process to, else the machine's cores
-/// shared among the run's processes on it (at least 1). One process: `requested` as it is.
-int threadsPerProcess(int requested, const distributed::Processes& processes);
 
 /// \brief --point: tool (default) | flange, the point a sample records.
 SamplePoint readPoint(const CommandLine& cli);

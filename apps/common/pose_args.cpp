@@ -1,10 +1,10 @@
 #include "common/pose_args.h"
 
-#include <Eigen/SVD>
 #include <cmath>
 #include <sstream>
 
 #include "common/app.h"
+#include "common/flags.h"
 #include "mcws/kinematics/robot.h"
 
 namespace mcws::app {
@@ -43,31 +43,7 @@ Eigen::Isometry3d parseMatrix(const std::string& text, const std::string& flag) 
   const Eigen::VectorXd v = numbers(text, flag, 16, "a 4x4 matrix, row by row");
   const Eigen::Matrix4d M =
       Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(v.data());
-  if (M.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
-    std::ostringstream msg;
-    msg << "--" << flag << ": last row is "
-        << M.row(3).format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, " "))
-        << ", not 0 0 0 1";
-    throw UsageError(msg.str());
-  }
-  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
-  const double deviation = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
-  if (deviation > kTypedRotationTolerance) {
-    std::ostringstream msg;
-    msg << "--" << flag << ": the rotation is not orthonormal (|R^T R - I| = " << deviation
-        << ", at most " << kTypedRotationTolerance << " accepted)";
-    throw UsageError(msg.str());
-  }
-  if (R.determinant() < 0.0) {
-    throw UsageError("--" + flag + ": the rotation is a reflection (det R = " +
-                     std::to_string(R.determinant()) + ")");
-  }
-  // The nearest rotation (Frobenius norm): U V^T of R's singular value decomposition.
-  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-  T.linear() = svd.matrixU() * svd.matrixV().transpose();
-  T.translation() = M.topRightCorner<3, 1>();
-  return T;
+  return asUsageError(flag, [&] { return poseFromTypedMatrix(M); });
 }
 
 }  // namespace mcws::app

@@ -8,21 +8,16 @@
 
 namespace mcws::app {
 
-/// \brief Largest |R^T R - I| entry accepted from a typed matrix: a matrix printed with 4
-/// decimals (as Liu, Han, Xu & Li 2021 print theirs) passes, a wrong entry does not. Accepted
-/// rotations are replaced by the nearest rotation matrix.
-constexpr double kTypedRotationTolerance = 1e-3;
-
 /// \brief "x y z roll pitch yaw": translation [length unit] and fixed-axis angles [rad],
 /// R = Rz(yaw) Ry(pitch) Rx(roll) (as URDF).
 /// \throws UsageError naming `flag` for a value that is not a finite number or a count other
 ///   than 6.
 Eigen::Isometry3d parsePose(const std::string& text, const std::string& flag);
 
-/// \brief 16 numbers, row by row, of a homogeneous 4x4 pose.
+/// \brief 16 numbers, row by row, of a homogeneous 4x4 pose (poseFromTypedMatrix()).
 /// \throws UsageError naming `flag` for a value that is not a finite number, a count other than
 ///   16, a last row other than 0 0 0 1, or a rotation that is not orthonormal within
-///   kTypedRotationTolerance or is a reflection.
+///   mcws::kTypedRotationTolerance or is a reflection.
 Eigen::Isometry3d parseMatrix(const std::string& text, const std::string& flag);
 
 }  // namespace mcws::app

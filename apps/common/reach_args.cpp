@@ -2,10 +2,8 @@
 
 #include <cmath>
 #include <limits>
-#include <utility>
 
 #include "common/flags.h"
-#include "mcws/collision/collision_model.h"
 #include "mcws/collision/robot_bodies.h"
 #include "mcws/reach/targets_file.h"
 
@@ -80,11 +78,8 @@ ReachStudyOptions readReachStudyOptions(const CommandLine& cli, const Robot& rob
 std::vector<ReachTarget> readTargets(const CommandLine& cli, const Robot& robot) {
   std::vector<ReachTarget> targets = loadTargets(cli.required("targets"));
   if (cli.has("standoff")) {
-    const double standoff =
-        parseLength(cli.required("standoff"), "standoff", robot.length_unit, true);
-    for (ReachTarget& target : targets) {
-      target.pose.translation() -= standoff * target.pose.linear().col(2);
-    }
+    applyStandoff(targets,
+                  parseLength(cli.required("standoff"), "standoff", robot.length_unit, true));
   }
   return targets;
 }
@@ -92,10 +87,7 @@ std::vector<ReachTarget> readTargets(const CommandLine& cli, const Robot& robot)
 std::unique_ptr<CollisionChecker> studyChecker(const CommandLine& cli, const Robot& robot,
                                                bool environment) {
   if (cli.has("no-collision")) return nullptr;
-  CollisionModel model = loadCollisionModel(robot, cli.required("robot"));
-  if (!environment) model = robotBodiesOnly(std::move(model));
-  if (!hasGeometry(model)) return nullptr;
-  return std::make_unique<CollisionChecker>(robot, model);
+  return checkerIfModelled(robot, cli.required("robot"), environment);
 }
 
 }  // namespace mcws::app

@@ -9,6 +9,7 @@
 
 #include "common/app.h"
 #include "common/pose_args.h"
+#include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "test_support.h"
 
@@ -42,7 +43,7 @@ TEST(AppRun, ControlBytesInAMessageAreEscaped) {
   });
   EXPECT_EQ(code, app::kExitFailure);
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "mcws_test: a\\x0ab\\x1b[31m\\x7fz\n");
-  EXPECT_EQ(app::escapeControlBytes("caf\xc3\xa9\t"), "caf\xc3\xa9\\x09");  // UTF-8 kept
+  EXPECT_EQ(escapedControlBytes("caf\xc3\xa9\t"), "caf\xc3\xa9\\x09");  // UTF-8 kept
 }
 
 TEST(AppFlags, RealNumbersAreDecimalOnlyAndListsHaveNoEmptyItems) {

@@ -420,6 +420,21 @@ std::vector<std::string> writeStateMachineDots(const BehaviorModel& model, const
   return written;
 }
 
+std::string runFailure(const RunSummary& summary) {
+  switch (summary.status) {
+    case RunStatus::kInvariantViolated:
+      return "safety invariant violated at " + summary.violation->message;
+    case RunStatus::kBatteryEmpty:
+      return "the battery ran empty; the robot is stranded on the string";
+    case RunStatus::kSafetyStop:
+      return "safety stop: " + summary.safety_stop->message;
+    case RunStatus::kTimeLimit:
+      return "the simulated time limit was reached";
+    default:
+      return "";
+  }
+}
+
 std::string summaryText(const RunSummary& s) {
   std::ostringstream out;
   out << "status: " << runStatusName(s.status) << "\n"

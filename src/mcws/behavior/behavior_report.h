@@ -46,6 +46,11 @@ nlohmann::ordered_json summaryJson(const RunSummary& summary);
 /// every fault with its reaction, the invariant; numbers with their units.
 std::string summaryText(const RunSummary& summary);
 
+/// \brief Why a run failed, in one line ("the simulated time limit was reached"), or empty for a
+/// run that ended as planned: a violated invariant, an empty battery, a safety stop and the time
+/// limit are failures; a completed run, a return to the start and a halt in manual are not.
+std::string runFailure(const RunSummary& summary);
+
 /// \brief `mcws_behave --check --json`: valid (no pose findings), the state vector's counts
 /// (state_vector_combinations, allowed_poses, forbidden_poses, states_with_poses, poses_used),
 /// basic_behaviors, events, combined_behaviors [{name, states, transitions, events}],

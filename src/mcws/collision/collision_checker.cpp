@@ -491,4 +491,23 @@ const char* labelName(std::uint32_t label) {
   }
 }
 
+std::uint32_t reportedLabel(const std::vector<PairReport>& pairs) {
+  std::uint32_t label = kLabelFree;
+  for (const PairReport& pair : pairs) {
+    if (pair.colliding && (label == kLabelFree || pair.label < label)) label = pair.label;
+  }
+  return label;
+}
+
+std::vector<PairReport> pairsToShow(std::vector<PairReport> pairs, bool all) {
+  std::sort(pairs.begin(), pairs.end(),
+            [](const PairReport& a, const PairReport& b) { return a.distance < b.distance; });
+  const bool free = reportedLabel(pairs) == kLabelFree;
+  std::vector<PairReport> shown;
+  for (const PairReport& pair : pairs) {
+    if (all || pair.colliding || (free && shown.empty())) shown.push_back(pair);
+  }
+  return shown;
+}
+
 }  // namespace mcws

@@ -161,4 +161,12 @@ class CollisionChecker {
 /// \brief Name of a label: "free", "link-link", "tool-link", "environment".
 const char* labelName(std::uint32_t label);
 
+/// \brief The label of the joint values CollisionChecker::report() gave `pairs` for, as label()
+/// gives it: the lowest label of a colliding pair, kLabelFree when none collides.
+std::uint32_t reportedLabel(const std::vector<PairReport>& pairs);
+
+/// \brief The pairs of a report worth showing, nearest first (by PairReport::distance): every
+/// pair with `all`, else the colliding ones or, when none collides, the pair of least clearance.
+std::vector<PairReport> pairsToShow(std::vector<PairReport> pairs, bool all);
+
 }  // namespace mcws

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace mcws {
 
@@ -18,6 +19,14 @@ CollisionModel robotBodiesOnly(CollisionModel model) {
                       model.allowed.end());
   model.environment.clear();
   return model;
+}
+
+std::unique_ptr<CollisionChecker> checkerIfModelled(const Robot& robot, const std::string& path,
+                                                    bool environment) {
+  CollisionModel model = loadCollisionModel(robot, path);
+  if (!environment) model = robotBodiesOnly(std::move(model));
+  if (!hasGeometry(model)) return nullptr;
+  return std::make_unique<CollisionChecker>(robot, model);
 }
 
 }  // namespace mcws

@@ -1,5 +1,6 @@
 #include "mcws/distributed/processes.h"
 
+#include <sched.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <thread>
 
 #include "mcws/core/error.h"
 #include "mcws/io/atomic_file.h"
@@ -420,6 +422,16 @@ void SharedFile::commit() {
   }
   if (processes_.rank() == 0) impl_->file->commit();
   processes_.barrier();  // every process returns with the file in place
+}
+
+int threadsPerProcess(int requested, const Processes& processes) {
+  if (requested > 0 || !processes.distributed()) return requested;
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  cpu_set_t allowed;
+  const int shared = std::max(1, cores / processes.localSize());
+  if (::sched_getaffinity(0, sizeof allowed, &allowed) == 0 && CPU_COUNT(&allowed) < cores)
+    return std::max(1, std::min(CPU_COUNT(&allowed), shared));  // bound to a socket: still shared
+  return shared;
 }
 
 }  // namespace mcws::distributed

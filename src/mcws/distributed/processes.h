@@ -163,4 +163,9 @@ class SharedFile {
   std::unique_ptr<Impl> impl_;
 };
 
+/// \brief The threads each process of a run on several processes runs: `requested` (a tool's
+/// --threads), or for 0 the cores the launcher bound the process to, else the machine's cores
+/// shared among the run's processes on it (at least 1). One process: `requested` as it is.
+int threadsPerProcess(int requested, const Processes& processes);
+
 }  // namespace mcws::distributed

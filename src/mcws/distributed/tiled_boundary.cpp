@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <sstream>
 
 #include "mcws/core/error.h"
 #include "mcws/filters/orthant/cloud_stages.h"
@@ -318,6 +319,14 @@ TiledBoundary tiledBoundary(
   processes.sum(kept_count);
   result.kept = kept_count[0];
   return result;
+}
+
+std::string fileFingerprint(const io::PcdPointReader& reader, const FileSummary& file) {
+  std::ostringstream seen;
+  seen.precision(17);
+  seen << reader.size() << " points, " << file.cloud.finite << " finite, low "
+       << file.low.transpose() << ", extent " << file.cloud.extent.transpose();
+  return seen.str();
 }
 
 }  // namespace mcws::distributed

@@ -72,4 +72,9 @@ void forEachPiece(io::PcdPointReader& reader,
 /// and the range of its coordinates, for the checks io::readCloud() and summarizeCloud() make.
 FileSummary summarizeFile(io::PcdPointReader& reader, BoundaryPlane plane);
 
+/// \brief What a process saw of the file `reader` reads in summarizeFile(): its point count, the
+/// finite points, their lowest corner and extent (17 digits), for the processes of a run to check
+/// that they all read the same file (Processes::setUpDone()).
+std::string fileFingerprint(const io::PcdPointReader& reader, const FileSummary& file);
+
 }  // namespace mcws::distributed

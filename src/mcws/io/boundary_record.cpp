@@ -17,6 +17,13 @@ std::string describeCloud(std::uint64_t points, const std::string& sha256) {
 
 }  // namespace
 
+std::optional<CloudProvenance> boundaryProvenance(const std::string& input, std::uint64_t points,
+                                                  std::uint64_t boundary_points) {
+  std::optional<CloudProvenance> recorded = readProvenance(input);
+  if (recorded) recorded->input = InputCloud{points, sha256OfFile(input), boundary_points};
+  return recorded;
+}
+
 void requireBoundaryOf(const std::string& path, const std::string& input, std::uint64_t points,
                        std::uint64_t boundary_points) {
   const std::optional<CloudProvenance> boundary = readProvenance(path);

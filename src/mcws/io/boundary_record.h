@@ -1,13 +1,25 @@
 #pragma once
 /// \file
-/// \brief The check that a boundary cloud is the whole boundary of a given cloud, by the record
-/// mcws_boundary writes into its header (the point count and SHA-256 of the cloud it read and
-/// the number of boundary points it wrote).
+/// \brief The record mcws_boundary writes into its outputs' headers (the point count and
+/// SHA-256 of the cloud it read and the number of boundary points it wrote), and the check that
+/// a boundary cloud is by it the whole boundary of a given cloud.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
+#include "mcws/io/provenance.h"
+
 namespace mcws::io {
+
+/// \brief The provenance a boundary of the cloud file `input` (of `points` points) records: the
+/// input's own (its robot and sampling, when it records them; none otherwise) with the input's
+/// identity, its point count and SHA-256, and `boundary_points`, the boundary's point count, so
+/// that requireBoundaryOf() can tell the whole boundary of this cloud from that of a subset or an
+/// older cloud, or from a part of it.
+/// \throws mcws::Error when `input` cannot be read.
+std::optional<CloudProvenance> boundaryProvenance(const std::string& input, std::uint64_t points,
+                                                  std::uint64_t boundary_points);
 
 /// \brief Checks that the boundary cloud `path` (--boundary, of `boundary_points` points) is the
 /// boundary of the cloud `input` (--input, of `points` points) itself, not of a subset of it or

@@ -366,6 +366,16 @@ void checkOptions(const IkOptions& o) {
 
 }  // namespace
 
+std::string describeIkFailure(const Robot& robot, const IkResult& result) {
+  std::ostringstream msg;
+  msg.precision(4);
+  msg << "no solution (" << ikStatusName(result.status) << "): the best pose found is "
+      << result.position_error << " " << unitName(robot.length_unit) << " and "
+      << result.orientation_error << " rad away, after " << result.iterations << " iterations from "
+      << result.attempts << " starts";
+  return msg.str();
+}
+
 const char* ikStatusName(IkStatus status) {
   switch (status) {
     case IkStatus::kConverged:

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "mcws/kinematics/robot.h"
 
@@ -50,6 +51,11 @@ struct IkResult {
   double orientation_error{0.0};  ///< angle of R_target R(q)^T [rad]
   bool converged() const { return status == IkStatus::kConverged; }
 };
+
+/// \brief How close an attempt that did not converge came, for a message (4 digits): "no
+/// solution (max_iterations): the best pose found is 0.3 mm and 0.01 rad away, after 2000
+/// iterations from 8 starts", in the length unit of `robot`.
+std::string describeIkFailure(const Robot& robot, const IkResult& result);
 
 /// \brief Robust inverse kinematics: the joint vector within limits whose tool pose is
 /// T_world_tool_target.

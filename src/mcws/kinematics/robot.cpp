@@ -1,5 +1,6 @@
 #include "mcws/kinematics/robot.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -16,6 +17,15 @@ std::vector<std::string> jointUnits(const Robot& robot, const std::string& per) 
                     per);
   }
   return units;
+}
+
+std::string jointUnitsText(const Robot& robot) {
+  const std::vector<std::string> units = jointUnits(robot);
+  if (std::all_of(units.begin(), units.end(), [&](const auto& u) { return u == units.front(); }))
+    return units.front();
+  std::string text;
+  for (const std::string& unit : units) text += (text.empty() ? "" : ", ") + unit;
+  return text + " (joint by joint)";
 }
 
 const char* jointTypeName(JointType type) {
@@ -109,6 +119,32 @@ Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector
                 Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
                 Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
                    .toRotationMatrix();
+  return T;
+}
+
+Eigen::Isometry3d poseFromTypedMatrix(const Eigen::Matrix4d& M) {
+  if (M.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
+    std::ostringstream msg;
+    msg << "last row is "
+        << M.row(3).format(Eigen::IOFormat(Eigen::StreamPrecision, Eigen::DontAlignCols, " "))
+        << ", not 0 0 0 1";
+    throw Error(msg.str());
+  }
+  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
+  const double deviation = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (deviation > kTypedRotationTolerance) {
+    std::ostringstream msg;
+    msg << "the rotation is not orthonormal (|R^T R - I| = " << deviation << ", at most "
+        << kTypedRotationTolerance << " accepted)";
+    throw Error(msg.str());
+  }
+  if (R.determinant() < 0.0) {
+    throw Error("the rotation is a reflection (det R = " + std::to_string(R.determinant()) + ")");
+  }
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = svd.matrixU() * svd.matrixV().transpose();
+  T.translation() = M.topRightCorner<3, 1>();
   return T;
 }
 

@@ -69,6 +69,9 @@ std::string describeLimits(const Joint& joint, LengthUnit unit);
 /// \brief The unit of each joint's value: "rad" (revolute) or the robot's length unit (prismatic),
 /// followed by `per` (e.g. "/s" for velocities).
 std::vector<std::string> jointUnits(const Robot& robot, const std::string& per = "");
+/// \brief jointUnits() in words: "rad" when every joint's value has the same unit, else each
+/// joint's: "rad, rad, rad, cm (joint by joint)".
+std::string jointUnitsText(const Robot& robot);
 
 /// \brief Throws unless `name` is free of control bytes (hasControlByte(), core/control_bytes.h).
 /// \param where names the field in the message: "bad.urdf: link".
@@ -84,6 +87,17 @@ Eigen::Isometry3d dhModified(double a, double alpha, double d, double theta);
 /// \brief Pose from a translation and fixed-axis roll, pitch, yaw (as URDF):
 /// R = Rz(yaw) * Ry(pitch) * Rx(roll). Angles [rad].
 Eigen::Isometry3d poseFromXyzRpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
+
+/// \brief Largest |R^T R - I| entry accepted from a typed matrix (poseFromTypedMatrix()): a
+/// matrix printed with 4 decimals (as Liu, Han, Xu & Li 2021 print theirs) passes, a wrong entry
+/// does not.
+constexpr double kTypedRotationTolerance = 1e-3;
+/// \brief The pose of a homogeneous 4x4 matrix typed by hand [length unit]: its rotation, within
+/// kTypedRotationTolerance of orthonormal, replaced by the nearest rotation matrix (Frobenius
+/// norm: U V^T of its singular value decomposition).
+/// \throws mcws::Error for a last row other than 0 0 0 1 ("last row is 0 0 1 1, not 0 0 0 1"),
+///   a rotation further from orthonormal, or a reflection.
+Eigen::Isometry3d poseFromTypedMatrix(const Eigen::Matrix4d& M);
 
 /// \brief Length scale of a chain [length unit]: the sum of its fixed offsets (base to flange,
 /// flange to tool) and prismatic strokes, an upper bound on the tool point's distance from the

@@ -129,6 +129,19 @@ std::vector<BaseCandidate> placeBase(
   return candidates;
 }
 
+std::vector<Eigen::Vector3d> offsetGrid(const std::vector<double>& xs,
+                                        const std::vector<double>& ys,
+                                        const std::vector<double>& zs) {
+  std::vector<Eigen::Vector3d> all;
+  all.reserve(xs.size() * ys.size() * zs.size());
+  for (double x : xs) {
+    for (double y : ys) {
+      for (double z : zs) all.emplace_back(x, y, z);
+    }
+  }
+  return all;
+}
+
 int bestCandidate(const std::vector<BaseCandidate>& candidates) {
   int best = -1;
   for (std::size_t c = 0; c < candidates.size(); ++c) {

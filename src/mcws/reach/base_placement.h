@@ -48,6 +48,12 @@ struct PlacementOptions {
   double approach_tolerance{0.0};  ///< as ReachStudyOptions::approach_tolerance [rad]
 };
 
+/// \brief The offsets of a grid of base positions [length unit]: every (x, y, z) of `xs` x `ys`
+/// x `zs`, z fastest, then y, then x.
+std::vector<Eigen::Vector3d> offsetGrid(const std::vector<double>& xs,
+                                        const std::vector<double>& ys,
+                                        const std::vector<double>& zs);
+
 /// \brief Scores every offset from the map, confirms the best by the study (the robot and
 /// collision model it holds, the environment staying in place).
 /// \param progress called with (steps done, all steps) now and then.

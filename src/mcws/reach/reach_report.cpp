@@ -121,4 +121,35 @@ nlohmann::json placementSummary(const Robot& robot, std::size_t targets, const R
           {"candidates", table}};
 }
 
+std::string mapFileHeader(const Robot& robot, const std::string& robot_file,
+                          const std::string& robot_sha256, const nlohmann::json& summary) {
+  return nlohmann::json{{"robot", robot.name},
+                        {"robot_file", robot_file},
+                        {"robot_sha256", robot_sha256},
+                        {"length_unit", unitName(robot.length_unit)},
+                        {"samples", summary["samples"]},
+                        {"seed", summary["seed"]},
+                        {"collision", summary["collision"]},
+                        {"manipulability", summary["manipulability"]}}
+      .dump();
+}
+
+std::string checkpointRun(const Robot& robot, const std::string& robot_sha256,
+                          const ReachGrid& grid, const ReachSampling& sampling,
+                          std::uint64_t samples, bool collision, int processes, int rank) {
+  return nlohmann::json{{"robot", robot.name},
+                        {"robot_sha256", robot_sha256},
+                        {"resolution", grid.resolution},
+                        {"orientations", grid.directions},
+                        {"rolls", grid.rolls},
+                        {"samples", samples},
+                        {"seed", sampling.seed},
+                        {"collision", collision},
+                        {"manipulability", qualitySummary(sampling.quality, robot)},
+                        {"with_manipulability", sampling.manipulability},
+                        {"processes", processes},
+                        {"rank", rank}}
+      .dump();
+}
+
 }  // namespace mcws

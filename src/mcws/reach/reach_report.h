@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "mcws/kinematics/robot.h"
@@ -45,5 +46,19 @@ nlohmann::json placementSummary(const Robot& robot, std::size_t targets, const R
                                 const nlohmann::json& map_about, const ReachStudyOptions& options,
                                 bool collision, const std::vector<BaseCandidate>& candidates,
                                 int best);
+
+/// \brief The header a map file records (ReachMap::write()): the robot, the base name and
+/// SHA-256 of its file, the length unit, and of `summary` (mapSummary()) the samples, seed,
+/// collision and manipulability, so that a reader (mcws_place --map) can check them.
+std::string mapFileHeader(const Robot& robot, const std::string& robot_file,
+                          const std::string& robot_sha256, const nlohmann::json& summary);
+
+/// \brief The identity of one process's part of a map run that its checkpoint records
+/// (ReachCheckpoint::run): the robot, its file's SHA-256, the grid, the samples of the whole run,
+/// the seed, whether only collision-free samples count, how manipulability is measured, and the
+/// process count and rank, so that a checkpoint of another run is refused.
+std::string checkpointRun(const Robot& robot, const std::string& robot_sha256,
+                          const ReachGrid& grid, const ReachSampling& sampling,
+                          std::uint64_t samples, bool collision, int processes, int rank);
 
 }  // namespace mcws

@@ -130,4 +130,10 @@ std::vector<ReachTarget> loadTargets(const std::string& path) {
   return targets;
 }
 
+void applyStandoff(std::vector<ReachTarget>& targets, double standoff) {
+  for (ReachTarget& target : targets) {
+    target.pose.translation() -= standoff * target.pose.linear().col(2);
+  }
+}
+
 }  // namespace mcws

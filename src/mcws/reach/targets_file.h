@@ -21,4 +21,8 @@ namespace mcws {
 ///   with another header, a value that is not a finite number, a zero normal, or no targets.
 std::vector<ReachTarget> loadTargets(const std::string& path);
 
+/// \brief Moves every target `standoff` [length unit] off its surface, where the tool works from:
+/// along its normal (minus its z axis, the approach of the tool).
+void applyStandoff(std::vector<ReachTarget>& targets, double standoff);
+
 }  // namespace mcws

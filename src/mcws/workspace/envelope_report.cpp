@@ -1,6 +1,7 @@
 #include "mcws/workspace/envelope_report.h"
 
 #include <cmath>
+#include <string>
 
 namespace mcws {
 
@@ -28,6 +29,37 @@ std::vector<ReportValue> drawingValues(const EnvelopeDrawing& drawing, const Res
           {"swept_angle", deg(top.sweep), "deg"},    {"sweep_from", deg(top.sweep_from), "deg"},
           {"sweep_to", deg(top.sweep_to), "deg"},    {"highest", drawing.highest, length},
           {"lowest", drawing.lowest, length}};
+}
+
+namespace {
+
+/// Each value under its name in `out` and its unit under `prefix` + name in `units`.
+void addValues(const std::vector<ReportValue>& values, const std::string& prefix,
+               nlohmann::json& out, nlohmann::json& units) {
+  for (const ReportValue& value : values) {
+    out[value.name] = value.value;
+    units[prefix + value.name] = value.unit;
+  }
+}
+
+}  // namespace
+
+nlohmann::json envelopeSummary(const Envelope& envelope, const MeasureOptions& options,
+                               const std::optional<EnvelopeDrawing>& drawing,
+                               const ResultUnits& units) {
+  const SurfaceTopology topology = surfaceTopology(envelope.mesh);
+  nlohmann::json out{{"correction", options.edge_correction ? "efron" : "none"},
+                     {"points", envelope.measure.points},
+                     {"vertices", topology.vertices},
+                     {"triangles", topology.triangles},
+                     {"edges", topology.edges},
+                     {"euler_characteristic", topology.euler_characteristic},
+                     {"closed_and_oriented", topology.closedAndOriented()},
+                     {"non_manifold_edges", topology.non_manifold_edges},
+                     {"length_unit", units.lengthName()}};
+  addValues(envelopeValues(envelope, options, units), "", out, out["units"]);
+  if (drawing) addValues(drawingValues(*drawing, units), "drawing.", out["drawing"], out["units"]);
+  return out;
 }
 
 }  // namespace mcws

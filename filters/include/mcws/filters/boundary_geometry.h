@@ -66,6 +66,17 @@ void projectToPlane(const pcl::PointCloud<PointT>& cloud, const pcl::Indices& in
   }
 }
 
+/// \brief projectToPlane() of every point of `cloud` (the non-finite ones skipped).
+template <typename PointT>
+pcl::PointCloud<pcl::PointXYZ> projectedToPlane(const pcl::PointCloud<PointT>& cloud,
+                                                BoundaryPlane plane) {
+  pcl::Indices all(cloud.size()), source;
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
+  pcl::PointCloud<pcl::PointXYZ> projected;
+  projectToPlane(cloud, all, plane, projected, source);
+  return projected;
+}
+
 /// \brief A boundary filter's output, in input order. `source` lists the input indices that were
 /// projected (the finite points, in the order of `input`); projected point k is on the boundary
 /// when `is_boundary(k)`. Kept: boundary != negative; input points not in `source` (non-finite)
@@ -141,12 +152,9 @@ class DistinctCounter {
 /// distinct positions there, as OrthantBoundary computes it.
 template <typename PointT>
 double planeSpacing(const pcl::PointCloud<PointT>& cloud, BoundaryPlane plane) {
-  pcl::Indices all(cloud.size()), source;
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<pcl::index_t>(i);
-  pcl::PointCloud<pcl::PointXYZ> projected;
-  projectToPlane(cloud, all, plane, projected, source);
   std::vector<pcl::index_t> position_of;
-  return meanSpacing(uniquePositions(projected, position_of), boundaryDimensions(plane));
+  return meanSpacing(uniquePositions(projectedToPlane(cloud, plane), position_of),
+                     boundaryDimensions(plane));
 }
 
 /// \brief CloudSummary gathered piece by piece (a cloud read from a file in pieces), without the

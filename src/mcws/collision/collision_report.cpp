@@ -1,0 +1,37 @@
+#include "mcws/collision/collision_report.h"
+
+namespace mcws {
+
+nlohmann::json collisionReportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
+                                   const std::vector<PairReport>& shown) {
+  nlohmann::json out;
+  out["robot"] = robot.name;
+  out["length_unit"] = unitName(robot.length_unit);
+  out["units"] = {{"pairs.distance", unitName(robot.length_unit)}};
+  out["label"] = label;
+  out["label_name"] = labelName(label);
+  out["pairs_checked"] = checked;
+  out["pairs"] = nlohmann::json::array();
+  for (const PairReport& pair : shown) {
+    nlohmann::json item{{"a", pair.body_a},
+                        {"b", pair.body_b},
+                        {"kind", labelName(pair.label)},
+                        {"colliding", pair.colliding}};
+    if (pair.depth_known) item["distance"] = pair.distance;
+    out["pairs"].push_back(item);
+  }
+  return out;
+}
+
+nlohmann::json labelCountsJson(const SampleSummary& result, std::size_t samples) {
+  nlohmann::json labels;
+  for (std::uint32_t label : {kLabelFree, kLabelLinkLink, kLabelToolLink, kLabelEnvironment}) {
+    const auto found = result.label_counts.find(label);
+    const std::size_t count = found == result.label_counts.end() ? 0 : found->second;
+    labels[labelName(label)] = {
+        {"label", label}, {"count", count}, {"fraction", double(count) / double(samples)}};
+  }
+  return labels;
+}
+
+}  // namespace mcws

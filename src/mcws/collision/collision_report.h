@@ -1,0 +1,29 @@
+#pragma once
+/// \file
+/// \brief Collision results as a report (mcws_collide --json, mcws_sample --collision --json)
+/// gives them: labels by name, distances with their unit.
+
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "mcws/collision/collision_checker.h"
+#include "mcws/kinematics/robot.h"
+#include "mcws/sampling/sampler.h"
+
+namespace mcws {
+
+/// \brief The check of one joint vector as JSON: "robot", "length_unit", "label" and its
+/// "label_name", "pairs_checked", and "pairs" (`shown`, pairsToShow()), each with its bodies "a"
+/// and "b", its "kind" (the label a collision of the pair gives), "colliding" and, where known,
+/// its "distance" [length unit] (negative: the penetration depth); with "units".
+nlohmann::json collisionReportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
+                                   const std::vector<PairReport>& shown);
+
+/// \brief The points per collision label of a labelled sampling of `samples` samples, by label
+/// name (labelName()): for each of free, link-link, tool-link and environment its "label", the
+/// "count" and the "fraction" of all samples.
+nlohmann::json labelCountsJson(const SampleSummary& result, std::size_t samples);
+
+}  // namespace mcws
