@@ -29,7 +29,10 @@ for name in "${names[@]}"; do
 done
 
 build=$root/build-fuzz
+# -O1 -gline-tables-only: as OSS-Fuzz builds its fuzzers (line numbers in every report).
 "$root/scripts/build.sh" "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DMCWS_BUILD_FUZZERS=ON \
   -DMCWS_BUILD_TESTS=OFF -DMCWS_BUILD_BENCHMARKS=OFF -DMCWS_BUILD_EXAMPLES=OFF \
   --target mcws_fuzzers >"$build.build.log" 2>&1 || { tail -n 40 "$build.build.log" >&2; exit 1; }

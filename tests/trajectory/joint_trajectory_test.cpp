@@ -227,7 +227,7 @@ TEST(Limits, ReportsTheEarliestViolationOfASegment) {
   // a(t) = 0.6 t peaks at 1.2 at t = 2; b(t) = 200 t - 100 t^2 peaks at 100 cm at t = 1.
   Eigen::MatrixXd c(2, 3);
   c << 0.0, 0.6, 0.0, 0.0, 200.0, -100.0;
-  const JointTrajectory traj({0.0, 2.0}, {c});
+  const JointTrajectory traj({0.0, 2.0}, std::vector<Eigen::MatrixXd>(1, c));
   EXPECT_EQ(errorOf([&] { checkTrajectoryLimits(twoJointRobot(), traj); }),
             "joint 'b' reaches 100 cm at t = 1 s, above its upper limit 50 cm");
 }
