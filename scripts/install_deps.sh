@@ -29,6 +29,9 @@ packages=(
   libopenmpi-dev openmpi-bin    # mpirun -np K mcws_sample / mcws_refine: MPI and MPI-IO
   procps                        # pgrep: the test that kills one process of an MPI run
   python3                       # scripts/check_layers.py: the floors of docs/architecture.md (CTest)
+  python3-dev python3-numpy     # the Python module mcws (python/): the interpreter's headers, NumPy
+  pybind11-dev python3-pybind11 # its C++ bindings (pybind11's headers and CMake package)
+  python3-pytest                # tests/python, run by CTest (python_api)
   clang-14 libclang-rt-14-dev   # libFuzzer targets of fuzz/ (scripts/run_fuzzers.sh)
 )
 

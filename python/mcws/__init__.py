@@ -1,0 +1,214 @@
+"""mcws: Monte Carlo workspace analysis of robot manipulators, from Python.
+
+The stages of the mcws command-line tools on NumPy arrays, computed by the same C++ library, so
+that the same arguments give the same numbers as the tools:
+
+    robot = mcws.Robot("robots/deicing.yaml")       # .yaml or .urdf
+    T = robot.fk(q)                                  # (4, 4) pose, translation in robot.length_unit
+    points = mcws.sample(robot, 100_000, seed=1)     # as mcws_sample: x y z q1..qn label
+    mcws.write_pcd("cloud.pcd", points, robot=robot)
+    cloud = mcws.read_pcd("cloud.pcd")
+
+Every length is in the robot's length unit (robot.length_unit), every joint value in rad
+(revolute) or that length unit (prismatic). Errors raise mcws.Error (a RuntimeError) or, for a
+bad argument value, mcws.UsageError (a ValueError and an mcws.Error), with the tools' one-line
+messages.
+"""
+
+import json as _json
+import os as _os
+
+import numpy as _np
+
+from ._mcws import (
+    Error,
+    Robot,
+    UsageError,
+    _boundary,
+    _measure,
+    _point_dtype,
+    _write_points,
+    read_pcd,
+    read_provenance,
+    sample,
+    sample_shape,
+)
+
+__all__ = [
+    "Error",
+    "UsageError",
+    "Robot",
+    "sample",
+    "sample_shape",
+    "read_pcd",
+    "read_provenance",
+    "write_pcd",
+    "boundary",
+    "measure",
+    "Measure",
+]
+
+for _name in ("Error", "UsageError", "Robot"):
+    globals()[_name].__module__ = __name__
+
+_JOINT_FIELDS = tuple(f"q{i}" for i in range(1, 9))
+_QUALITY_FIELDS = ("manipulability", "inverse_condition")
+_KNOWN_FIELDS = ("x", "y", "z") + _JOINT_FIELDS + ("label",) + _QUALITY_FIELDS
+
+
+def _packed_points(points):
+    """points as records of _point_dtype(joints, quality): (array, quality, joints)."""
+    array = _np.asarray(points)
+    if array.dtype.names is None:
+        if array.ndim != 2 or array.shape[1] != 3:
+            raise UsageError(
+                f"points: shape {array.shape} is neither a structured array (fields x y z ...) "
+                "nor (N, 3)"
+            )
+        packed = _np.zeros(array.shape[0], dtype=_point_dtype(0, False))
+        for axis, name in enumerate("xyz"):
+            packed[name] = array[:, axis]
+        return packed, False, 0
+    names = array.dtype.names
+    unknown = [name for name in names if name not in _KNOWN_FIELDS]
+    if unknown:
+        raise UsageError(
+            f"points: field '{unknown[0]}' is not one of {' '.join(_KNOWN_FIELDS)}"
+        )
+    missing = [name for name in "xyz" if name not in names]
+    if missing:
+        raise UsageError(f"points: has no field '{missing[0]}'")
+    if array.ndim != 1:
+        raise UsageError(f"points: a structured array of shape {array.shape}, not (N,)")
+    joints = sum(1 for name in _JOINT_FIELDS if name in names)
+    if any(_JOINT_FIELDS[i] not in names for i in range(joints)):
+        raise UsageError(
+            f"points: joint fields must be q1..q{joints}, not {[n for n in names if n in _JOINT_FIELDS]}"
+        )
+    quality = any(name in names for name in _QUALITY_FIELDS)
+    layout = _point_dtype(joints, quality)
+    if array.dtype == layout and array.flags.c_contiguous:
+        return array, quality, joints  # sample()'s own records: written without a copy
+    packed = _np.zeros(array.shape[0], dtype=layout)
+    for name in names:
+        packed[name] = array[name]
+    return packed, quality, joints
+
+
+def write_pcd(path, points, robot=None, provenance=None):
+    """Writes points as a binary PCD file through mcws's writer, as the tools write clouds.
+
+    path: the file (str or os.PathLike); it appears only when complete.
+    points: a structured array with fields x, y, z [length unit] and any of q1..q8
+        [rad | length unit], label, manipulability, inverse_condition (missing ones are written
+        as 0), such as sample() returns; or a plain (N, 3) array of positions.
+    robot: an mcws.Robot: record it in the header (its name, file, SHA-256 and length unit), as
+        the tools do, so that later stages check they are given the same robot.
+    provenance: a dict as read_provenance() returns, recorded instead (to carry a cloud's
+        provenance through a pipeline); give robot or provenance, not both.
+
+    The file has the fields of mcws_sample's PCD (x y z q1..q8 label, and manipulability
+    inverse_condition when points has either): write_pcd(p, sample(...), provenance=...) is byte
+    for byte the file mcws_sample writes with the same arguments and provenance.
+
+    Raises mcws.UsageError for points of another shape or with other fields, both robot and
+    provenance, or a malformed provenance; mcws.Error naming the file when it cannot be written.
+    """
+    if robot is not None and provenance is not None:
+        raise UsageError("write_pcd: give robot or provenance, not both")
+    if robot is not None and not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    packed, quality, joints = _packed_points(points)
+    _write_points(_os.fspath(path), packed, quality, joints, robot, provenance)
+
+
+def _positions(points):
+    """The x y z of a structured array, or an (N, 3) array, as float32 (N, 3): the positions as a
+    PCD file holds them, so that the tools and these functions see the same numbers."""
+    array = _np.asarray(points)
+    if array.dtype.names is not None:
+        missing = [name for name in "xyz" if name not in array.dtype.names]
+        if missing:
+            raise UsageError(f"points: has no field '{missing[0]}'")
+        if array.ndim != 1:
+            raise UsageError(f"points: a structured array of shape {array.shape}, not (N,)")
+        xyz = _np.empty((array.shape[0], 3), dtype=_np.float32)
+        for axis, name in enumerate("xyz"):
+            xyz[:, axis] = array[name]
+        return xyz
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise UsageError(
+            f"points: shape {array.shape} is neither a structured array (fields x y z) nor (N, 3)"
+        )
+    return _np.ascontiguousarray(array, dtype=_np.float32)
+
+
+def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None,
+             outer_radius=None, min_gap=None, hull_depth=None, threads=0):
+    """The boundary points of a workspace cloud: the orthant test of mcws_boundary (Yin, Wang & Yu
+    2010, section 4.3), with its settings and their defaults.
+
+    points: a structured array with fields x, y, z (such as sample() or read_pcd() return) or an
+        (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them.
+    plane: None (3-D, octants) or "xy", "xz", "yz" (quadrants in that plane).
+    radius: a fixed search radius [length unit] (mcws_boundary --radius).
+    auto_radius: c of a radius c x the cloud's mean spacing (--auto-radius).
+    adaptive: k of a per-point radius 2 x the distance to the k-th neighbour (--adaptive; the
+        default, with k = 24 in a plane, 16 in 3-D).
+    outer_radius: the second stage at R: a length > r [length unit] with radius or auto_radius,
+        else a factor > 1 of each point's radius (--outer-radius).
+    min_gap: 2-D: the empty sector that makes a boundary point [deg], in [90, 180) (default 92).
+    hull_depth: 2-D: keep points less than t local spacings inside the convex hull of their
+        neighbourhood, 0 = off, else in [0.1, 10] (default 1).
+    threads: worker threads, 0 = all cores (the result does not depend on it).
+
+    Returns a boolean array of N entries, True for the points mcws_boundary writes with the same
+    settings (points[mask] is its output); non-finite points are False.
+
+    Raises mcws.UsageError for settings out of their range for this cloud (the ranges of
+    mcws_boundary: lengths between a tenth of the mean spacing and the cloud's extent, ...) or a
+    cloud flat in one of the plane's axes; mcws.Error for a cloud with too few distinct points.
+    """
+    return _boundary(_positions(points), plane, radius, auto_radius, adaptive, outer_radius,
+                     min_gap, hull_depth, threads)
+
+
+class Measure(dict):
+    """The area or volume of a region, as mcws_measure --json gives it: a dict (dict(result)
+    gives its keys) whose keys are also attributes.
+
+    area (plane given) [length unit^2] or volume (3-D) [length unit^3]: the Delaunay measure with
+    the edge correction; uncorrected: the kept simplices' total before the correction;
+    correction: "efron" or "none"; alpha: the simplex size limit [local spacings]; points:
+    distinct points; triangulated; boundary_vertices; outside (Efron's count); plane; method;
+    length_unit; units: the unit of each dimensioned number.
+    """
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None):
+    """The area (in a plane) or volume (3-D) of the region a cloud samples, as mcws_measure.
+
+    points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
+        float32 as a PCD file holds them.
+    plane: None (volume) or "xy", "xz", "yz" (the area of the cloud projected onto that plane).
+    alpha: simplex size limit [local spacings] in [1, 1000] (default 3, 5 with correction "none").
+    correction: "efron" (leave-one-out edge correction, for uniform samples; default) or "none"
+        (for refined clouds whose samples lie on the edge).
+    threads: worker threads, 0 = all cores (the result does not depend on it).
+    length_unit: "m", "cm" or "mm": the unit of the positions, named in the result's units
+        (default: "unrecorded", as mcws_measure for a cloud that records none).
+
+    Returns a Measure with .area or .volume, .units and the rest of mcws_measure --json but for
+    its input and seconds: the same numbers for the same points.
+
+    Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit, or a cloud
+    flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D cloud.
+    """
+    return Measure(_json.loads(
+        _measure(_positions(points), plane, alpha, correction, threads, length_unit)))

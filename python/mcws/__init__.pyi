@@ -1,0 +1,47 @@
+"""Type stubs of the mcws package (see _mcws.pyi for the extension's functions)."""
+
+import os
+from typing import Any, Dict, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from ._mcws import Error as Error
+from ._mcws import Robot as Robot
+from ._mcws import UsageError as UsageError
+from ._mcws import read_pcd as read_pcd
+from ._mcws import read_provenance as read_provenance
+from ._mcws import sample as sample
+from ._mcws import sample_shape as sample_shape
+
+def write_pcd(
+    path: Union[str, "os.PathLike[str]"],
+    points: npt.ArrayLike,
+    robot: Optional[Robot] = None,
+    provenance: Optional[Dict[str, Any]] = None,
+) -> None: ...
+
+class Measure(Dict[str, Any]):
+    def __getattr__(self, name: str) -> Any: ...
+
+def boundary(
+    points: npt.ArrayLike,
+    plane: Optional[str] = None,
+    *,
+    radius: Optional[float] = None,
+    auto_radius: Optional[float] = None,
+    adaptive: Optional[int] = None,
+    outer_radius: Optional[float] = None,
+    min_gap: Optional[float] = None,
+    hull_depth: Optional[float] = None,
+    threads: int = 0,
+) -> npt.NDArray[np.bool_]: ...
+def measure(
+    points: npt.ArrayLike,
+    plane: Optional[str] = None,
+    *,
+    alpha: Optional[float] = None,
+    correction: str = "efron",
+    threads: int = 0,
+    length_unit: Optional[str] = None,
+) -> Measure: ...

@@ -1,0 +1,92 @@
+"""Type stubs of the mcws extension module (lengths in the robot's length unit, joint values in
+rad or that length unit; see the docstrings, help(mcws.Robot) & co.)."""
+
+import os
+from typing import Any, Dict, List, Optional, Union
+
+import numpy as np
+import numpy.typing as npt
+
+_Path = Union[str, "os.PathLike[str]"]
+_Floats = npt.ArrayLike
+
+class Error(RuntimeError): ...
+class UsageError(Error, ValueError): ...
+
+class Robot:
+    def __init__(self, path: _Path, *, root: Optional[str] = None, tip: Optional[str] = None) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def path(self) -> str: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def joint_names(self) -> List[str]: ...
+    @property
+    def joint_types(self) -> List[str]: ...
+    @property
+    def joint_units(self) -> List[str]: ...
+    @property
+    def limits(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def length_unit(self) -> str: ...
+    @property
+    def has_collision_model(self) -> bool: ...
+    def fk(self, q: _Floats, frame: str = "tool", check_limits: bool = True) -> npt.NDArray[np.float64]: ...
+    def jacobian(self, q: _Floats) -> npt.NDArray[np.float64]: ...
+    def ik(
+        self,
+        pose: _Floats,
+        q0: Optional[_Floats] = None,
+        position_only: bool = False,
+        *,
+        free_roll: bool = False,
+        tolerance: float = 1e-6,
+        seed: int = 1,
+    ) -> Optional[npt.NDArray[np.float64]]: ...
+
+def sample(
+    robot: Robot,
+    n: int,
+    seed: int = 0,
+    threads: int = 0,
+    fix: Optional[Dict[str, float]] = None,
+    collision: bool = False,
+    quality: bool = False,
+    *,
+    point: str = "tool",
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+) -> npt.NDArray[np.void]: ...
+def sample_shape(shape: str, n: int, seed: int = 0, threads: int = 0) -> npt.NDArray[np.void]: ...
+def read_pcd(path: _Path) -> npt.NDArray[np.void]: ...
+def read_provenance(path: _Path) -> Optional[Dict[str, Any]]: ...
+def _point_dtype(joints: int, quality: bool) -> np.dtype: ...
+def _write_points(
+    path: _Path,
+    points: npt.NDArray[np.void],
+    quality: bool,
+    joints: int,
+    robot: Optional[Robot],
+    provenance: Optional[Dict[str, Any]],
+) -> None: ...
+def _boundary(
+    xyz: npt.NDArray[np.float32],
+    plane: Optional[str],
+    radius: Optional[float],
+    auto_radius: Optional[float],
+    adaptive: Optional[int],
+    outer_radius: Optional[float],
+    min_gap: Optional[float],
+    hull_depth: Optional[float],
+    threads: int,
+) -> npt.NDArray[np.bool_]: ...
+def _measure(
+    xyz: npt.NDArray[np.float32],
+    plane: Optional[str],
+    alpha: Optional[float],
+    correction: str,
+    threads: int,
+    length_unit: Optional[str],
+) -> str: ...

@@ -1,0 +1,80 @@
+#pragma once
+/// \file
+/// \brief What the binding files of the mcws Python module (_mcws) share: one function per file
+/// that adds its part to the module, argument checks that raise mcws.UsageError, and NumPy arrays
+/// that own a C++ buffer (no copy of large results).
+///
+/// The bindings call the library (src/mcws/..., filters/) only, never the tools' code (apps/).
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mcws/core/error.h"
+
+namespace mcws::python {
+
+namespace py = pybind11;
+
+/// \brief mcws.Error and mcws.UsageError, translated from mcws::Error and mcws::UsageError.
+void bindErrors(py::module_& m);
+/// \brief mcws.Robot: loading, forward and inverse kinematics, the Jacobian.
+void bindRobot(py::module_& m);
+/// \brief mcws.sample, mcws.sample_shape and the point layout they return.
+void bindSampling(py::module_& m);
+/// \brief mcws.read_pcd, mcws.read_provenance and the writer behind mcws.write_pcd.
+void bindCloud(py::module_& m);
+/// \brief The C++ parts of mcws.boundary and mcws.measure.
+void bindWorkspace(py::module_& m);
+
+/// \brief Runs `call`, turning an mcws::Error into an mcws::UsageError "argument: message": the
+/// library found a bad value in what the caller passed as `argument`. A UsageError passes
+/// unchanged.
+template <typename Call>
+auto asUsageError(const std::string& argument, Call&& call) -> decltype(call()) {
+  try {
+    return call();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(argument + ": " + e.what());
+  }
+}
+
+/// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
+/// are converted to (once, and only when they are not one already).
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// \brief `value` as a DoubleArray. \throws UsageError "argument: ..." when NumPy cannot make
+/// numbers of it.
+DoubleArray doubleArray(const py::handle& value, const std::string& argument);
+
+/// \brief A path argument (str or os.PathLike) as a string.
+std::string pathArgument(const py::handle& path);
+
+/// \brief A whole number >= 0 (a seed). \throws UsageError naming `argument` and the value.
+std::uint64_t nonNegative(std::int64_t value, const std::string& argument);
+
+/// \brief A thread count: 0 (all cores) .. 256. \throws UsageError naming the value.
+int threadCount(int threads);
+
+/// \brief A NumPy array viewing `data`, whose buffer `owner` holds: the array frees `owner` when
+/// it is collected, so a result reaches Python without a copy.
+template <typename Owner>
+py::array ownedArray(std::unique_ptr<Owner> owner, const py::dtype& dtype,
+                     std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides,
+                     const void* data) {
+  py::capsule capsule(owner.get(), [](void* p) { delete static_cast<Owner*>(p); });
+  owner.release();  // the capsule owns it now
+  return py::array(dtype, std::move(shape), std::move(strides), data, capsule);
+}
+
+/// \brief A float64 array of `shape` (C order) that owns `values`.
+py::array ownedDoubles(std::vector<double> values, std::vector<py::ssize_t> shape);
+
+}  // namespace mcws::python

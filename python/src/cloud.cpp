@@ -1,0 +1,203 @@
+// mcws.read_pcd, mcws.read_provenance and the writer behind mcws.write_pcd: PCD files through the
+// library's checked reader (mcws::io::readPcd) and streaming writer (mcws::io::PcdStreamWriter),
+// the robot a cloud comes from recorded in its header.
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <optional>
+
+#include "bindings.h"
+#include "loaded_robot.h"
+#include "mcws/io/cloud_io.h"
+#include "mcws/io/pcd_stream_writer.h"
+#include "mcws/io/provenance.h"
+#include "mcws/sampling/sampler.h"
+#include "point_layout.h"
+
+namespace mcws::python {
+
+namespace {
+
+/// A structured dtype of a file's fields at their offsets in its records (PCL's padding fields
+/// "_" left out).
+py::dtype fileDtype(const pcl::PCLPointCloud2& blob, const std::string& path) {
+  py::list names, formats, offsets;
+  for (const pcl::PCLPointField& field : blob.fields) {
+    if (field.name == "_") continue;
+    std::string format = numpyFormat(field.datatype);
+    if (format.empty()) {
+      throw Error("'" + path + "': field '" + field.name + "' has a type NumPy is not given");
+    }
+    if (field.count > 1) format = "(" + std::to_string(field.count) + ",)" + format;
+    names.append(field.name);
+    formats.append(format);
+    offsets.append(field.offset);
+  }
+  try {
+    return py::dtype(names, formats, offsets, blob.point_step);
+  } catch (const py::error_already_set& e) {  // a name twice, overlapping fields
+    throw Error("'" + path + "': its fields make no NumPy record: " + e.what());
+  }
+}
+
+py::array readPcdArray(const py::object& path_value) {
+  const std::string path = pathArgument(path_value);
+  auto blob = std::make_unique<pcl::PCLPointCloud2>();
+  {
+    py::gil_scoped_release release;
+    *blob = io::readPcd(path);
+  }
+  const py::dtype dtype = fileDtype(*blob, path);
+  const auto points = static_cast<py::ssize_t>(blob->width) * blob->height;
+  const void* data = blob->data.data();
+  const auto step = static_cast<py::ssize_t>(blob->point_step);
+  return ownedArray(std::move(blob), dtype, {points}, {step}, data);
+}
+
+py::dict samplingDict(const io::SamplingRecord& sampling) {
+  py::dict fix;
+  for (const auto& [name, value] : sampling.fixed) fix[py::str(name)] = value;
+  py::dict out;
+  out["point"] = sampling.point;
+  out["collision"] = sampling.collision;
+  out["fix"] = fix;
+  return out;
+}
+
+py::object provenanceDict(const std::optional<io::CloudProvenance>& provenance) {
+  if (!provenance) return py::none();
+  py::dict out;
+  out["robot"] = provenance->robot;
+  out["file"] = provenance->file;
+  out["sha256"] = provenance->sha256;
+  out["length_unit"] = provenance->length_unit;
+  if (provenance->sampling) out["sampling"] = samplingDict(*provenance->sampling);
+  if (provenance->input) {
+    py::dict input;
+    input["points"] = provenance->input->points;
+    input["sha256"] = provenance->input->sha256;
+    input["boundary_points"] = provenance->input->boundary_points;
+    out["input"] = input;
+  }
+  return out;
+}
+
+/// The provenance a dict of provenanceDict()'s keys records, checked as a header line is.
+io::CloudProvenance provenanceFromDict(const py::dict& dict) {
+  return asUsageError("provenance", [&] {
+    try {
+      io::CloudProvenance provenance(
+          py::cast<std::string>(dict["robot"]), py::cast<std::string>(dict["file"]),
+          py::cast<std::string>(dict["sha256"]), py::cast<std::string>(dict["length_unit"]));
+      if (dict.contains("sampling") && !dict["sampling"].is_none()) {
+        const auto sampling = dict["sampling"].cast<py::dict>();
+        io::SamplingRecord record;
+        record.point = py::cast<std::string>(sampling["point"]);
+        record.collision = py::cast<bool>(sampling["collision"]);
+        for (const auto& [name, value] : sampling["fix"].cast<py::dict>()) {
+          record.fixed.emplace_back(py::cast<std::string>(name), py::cast<double>(value));
+        }
+        provenance.sampling = record;
+      }
+      if (dict.contains("input") && !dict["input"].is_none()) {
+        const auto input = dict["input"].cast<py::dict>();
+        provenance.input = io::InputCloud{py::cast<std::uint64_t>(input["points"]),
+                                          py::cast<std::string>(input["sha256"]),
+                                          py::cast<std::uint64_t>(input["boundary_points"])};
+      }
+      // What a header records must read back: the same checks as a file's line.
+      return io::parseProvenanceComment(io::provenanceComment(provenance));
+    } catch (const py::error_already_set& e) {  // a missing key
+      throw Error(std::string("a key is missing or of the wrong type: ") + e.what());
+    } catch (const py::cast_error& e) {
+      throw Error(std::string("a value is of the wrong type: ") + e.what());
+    }
+  });
+}
+
+/// Writes `points` (records of pointDtype<PointT>(joints)) as binary PCD, q beyond the first
+/// `joints` written as 0 whatever the hidden bytes hold.
+template <typename PointT>
+void writePoints(const std::string& path, const py::array& points, int joints,
+                 const std::optional<io::CloudProvenance>& provenance) {
+  const auto n = static_cast<std::size_t>(points.shape(0));
+  const auto* records = static_cast<const char*>(points.data());
+  py::gil_scoped_release release;
+  io::PcdStreamWriter<PointT> writer(path, n, io::PcdFormat::kBinary, provenance);
+  constexpr std::size_t kPiece = std::size_t{1} << 16;
+  std::vector<PointT, Eigen::aligned_allocator<PointT>> piece;
+  for (std::size_t begin = 0; begin < n; begin += kPiece) {
+    piece.resize(std::min(kPiece, n - begin));
+    std::memcpy(static_cast<void*>(piece.data()), records + begin * sizeof(PointT),
+                piece.size() * sizeof(PointT));
+    for (PointT& point : piece) std::fill(point.q + joints, point.q + kMaxJoints, 0.0f);
+    writer.write(piece.data(), piece.size());
+  }
+  writer.commit();
+}
+
+void writePcdArray(const py::object& path_value, const py::array& points, bool quality, int joints,
+                   const LoadedRobot* robot, const py::object& provenance_value) {
+  const std::string path = pathArgument(path_value);
+  const py::dtype layout =
+      quality ? pointDtype<QualityPoint>(joints) : pointDtype<WorkspacePoint>(joints);
+  if (points.ndim() != 1 || !points.dtype().equal(layout) ||
+      !(points.flags() & py::array::c_style)) {
+    throw UsageError("points: not a C-ordered 1-D array of the layout _point_dtype(" +
+                     std::to_string(joints) + ", " + (quality ? "True" : "False") + ")");
+  }
+  std::optional<io::CloudProvenance> provenance;
+  if (robot) provenance = robotProvenance(robot->robot);
+  if (!provenance_value.is_none()) {
+    if (!py::isinstance<py::dict>(provenance_value)) {
+      throw UsageError("provenance: give a dict as read_provenance() returns, or None");
+    }
+    provenance = provenanceFromDict(provenance_value);
+  }
+  if (quality) {
+    writePoints<QualityPoint>(path, points, joints, provenance);
+  } else {
+    writePoints<WorkspacePoint>(path, points, joints, provenance);
+  }
+}
+
+constexpr char kReadPcdDoc[] =
+    R"(Reads a PCD file (ascii, binary or binary_compressed) through mcws's checked reader.
+
+path: the file (str or os.PathLike).
+
+Returns a NumPy structured array, one record per point, with the file's fields as they are (for
+a cloud of mcws_sample: x y z [length unit, see read_provenance()], q1..q8 [rad | length unit],
+label, and manipulability, inverse_condition when sampled with quality), viewing the data read
+(no copy).
+
+Raises mcws.Error naming the file (and the line) when it is missing, unreadable, not a PCD file
+the reader accepts (the checks of mcws_boundary & co.), or holds no points.)";
+
+constexpr char kReadProvenanceDoc[] =
+    R"(The robot a cloud file records in its header (its "# mcws" line), or None.
+
+Returns a dict: robot (name), file (the robot file's base name), sha256 (of the robot file),
+length_unit (of the cloud's coordinates: "m", "cm", "mm"), and when recorded sampling
+({"point": "tool"|"flange", "collision": bool, "fix": {joint: value [rad | length unit]}}) and
+input ({"points", "sha256", "boundary_points"} of a boundary's input cloud). None for clouds of
+other tools and of sample_shape().
+
+Raises mcws.Error naming the file as read_pcd() does for a bad header.)";
+
+}  // namespace
+
+void bindCloud(py::module_& m) {
+  m.def("read_pcd", &readPcdArray, kReadPcdDoc, py::arg("path"));
+  m.def(
+      "read_provenance",
+      [](const py::object& path) { return provenanceDict(io::readProvenance(pathArgument(path))); },
+      kReadProvenanceDoc, py::arg("path"));
+  m.def("_write_points", &writePcdArray,
+        "Writes records of _point_dtype(joints, quality) as binary PCD (mcws.write_pcd's C++ "
+        "part).",
+        py::arg("path"), py::arg("points"), py::arg("quality"), py::arg("joints"),
+        py::arg("robot").none(true), py::arg("provenance").none(true));
+}
+
+}  // namespace mcws::python

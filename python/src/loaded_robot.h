@@ -1,0 +1,34 @@
+#pragma once
+/// \file
+/// \brief The object behind mcws.Robot: the robot and the file and chain it was read from, which
+/// the collision model and a cloud's provenance need again.
+
+#include <memory>
+#include <string>
+
+#include "mcws/kinematics/robot.h"
+#include "mcws/kinematics/robot_urdf.h"
+
+namespace mcws {
+class CollisionChecker;
+}
+
+namespace mcws::python {
+
+/// \brief A robot read from a file (mcws.Robot).
+struct LoadedRobot {
+  Robot robot;
+  std::string path;        ///< the file, as given
+  UrdfChainOptions chain;  ///< the URDF chain asked for (root, tip); empty: the whole tree's
+};
+
+/// \brief The robot of a `.yaml` or `.urdf` file; `root` and `tip` (links, URDF only) pick a chain.
+/// \throws mcws::Error naming the file (the library's message); UsageError for root or tip with
+///   a robot that is not a `.urdf`.
+LoadedRobot loadRobotFile(const std::string& path, const std::string& root, const std::string& tip);
+
+/// \brief The collision checker of the robot's collision model, as mcws_sample --collision
+/// builds it. \throws mcws::Error "<path>: has no collision geometry ..." when the file has none.
+std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded);
+
+}  // namespace mcws::python

@@ -1,0 +1,190 @@
+// mcws.sample and mcws.sample_shape: Monte Carlo workspace samples (the library's sampling
+// module, as mcws_sample draws them) handed to NumPy without a copy.
+#include <pybind11/stl.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <optional>
+
+#include "bindings.h"
+#include "loaded_robot.h"
+#include "mcws/collision/collision_checker.h"
+#include "mcws/collision/collision_sampler.h"
+#include "mcws/reach/quality.h"
+#include "mcws/reach/quality_sampler.h"
+#include "mcws/sampling/sampler.h"
+#include "point_layout.h"
+
+namespace mcws::python {
+
+namespace {
+
+/// Samples computed between two looks for Ctrl-C (a fraction of a second of work).
+constexpr std::size_t kPiece = std::size_t{1} << 16;
+
+/// Samples 0 .. n-1 of `generator` on `threads` threads (0: all cores) with the GIL released,
+/// into an array of pointDtype(joints, PointT) that owns them. The points do not depend on
+/// `threads` (a sample's random numbers depend on its index only). Ctrl-C stops the loop within
+/// a piece and raises KeyboardInterrupt.
+template <typename PointT>
+py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t n, int threads,
+                       int joints) {
+  auto points = std::make_unique<std::vector<PointT, Eigen::aligned_allocator<PointT>>>(n);
+  PointT* out = points->data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t begin = 0; begin < n; begin += kPiece) {
+      generateParallel(generator, begin, std::min(kPiece, n - begin), out + begin, threads);
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+  }
+  const py::dtype dtype = pointDtype<PointT>(joints);
+  return ownedArray(std::move(points), dtype, {static_cast<py::ssize_t>(n)},
+                    {static_cast<py::ssize_t>(sizeof(PointT))}, out);
+}
+
+std::size_t sampleCount(std::int64_t n) {
+  if (n < 0) throw UsageError("n: " + std::to_string(n) + " is negative");
+  return static_cast<std::size_t>(n);
+}
+
+std::vector<std::pair<std::string, double>> fixedJoints(const py::handle& fix) {
+  std::vector<std::pair<std::string, double>> fixed;
+  if (fix.is_none()) return fixed;
+  if (!py::isinstance<py::dict>(fix)) {
+    throw UsageError("fix: give a dict of joint name -> value [rad | length unit]");
+  }
+  for (const auto& [name, value] : py::reinterpret_borrow<py::dict>(fix)) {
+    if (!py::isinstance<py::str>(name)) {
+      throw UsageError("fix: joint name " + std::string(py::repr(name)) + " is not a str");
+    }
+    double number = 0.0;
+    try {
+      number = py::cast<double>(value);
+    } catch (const py::cast_error&) {
+      throw UsageError("fix: " + py::cast<std::string>(name) + " = " +
+                       std::string(py::repr(value)) + " is not a number");
+    }
+    fixed.emplace_back(py::cast<std::string>(name), number);
+  }
+  return fixed;
+}
+
+QualityOptions qualityOptions(const Robot& robot, const std::optional<std::string>& task,
+                              const std::optional<double>& length) {
+  QualityOptions quality = defaultQualityOptions(robot);
+  if (task) quality.task = asUsageError("quality_task", [&] { return parseQualityTask(*task); });
+  if (length) {
+    quality.characteristic_length = *length;
+    asUsageError("length", [&] { quality.check(); });
+  }
+  return quality;
+}
+
+py::array sample(const LoadedRobot& loaded, std::int64_t n, std::int64_t seed, int threads,
+                 const py::object& fix, bool collision, bool quality, const std::string& point,
+                 const std::optional<std::string>& quality_task,
+                 const std::optional<double>& length) {
+  const Robot& robot = loaded.robot;
+  const std::size_t samples = sampleCount(n);
+  RobotSamplerOptions options;
+  options.seed = nonNegative(seed, "seed");
+  threads = threadCount(threads);
+  if (point != "tool" && point != "flange") {
+    throw UsageError("point: '" + point + "' is not one of tool, flange");
+  }
+  options.point = point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
+  options.fixed = fixedJoints(fix);
+  if (!quality && (quality_task || length)) {
+    throw UsageError("quality_task and length need quality=True");
+  }
+  if (robot.dof() > kMaxJoints) {
+    throw Error(loaded.path + ": robot '" + robot.name + "' has " + std::to_string(robot.dof()) +
+                " joints; a workspace point records at most " + std::to_string(kMaxJoints));
+  }
+  std::unique_ptr<CollisionChecker> checker;
+  if (collision) checker = collisionChecker(loaded);
+  const auto generator = asUsageError("fix", [&]() -> std::unique_ptr<PointGenerator> {
+    if (checker) return std::make_unique<LabelledRobotSampler>(robot, options, *checker);
+    return std::make_unique<RobotSampler>(robot, options);
+  });
+  if (!quality) return samplePoints(*generator, samples, threads, robot.dof());
+  const QualitySampler measured(robot, options, *generator,
+                                qualityOptions(robot, quality_task, length));
+  return samplePoints(measured, samples, threads, robot.dof());
+}
+
+py::array sampleShape(const std::string& name, std::int64_t n, std::int64_t seed, int threads) {
+  const std::size_t samples = sampleCount(n);
+  const Shape shape = asUsageError("shape", [&] { return parseShape(name); });
+  const ShapeSampler generator(shape, nonNegative(seed, "seed"));
+  return samplePoints(generator, samples, threadCount(threads), 0);
+}
+
+constexpr char kSampleDoc[] =
+    R"(Monte Carlo workspace samples of a robot, as mcws_sample writes them.
+
+robot: an mcws.Robot.
+n: number of samples (int >= 0).
+seed: random seed, a whole number >= 0 (mcws_sample's default is 1). Sample i's joint values
+    depend on the seed and i only.
+threads: worker threads, 0 = all cores. The result is the same bytes for any thread count.
+fix: joints pinned instead of sampled, a dict joint name -> value [rad | length unit], as
+    mcws_sample --fix name=value.
+collision: label each sample by its collision status under the robot file's collision model
+    (0 free, 1 link-link, 2 tool-link, 3 environment), as mcws_sample --collision.
+quality: add the fields manipulability and inverse_condition, as mcws_sample --quality.
+point: "tool" (default) or "flange": which point's position to record.
+quality_task: "position" or "full" (as --quality-task; default: full for 6 or more joints).
+length: the characteristic length L of quality_task "full" [length unit] (as --length).
+
+Returns a NumPy structured array of n records (the C++ points themselves, no copy) with the fields
+of mcws_sample's PCD: x, y, z (float32, [length unit], the robot's .length_unit), q1 .. q<dof>
+(float32, [rad | length unit], see .joint_units), label (uint32), and with quality=True
+manipulability (float32, [length unit^k] for "position", [1] for "full") and inverse_condition
+(float32, [1]). The same values as mcws_sample with the same arguments. The GIL is released
+while sampling; Ctrl-C interrupts (KeyboardInterrupt).
+
+Raises mcws.UsageError for a bad n, seed, threads, point, quality_task or length, an unknown joint
+in fix or a value outside its limits; mcws.Error for collision=True on a robot file without
+collision geometry.)";
+
+constexpr char kSampleShapeDoc[] =
+    R"(Uniform samples of a validation shape of known area or volume (mcws_sample --shape).
+
+shape: "disk" (unit disk, z = 0, area pi), "annulus" (0.5 <= r <= 1, z = 0, area 0.75 pi),
+    "ball" (unit ball, volume 4 pi / 3) or "box" (unit cube [-0.5, 0.5]^3, volume 1).
+n: number of samples (int >= 0).
+seed: random seed, a whole number >= 0.
+threads: worker threads, 0 = all cores (the result does not depend on it).
+
+Returns a structured array with fields x, y, z (float32, dimensionless: the shapes have no
+recorded length unit) and label (uint32, 0), the points mcws_sample --shape writes.
+
+Raises mcws.UsageError for an unknown shape (naming the known ones) or a bad n, seed, threads.)";
+
+}  // namespace
+
+void bindSampling(py::module_& m) {
+  m.def("sample", &sample, kSampleDoc, py::arg("robot"), py::arg("n"), py::arg("seed") = 0,
+        py::arg("threads") = 0, py::arg("fix") = py::none(), py::arg("collision") = false,
+        py::arg("quality") = false, py::kw_only(), py::arg("point") = "tool",
+        py::arg("quality_task") = py::none(), py::arg("length") = py::none());
+  m.def("sample_shape", &sampleShape, kSampleShapeDoc, py::arg("shape"), py::arg("n"),
+        py::arg("seed") = 0, py::arg("threads") = 0);
+  m.def(
+      "_point_dtype",
+      [](int joints, bool quality) {
+        if (joints < 0 || joints > kMaxJoints) {
+          throw UsageError("joints: " + std::to_string(joints) + " is not in 0 .. " +
+                           std::to_string(kMaxJoints));
+        }
+        return quality ? pointDtype<QualityPoint>(joints) : pointDtype<WorkspacePoint>(joints);
+      },
+      "The record layout of sample() (and of write_pcd's input): fields x y z q1..q<joints> "
+      "label [manipulability inverse_condition] at the offsets of the C++ point.",
+      py::arg("joints"), py::arg("quality"));
+}
+
+}  // namespace mcws::python

@@ -1,0 +1,50 @@
+"""Shared fixtures of the Python API tests: the robots and the tools (CTest passes their paths in
+MCWS_*_EXE, as tests/CMakeLists.txt passes them to test_apps), and a runner for a tool."""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROBOTS = Path(os.environ.get("MCWS_ROBOTS_DIR", Path(__file__).resolve().parents[2] / "robots"))
+
+
+def robot_path(name):
+    """The path of robots/<name>."""
+    return str(ROBOTS / name)
+
+
+def tool(name):
+    """The path of tool mcws_<name>, from $MCWS_<NAME>_EXE (set by CTest)."""
+    path = os.environ.get(f"MCWS_{name.upper()}_EXE")
+    if not path:
+        pytest.skip(f"MCWS_{name.upper()}_EXE is not set (run through ctest -R python_api)")
+    return path
+
+
+def run_tool(name, *args, expect=0):
+    """Runs mcws_<name> with args; returns (exit code, stdout, stderr), checking the exit code."""
+    result = subprocess.run([tool(name), *map(str, args)], capture_output=True, text=True)
+    assert result.returncode == expect, result.stderr
+    return result.returncode, result.stdout, result.stderr
+
+
+def tool_json(name, *args):
+    """The JSON object mcws_<name> ... --json prints."""
+    return json.loads(run_tool(name, *args, "--json")[1])
+
+
+@pytest.fixture(scope="session")
+def ta1400():
+    import mcws
+
+    return mcws.Robot(robot_path("ta1400.yaml"))
+
+
+@pytest.fixture(scope="session")
+def deicing():
+    import mcws
+
+    return mcws.Robot(robot_path("deicing.yaml"))
