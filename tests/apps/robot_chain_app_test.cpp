@@ -282,5 +282,25 @@ TEST_F(RobotChainApp, ReachAndPlaceReachThePoseOfTheTipChosen) {
   EXPECT_EQ(candidates[0]["ik_share"].get<double>(), 1.0) << place.out;
 }
 
+TEST_F(RobotChainApp, PlaceRefusesAMapOfAnotherChainOfTheSameFile) {
+  const std::string map = file("m.bin");
+  const test::RunResult made =
+      test::run(kTools[5].exe + robot("--tip tool0") + " --resolution 20cm --samples 2000 --map " +
+                map + " --output " + file("m.pcd"));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string targets =
+      writePoseTarget(file("t.csv"), test::ur5FromWorld(test::ur5BaseToTool0(kQ)));
+  const std::string place = kTools[6].exe + " --targets " + targets + " --along '0 0 1' --map " +
+                            map + " --no-collision --json --output ";
+  const test::RunResult other = test::run(place + file("other.pcd") + robot("--tip ee_link"));
+  EXPECT_EQ(other.exit_code, 1);
+  EXPECT_THAT(other.err, HasSubstr(map + ": the map was made for the chain from link 'world' to "
+                                         "link 'tool0', not for the chain from 'world' to "
+                                         "'ee_link' (--base, --tip)"));
+  EXPECT_EQ(test::lineCount(other.err), 1) << other.err;
+  const test::RunResult same = test::run(place + file("same.pcd") + robot("--tip tool0"));
+  EXPECT_EQ(same.exit_code, 0) << same.err;
+}
+
 }  // namespace
 }  // namespace mcws
