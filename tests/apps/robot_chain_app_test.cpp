@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ constexpr double kIkTol = 1e-5;
 struct Tool {
   std::string name, exe, args;
 };
+
+/// For GoogleTest's test names and messages.
+void PrintTo(const Tool& tool, std::ostream* out) { *out << "mcws_" << tool.name; }
 
 std::string withDir(std::string args, const std::string& dir) {
   for (std::size_t at; (at = args.find("@O@")) != std::string::npos;) args.replace(at, 3, dir);

@@ -536,22 +536,19 @@ TEST(CollisionUrdf, TheModelFollowsTheChainTheRobotWasReadAs) {
   const CollisionModel at_tool0 = loadCollisionModel(tool0, path);
   ASSERT_EQ(at_tool0.tool.shapes.size(), 1u);
   EXPECT_EQ(at_tool0.tool.shapes[0].radius, 0.02);
-  EXPECT_LT((at_tool0.tool.shapes[0].T_body_shape.matrix() - Eigen::Matrix4d::Identity()).norm(),
-            kPoseTolerance);  // tool0 is the flange
+  EXPECT_LT(at_tool0.tool.shapes[0].p_from.norm(), kPoseTolerance);  // tool0 is the flange
   EXPECT_TRUE(at_tool0.links[6].shapes.empty());
 
   const Robot ee = loadRobot(path, {"", "ee_link"});
   const CollisionModel at_ee = loadCollisionModel(ee, path);
   EXPECT_TRUE(at_ee.tool.shapes.empty());
   ASSERT_EQ(at_ee.links[6].shapes.size(), 1u);  // wrist_3_joint's link carries tool0
-  EXPECT_LT(
-      (at_ee.links[6].shapes[0].T_body_shape.translation() - Eigen::Vector3d(0, 0, 0.0823)).norm(),
-      kPoseTolerance);
-  // The base sphere is on the base body either way, in base_link's frame (world's here).
+  EXPECT_LT((at_ee.links[6].shapes[0].p_from - Eigen::Vector3d(0, 0, 0.0823)).norm(),
+            kPoseTolerance);
+  // The base sphere is on the base body either way (a sphere is placed by its centre, p_from), 0.5
+  // m above the chain's base link, world.
   ASSERT_EQ(at_ee.links[0].shapes.size(), 1u);
-  EXPECT_LT(
-      (at_ee.links[0].shapes[0].T_body_shape.translation() - Eigen::Vector3d(0, 0, 0.5)).norm(),
-      kPoseTolerance);
+  EXPECT_LT((at_ee.links[0].shapes[0].p_from - Eigen::Vector3d(0, 0, 0.5)).norm(), kPoseTolerance);
 }
 
 }  // namespace

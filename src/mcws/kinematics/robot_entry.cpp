@@ -12,10 +12,14 @@ RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node) {
   const bool map = node.IsMap();
   if (map) reader.checkKeys(node, "robot", {"file", "base", "tip"});
   RobotEntry entry;
+  // An absent key as an undefined node: yaml-cpp's stand-in for it (a "zombie") cannot be kept.
+  const auto optional = [&](const char* key) {
+    return map && node[key] ? node[key] : YAML::Node(YAML::NodeType::Undefined);
+  };
   // Reset, never assigned: assigning a YAML::Node rewrites the node it refers to.
   entry.file_node.reset(map ? reader.require(node, "file", "robot") : node);
-  entry.base_node.reset(map ? node["base"] : YAML::Node(YAML::NodeType::Undefined));
-  entry.tip_node.reset(map ? node["tip"] : YAML::Node(YAML::NodeType::Undefined));
+  entry.base_node.reset(optional("base"));
+  entry.tip_node.reset(optional("tip"));
   if (entry.base_node) entry.chain.base_link = reader.text(entry.base_node, "robot: base");
   if (entry.tip_node) entry.chain.tip_link = reader.text(entry.tip_node, "robot: tip");
   entry.file = reader.text(entry.file_node, map ? "robot: file" : "robot");
