@@ -23,8 +23,8 @@ its penetration depth, or, when free, the pair with the least clearance. Joint v
 (revolute) and the robot's length unit (prismatic); distances in that length unit.)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot",
-               "robot description (.yaml with collision:, or .urdf with <collision> elements)");
+  app::declareRobotFlags(
+      cli, "robot description (.yaml with collision:, or .urdf with <collision> elements)");
   cli.addValue("q", "joint values, separated by spaces or commas");
   cli.addSwitch("all", "list every checked pair with its distance");
   cli.addSwitch("ignore-limits", "accept joint values outside the joint limits");

@@ -20,7 +20,7 @@ output is the matrix under a '#' line naming the frame and the unit (numpy.loadt
 skip it); --json gives "pose", "position" and "q" with "length_unit" and "units".)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  mcws::app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   cli.addValue("q", "joint values, separated by spaces or commas");
   cli.addValue("frame", "tool | flange (default tool)");
   cli.addSwitch("ignore-limits", "accept joint values outside the joint limits");

@@ -28,7 +28,7 @@ their units, then the iterations and the errors with theirs. Exits 1 when no sol
 within the tolerances.)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   cli.addValue("pose", "target: x y z [length unit] roll pitch yaw [rad]");
   cli.addValue("matrix", "target: 16 numbers of the 4x4 pose, row by row");
   cli.addValue(

@@ -40,7 +40,7 @@ map_score, ik_share and ik_score (-1: not confirmed); --plot the share reached a
 offset along x.)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   cli.addValue("along", "\"first last step\": base offsets along x [robot length unit]");
   cli.addValue("across", "\"first last step\": base offsets along y (default 0 only)");
   cli.addValue("up", "\"first last step\": base offsets along z (default 0 only)");

@@ -78,7 +78,7 @@ manipulability, clearance (the smallest distance between any checked pair of bod
 not measured), orientation_error and the joint values q1..q8.)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   app::declareMapFlags(
       cli, "voxel edge: a length with unit (2cm, 0.02m, 20mm) or a number in the robot's unit");
   app::declareSharedFlags(cli);

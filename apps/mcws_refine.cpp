@@ -45,7 +45,8 @@ killed process leaves no output. --threads is then per process (0: the cores sha
 processes on a machine).)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
-  cli.addValue("robot", "robot description the cloud was sampled from (.yaml or .urdf)");
+  mcws::app::declareRobotFlags(cli,
+                               "robot description the cloud was sampled from (.yaml or .urdf)");
   cli.addValue("input", "boundary points (PCD with q1..qn)");
   cli.addValue("samples", "number of new samples K");
   cli.addValue("output", "output PCD file");

@@ -49,7 +49,7 @@ file of one process, when every process has finished; a failed or killed process
 output. --threads is then per process (0: the cores shared among the processes on a machine).)";
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
+  app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   cli.addValue("shape", "disk | annulus | ball | box, instead of --robot");
   cli.addValue("samples", "number of samples (default 6000)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
@@ -142,6 +142,8 @@ int main(int argc, char** argv) {
     if (cli.has("shape") &&
         (cli.has("fix") || cli.has("point") || cli.has("collision") || cli.has("quality")))
       throw app::UsageError("--fix, --point, --collision and --quality need --robot");
+    if (cli.has("shape") && (cli.has("base") || cli.has("tip")))
+      throw app::UsageError("--base and --tip need --robot");
     if (!cli.has("quality") && (cli.has("quality-task") || cli.has("length")))
       throw app::UsageError("--quality-task and --length need --quality");
     if (processes.distributed() && cli.has("ascii"))

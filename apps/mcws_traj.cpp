@@ -46,9 +46,7 @@ constexpr double kMaxRate = 1e6;  ///< --rate [Hz]
 constexpr double kMaxSamples = 1e6;
 
 void declareFlags(app::CommandLine& cli) {
-  cli.addValue("robot", "robot description (.yaml or .urdf)");
-  cli.addValue("root", "URDF: first link of the chain (default: root)");
-  cli.addValue("tip", "URDF: last link of the chain (default: the leaf)");
+  app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
   cli.addValue("from", "start joint values");
   cli.addValue("to", "goal joint values");
   cli.addValue("to-pose",

@@ -109,16 +109,29 @@ BoundaryPlane readPlane(const CommandLine& cli) {
   return asUsageError("plane", [&] { return parseBoundaryPlane(cli.required("plane")); });
 }
 
+void declareRobotFlags(CommandLine& cli, const char* help) {
+  cli.addValue("robot", help);
+  cli.addValue("base",
+               "URDF: first link of the chain, whose frame is the base frame (default the "
+               "root link)");
+  cli.addValue("tip",
+               "URDF: last link of the chain, whose frame is the tool frame: any link "
+               "below --base, e.g. a fixed tool0 or TCP frame (default the one leaf)");
+}
+
 Robot readRobot(const CommandLine& cli) {
   const std::string path = cli.required("robot");
-  const bool chain = cli.has("root") || cli.has("tip");
-  if (chain && std::filesystem::path(path).extension() != ".urdf") {
-    throw UsageError("--root and --tip need a .urdf robot");
+  const UrdfChainOptions chain{cli.text("base", ""), cli.text("tip", "")};
+  if (!(chain.base_link.empty() && chain.tip_link.empty()) &&
+      std::filesystem::path(path).extension() != ".urdf") {
+    throw UsageError("--base and --tip need a .urdf robot");
   }
   const Activity reading("reading --robot '" + path + "'");
   try {
-    return chain ? loadRobotUrdf(path, {cli.text("root", ""), cli.text("tip", "")})
-                 : loadRobot(path);
+    return loadRobot(path, chain);
+  } catch (const UrdfChainError& e) {
+    const bool leaves = e.problem() == UrdfChainError::Problem::kSeveralLeaves;
+    throw UsageError((leaves ? "--robot: " : "") + e.describe("--base", "--tip", "--tip"));
   } catch (const Error& e) {
     throw Error(std::string("--robot: ") + e.what());
   }

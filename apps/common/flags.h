@@ -90,11 +90,19 @@ QualityOptions readQualityOptions(const CommandLine& cli, const Robot& robot);
 /// \brief --plane: xy | xz | yz, or k3D when the flag is absent.
 BoundaryPlane readPlane(const CommandLine& cli);
 
-/// \brief Loads --robot (.yaml or .urdf); for tools that declare --root and --tip, the URDF chain
-/// between those links.
-/// \throws UsageError for a missing --robot, or --root/--tip with a robot that is not .urdf;
-///   mcws::Error "--robot: <the loader's message, naming the file>" (exit code 1) for a file that
-///   cannot be loaded.
+/// \brief Declares --robot (described by `help`, e.g. "robot description (.yaml or .urdf)") and,
+/// for URDF robots, --base and --tip, the links the chain runs between (read by readRobot()).
+void declareRobotFlags(CommandLine& cli, const char* help);
+
+/// \brief Loads --robot (.yaml or .urdf); for a URDF, the chain from --base (default the tree's
+/// root link) to --tip (default its one leaf), which any collision model read for it follows
+/// (loadCollisionModel() reads Robot::base_link and Robot::tip_link).
+/// \throws UsageError for a missing --robot, --base/--tip with a robot that is not .urdf, a
+///   --base or --tip that is not a link of the robot, a --tip not below --base ("--tip: link
+///   'link1' is not below --base link 'link3' in arm.urdf"), or several leaves and no --tip
+///   ("--robot: arm.urdf: link 'world' has 2 leaf links below it (tool0, ee_link): choose one
+///   with --tip"); mcws::Error "--robot: <the loader's message, naming the file>" (exit code 1)
+///   for a file that cannot be loaded.
 Robot readRobot(const CommandLine& cli);
 
 /// \brief Whether a joint vector flag must lie within the joint limits.

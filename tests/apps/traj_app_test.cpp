@@ -170,11 +170,11 @@ TEST(TrajApp, UrdfRobotGivesTheYamlMoveInMetres) {
               1e-9);
 }
 
-TEST(TrajApp, RootAndTipPickAUrdfSubChain) {
+TEST(TrajApp, BaseAndTipPickAUrdfSubChain) {
   test::TempDir dir;
   const test::RunResult r =
       test::run(kTraj + " --robot " + kInspectionUrdf +
-                " --root link1 --tip link3 --from '0 0' --to '0.5 -0.5' --duration 1 --rate 10"
+                " --base link1 --tip link3 --from '0 0' --to '0.5 -0.5' --duration 1 --rate 10"
                 " --json --output " +
                 dir.file("t.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -293,11 +293,11 @@ TEST(TrajApp, BadInput) {
       {kInspection + move + " --duration 10", 2, "missing --rate"},
       {" --robot /nonexistent.yaml" + move + timing, 1,
        "--robot: /nonexistent.yaml: robot file does not exist"},
-      {kInspection + move + timing + " --root link1", 2, "--root and --tip need a .urdf robot"},
-      {" --robot " + kInspectionUrdf + " --root link3 --tip link1 --from 0 --to 0" + timing, 1,
-       "inspection6.urdf: tip link 'link1' is not below root link 'link3'"},
-      {" --robot " + kInspectionUrdf + " --tip hand" + move + timing, 1,
-       "inspection6.urdf: tip link 'hand' is not a link of robot 'inspection6'"},
+      {kInspection + move + timing + " --base link1", 2, "--base and --tip need a .urdf robot"},
+      {" --robot " + kInspectionUrdf + " --base link3 --tip link1 --from 0 --to 0" + timing, 2,
+       "--tip: link 'link1' is not below --base link 'link3' in " + kInspectionUrdf},
+      {" --robot " + kInspectionUrdf + " --tip hand" + move + timing, 2,
+       "--tip: 'hand' is not a link of robot 'inspection6' in " + kInspectionUrdf},
   };
   for (const Case& c : cases) {
     test::TempDir dir;

@@ -15,6 +15,7 @@
 #include <tuple>
 #include <vector>
 
+#include "kinematics/ur5_shaped_urdf.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -618,6 +619,32 @@ TEST(BehaviorModelParsing, OtherReaderErrorsNameTheLine) {
   EXPECT_THAT(parseError(robot), HasSubstr("no_such_robot.yaml' does not exist"));
   EXPECT_EQ(parseError("name: [unclosed"),
             "model.yaml:1: YAML syntax: end of sequence flow not found");
+}
+
+TEST(BehaviorModelRobot, AMapChoosesAUrdfsChainAsTheToolsBaseAndTipDo) {
+  const test::TempDir dir;
+  const std::string urdf = dir.file("ur5.urdf");
+  test::writeFile(urdf, test::kUr5ShapedUrdf);
+  const std::string yaml = std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner.yaml";
+  const std::string named = "robot: " + yaml;
+  const std::string text = shippedText();
+  const BehaviorModel model =
+      parseBehaviorModel(replaced(text, named, "robot: {file: " + urdf + ", tip: ee_link}"),
+                         "model.yaml");  // parsed only: its actuators are not the UR's joints
+  EXPECT_EQ(model.robot_path, urdf);
+  ASSERT_TRUE(model.robot);
+  EXPECT_EQ(model.robot->tip_link, "ee_link");
+  const std::string leaves = replaced(text, named, "robot: {file: " + urdf + "}");
+  expectError(parseError(leaves), leaves, "robot: {",
+              "robot: " + urdf +
+                  ": link 'world' has 2 leaf links below it (tool0, ee_link): choose one with "
+                  "robot: {file: FILE, tip: LINK}");
+  const std::string tip = replaced(text, named, "robot: {file: " + urdf + ", tip: hand}");
+  expectError(parseError(tip), tip, "robot: {",
+              "robot: tip: 'hand' is not a link of robot 'ur5_shaped' in " + urdf);
+  const std::string dh = replaced(text, named, "robot: {file: " + yaml + ", tip: tool0}");
+  expectError(parseError(dh), dh, "robot: {",
+              "robot: tip: base and tip need a .urdf robot ('" + yaml + "' is not)");
 }
 
 // ---- the literal CB1 of Wang et al. 2018

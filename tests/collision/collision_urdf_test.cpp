@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 
+#include "kinematics/ur5_shaped_urdf.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/core/error.h"
@@ -477,7 +478,7 @@ TEST(CollisionUrdfBadInput, CollisionOnALinkTheChainDoesNotCarry) {
   message = tinyError(tinyUrdf(), "tiny.urdf", {"l1", "tool0"});
   EXPECT_EQ(message,
             "tiny.urdf: link 'base' has <collision> elements but is not part of the chain: it is "
-            "not below root link 'l1' of the chain from link 'l1' to link 'tool0'");
+            "not below base link 'l1' of the chain from link 'l1' to link 'tool0'");
 }
 
 TEST(CollisionUrdfBadInput, RobotOfAnotherChainAndEnvironmentNameClash) {
@@ -521,6 +522,33 @@ TEST(CollisionUrdfBadInput, UrdfWithoutCollisionElements) {
               dir.file("single.urdf") +
                   ": has no collision geometry (no <collision> element on a link of its chain)");
   }
+}
+
+// loadCollisionModel() of a URDF reads the chain the robot was read as (Robot::base_link and
+// tip_link, the tools' --base and --tip): tool0's sphere is the tool when tool0 is the tip, a
+// shape of the last link when ee_link is; before, the file's default chain was read, which a tree
+// with two leaves does not have.
+TEST(CollisionUrdf, TheModelFollowsTheChainTheRobotWasReadAs) {
+  const test::TempDir dir;
+  const std::string path = dir.file("ur5.urdf");
+  test::writeFile(path, test::kUr5ShapedUrdf);
+  const Robot tool0 = loadRobot(path, {"", "tool0"});
+  const CollisionModel at_tool0 = loadCollisionModel(tool0, path);
+  ASSERT_EQ(at_tool0.tool.shapes.size(), 1u);
+  EXPECT_EQ(at_tool0.tool.shapes[0].radius, 0.02);
+  EXPECT_LT(at_tool0.tool.shapes[0].p_from.norm(), kPoseTolerance);  // tool0 is the flange
+  EXPECT_TRUE(at_tool0.links[6].shapes.empty());
+
+  const Robot ee = loadRobot(path, {"", "ee_link"});
+  const CollisionModel at_ee = loadCollisionModel(ee, path);
+  EXPECT_TRUE(at_ee.tool.shapes.empty());
+  ASSERT_EQ(at_ee.links[6].shapes.size(), 1u);  // wrist_3_joint's link carries tool0
+  EXPECT_LT((at_ee.links[6].shapes[0].p_from - Eigen::Vector3d(0, 0, 0.0823)).norm(),
+            kPoseTolerance);
+  // The base sphere is on the base body either way (a sphere is placed by its centre, p_from), 0.5
+  // m above the chain's base link, world.
+  ASSERT_EQ(at_ee.links[0].shapes.size(), 1u);
+  EXPECT_LT((at_ee.links[0].shapes[0].p_from - Eigen::Vector3d(0, 0, 0.5)).norm(), kPoseTolerance);
 }
 
 }  // namespace

@@ -12,6 +12,8 @@
 #include <sstream>
 #include <vector>
 
+#include "kinematics/random_joints.h"
+#include "kinematics/ur5_shaped_urdf.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
@@ -125,7 +127,7 @@ TEST(RobotUrdf, PlanarChainMatchesClosedForm) {
   }
 }
 
-TEST(RobotUrdf, RootAndTipSelectASubChain) {
+TEST(RobotUrdf, BaseAndTipSelectASubChain) {
   const Robot full = loadRobotUrdf(kInspectionUrdf);
   const Robot part = loadRobotUrdf(kInspectionUrdf, {"link2", "link4"});
   ASSERT_EQ(part.dof(), 2);
@@ -162,12 +164,12 @@ TEST(RobotUrdf, MalformedUrdfPrintsNothing) {
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
-TEST(RobotUrdf, ReportsTipNotBelowRootAndUnknownLinks) {
-  EXPECT_EQ(errorOf(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below root link 'l2'");
+TEST(RobotUrdf, ReportsTipNotBelowBaseAndUnknownLinks) {
+  EXPECT_EQ(errorOf(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below base link 'l2'");
   EXPECT_EQ(errorOf(kPlanar, {"", "hand"}),
             "bad.urdf: tip link 'hand' is not a link of robot 'planar'");
   EXPECT_EQ(errorOf(kPlanar, {"torso", ""}),
-            "bad.urdf: root link 'torso' is not a link of robot 'planar'");
+            "bad.urdf: base link 'torso' is not a link of robot 'planar'");
 }
 
 TEST(RobotUrdf, ReportsJointWithoutLimits) {
@@ -195,10 +197,10 @@ TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {
               "<link name='camera'/><joint name='cam' type='fixed'><parent link='l1'/>"
               "<child link='camera'/></joint></robot>");
   EXPECT_EQ(errorOf(branched),
-            "bad.urdf: link 'base' has 2 leaf links below it (tool, camera); choose the tip link");
+            "bad.urdf: link 'base' has 2 leaf links below it (tool, camera): choose the tip link");
   EXPECT_EQ(parseRobotUrdf(branched, "ok.urdf", {"", "camera"}).dof(), 1);
   EXPECT_EQ(errorOf(kPlanar, {"l3", "tool"}),
-            "bad.urdf: no revolute, continuous or prismatic joint between root link 'l3' and tip "
+            "bad.urdf: no revolute, continuous or prismatic joint between base link 'l3' and tip "
             "link 'tool'");
 }
 
@@ -386,6 +388,109 @@ TEST(RobotUrdf, RefusesControlCharactersInRobotLinkAndJointNames) {
                             R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
                             R"(<child link="spare&#127;"/></joint>)")),
             "bad.urdf: link name 'spare\\x7f' holds a control byte (names are printable text)");
+}
+
+// The UR5-shaped URDF of tests/kinematics/ur5_shaped_urdf.h: its tool0 and ee_link are fixed
+// frames below the last joint, so the chain to either is six joints and a fixed flange. Poses
+// composed from the published D-H table by hand agree with the file's to rounding (the URDF's
+// pi/2 is printed to 17 digits).
+constexpr double kUrPoseTol = 1e-12;
+
+/// The largest entry of the difference of two poses' matrices.
+double poseGap(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+  return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
+}
+
+TEST(RobotUrdf, AFixedFrameAsTipIsComposedIntoTheFlange) {
+  const Robot tool0 = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", {"", "tool0"});
+  const Robot ee = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", {"", "ee_link"});
+  const Robot from_base = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", {"base_link", "tool0"});
+  ASSERT_EQ(tool0.dof(), 6);
+  ASSERT_EQ(ee.dof(), 6);
+  ASSERT_EQ(from_base.dof(), 6);
+  // At zero: tool0 at x = a2 + a3 = -0.81725, y = -(d4 + d6) = -0.19145, z = d1 - d5 = -0.005491
+  // above base_link (the UR5's home pose, lying along -x).
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(6);
+  const Eigen::Vector3d home(-0.81725, -0.19145, -0.005491);
+  EXPECT_LT((toolPose(from_base, zero).translation() - home).norm(), kUrPoseTol);
+  EXPECT_LT((toolPose(tool0, zero).translation() - home - Eigen::Vector3d(0, 0, 0.5)).norm(),
+            kUrPoseTol);
+  std::mt19937_64 rng(33);
+  for (int sample = 0; sample < 200; ++sample) {
+    const Eigen::VectorXd q = test::randomJoints(tool0, rng);
+    ASSERT_LT(poseGap(toolPose(tool0, q), test::ur5FromWorld(test::ur5BaseToTool0(q))), kUrPoseTol)
+        << q.transpose();
+    ASSERT_LT(poseGap(toolPose(ee, q), test::ur5FromWorld(test::ur5BaseToEeLink(q))), kUrPoseTol)
+        << q.transpose();
+    ASSERT_LT(poseGap(toolPose(from_base, q), test::ur5BaseToTool0(q)), kUrPoseTol)
+        << q.transpose();
+  }
+}
+
+TEST(RobotUrdf, TheRobotNamesTheLinksOfItsChain) {
+  const Robot ee = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", {"", "ee_link"});
+  EXPECT_EQ(ee.base_link, "world");
+  EXPECT_EQ(ee.tip_link, "ee_link");
+  const Robot part =
+      parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", {"base_link", "wrist_2_link"});
+  EXPECT_EQ(part.base_link, "base_link");
+  EXPECT_EQ(part.tip_link, "wrist_2_link");
+  EXPECT_EQ(part.dof(), 5);
+  // The defaults, named: the root link and the one leaf.
+  const Robot planar = parseRobotUrdf(kPlanar, "planar.urdf");
+  EXPECT_EQ(planar.base_link, "base");
+  EXPECT_EQ(planar.tip_link, "tool");
+  // A D-H robot has no links to name.
+  EXPECT_EQ(loadRobot(test::robotPath("inspection6")).tip_link, "");
+}
+
+/// The UrdfChainError of a chain of the UR5-shaped URDF.
+UrdfChainError chainErrorOf(const UrdfChainOptions& options) {
+  try {
+    parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", options);
+  } catch (const UrdfChainError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no chain error for '" << options.base_link << "' to '" << options.tip_link
+                << "'";
+  return UrdfChainError(UrdfChainError::Problem::kUnknownTip, "", "", "", false, "", {});
+}
+
+TEST(RobotUrdf, ChainErrorsNameTheLeavesAndTheOptionsAsTheCallerCallsThem) {
+  const UrdfChainError leaves = chainErrorOf({});
+  EXPECT_EQ(leaves.problem(), UrdfChainError::Problem::kSeveralLeaves);
+  EXPECT_STREQ(leaves.what(),
+               "ur5.urdf: link 'world' has 2 leaf links below it (tool0, ee_link): choose the tip "
+               "link");
+  EXPECT_EQ(leaves.describe("--base", "--tip", "--tip"),
+            "ur5.urdf: link 'world' has 2 leaf links below it (tool0, ee_link): choose one with "
+            "--tip");
+  // From a base below the branch's root, still the same two leaves.
+  EXPECT_EQ(chainErrorOf({"forearm_link", ""}).describe("--base", "--tip", "--tip"),
+            "ur5.urdf: link 'forearm_link' has 2 leaf links below it (tool0, ee_link): choose one "
+            "with --tip");
+
+  const UrdfChainError tip = chainErrorOf({"", "hand"});
+  EXPECT_EQ(tip.problem(), UrdfChainError::Problem::kUnknownTip);
+  EXPECT_STREQ(tip.what(), "ur5.urdf: tip link 'hand' is not a link of robot 'ur5_shaped'");
+  EXPECT_EQ(tip.describe("--base", "--tip", "--tip"),
+            "--tip: 'hand' is not a link of robot 'ur5_shaped' in ur5.urdf");
+
+  const UrdfChainError base = chainErrorOf({"torso", "tool0"});
+  EXPECT_EQ(base.problem(), UrdfChainError::Problem::kUnknownBase);
+  EXPECT_EQ(base.describe("base", "tip", "a tip"),
+            "base: 'torso' is not a link of robot 'ur5_shaped' in ur5.urdf");
+
+  const UrdfChainError below = chainErrorOf({"wrist_1_link", "upper_arm_link"});
+  EXPECT_EQ(below.problem(), UrdfChainError::Problem::kTipNotBelowBase);
+  EXPECT_STREQ(below.what(),
+               "ur5.urdf: tip link 'upper_arm_link' is not below base link "
+               "'wrist_1_link'");
+  EXPECT_EQ(below.describe("--base", "--tip", "--tip"),
+            "--tip: link 'upper_arm_link' is not below --base link 'wrist_1_link' in ur5.urdf");
+  // A sibling branch is not below either.
+  EXPECT_EQ(chainErrorOf({"tool0", "ee_link"}).problem(),
+            UrdfChainError::Problem::kTipNotBelowBase);
 }
 
 }  // namespace

@@ -183,7 +183,9 @@ struct EventSpec {
 struct BehaviorModel {
   std::string source;  ///< the file (or the name given to parseBehaviorModel)
   std::string name;
-  std::string robot_path;      ///< the robot file named by `robot:`, resolved; "" when none
+  /// the robot file named by `robot:` (or by `robot: {file: F, base: LINK, tip: LINK}`, which
+  /// chooses a URDF's chain: readRobotEntry()), resolved; "" when none
+  std::string robot_path;
   std::optional<Robot> robot;  ///< loaded from robot_path
   int robot_line{0};
   InsulatorSpec insulator;

@@ -13,6 +13,7 @@
 #include "mcws/core/input_files.h"
 #include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
+#include "mcws/kinematics/robot_entry.h"
 #include "mcws/kinematics/robot_yaml.h"
 
 namespace mcws {
@@ -57,20 +58,17 @@ class BehaviorModelReader : YamlReader {
     return q.value;
   }
 
+  /// `robot: FILE`, or a map choosing a URDF's chain (readRobotEntry()).
   void readRobot(const YAML::Node& node) {
-    const std::string file = text(node, "robot");
-    std::filesystem::path path(file);
-    if (path.is_relative()) path = std::filesystem::path(source()).parent_path() / path;
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) {
-      fail(node, "robot: '" + file + "' does not exist (looked for " + path.string() + ")");
-    }
-    model_.robot_path = path.string();
-    model_.robot_line = lineOf(node);
+    const RobotEntry entry = readRobotEntry(*this, node);
+    model_.robot_path = entry.path;
+    model_.robot_line = lineOf(entry.file_node);
     try {
-      model_.robot = loadRobot(model_.robot_path);
+      model_.robot = loadRobot(entry.path, entry.chain);
+    } catch (const UrdfChainError& e) {
+      entry.failChain(*this, e);
     } catch (const Error& e) {
-      fail(node, std::string("robot: ") + e.what());
+      fail(entry.file_node, std::string("robot: ") + e.what());
     }
   }
 

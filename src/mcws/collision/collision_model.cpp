@@ -388,7 +388,7 @@ CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
         model.tool.shapes.push_back(std::move(shape));
         break;
       case UrdfBody::kEnvironment: {
-        // The environment is placed in the world frame, the URDF's root link frame in the base's.
+        // The environment is placed in the world frame, the URDF's base link frame in the base's.
         shape.T_body_shape = robot.T_world_base * shape.T_body_shape;
         shape.p_from = robot.T_world_base * shape.p_from;
         shape.p_to = robot.T_world_base * shape.p_to;
@@ -429,7 +429,7 @@ CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
 }
 
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path) {
-  if (isUrdfPath(path)) return loadCollisionUrdf(robot, path);
+  if (isUrdfPath(path)) return loadCollisionUrdf(robot, path, {robot.base_link, robot.tip_link});
   return parseCollisionYaml(robot, readTextFile(path, "robot file"), path);
 }
 

@@ -94,7 +94,7 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 /// its chain carries.
 ///
 /// Each element goes to the body that carries its link (loadRobotUrdfGeometry()): the base (the
-/// root link and the links up to the first moving joint), link i (the child link of moving joint
+/// base link and the links up to the first moving joint), link i (the child link of moving joint
 /// i and the links fixed below it), the tool (links fixed after the last moving joint's child on
 /// the way to the tip link, e.g. a flange or tool link, placed in the flange frame), or an
 /// environment object named by its link (a link fixed to the base off the chain, in the world
@@ -109,7 +109,7 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 /// read). Lengths are converted from metres to the robot's length unit.
 /// \param robot the chain read from the same text (joint names must match).
 /// \param text the URDF text; \param source its file name, for messages and mesh paths.
-/// \param chain root and tip links, as given to loadRobotUrdf() for `robot`.
+/// \param chain base and tip links, as given to loadRobotUrdf() for `robot`.
 /// \throws mcws::Error, one line naming the file and the link: as loadRobotUrdfGeometry(); a
 ///   chain whose joints are not the robot's; an unsupported mesh URI or format; a missing or
 ///   unreadable mesh; an environment link named as the base, the tool or a joint.
@@ -120,8 +120,9 @@ CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
 CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
                                  const UrdfChainOptions& chain = {});
 
-/// \brief The collision model of a robot file: loadCollisionUrdf() (the whole tree's chain) for a
-/// `.urdf` file, else parseCollisionYaml() of the file.
+/// \brief The collision model of a robot file: loadCollisionUrdf() of the chain `robot` was read
+/// as (Robot::base_link to Robot::tip_link, so a robot read with --base/--tip gets the geometry of
+/// that chain) for a `.urdf` file, else parseCollisionYaml() of the file.
 /// \throws mcws::Error when the file cannot be read, and as those two.
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path);
 

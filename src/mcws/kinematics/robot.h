@@ -45,6 +45,10 @@ struct Robot {
   std::vector<Joint> joints;
   Eigen::Isometry3d T_last_flange{Eigen::Isometry3d::Identity()};
   Eigen::Isometry3d T_flange_tool{Eigen::Isometry3d::Identity()};
+  /// A URDF robot's chain (loadRobotUrdf()): the link whose frame is the base frame and the link
+  /// whose frame is the flange frame, so that what else is read from the file (its collision
+  /// model) follows the same chain. Empty for a D-H robot.
+  std::string base_link, tip_link;
 
   /// \brief Number of joints.
   int dof() const { return static_cast<int>(joints.size()); }

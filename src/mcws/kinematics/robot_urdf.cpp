@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "mcws/core/error.h"
@@ -32,18 +33,18 @@ class ChainReader {
 
   /// The links and joints of a chain.
   struct Chain {
-    urdf::LinkConstSharedPtr root, tip;
-    std::vector<urdf::JointConstSharedPtr> joints;  ///< from the root to the tip
+    urdf::LinkConstSharedPtr base, tip;
+    std::vector<urdf::JointConstSharedPtr> joints;  ///< from the base to the tip
   };
 
   Chain chain(const UrdfChainOptions& options) const {
     Chain chain;
-    chain.root = rootLink(options.root_link);
-    chain.tip = options.tip_link.empty() ? singleLeaf(chain.root) : link(options.tip_link, "tip");
-    for (urdf::LinkConstSharedPtr current = chain.tip; current != chain.root;) {
+    chain.base = baseLink(options.base_link);
+    chain.tip =
+        options.tip_link.empty() ? singleLeaf(chain.base, options) : tipLink(options, chain.base);
+    for (urdf::LinkConstSharedPtr current = chain.tip; current != chain.base;) {
       if (!current->parent_joint) {
-        fail("tip link '" + chain.tip->name + "' is not below root link '" + chain.root->name +
-             "'");
+        throw chainError(UrdfChainError::Problem::kTipNotBelowBase, chain.base->name, options, {});
       }
       chain.joints.push_back(current->parent_joint);
       current = model_.getLink(current->parent_joint->parent_link_name);
@@ -58,6 +59,8 @@ class ChainReader {
     robot.name = model_.getName();
     robot.source = source_;
     robot.length_unit = LengthUnit::kMetre;
+    robot.base_link = chain.base->name;
+    robot.tip_link = chain.tip->name;
     Eigen::Isometry3d T_fixed = Eigen::Isometry3d::Identity();  // fixed joints since the last move
     for (const urdf::JointConstSharedPtr& joint : chain.joints) {
       T_fixed = T_fixed * pose(*joint);
@@ -66,7 +69,7 @@ class ChainReader {
       T_fixed = Eigen::Isometry3d::Identity();
     }
     if (robot.joints.empty()) {
-      fail("no revolute, continuous or prismatic joint between root link '" + chain.root->name +
+      fail("no revolute, continuous or prismatic joint between base link '" + chain.base->name +
            "' and tip link '" + chain.tip->name + "'");
     }
     robot.T_last_flange = T_fixed;
@@ -109,7 +112,7 @@ class ChainReader {
     std::map<std::string, Place> places;
     std::set<std::string> chain_joints;
     Place place;
-    places[chain.root->name] = place;
+    places[chain.base->name] = place;
     int moving = -1;
     for (const urdf::JointConstSharedPtr& joint : chain.joints) {
       chain_joints.insert(joint->name);
@@ -147,14 +150,14 @@ class ChainReader {
     return places;
   }
 
-  /// Why the chain does not carry `link` (one that linkPlaces() did not place): below the root,
+  /// Why the chain does not carry `link` (one that linkPlaces() did not place): below the base,
   /// a link that fixed joints do not tie to the chain moves with a joint outside it.
   std::string notCarried(const Chain& chain, const urdf::Link& link) const {
     const std::string chain_name =
-        "the chain from link '" + chain.root->name + "' to link '" + chain.tip->name + "'";
+        "the chain from link '" + chain.base->name + "' to link '" + chain.tip->name + "'";
     urdf::JointConstSharedPtr moving;  // the nearest moving joint above the link
     for (urdf::LinkConstSharedPtr current = model_.getLink(link.name); current;) {
-      if (current->name == chain.root->name) {
+      if (current->name == chain.base->name) {
         if (moving) {
           return "it moves with joint '" + moving->name + "', which is not in " + chain_name;
         }
@@ -166,7 +169,7 @@ class ChainReader {
       }
       current = model_.getLink(current->parent_joint->parent_link_name);
     }
-    return "it is not below root link '" + chain.root->name + "' of " + chain_name;
+    return "it is not below base link '" + chain.base->name + "' of " + chain_name;
   }
 
   /// One `<collision>` element of a link at `place`.
@@ -227,20 +230,32 @@ class ChainReader {
 
   [[noreturn]] void fail(const std::string& what) const { throw Error(source_ + ": " + what); }
 
-  urdf::LinkConstSharedPtr link(const std::string& name, const std::string& role) const {
-    urdf::LinkConstSharedPtr found = model_.getLink(name);
-    if (!found)
-      fail(role + " link '" + name + "' is not a link of robot '" + model_.getName() + "'");
-    return found;
+  UrdfChainError chainError(UrdfChainError::Problem problem, const std::string& base,
+                            const UrdfChainOptions& options,
+                            std::vector<std::string> leaves) const {
+    return UrdfChainError(problem, source_, model_.getName(), base, !options.base_link.empty(),
+                          options.tip_link, std::move(leaves));
   }
 
-  urdf::LinkConstSharedPtr rootLink(const std::string& name) const {
-    if (!name.empty()) return link(name, "root");
+  urdf::LinkConstSharedPtr baseLink(const std::string& name) const {
+    if (!name.empty()) {
+      urdf::LinkConstSharedPtr found = model_.getLink(name);
+      if (!found) throw chainError(UrdfChainError::Problem::kUnknownBase, name, {name, ""}, {});
+      return found;
+    }
     if (!model_.getRoot()) fail("the URDF has no root link");
     return model_.getRoot();
   }
 
-  urdf::LinkConstSharedPtr singleLeaf(const urdf::LinkConstSharedPtr& root) const {
+  urdf::LinkConstSharedPtr tipLink(const UrdfChainOptions& options,
+                                   const urdf::LinkConstSharedPtr& base) const {
+    urdf::LinkConstSharedPtr found = model_.getLink(options.tip_link);
+    if (!found) throw chainError(UrdfChainError::Problem::kUnknownTip, base->name, options, {});
+    return found;
+  }
+
+  urdf::LinkConstSharedPtr singleLeaf(const urdf::LinkConstSharedPtr& root,
+                                      const UrdfChainOptions& options) const {
     // Leaves that only fixed joints lead to (objects fixed to the base) end no chain: they count
     // only when there is no other leaf, so that the message is then the missing moving joint.
     std::vector<urdf::LinkConstSharedPtr> leaves, fixed_leaves;
@@ -255,10 +270,9 @@ class ChainReader {
     }
     if (leaves.empty()) leaves = fixed_leaves;
     if (leaves.size() != 1) {
-      std::string list;
-      for (const auto& leaf : leaves) list += (list.empty() ? "" : ", ") + leaf->name;
-      fail("link '" + root->name + "' has " + std::to_string(leaves.size()) +
-           " leaf links below it (" + list + "); choose the tip link");
+      std::vector<std::string> names;
+      for (const auto& leaf : leaves) names.push_back(leaf->name);
+      throw chainError(UrdfChainError::Problem::kSeveralLeaves, root->name, options, names);
     }
     return leaves.front();
   }
@@ -356,7 +370,61 @@ void checkUrdfSize(std::uintmax_t bytes, const std::string& source) {
   }
 }
 
+/// "link 'world' has 2 leaf links below it (tool0, ee_link)".
+std::string leavesText(const std::string& base, const std::vector<std::string>& leaves) {
+  std::string list;
+  for (const std::string& leaf : leaves) list += (list.empty() ? "" : ", ") + leaf;
+  return "link '" + base + "' has " + std::to_string(leaves.size()) + " leaf links below it (" +
+         list + ")";
+}
+
+/// The library's own line for a chain error: the roles in words ("tip link 'hand' ...").
+std::string chainMessage(UrdfChainError::Problem problem, const std::string& source,
+                         const std::string& robot, const std::string& base, const std::string& tip,
+                         const std::vector<std::string>& leaves) {
+  switch (problem) {
+    case UrdfChainError::Problem::kUnknownBase:
+      return source + ": base link '" + base + "' is not a link of robot '" + robot + "'";
+    case UrdfChainError::Problem::kUnknownTip:
+      return source + ": tip link '" + tip + "' is not a link of robot '" + robot + "'";
+    case UrdfChainError::Problem::kTipNotBelowBase:
+      return source + ": tip link '" + tip + "' is not below base link '" + base + "'";
+    case UrdfChainError::Problem::kSeveralLeaves:
+      break;
+  }
+  return source + ": " + leavesText(base, leaves) + ": choose the tip link";
+}
+
 }  // namespace
+
+UrdfChainError::UrdfChainError(Problem problem, std::string source, std::string robot,
+                               std::string base, bool base_given, std::string tip,
+                               std::vector<std::string> leaves)
+    : Error(chainMessage(problem, source, robot, base, tip, leaves)),
+      problem_(problem),
+      source_(std::move(source)),
+      robot_(std::move(robot)),
+      base_(std::move(base)),
+      base_given_(base_given),
+      tip_(std::move(tip)),
+      leaves_(std::move(leaves)) {}
+
+std::string UrdfChainError::describe(const std::string& base_option, const std::string& tip_option,
+                                     const std::string& choose_tip) const {
+  const std::string in = " in " + source_;
+  switch (problem_) {
+    case Problem::kUnknownBase:
+      return base_option + ": '" + base_ + "' is not a link of robot '" + robot_ + "'" + in;
+    case Problem::kUnknownTip:
+      return tip_option + ": '" + tip_ + "' is not a link of robot '" + robot_ + "'" + in;
+    case Problem::kTipNotBelowBase:
+      return tip_option + ": link '" + tip_ + "' is not below " +
+             (base_given_ ? base_option + " link '" : "the root link '") + base_ + "'" + in;
+    case Problem::kSeveralLeaves:
+      break;
+  }
+  return source_ + ": " + leavesText(base_, leaves_) + ": choose one with " + choose_tip;
+}
 
 Robot parseRobotUrdf(const std::string& text, const std::string& source,
                      const UrdfChainOptions& options) {

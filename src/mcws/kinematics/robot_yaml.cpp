@@ -177,8 +177,13 @@ Robot parseRobotYaml(const std::string& text, const std::string& source) {
   return RobotYamlReader(source).read(loadYamlDocument(text, source, "a robot file"));
 }
 
-Robot loadRobot(const std::string& path) {
-  if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path);
+Robot loadRobot(const std::string& path, const UrdfChainOptions& chain) {
+  if (std::filesystem::path(path).extension() == ".urdf") return loadRobotUrdf(path, chain);
+  if (!chain.base_link.empty() || !chain.tip_link.empty()) {
+    throw Error(path +
+                ": a base or tip link is chosen only in a .urdf robot (a D-H robot's chain "
+                "is its joints)");
+  }
   // The file name is recorded in every cloud of the robot (mcws::io::CloudProvenance).
   checkPrintableName(std::filesystem::path(path).filename().string(), "robot file");
   return parseRobotYaml(readTextFile(path, "robot file"), path);

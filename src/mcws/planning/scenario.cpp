@@ -15,7 +15,7 @@
 #include "mcws/core/error.h"
 #include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
-#include "mcws/kinematics/robot_yaml.h"
+#include "mcws/kinematics/robot_entry.h"
 
 namespace mcws {
 
@@ -68,22 +68,7 @@ class ScenarioReader : YamlReader {
     scenario.name = scalar(require(root, "name", "scenario"), "name");
     SwayPlanningProblem& problem = scenario.problem;
 
-    const YAML::Node robot_node = require(root, "robot", "scenario");
-    const std::string robot_file = scalar(robot_node, "robot");
-    std::filesystem::path path(robot_file);
-    if (path.is_relative()) path = std::filesystem::path(source()).parent_path() / path;
-    std::error_code ec;  // a name too long for the file system is an error, not an exception
-    if (!std::filesystem::exists(path, ec)) {
-      fail(robot_node, "robot: '" + robot_file + "' " +
-                           (ec ? "cannot be looked up: " + ec.message()
-                               : "does not exist (looked for " + path.string() + ")"));
-    }
-    scenario.robot_path = path.string();
-    problem.robot = loadRobot(scenario.robot_path);
-    problem.collision = loadCollisionModel(problem.robot, scenario.robot_path);
-    if (!hasGeometry(problem.collision)) {
-      fail(robot_node, "robot: '" + robot_file + "' has no collision geometry (collision: key)");
-    }
+    readRobot(require(root, "robot", "scenario"), scenario);
     unit_ = problem.robot.length_unit;
     if (const YAML::Node base = root["base"]) problem.robot.T_world_base = pose(base, "base");
 
@@ -135,6 +120,20 @@ class ScenarioReader : YamlReader {
       const std::string key = item.first.Scalar();
       if (!allowed.count(key)) fail(item.first, where + ": unknown field '" + key + "'");
       if (!seen.insert(key).second) fail(item.first, where + ": field '" + key + "' given twice");
+    }
+  }
+
+  /// The robot (`robot: FILE`, or a map choosing a URDF's chain: readRobotEntry()) and its
+  /// collision model, of the same chain, into `scenario`.
+  void readRobot(const YAML::Node& node, Scenario& scenario) const {
+    const RobotEntry entry = readRobotEntry(*this, node);
+    scenario.robot_path = entry.path;
+    SwayPlanningProblem& problem = scenario.problem;
+    problem.robot = entry.load(*this);
+    problem.collision = loadCollisionModel(problem.robot, scenario.robot_path);
+    if (!hasGeometry(problem.collision)) {
+      fail(entry.file_node,
+           "robot: '" + entry.file + "' has no collision geometry (collision: key)");
     }
   }
 

@@ -23,6 +23,8 @@ struct Scenario {
 /// \code{.yaml}
 /// name: maintenance4
 /// robot: ../robots/maintenance4.yaml    # relative to the scenario file; needs collision:
+/// # or, choosing a URDF's chain as the tools' --base and --tip do (readRobotEntry()):
+/// # robot: {file: ../robots/arm.urdf, base: base_link, tip: tool0}  # base, tip optional
 /// start: [0 rad, 0 cm, 0 rad, 0 cm]      # every joint value carries its unit; pi allowed
 /// goal: [pi rad, 10 cm, 0.5236 rad, 10 cm]
 /// joint_scale: [1, 1, 1, 1]              # D = sqrt(sum (scale_i dq_i)^2), dq in rad and the
@@ -62,7 +64,8 @@ struct Scenario {
 ///   confidence outside (0, 1), n or m zero, an acceptance other than whole_path or patent_p, a
 ///   max_collision_probability outside (0, 1), an allow_goal_shift other than true or false, a
 ///   start or goal outside the joint limits or of the wrong length, a robot file that does not
-///   exist or has no collision geometry.
+///   exist or has no collision geometry, a `robot:` base or tip the robot file does not have
+///   (readRobotEntry(), RobotEntry::load()).
 Scenario parseScenario(const std::string& text, const std::string& source);
 
 /// \brief parseScenario() of a file. \throws mcws::Error when it cannot be read.

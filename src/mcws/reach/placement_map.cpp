@@ -35,6 +35,13 @@ void checkHeader(const nlohmann::json& h, const std::string& path, const Robot& 
                 "...): the robot file has changed since, or "
                 "is another; re-make the map with mcws_reach");
   }
+  // One URDF holds several chains (--base, --tip); a map that records none predates the record.
+  if (h.contains("tip_link") &&
+      (h.value("base_link", "") != robot.base_link || h.value("tip_link", "") != robot.tip_link)) {
+    throw Error(path + ": the map was made for the chain from link '" + h.value("base_link", "") +
+                "' to link '" + h.value("tip_link", "") + "', not for the chain from '" +
+                robot.base_link + "' to '" + robot.tip_link + "' (--base, --tip)");
+  }
   if (h.value("collision", false)) {
     throw Error(path +
                 ": the map counts only samples free of the environment at the robot's "

@@ -121,35 +121,49 @@ nlohmann::json placementSummary(const Robot& robot, std::size_t targets, const R
           {"candidates", table}};
 }
 
+namespace {
+
+/// A URDF robot's chain (--base, --tip) into a record of the robot: one file holds several
+/// chains. Nothing for a D-H robot, whose records stay as they were.
+void addChain(nlohmann::json& record, const Robot& robot) {
+  if (robot.tip_link.empty()) return;
+  record["base_link"] = robot.base_link;
+  record["tip_link"] = robot.tip_link;
+}
+
+}  // namespace
+
 std::string mapFileHeader(const Robot& robot, const std::string& robot_file,
                           const std::string& robot_sha256, const nlohmann::json& summary) {
-  return nlohmann::json{{"robot", robot.name},
+  nlohmann::json header{{"robot", robot.name},
                         {"robot_file", robot_file},
                         {"robot_sha256", robot_sha256},
                         {"length_unit", unitName(robot.length_unit)},
                         {"samples", summary["samples"]},
                         {"seed", summary["seed"]},
                         {"collision", summary["collision"]},
-                        {"manipulability", summary["manipulability"]}}
-      .dump();
+                        {"manipulability", summary["manipulability"]}};
+  addChain(header, robot);
+  return header.dump();
 }
 
 std::string checkpointRun(const Robot& robot, const std::string& robot_sha256,
                           const ReachGrid& grid, const ReachSampling& sampling,
                           std::uint64_t samples, bool collision, int processes, int rank) {
-  return nlohmann::json{{"robot", robot.name},
-                        {"robot_sha256", robot_sha256},
-                        {"resolution", grid.resolution},
-                        {"orientations", grid.directions},
-                        {"rolls", grid.rolls},
-                        {"samples", samples},
-                        {"seed", sampling.seed},
-                        {"collision", collision},
-                        {"manipulability", qualitySummary(sampling.quality, robot)},
-                        {"with_manipulability", sampling.manipulability},
-                        {"processes", processes},
-                        {"rank", rank}}
-      .dump();
+  nlohmann::json run{{"robot", robot.name},
+                     {"robot_sha256", robot_sha256},
+                     {"resolution", grid.resolution},
+                     {"orientations", grid.directions},
+                     {"rolls", grid.rolls},
+                     {"samples", samples},
+                     {"seed", sampling.seed},
+                     {"collision", collision},
+                     {"manipulability", qualitySummary(sampling.quality, robot)},
+                     {"with_manipulability", sampling.manipulability},
+                     {"processes", processes},
+                     {"rank", rank}};
+  addChain(run, robot);
+  return run.dump();
 }
 
 }  // namespace mcws

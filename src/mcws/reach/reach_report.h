@@ -49,14 +49,16 @@ nlohmann::json placementSummary(const Robot& robot, std::size_t targets, const R
 
 /// \brief The header a map file records (ReachMap::write()): the robot, the base name and
 /// SHA-256 of its file, the length unit, and of `summary` (mapSummary()) the samples, seed,
-/// collision and manipulability, so that a reader (mcws_place --map) can check them.
+/// collision and manipulability, so that a reader (mcws_place --map) can check them; for a URDF
+/// robot also its chain's `base_link` and `tip_link` (Robot::base_link, tip_link).
 std::string mapFileHeader(const Robot& robot, const std::string& robot_file,
                           const std::string& robot_sha256, const nlohmann::json& summary);
 
 /// \brief The identity of one process's part of a map run that its checkpoint records
 /// (ReachCheckpoint::run): the robot, its file's SHA-256, the grid, the samples of the whole run,
-/// the seed, whether only collision-free samples count, how manipulability is measured, and the
-/// process count and rank, so that a checkpoint of another run is refused.
+/// the seed, whether only collision-free samples count, how manipulability is measured, the
+/// process count and rank, and a URDF robot's chain (`base_link`, `tip_link`), so that a
+/// checkpoint of another run is refused.
 std::string checkpointRun(const Robot& robot, const std::string& robot_sha256,
                           const ReachGrid& grid, const ReachSampling& sampling,
                           std::uint64_t samples, bool collision, int processes, int rank);
