@@ -19,13 +19,13 @@ namespace mcws::python {
 struct LoadedRobot {
   Robot robot;
   std::string path;        ///< the file, as given
-  UrdfChainOptions chain;  ///< the URDF chain asked for (root, tip); empty: the whole tree's
+  UrdfChainOptions chain;  ///< the URDF chain asked for (base, tip); empty: the whole tree's
 };
 
-/// \brief The robot of a `.yaml` or `.urdf` file; `root` and `tip` (links, URDF only) pick a chain.
-/// \throws mcws::Error naming the file (the library's message); UsageError for root or tip with
+/// \brief The robot of a `.yaml` or `.urdf` file; `base` and `tip` (links, URDF only) pick a chain.
+/// \throws mcws::Error naming the file (the library's message); UsageError for base or tip with
 ///   a robot that is not a `.urdf`.
-LoadedRobot loadRobotFile(const std::string& path, const std::string& root, const std::string& tip);
+LoadedRobot loadRobotFile(const std::string& path, const std::string& base, const std::string& tip);
 
 /// \brief The collision checker of the robot's collision model, as mcws_sample --collision
 /// builds it. \throws mcws::Error "<path>: has no collision geometry ..." when the file has none.

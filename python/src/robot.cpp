@@ -194,17 +194,17 @@ std::vector<std::string> jointTypes(const Robot& robot) {
 
 constexpr char kRobotDoc[] = R"(A serial robot arm read from a robot file.
 
-Robot(path, *, root=None, tip=None)
+Robot(path, *, base=None, tip=None)
 
 path: a robot description, .yaml (docs/robot-files.md) or .urdf (str or os.PathLike).
-root, tip: URDF only: the first and last link of the chain to read (default: the tree's root to
-    its one moving leaf), as the tools' --root and --tip.
+base, tip: URDF only: the first and last link of the chain to read (default: the tree's root to
+    its one leaf), as the tools' --base and --tip.
 
 Lengths are in the robot file's length unit (.length_unit: "m", "cm" or "mm"; URDF: "m"), joint
 values in rad (revolute joints) or in that length unit (prismatic joints): see .joint_units.
 
 Raises mcws.Error naming the file, line, joint or field (missing or unreadable file, a mistake in
-it), mcws.UsageError for root or tip with a file that is not a .urdf.)";
+it), mcws.UsageError for base or tip with a file that is not a .urdf.)";
 
 constexpr char kFkDoc[] =
     R"(Forward kinematics: the pose of the tool (or flange) frame in the world frame.
@@ -251,14 +251,14 @@ orthonormal rotation, or a bad q0, tolerance or seed.)";
 
 }  // namespace
 
-LoadedRobot loadRobotFile(const std::string& path, const std::string& root,
+LoadedRobot loadRobotFile(const std::string& path, const std::string& base,
                           const std::string& tip) {
-  const bool chain = !root.empty() || !tip.empty();
+  const bool chain = !base.empty() || !tip.empty();
   if (chain && !isUrdf(path))
-    throw UsageError("root and tip need a .urdf robot, not '" + path + "'");
+    throw UsageError("base and tip need a .urdf robot, not '" + path + "'");
   LoadedRobot loaded;
   loaded.path = path;
-  loaded.chain = {root, tip};
+  loaded.chain = {base, tip};
   loaded.robot = chain ? loadRobotUrdf(path, loaded.chain) : loadRobot(path);
   return loaded;
 }
@@ -275,11 +275,11 @@ std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded) {
 
 void bindRobot(py::module_& m) {
   py::class_<LoadedRobot>(m, "Robot", kRobotDoc)
-      .def(py::init([](const py::object& path, const std::optional<std::string>& root,
+      .def(py::init([](const py::object& path, const std::optional<std::string>& base,
                        const std::optional<std::string>& tip) {
-             return loadRobotFile(pathArgument(path), root.value_or(""), tip.value_or(""));
+             return loadRobotFile(pathArgument(path), base.value_or(""), tip.value_or(""));
            }),
-           py::arg("path"), py::kw_only(), py::arg("root") = py::none(),
+           py::arg("path"), py::kw_only(), py::arg("base") = py::none(),
            py::arg("tip") = py::none())
       .def_property_readonly(
           "name", [](const LoadedRobot& r) { return r.robot.name; }, "The robot's name (str).")

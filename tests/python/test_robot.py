@@ -162,10 +162,10 @@ def test_ik_agrees_with_mcws_ik(deicing):
     np.testing.assert_allclose(q, expected["q"], rtol=0, atol=1e-12)
 
 
-def test_urdf_chain_by_root_and_tip():
+def test_urdf_chain_by_base_and_tip():
     robot = mcws.Robot(robot_path("inspection6.urdf"))
     assert robot.length_unit == "m"
-    with pytest.raises(mcws.UsageError, match="root and tip need a .urdf robot"):
+    with pytest.raises(mcws.UsageError, match="base and tip need a .urdf robot"):
         mcws.Robot(robot_path("ta1400.yaml"), tip="link6")
     with pytest.raises(mcws.Error, match="nope"):
         mcws.Robot(robot_path("inspection6.urdf"), tip="nope")
