@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <string>
+#include <utility>
 
 #include "common/app.h"
 #include "mcws/filters/boundary_geometry.h"
@@ -25,13 +26,7 @@ constexpr int kMaxThreads = 256;
 /// "--flag: message". A UsageError passes unchanged.
 template <typename Parse>
 auto asUsageError(const std::string& flag, Parse&& parse) -> decltype(parse()) {
-  try {
-    return parse();
-  } catch (const UsageError&) {
-    throw;
-  } catch (const Error& e) {
-    throw UsageError("--" + flag + ": " + e.what());
-  }
+  return mcws::asUsageError("--" + flag, std::forward<Parse>(parse));
 }
 
 /// \brief A real number > 0. \param unit appended to the value in the message ("0 s is not a

@@ -32,20 +32,6 @@ void bindCloud(py::module_& m);
 /// \brief The C++ parts of mcws.boundary and mcws.measure.
 void bindWorkspace(py::module_& m);
 
-/// \brief Runs `call`, turning an mcws::Error into an mcws::UsageError "argument: message": the
-/// library found a bad value in what the caller passed as `argument`. A UsageError passes
-/// unchanged.
-template <typename Call>
-auto asUsageError(const std::string& argument, Call&& call) -> decltype(call()) {
-  try {
-    return call();
-  } catch (const UsageError&) {
-    throw;
-  } catch (const Error& e) {
-    throw UsageError(argument + ": " + e.what());
-  }
-}
-
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;

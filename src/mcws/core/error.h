@@ -25,4 +25,18 @@ class UsageError : public Error {
   using Error::Error;
 };
 
+/// \brief Runs `call`, turning an mcws::Error it throws (a bad value found by a library
+/// function) into a UsageError "`what`: message", `what` naming what the caller passed: a flag
+/// ("--fix") or an argument ("q"). A UsageError passes unchanged.
+template <typename Call>
+auto asUsageError(const std::string& what, Call&& call) -> decltype(call()) {
+  try {
+    return call();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    throw UsageError(what + ": " + e.what());
+  }
+}
+
 }  // namespace mcws
