@@ -14,20 +14,22 @@ def xyz(points):
     return np.stack([points["x"], points["y"], points["z"]], axis=1)
 
 
-@pytest.fixture(scope="module")
-def disk(tmp_path_factory):
-    points = mcws.sample_shape("disk", 20000, seed=2)
-    path = tmp_path_factory.mktemp("disk") / "disk.pcd"
+def shape_cloud(tmp_path_factory, shape, seed):
+    """20000 points of a validation shape, and the PCD file they were written to."""
+    points = mcws.sample_shape(shape, 20000, seed=seed)
+    path = tmp_path_factory.mktemp(shape) / (shape + ".pcd")
     mcws.write_pcd(path, points)
     return points, path
+
+
+@pytest.fixture(scope="module")
+def disk(tmp_path_factory):
+    return shape_cloud(tmp_path_factory, "disk", 2)
 
 
 @pytest.fixture(scope="module")
 def ball(tmp_path_factory):
-    points = mcws.sample_shape("ball", 20000, seed=3)
-    path = tmp_path_factory.mktemp("ball") / "ball.pcd"
-    mcws.write_pcd(path, points)
-    return points, path
+    return shape_cloud(tmp_path_factory, "ball", 3)
 
 
 @pytest.mark.parametrize("plane,settings,flags", [
