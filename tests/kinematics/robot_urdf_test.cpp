@@ -180,15 +180,19 @@ TEST(RobotUrdf, ReportsJointWithoutLimits) {
   EXPECT_THAT(errorOf(text), HasSubstr("j1"));
 }
 
-TEST(RobotUrdf, ReportsFloatingPlanarAndMimicJoints) {
+TEST(RobotUrdf, ReportsFloatingAndPlanarJointsButReadsMimicJoints) {
   EXPECT_EQ(errorOf(replace(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
             "bad.urdf: joint 'j1': floating joints are not supported (revolute, continuous, "
             "prismatic, fixed)");
   EXPECT_THAT(errorOf(replace(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
               HasSubstr("bad.urdf: joint 'j3': planar joints are not supported"));
-  EXPECT_EQ(errorOf(replace(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
-                            "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>")),
-            "bad.urdf: joint 'j2': mimic joints are not supported in a serial chain");
+  // A mimic joint is no error (issue 33): j2 follows j1 and is no degree of freedom.
+  const Robot mimic = parseRobotUrdf(replace(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
+                                             "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>"),
+                                     "mimic.urdf");
+  EXPECT_EQ(mimic.dof(), 2);
+  ASSERT_EQ(mimic.mimic_joints.size(), 1u);
+  EXPECT_EQ(mimic.mimic_joints[0].joint.name, "j2");
 }
 
 TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {

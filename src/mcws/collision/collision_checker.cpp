@@ -273,6 +273,7 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
   data.T_world_body[0] = T;
   for (int i = 0; i < robot_.dof(); ++i) {
     const Joint& joint = robot_.joints[i];
+    applyMimicJoints(robot_, i, q, T);
     T = T * joint.T_parent_joint;
     if (joint.type == JointType::kRevolute && joint.axis == Eigen::Vector3d::UnitZ()) {
       const double c = std::cos(q[i]), s = std::sin(q[i]);
@@ -284,6 +285,7 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
     }
     data.T_world_body[i + 1] = T;
   }
+  applyMimicJoints(robot_, robot_.dof(), q, T);
   data.T_world_body[tool_body_] = T * robot_.T_last_flange;
 }
 

@@ -22,6 +22,18 @@ struct ChainPoses {
 /// along, its axis.
 Eigen::Isometry3d jointMotion(const Joint& joint, double q);
 
+/// \brief The value of a mimic joint at the free joint values q: multiplier * q[master] + offset
+/// [rad | length unit].
+inline double mimicValue(const MimicJoint& mimic, const double* q) {
+  return mimic.multiplier * q[mimic.master] + mimic.offset;
+}
+
+/// \brief Moves `T` through the mimic joints that sit before free joint `before` (before the flange
+/// when `before` is robot.dof()): T = T * T_parent_joint * M(mimicValue()) for each, in order.
+/// Leaves T untouched when there are none.
+/// \param q the free joint values [rad | length unit], robot.dof() of them.
+void applyMimicJoints(const Robot& robot, int before, const double* q, Eigen::Isometry3d& T);
+
 /// \brief All frames of the chain.
 /// \param q joint values [rad | length unit], one per joint (limits are not checked).
 /// \throws mcws::Error when q has the wrong size.

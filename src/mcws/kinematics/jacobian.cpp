@@ -10,26 +10,61 @@ Eigen::Matrix3d rotationTakingZTo(const Eigen::Vector3d& axis) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
 }
 
+/// Turns the parked columns of J (joint origin in rows 0-2, world axis in rows 3-5) into the
+/// Jacobian's columns at the tool point p.
+void finishColumns(int dof, const char* revolute, const Eigen::Vector3d& p, double* J) {
+  for (int i = 0; i < dof; ++i) {
+    double* column = J + 6 * i;
+    Eigen::Map<Eigen::Vector3d> linear(column), angular(column + 3);
+    if (revolute[i]) {
+      linear = angular.cross(p - linear);
+    } else {
+      linear = angular;
+      angular.setZero();
+    }
+  }
+}
+
 }  // namespace
 
-KinematicChain::KinematicChain(const Robot& robot) {
+KinematicChain::KinematicChain(const Robot& robot) : dof_(robot.dof()) {
   // Joint i's motion about / along its axis is A_i Z(q_i) A_i^T with A_i z = axis_i, so
   // G_0 = T_world_base P_0 A_0, G_i = A_{i-1}^T P_i A_i, G_n = A_{n-1}^T T_last_flange
-  // T_flange_tool (P_i = joints[i].T_parent_joint).
-  fixed_.reserve(robot.joints.size() + 1);
-  revolute_.reserve(robot.joints.size());
+  // T_flange_tool (P_i = joints[i].T_parent_joint), over the moving joints in chain order (the
+  // free joints and, where they sit, the mimic joints).
+  std::vector<const Joint*> moving;
+  for (int i = 0; i <= robot.dof(); ++i) {
+    for (const MimicJoint& mimic : robot.mimic_joints) {
+      if (mimic.before != i) continue;
+      moving.push_back(&mimic.joint);
+      free_.push_back(-1 - static_cast<int>(mimics_.size()));
+      mimics_.push_back({mimic.master, mimic.multiplier, mimic.offset});
+    }
+    if (i == robot.dof()) break;
+    moving.push_back(&robot.joints[i]);
+    free_.push_back(i);
+  }
+  fixed_.reserve(moving.size() + 1);
+  revolute_.reserve(moving.size());
   Eigen::Isometry3d before = robot.T_world_base;  // what stands left of P_i
-  for (const Joint& joint : robot.joints) {
-    const Eigen::Matrix3d A = joint.axis == Eigen::Vector3d::UnitZ()
+  for (const Joint* joint : moving) {
+    const Eigen::Matrix3d A = joint->axis == Eigen::Vector3d::UnitZ()
                                   ? Eigen::Matrix3d::Identity()
-                                  : rotationTakingZTo(joint.axis.normalized());
-    const Eigen::Isometry3d G = before * joint.T_parent_joint;
+                                  : rotationTakingZTo(joint->axis.normalized());
+    const Eigen::Isometry3d G = before * joint->T_parent_joint;
     fixed_.push_back({G.linear() * A, G.translation()});
-    revolute_.push_back(joint.type == JointType::kRevolute);
+    revolute_.push_back(joint->type == JointType::kRevolute);
     before = Eigen::Isometry3d(A.transpose());
   }
   const Eigen::Isometry3d G = before * robot.T_last_flange * robot.T_flange_tool;
   fixed_.push_back({G.linear(), G.translation()});
+}
+
+double KinematicChain::value(int step, const double* q) const {
+  const int source = free_[step];
+  if (source >= 0) return q[source];
+  const Mimic& mimic = mimics_[-1 - source];
+  return mimic.multiplier * q[mimic.master] + mimic.offset;
 }
 
 void KinematicChain::advance(int i, double q, Eigen::Matrix3d& R, Eigen::Vector3d& p) const {
@@ -49,8 +84,8 @@ void KinematicChain::advance(int i, double q, Eigen::Matrix3d& R, Eigen::Vector3
 Eigen::Isometry3d KinematicChain::toolPose(const double* q) const {
   Eigen::Matrix3d R = fixed_[0].R;
   Eigen::Vector3d p = fixed_[0].p;
-  for (int i = 0; i < dof(); ++i) {
-    advance(i, q[i], R, p);
+  for (int step = 0; step < static_cast<int>(revolute_.size()); ++step) {
+    advance(step, value(step, q), R, p);
   }
   Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
   T.linear() = R;
@@ -60,6 +95,7 @@ Eigen::Isometry3d KinematicChain::toolPose(const double* q) const {
 
 void KinematicChain::toolPoseAndJacobian(const double* q, Eigen::Matrix3d& R_world_tool,
                                          Eigen::Vector3d& p_world_tool, double* J) const {
+  if (!mimics_.empty()) return withMimics(q, R_world_tool, p_world_tool, J);
   Eigen::Matrix3d R = fixed_[0].R;
   Eigen::Vector3d p = fixed_[0].p;
   for (int i = 0; i < dof(); ++i) {
@@ -70,15 +106,44 @@ void KinematicChain::toolPoseAndJacobian(const double* q, Eigen::Matrix3d& R_wor
     column.tail<3>() = R.col(2);
     advance(i, q[i], R, p);
   }
-  for (int i = 0; i < dof(); ++i) {
-    double* column = J + 6 * i;
-    Eigen::Map<Eigen::Vector3d> linear(column), angular(column + 3);
-    if (revolute_[i]) {
-      linear = angular.cross(p - linear);
+  finishColumns(dof(), revolute_.data(), p, J);
+  R_world_tool = R;
+  p_world_tool = p;
+}
+
+void KinematicChain::withMimics(const double* q, Eigen::Matrix3d& R_world_tool,
+                                Eigen::Vector3d& p_world_tool, double* J) const {
+  // Per free joint, the sums over the mimic joints that follow it, each weighted by its
+  // multiplier m: m z (revolute), m z x p_k (revolute), m z (prismatic). A revolute mimic's column
+  // m z x (p_tool - p_k) is then (sum m z) x p_tool - sum m z x p_k.
+  std::vector<Eigen::Vector3d> turn(dof(), Eigen::Vector3d::Zero()), moment = turn, shift = turn;
+  std::vector<char> free_revolute(dof());
+  Eigen::Matrix3d R = fixed_[0].R;
+  Eigen::Vector3d p = fixed_[0].p;
+  for (int step = 0; step < static_cast<int>(revolute_.size()); ++step) {
+    const int source = free_[step];
+    if (source >= 0) {
+      Eigen::Map<Eigen::Matrix<double, 6, 1>> column(J + 6 * source);
+      column.head<3>() = p;
+      column.tail<3>() = R.col(2);
+      free_revolute[source] = revolute_[step];
     } else {
-      linear = angular;
-      angular.setZero();
+      const Mimic& mimic = mimics_[-1 - source];
+      const Eigen::Vector3d z = mimic.multiplier * R.col(2);
+      if (revolute_[step]) {
+        turn[mimic.master] += z;
+        moment[mimic.master] += z.cross(p);
+      } else {
+        shift[mimic.master] += z;
+      }
     }
+    advance(step, value(step, q), R, p);
+  }
+  finishColumns(dof(), free_revolute.data(), p, J);
+  for (int i = 0; i < dof(); ++i) {
+    Eigen::Map<Eigen::Vector3d> linear(J + 6 * i), angular(J + 6 * i + 3);
+    linear += turn[i].cross(p) - moment[i] + shift[i];
+    angular += turn[i];
   }
   R_world_tool = R;
   p_world_tool = p;

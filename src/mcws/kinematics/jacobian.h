@@ -25,12 +25,16 @@ using Jacobian = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 /// joint, and the Jacobian's columns come from the same pass (Siciliano et al., "Robotics:
 /// Modelling, Planning and Control", 2009, eq. 3.30): revolute z_i x (p_tool - p_i) and z_i,
 /// prismatic z_i and 0, with z_i and p_i joint i's world axis and origin.
+///
+/// Mimic joints (Robot::mimic_joints) are moving joints of the chain too, each turned by
+/// multiplier * q_master + offset; by the chain rule each adds multiplier times its own column to
+/// its master's column.
 class KinematicChain {
  public:
   explicit KinematicChain(const Robot& robot);
 
   /// \brief Number of joint values the chain reads.
-  int dof() const { return static_cast<int>(fixed_.size()) - 1; }
+  int dof() const { return dof_; }
 
   /// \brief T_world_tool(q).
   /// \param q joint values q[0 .. dof()) [rad | length unit]; limits are not checked.
@@ -49,11 +53,25 @@ class KinematicChain {
     Eigen::Matrix3d R;
     Eigen::Vector3d p;
   };
-  /// Moves the frame (R, p) of joint i by its value q (a turn about z or a shift along it), then
-  /// by the fixed transform to joint i + 1's frame.
+  /// What moves a mimic joint.
+  struct Mimic {
+    int master;  ///< the free joint it follows
+    double multiplier, offset;
+  };
+  /// The value of moving joint `step` at the free joint values q.
+  double value(int step, const double* q) const;
+  /// Moves the frame (R, p) of moving joint i by its value q (a turn about z or a shift along
+  /// it), then by the fixed transform to moving joint i + 1's frame.
   void advance(int i, double q, Eigen::Matrix3d& R, Eigen::Vector3d& p) const;
-  std::vector<Fixed> fixed_;  ///< G_0 .. G_n
+  /// toolPoseAndJacobian() of a chain with mimic joints.
+  void withMimics(const double* q, Eigen::Matrix3d& R_world_tool, Eigen::Vector3d& p_world_tool,
+                  double* J) const;
+  int dof_{0};
+  std::vector<Fixed> fixed_;  ///< G_0 .. G_n over the moving joints, free and mimic
   std::vector<char> revolute_;
+  /// Per moving joint: its free joint's index, or -1 - k for mimic joint mimics_[k].
+  std::vector<int> free_;
+  std::vector<Mimic> mimics_;
 };
 
 /// \brief Geometric Jacobian of the tool point at q (see Jacobian).

@@ -20,15 +20,29 @@ std::array<double, 12> rowMajor3x4(const Eigen::Isometry3d& T) {
 
 }  // namespace
 
-PointKinematics::PointKinematics(const Robot& robot, const Eigen::Vector3d& p_flange) {
+PointKinematics::PointKinematics(const Robot& robot, const Eigen::Vector3d& p_flange)
+    : dof_(robot.dof()) {
   // T_world_flange = T_world_base * prod_i (F_i * R_i Mz(q_i) R_i^T) * T_last_flange, where R_i
   // turns z onto joint i's axis and Mz is a motion about / along z. Regrouping the fixed parts:
   // E_0 = T_world_base F_1 R_1, E_i = R_i^T F_{i+1} R_{i+1}, and the last one applied to the point.
-  const int n = robot.dof();
+  // The product runs over the moving joints in chain order, the mimic joints where they sit.
+  std::vector<const Joint*> moving;
+  for (int i = 0; i <= robot.dof(); ++i) {
+    for (const MimicJoint& mimic : robot.mimic_joints) {
+      if (mimic.before != i) continue;
+      moving.push_back(&mimic.joint);
+      source_.push_back(-1 - static_cast<int>(mimics_.size()));
+      mimics_.push_back({mimic.master, mimic.multiplier, mimic.offset});
+    }
+    if (i == robot.dof()) break;
+    moving.push_back(&robot.joints[i]);
+    source_.push_back(i);
+  }
+  const int n = static_cast<int>(moving.size());
   Eigen::Isometry3d T_before = robot.T_world_base;
   Eigen::Matrix3d R_previous_inverse = Eigen::Matrix3d::Identity();
   for (int i = 0; i < n; ++i) {
-    const Joint& joint = robot.joints[i];
+    const Joint& joint = *moving[i];
     const Eigen::Matrix3d R = rotationTakingZTo(joint.axis.normalized());
     Eigen::Isometry3d E = Eigen::Isometry3d::Identity();
     E.linear() = R_previous_inverse;
@@ -51,8 +65,17 @@ void PointKinematics::positions(const double* q, double* x, double* y, double* z
     y[k] = p_last_[1];
     z[k] = p_last_[2];
   }
-  for (int i = dof() - 1; i >= 0; --i) {
-    const double* qi = q + i * kLanes;
+  double mimic_q[kLanes];
+  for (int i = static_cast<int>(revolute_.size()) - 1; i >= 0; --i) {
+    const double* qi = mimic_q;
+    if (source_[i] >= 0) {
+      qi = q + source_[i] * kLanes;
+    } else {
+      const Mimic& mimic = mimics_[-1 - source_[i]];
+      for (int k = 0; k < kLanes; ++k) {
+        mimic_q[k] = mimic.multiplier * q[mimic.master * kLanes + k] + mimic.offset;
+      }
+    }
     if (revolute_[i]) {
       // Separate loops: together GCC would fuse them into a scalar sincos call first.
 #pragma omp simd

@@ -28,7 +28,7 @@ class PointKinematics {
   static constexpr int kLanes = 8;
 
   /// \brief Number of joint values position() reads.
-  int dof() const { return static_cast<int>(revolute_.size()); }
+  int dof() const { return dof_; }
 
   /// \brief World positions of kLanes samples at once, vectorised (sin and cos from glibc's
   /// libmvec where available). Each sample's result depends only on its own joint values, not on
@@ -40,14 +40,15 @@ class PointKinematics {
   /// \brief World position [length unit] for joint values q[0..dof()) [rad | length unit].
   Eigen::Vector3d position(const double* q) const {
     double x = p_last_[0], y = p_last_[1], z = p_last_[2];
-    for (int i = dof() - 1; i >= 0; --i) {
+    for (int i = static_cast<int>(revolute_.size()) - 1; i >= 0; --i) {
+      const double qi = value(i, q);
       if (revolute_[i]) {
-        const double c = std::cos(q[i]), s = std::sin(q[i]);
+        const double c = std::cos(qi), s = std::sin(qi);
         const double xr = c * x - s * y;
         y = s * x + c * y;
         x = xr;
       } else {
-        z += q[i];
+        z += qi;
       }
       const double* E = fixed_[i].data();
       const double xn = E[0] * x + E[1] * y + E[2] * z + E[3];
@@ -60,8 +61,23 @@ class PointKinematics {
   }
 
  private:
+  /// What moves a mimic joint.
+  struct Mimic {
+    int master;  ///< the free joint it follows
+    double multiplier, offset;
+  };
+  /// The value of moving joint i (free or mimic) at the free joint values q.
+  double value(int i, const double* q) const {
+    if (source_[i] >= 0) return q[source_[i]];
+    const Mimic& mimic = mimics_[-1 - source_[i]];
+    return mimic.multiplier * q[mimic.master] + mimic.offset;
+  }
+  int dof_{0};
+  /// Over the moving joints, free and mimic (Robot::mimic_joints), in chain order:
   std::vector<std::array<double, 12>> fixed_;  ///< row-major 3x4 transform before joint i
   std::vector<bool> revolute_;
+  std::vector<int> source_;  ///< the free joint's index, or -1 - k for mimic joint mimics_[k]
+  std::vector<Mimic> mimics_;
   Eigen::Vector3d p_last_;  ///< the point in the frame after the last joint's motion
 };
 

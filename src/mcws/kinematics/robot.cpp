@@ -148,6 +148,13 @@ Eigen::Isometry3d poseFromTypedMatrix(const Eigen::Matrix4d& M) {
   return T;
 }
 
+void refuseMimicJoints(const Robot& robot, const std::string& what) {
+  if (robot.mimic_joints.empty()) return;
+  throw Error(robot.source + ": joint '" + robot.mimic_joints.front().joint.name +
+              "' mimics another joint of the chain, which " + what +
+              " does not support yet (mimic joints off the chain are fine)");
+}
+
 double chainLengthScale(const Robot& robot) {
   double reach =
       robot.T_last_flange.translation().norm() + robot.T_flange_tool.translation().norm();
@@ -155,6 +162,16 @@ double chainLengthScale(const Robot& robot) {
     reach += joint.T_parent_joint.translation().norm();
     if (joint.type == JointType::kPrismatic) {
       reach += std::max(std::abs(joint.lower), std::abs(joint.upper));
+    }
+  }
+  for (const MimicJoint& mimic : robot.mimic_joints) {
+    reach += mimic.joint.T_parent_joint.translation().norm();
+    // A prismatic mimic joint's stroke: its master's, times the multiplier, and the offset.
+    if (mimic.joint.type == JointType::kPrismatic) {
+      const Joint& master = robot.joints[mimic.master];
+      reach +=
+          std::abs(mimic.offset) +
+          std::abs(mimic.multiplier) * std::max(std::abs(master.lower), std::abs(master.upper));
     }
   }
   return reach > 0.0 && std::isfinite(reach) ? reach : 1.0;

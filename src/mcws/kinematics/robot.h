@@ -31,12 +31,27 @@ struct Joint {
   double upper{0.0};  ///< upper limit [rad] or [length unit]
 };
 
+/// \brief A moving joint of the chain whose value follows a free joint's (URDF `<mimic>`):
+/// value = multiplier * q[master] + offset. It is no degree of freedom of its own.
+///
+/// It sits on the chain after free joint `before - 1`'s link frame (the base frame when `before`
+/// is 0) and before free joint `before`'s `T_parent_joint` (before `T_last_flange` when `before`
+/// is Robot::dof()); several with the same `before` follow one another in the order listed.
+struct MimicJoint {
+  Joint joint;  ///< name, type, `T_parent_joint` from the frame before it, axis (limits unused)
+  int before{0};
+  int master{0};  ///< index of the free joint it follows
+  double multiplier{1.0};
+  double offset{0.0};  ///< [rad] or [length unit]
+};
+
 /// \brief A serial manipulator.
 ///
 /// T_world_tool(q) = T_world_base * prod_i (T_parent_joint_i * M_i(q_i)) * T_last_flange *
-/// T_flange_tool, where M_i is the motion of joint i. The flange is the end of the bare arm
-/// (point P of Fu, Hu, Chen & Pan 2016); the tool point is its point T. Every length is in
-/// `length_unit`.
+/// T_flange_tool, where M_i is the motion of joint i, and each mimic joint (MimicJoint) inserts
+/// its own T_parent_joint * M(multiplier * q_master + offset) where it sits. The flange is the end
+/// of the bare arm (point P of Fu, Hu, Chen & Pan 2016); the tool point is its point T. Every
+/// length is in `length_unit`.
 struct Robot {
   std::string name;
   std::string source;  ///< file the robot was read from, for messages
@@ -49,8 +64,11 @@ struct Robot {
   /// whose frame is the flange frame, so that what else is read from the file (its collision
   /// model) follows the same chain. Empty for a D-H robot.
   std::string base_link, tip_link;
+  /// Joints of the chain that follow a free joint (URDF `<mimic>`), in chain order; empty for a
+  /// D-H robot.
+  std::vector<MimicJoint> mimic_joints;
 
-  /// \brief Number of joints.
+  /// \brief Number of free joints (degrees of freedom; mimic joints do not count).
   int dof() const { return static_cast<int>(joints.size()); }
   /// \brief Index of the joint called `joint_name`.
   /// \throws mcws::Error naming the robot and the joint when there is no such joint.
@@ -102,6 +120,13 @@ constexpr double kTypedRotationTolerance = 1e-3;
 /// \throws mcws::Error for a last row other than 0 0 0 1 ("last row is 0 0 1 1, not 0 0 0 1"),
 ///   a rotation further from orthonormal, or a reflection.
 Eigen::Isometry3d poseFromTypedMatrix(const Eigen::Matrix4d& M);
+
+/// \brief Throws when the robot has a mimic joint on its chain (Robot::mimic_joints), for the
+/// computations that do not model them yet.
+/// \param what names the computation in the message ("the reach map").
+/// \throws mcws::Error "arm.urdf: joint 'j4' mimics another joint of the chain, which the reach
+///   map does not support yet (mimic joints off the chain are fine)".
+void refuseMimicJoints(const Robot& robot, const std::string& what);
 
 /// \brief Length scale of a chain [length unit]: the sum of its fixed offsets (base to flange,
 /// flange to tool) and prismatic strokes, an upper bound on the tool point's distance from the

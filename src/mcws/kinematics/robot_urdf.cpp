@@ -14,6 +14,7 @@
 #include "mcws/core/text_file.h"
 #include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/detail/urdf_guard.h"
+#include "mcws/kinematics/forward_kinematics.h"
 
 namespace mcws {
 namespace {
@@ -61,12 +62,24 @@ class ChainReader {
     robot.length_unit = LengthUnit::kMetre;
     robot.base_link = chain.base->name;
     robot.tip_link = chain.tip->name;
+    const std::map<std::string, int> free = freeJoints(chain);
     Eigen::Isometry3d T_fixed = Eigen::Isometry3d::Identity();  // fixed joints since the last move
     for (const urdf::JointConstSharedPtr& joint : chain.joints) {
       T_fixed = T_fixed * pose(*joint);
       if (joint->type == urdf::Joint::FIXED) continue;
-      robot.joints.push_back(movingJoint(*joint, T_fixed));
+      const Coupling coupled = coupling(*joint, free);
+      if (coupled.free < 0) {  // a mimic joint whose master is off the chain: fixed at its value
+        T_fixed = T_fixed * motionAt(*joint, coupled.offset);
+        continue;
+      }
+      const Joint moving = movingJoint(*joint, T_fixed);
       T_fixed = Eigen::Isometry3d::Identity();
+      if (!joint->mimic) {
+        robot.joints.push_back(moving);
+      } else {
+        robot.mimic_joints.push_back(
+            {moving, robot.dof(), coupled.free, coupled.multiplier, coupled.offset});
+      }
     }
     if (robot.joints.empty()) {
       fail("no revolute, continuous or prismatic joint between base link '" + chain.base->name +
@@ -79,15 +92,16 @@ class ChainReader {
   /// The `<collision>` elements of the links the chain carries, placed on their bodies (see
   /// loadRobotUrdfGeometry()). `robot` is robot(chain).
   std::vector<UrdfCollision> collisions(const Chain& chain, const Robot& robot) const {
-    const std::map<std::string, Place> places = linkPlaces(chain, robot);
+    std::map<std::string, std::string> unplaced;  // link: why it cannot be placed
+    const std::map<std::string, Place> places = linkPlaces(chain, robot, unplaced);
     std::vector<UrdfCollision> out;
     for (const auto& named : model_.links_) {  // by link name
       const urdf::Link& link = *named.second;
       if (link.collision_array.empty()) continue;
       const auto place = places.find(link.name);
       if (place == places.end()) {
-        fail("link '" + link.name +
-             "' has <collision> elements but is not part of the chain: " + notCarried(chain, link));
+        fail("link '" + link.name + "' has <collision> elements but is not part of the chain: " +
+             notCarried(chain, link, unplaced));
       }
       for (std::size_t k = 0; k < link.collision_array.size(); ++k) {
         out.push_back(collisionElement(link, int(k) + 1, *link.collision_array[k], place->second));
@@ -107,40 +121,41 @@ class ChainReader {
   };
 
   /// The place of every link the chain carries: the chain's own links, then the branches that
-  /// hang off them by fixed joints.
-  std::map<std::string, Place> linkPlaces(const Chain& chain, const Robot& robot) const {
+  /// hang off them, their joints at their default values (defaultValue()). `unplaced` receives,
+  /// for the first link of each part that cannot be placed, why.
+  std::map<std::string, Place> linkPlaces(const Chain& chain, const Robot& robot,
+                                          std::map<std::string, std::string>& unplaced) const {
     std::map<std::string, Place> places;
     std::set<std::string> chain_joints;
+    const std::map<std::string, int> free = freeJoints(chain);
+    // The tool is what follows the last free joint's link rigidly: not so past a mimic joint.
+    const bool mimic_at_end =
+        !robot.mimic_joints.empty() && robot.mimic_joints.back().before == robot.dof();
     Place place;
     places[chain.base->name] = place;
     int moving = -1;
+    std::string mimic;  // the mimic joint of the chain that the current link moves with
     for (const urdf::JointConstSharedPtr& joint : chain.joints) {
       chain_joints.insert(joint->name);
-      if (joint->type != urdf::Joint::FIXED) {
-        place = Place{UrdfBody::kLink, ++moving, Eigen::Isometry3d::Identity()};
+      const bool fixed = joint->type == urdf::Joint::FIXED || coupling(*joint, free).free < 0;
+      if (!fixed) {
+        mimic = joint->mimic ? joint->name : "";
+        place = Place{UrdfBody::kLink, mimic.empty() ? ++moving : moving,
+                      Eigen::Isometry3d::Identity()};
       } else {
-        if (place.body == UrdfBody::kLink && place.joint == robot.dof() - 1) {
+        if (place.body == UrdfBody::kLink && place.joint == robot.dof() - 1 && !mimic_at_end) {
           place.body = UrdfBody::kTool;
         }
-        place.T_body_link = place.T_body_link * pose(*joint);
+        place.T_body_link = place.T_body_link * pose(*joint) * fixedMotion(*joint, free);
       }
-      places[joint->child_link_name] = place;
-    }
-    std::vector<std::string> stack;
-    for (const auto& named : places) stack.push_back(named.first);
-    while (!stack.empty()) {
-      const urdf::LinkConstSharedPtr link = model_.getLink(stack.back());
-      const Place parent = places.at(stack.back());
-      stack.pop_back();
-      for (const urdf::JointSharedPtr& joint : link->child_joints) {
-        if (joint->type != urdf::Joint::FIXED || chain_joints.count(joint->name)) continue;
-        Place child = parent;
-        if (child.body == UrdfBody::kBase) child.body = UrdfBody::kEnvironment;
-        child.T_body_link = child.T_body_link * pose(*joint);
-        places[joint->child_link_name] = child;
-        stack.push_back(joint->child_link_name);
+      if (mimic.empty()) {
+        places[joint->child_link_name] = place;
+      } else {
+        unplaced[joint->child_link_name] =
+            "it moves with joint '" + mimic + "', a mimic joint of the chain (not supported yet)";
       }
     }
+    placeBranches(places, chain_joints, free, unplaced);
     const Eigen::Isometry3d T_flange_last = robot.T_last_flange.inverse();
     for (auto& named : places) {
       if (named.second.body != UrdfBody::kTool) continue;
@@ -150,26 +165,61 @@ class ChainReader {
     return places;
   }
 
-  /// Why the chain does not carry `link` (one that linkPlaces() did not place): below the base,
-  /// a link that fixed joints do not tie to the chain moves with a joint outside it.
-  std::string notCarried(const Chain& chain, const urdf::Link& link) const {
-    const std::string chain_name =
-        "the chain from link '" + chain.base->name + "' to link '" + chain.tip->name + "'";
-    urdf::JointConstSharedPtr moving;  // the nearest moving joint above the link
-    for (urdf::LinkConstSharedPtr current = model_.getLink(link.name); current;) {
-      if (current->name == chain.base->name) {
-        if (moving) {
-          return "it moves with joint '" + moving->name + "', which is not in " + chain_name;
+  /// Places the links below the placed ones that joints off the chain lead to, those joints at
+  /// their default values, rigidly on the body of the chain link they hang from.
+  void placeBranches(std::map<std::string, Place>& places,
+                     const std::set<std::string>& chain_joints,
+                     const std::map<std::string, int>& free,
+                     std::map<std::string, std::string>& unplaced) const {
+    std::vector<std::string> stack;
+    for (const auto& named : places) stack.push_back(named.first);
+    while (!stack.empty()) {
+      const urdf::LinkConstSharedPtr link = model_.getLink(stack.back());
+      const Place parent = places.at(stack.back());
+      stack.pop_back();
+      for (const urdf::JointSharedPtr& joint : link->child_joints) {
+        if (chain_joints.count(joint->name)) continue;
+        const std::string why = branchProblem(*joint, free);
+        if (!why.empty()) {
+          unplaced[joint->child_link_name] = why;
+          continue;
         }
-        break;
+        Place child = parent;
+        if (child.body == UrdfBody::kBase) child.body = UrdfBody::kEnvironment;
+        child.T_body_link = child.T_body_link * pose(*joint) * fixedMotion(*joint, free);
+        places[joint->child_link_name] = child;
+        stack.push_back(joint->child_link_name);
       }
+    }
+  }
+
+  /// Why the links below a joint off the chain cannot hang rigidly from its parent, or "".
+  std::string branchProblem(const urdf::Joint& joint,
+                            const std::map<std::string, int>& free) const {
+    if (joint.type == urdf::Joint::FLOATING || joint.type == urdf::Joint::PLANAR) {
+      return std::string("it hangs below ") +
+             (joint.type == urdf::Joint::FLOATING ? "floating" : "planar") + " joint '" +
+             joint.name + "' (revolute, continuous, prismatic and fixed joints are supported)";
+    }
+    if (joint.type == urdf::Joint::FIXED) return "";
+    const Coupling coupled = coupling(joint, free);
+    if (coupled.free < 0) return "";
+    return "it moves with joint '" + joint.name + "', which mimics joint '" +
+           joint.mimic->joint_name + "' of the chain (a joint off the chain is posed at one value)";
+  }
+
+  /// Why the chain does not carry `link` (one that linkPlaces() did not place): the reason
+  /// recorded for it or a link above it, else it is not below the base.
+  std::string notCarried(const Chain& chain, const urdf::Link& link,
+                         const std::map<std::string, std::string>& unplaced) const {
+    for (urdf::LinkConstSharedPtr current = model_.getLink(link.name); current;) {
+      const auto found = unplaced.find(current->name);
+      if (found != unplaced.end()) return found->second;
       if (!current->parent_joint) break;
-      if (!moving && current->parent_joint->type != urdf::Joint::FIXED) {
-        moving = current->parent_joint;
-      }
       current = model_.getLink(current->parent_joint->parent_link_name);
     }
-    return "it is not below base link '" + chain.base->name + "' of " + chain_name;
+    return "it is not below base link '" + chain.base->name + "' of the chain from link '" +
+           chain.base->name + "' to link '" + chain.tip->name + "'";
   }
 
   /// One `<collision>` element of a link at `place`.
@@ -218,6 +268,114 @@ class ChainReader {
         fail(label + ": unknown geometry type");
     }
     return out;
+  }
+
+  /// How a joint's value depends on the free joints: multiplier * q[free] + offset, or just
+  /// offset when `free` is -1 (a joint posed at one value).
+  struct Coupling {
+    int free{-1};
+    double multiplier{0.0};
+    double offset{0.0};  ///< [rad] or [m]
+  };
+
+  /// The free joints of the chain by name: its moving joints that mimic none, numbered in order.
+  std::map<std::string, int> freeJoints(const Chain& chain) const {
+    std::map<std::string, int> free;
+    for (const urdf::JointConstSharedPtr& joint : chain.joints) {
+      if (joint->type == urdf::Joint::FIXED) continue;
+      movingType(*joint);  // refuses a floating or planar joint
+      if (!joint->mimic) free.emplace(joint->name, static_cast<int>(free.size()));
+    }
+    return free;
+  }
+
+  /// How the value of moving joint `joint` follows the free joints: a free joint itself, a mimic
+  /// joint through its master (value = multiplier * master + offset, masters followed to the
+  /// end), any other joint at its default value. \throws mcws::Error for a mimic of a joint that
+  /// is missing, fixed, floating or planar, non-finite mimic numbers, mimics that form a loop.
+  Coupling coupling(const urdf::Joint& joint, const std::map<std::string, int>& free,
+                    std::size_t depth = 0) const {
+    if (!joint.mimic) {
+      const auto found = free.find(joint.name);
+      if (found != free.end()) return {found->second, 1.0, 0.0};
+      return {-1, 0.0, defaultValue(joint)};
+    }
+    const std::string label = "joint '" + joint.name + "'";
+    const std::string& name = joint.mimic->joint_name;
+    if (depth > model_.joints_.size())
+      fail(label + ": its <mimic> joints follow one another round");
+    const urdf::JointConstSharedPtr master = model_.getJoint(name);
+    if (!master) fail(label + ": <mimic> joint '" + name + "' is not a joint of the robot");
+    if (master->type == urdf::Joint::FIXED) {
+      fail(label + ": <mimic> joint '" + name + "' is a fixed joint");
+    }
+    movingType(*master);
+    const double multiplier = joint.mimic->multiplier, offset = joint.mimic->offset;
+    if (!std::isfinite(multiplier) || !std::isfinite(offset) ||
+        std::abs(offset) > YamlReader::kLargestNumber ||
+        std::abs(multiplier) > YamlReader::kLargestNumber) {
+      fail(label + ": <mimic> multiplier and offset must be finite numbers (at most 1e9 in size)");
+    }
+    const Coupling master_coupling = coupling(*master, free, depth + 1);
+    return {master_coupling.free, multiplier * master_coupling.multiplier,
+            multiplier * master_coupling.offset + offset};
+  }
+
+  /// The value a joint off the chain is posed at [rad | m]: zero, or the value within its
+  /// limits nearest zero (a continuous joint without limits: zero).
+  static double defaultValue(const urdf::Joint& joint) {
+    if (!joint.limits || !(joint.limits->lower <= joint.limits->upper)) return 0.0;
+    if (joint.type == urdf::Joint::CONTINUOUS && !hasContinuousLimits(joint)) return 0.0;
+    return joint.limits->lower > 0.0 ? joint.limits->lower : std::min(0.0, joint.limits->upper);
+  }
+
+  /// Whether a continuous joint states its range: a <limit> with lower < upper (urdfdom reads
+  /// lower = upper = 0 when the attributes are missing).
+  static bool hasContinuousLimits(const urdf::Joint& joint) {
+    return joint.limits && joint.limits->lower < joint.limits->upper;
+  }
+
+  /// The motion of a moving joint at `value` [rad | m] (its type and axis only).
+  Eigen::Isometry3d motionAt(const urdf::Joint& joint, double value) const {
+    Joint moving;
+    moving.type = movingType(joint);
+    moving.axis = axisOf(joint);
+    return jointMotion(moving, value);
+  }
+
+  /// The motion of a joint posed at one value (the identity for a fixed joint).
+  Eigen::Isometry3d fixedMotion(const urdf::Joint& joint,
+                                const std::map<std::string, int>& free) const {
+    if (joint.type == urdf::Joint::FIXED) return Eigen::Isometry3d::Identity();
+    return motionAt(joint, coupling(joint, free).offset);
+  }
+
+  /// The unit axis of a moving joint. \throws mcws::Error when it is zero or not finite.
+  Eigen::Vector3d axisOf(const urdf::Joint& joint) const {
+    const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
+    if (!axis.allFinite() || axis.norm() < 1e-12) {
+      fail("joint '" + joint.name + "': axis must be a finite non-zero vector");
+    }
+    return axis.normalized();
+  }
+
+  /// The type of a revolute, continuous or prismatic joint. \throws mcws::Error for others.
+  JointType movingType(const urdf::Joint& joint) const {
+    const std::string label = "joint '" + joint.name + "'";
+    switch (joint.type) {
+      case urdf::Joint::REVOLUTE:
+      case urdf::Joint::CONTINUOUS:
+        return JointType::kRevolute;
+      case urdf::Joint::PRISMATIC:
+        return JointType::kPrismatic;
+      case urdf::Joint::FLOATING:
+        fail(label +
+             ": floating joints are not supported (revolute, continuous, prismatic, fixed)");
+      case urdf::Joint::PLANAR:
+        fail(label + ": planar joints are not supported (revolute, continuous, prismatic, fixed)");
+      default:
+        fail(label + ": unknown joint type");
+    }
   }
 
   /// `value` when it is a finite number in (0, 1e9]. \throws mcws::Error naming `what`.
@@ -309,30 +467,10 @@ class ChainReader {
     if (out.name.find_first_of("=, \t") != std::string::npos) {
       fail(label + ": name contains '=', ',' or a space");
     }
-    if (joint.mimic) fail(label + ": mimic joints are not supported in a serial chain");
-    switch (joint.type) {
-      case urdf::Joint::REVOLUTE:
-      case urdf::Joint::CONTINUOUS:
-        out.type = JointType::kRevolute;
-        break;
-      case urdf::Joint::PRISMATIC:
-        out.type = JointType::kPrismatic;
-        break;
-      case urdf::Joint::FLOATING:
-        fail(label +
-             ": floating joints are not supported (revolute, continuous, prismatic, fixed)");
-      case urdf::Joint::PLANAR:
-        fail(label + ": planar joints are not supported (revolute, continuous, prismatic, fixed)");
-      default:
-        fail(label + ": unknown joint type");
-    }
+    out.type = movingType(joint);
     out.T_parent_joint = T_parent_joint;
-    const Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
-    if (!axis.allFinite() || axis.norm() < 1e-12) {
-      fail(label + ": axis must be a finite non-zero vector");
-    }
-    out.axis = axis.normalized();
-    if (joint.type == urdf::Joint::CONTINUOUS) {
+    out.axis = axisOf(joint);
+    if (joint.type == urdf::Joint::CONTINUOUS && !hasContinuousLimits(joint)) {
       out.lower = -M_PI;
       out.upper = M_PI;
       return out;

@@ -72,18 +72,24 @@ class UrdfChainError : public Error {
 /// `<axis>` becomes `axis`. Fixed joints after the last moving joint form `T_last_flange`, so the
 /// flange is the tip link's frame; `T_flange_tool` and `T_world_base` are the identity.
 /// `revolute` and `prismatic` joints keep their `<limit lower upper>`; a `continuous` joint becomes
-/// a revolute joint with limits [-pi, pi] (one full turn). Lengths are in metres
-/// (`length_unit` = kMetre), angles in [rad]. `<mimic>` is not supported. Robot::base_link and
-/// Robot::tip_link name the chain's two links (the tree's root and the leaf when not given).
+/// a revolute joint with its `<limit lower upper>` when it has one with lower < upper, else
+/// [-pi, pi] (one full turn). Lengths are in metres (`length_unit` = kMetre), angles in [rad].
+/// A `<mimic>` joint of the chain follows its master (value = multiplier x master + offset,
+/// through mimics of mimics): when the master is a free joint of the chain it becomes a
+/// Robot::mimic_joints entry, no degree of freedom of its own; when the master is off the chain
+/// it is fixed at its value, the master posed at its default value (see
+/// loadRobotUrdfGeometry()). Joints off the chain are not read, except as masters. Robot::base_link
+/// and Robot::tip_link name the chain's two links (the tree's root and the leaf when not given).
 /// \param path a `.urdf` file.
 /// \param options base and tip links (default: the whole tree's root to its single leaf).
 /// \throws mcws::Error, one line naming the file and the link or joint: missing or unreadable
 ///   file, a file larger than kMaxUrdfBytes, XML nested deeper than kMaxUrdfNesting elements,
 ///   text that is not UTF-8 or an XML declaration other than `<?xml name="value" ...?>` (the
 ///   nesting check needs both), malformed XML or URDF (urdfdom's message), joints that close a
-///   loop or give a link a second parent, no moving joint, a floating, planar or mimic joint, a
-///   moving joint without limits, limits in the wrong order, non-finite numbers, limits or origin
-///   coordinates larger than 1e9 in size (as robot YAML files), a zero axis, a joint name
+///   loop or give a link a second parent, no moving joint, a floating or planar joint on the chain,
+///   a `<mimic>` of a missing, fixed, floating or planar joint or mimics that follow one another
+///   round, a moving joint without limits, limits in the wrong order, non-finite numbers, limits or
+///   origin coordinates larger than 1e9 in size (as robot YAML files), a zero axis, a joint name
 ///   containing '=', ',' or a space; UrdfChainError (an mcws::Error) for an unknown base or tip
 ///   link, a tip that is not below the base, several leaves and no tip.
 Robot loadRobotUrdf(const std::string& path, const UrdfChainOptions& options = {});
@@ -139,7 +145,11 @@ struct UrdfRobotGeometry {
 /// joint i, and the links fixed below it, to link i; the links after the last moving joint's child
 /// on the way to the tip link, and the links fixed below them, to the tool (so a flange or tool
 /// link's geometry is the tool, placed in the flange frame); the other links fixed to the base
-/// (branches off the chain that no joint moves) are environment objects.
+/// are environment objects. A branch off the chain (gripper fingers, a sensor, a second arm)
+/// hangs rigidly from the chain link it starts at, each of its joints at its default value: zero,
+/// or the value within its limits nearest zero (a continuous joint without limits: zero); a
+/// mimic joint at multiplier x its master's value + offset. So fingers below the tool link are
+/// tool geometry, and a second arm on the base is environment.
 /// \param path a `.urdf` file.
 /// \param options base and tip links, as loadRobotUrdf().
 /// \throws mcws::Error as loadRobotUrdf(), and one line naming the file and the link for: an

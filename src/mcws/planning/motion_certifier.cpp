@@ -27,6 +27,7 @@ double linkOffsetBound(const Joint& joint) {
 MotionCertifier::MotionCertifier(const Robot& robot, const CollisionChecker& checker,
                                  const MotionCertifierOptions& options)
     : robot_(robot), checker_(checker), options_(options) {
+  refuseMimicJoints(robot, "the motion certifier");
   if (!(options.environment_margin >= 0.0) || !std::isfinite(options.environment_margin)) {
     throw Error("motion check: environment margin " + formatNumber(options.environment_margin) +
                 " must be >= 0");

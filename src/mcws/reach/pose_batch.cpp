@@ -116,6 +116,7 @@ void manipulabilities(double (*J)[6][L], int n, const QualityOptions& quality,
 PoseBatch::PoseBatch(const Robot& robot) {
   const int n = robot.dof();
   if (n > 8) throw Error(robot.source + ": more than 8 joints");
+  refuseMimicJoints(robot, "the reach map's pose kernel");
   // As PointKinematics: E_0 = T_world_base P_0 A_0, E_i = A_{i-1}^T P_i A_i.
   Eigen::Matrix3d A_previous_inverse = Eigen::Matrix3d::Identity();
   for (int i = 0; i < n; ++i) {
