@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "mcws/kinematics/detail/chain_motions.h"
+
 namespace mcws {
 namespace {
 
@@ -32,17 +34,11 @@ KinematicChain::KinematicChain(const Robot& robot) : dof_(robot.dof()) {
   // G_0 = T_world_base P_0 A_0, G_i = A_{i-1}^T P_i A_i, G_n = A_{n-1}^T T_last_flange
   // T_flange_tool (P_i = joints[i].T_parent_joint), over the moving joints in chain order (the
   // free joints and, where they sit, the mimic joints).
-  std::vector<const Joint*> moving;
-  for (int i = 0; i <= robot.dof(); ++i) {
-    for (const MimicJoint& mimic : robot.mimic_joints) {
-      if (mimic.before != i) continue;
-      moving.push_back(&mimic.joint);
-      free_.push_back(-1 - static_cast<int>(mimics_.size()));
-      mimics_.push_back({mimic.master, mimic.multiplier, mimic.offset});
-    }
-    if (i == robot.dof()) break;
-    moving.push_back(&robot.joints[i]);
-    free_.push_back(i);
+  const detail::ChainMotions motions = detail::chainMotions(robot);
+  const std::vector<const Joint*>& moving = motions.joints;
+  free_ = motions.source;
+  for (const MimicJoint* mimic : motions.mimics) {
+    mimics_.push_back({mimic->master, mimic->multiplier, mimic->offset});
   }
   fixed_.reserve(moving.size() + 1);
   revolute_.reserve(moving.size());

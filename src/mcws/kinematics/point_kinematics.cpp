@@ -1,6 +1,7 @@
 #include "mcws/kinematics/point_kinematics.h"
 
 #include "mcws/core/libmvec.h"  // vector sin, cos, atan2 for the simd loops
+#include "mcws/kinematics/detail/chain_motions.h"
 
 namespace mcws {
 namespace {
@@ -26,17 +27,11 @@ PointKinematics::PointKinematics(const Robot& robot, const Eigen::Vector3d& p_fl
   // turns z onto joint i's axis and Mz is a motion about / along z. Regrouping the fixed parts:
   // E_0 = T_world_base F_1 R_1, E_i = R_i^T F_{i+1} R_{i+1}, and the last one applied to the point.
   // The product runs over the moving joints in chain order, the mimic joints where they sit.
-  std::vector<const Joint*> moving;
-  for (int i = 0; i <= robot.dof(); ++i) {
-    for (const MimicJoint& mimic : robot.mimic_joints) {
-      if (mimic.before != i) continue;
-      moving.push_back(&mimic.joint);
-      source_.push_back(-1 - static_cast<int>(mimics_.size()));
-      mimics_.push_back({mimic.master, mimic.multiplier, mimic.offset});
-    }
-    if (i == robot.dof()) break;
-    moving.push_back(&robot.joints[i]);
-    source_.push_back(i);
+  const detail::ChainMotions motions = detail::chainMotions(robot);
+  const std::vector<const Joint*>& moving = motions.joints;
+  source_ = motions.source;
+  for (const MimicJoint* mimic : motions.mimics) {
+    mimics_.push_back({mimic->master, mimic->multiplier, mimic->offset});
   }
   const int n = static_cast<int>(moving.size());
   Eigen::Isometry3d T_before = robot.T_world_base;
