@@ -144,6 +144,8 @@ int main(int argc, char** argv) {
       throw app::UsageError("--fix, --point, --collision and --quality need --robot");
     if (cli.has("shape") && (cli.has("base") || cli.has("tip")))
       throw app::UsageError("--base and --tip need --robot");
+    if (cli.has("shape") && cli.has("package-path"))
+      throw app::UsageError("--package-path needs --robot");
     if (!cli.has("quality") && (cli.has("quality-task") || cli.has("length")))
       throw app::UsageError("--quality-task and --length need --quality");
     if (processes.distributed() && cli.has("ascii"))

@@ -117,6 +117,9 @@ void declareRobotFlags(CommandLine& cli, const char* help) {
   cli.addValue("tip",
                "URDF: last link of the chain, whose frame is the tool frame: any link "
                "below --base, e.g. a fixed tool0 or TCP frame (default the one leaf)");
+  cli.addValues("package-path",
+                "URDF: folder holding ROS packages for package:// mesh URIs, searched before "
+                "ROS_PACKAGE_PATH and the folders above the URDF (repeatable)");
 }
 
 Robot readRobot(const CommandLine& cli) {
@@ -126,9 +129,21 @@ Robot readRobot(const CommandLine& cli) {
       std::filesystem::path(path).extension() != ".urdf") {
     throw UsageError("--base and --tip need a .urdf robot");
   }
+  const std::vector<std::string> packages = cli.all("package-path");
+  if (!packages.empty() && std::filesystem::path(path).extension() != ".urdf") {
+    throw UsageError("--package-path needs a .urdf robot");
+  }
+  for (const std::string& folder : packages) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec)) {
+      throw UsageError("--package-path: '" + folder + "' is not a folder");
+    }
+  }
   const Activity reading("reading --robot '" + path + "'");
   try {
-    return loadRobot(path, chain);
+    Robot robot = loadRobot(path, chain);
+    robot.package_path = packages;
+    return robot;
   } catch (const UrdfChainError& e) {
     const bool leaves = e.problem() == UrdfChainError::Problem::kSeveralLeaves;
     throw UsageError((leaves ? "--robot: " : "") + e.describe("--base", "--tip", "--tip"));

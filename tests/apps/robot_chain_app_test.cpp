@@ -9,6 +9,7 @@
 #include <pcl/point_types.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
@@ -81,6 +82,14 @@ TEST_P(EveryRobotTool, ListsBaseAndTipInItsHelp) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_THAT(r.out, HasSubstr("--base arg"));
   EXPECT_THAT(r.out, HasSubstr("--tip arg"));
+  EXPECT_THAT(r.out, HasSubstr("--package-path arg"));
+}
+
+TEST_P(EveryRobotTool, RefusesAPackagePathThatIsNoFolderOrForADhRobot) {
+  expectRefused(urdf_, "--tip tool0 --package-path " + out_path_ + "none",
+                "--package-path: '" + out_path_ + "none' is not a folder");
+  expectRefused(test::robotPath("inspection6"), "--package-path " + out_path_,
+                "--package-path needs a .urdf robot");
 }
 
 TEST_P(EveryRobotTool, NamesTheLeavesAndTheFlagWhenTheTreeHasSeveral) {
@@ -174,6 +183,36 @@ TEST_F(RobotChainApp, IkReachesThePoseOfTheTipChosen) {
   ASSERT_EQ(q.size(), 6u);
   const Eigen::VectorXd solved = Eigen::Map<const Eigen::VectorXd>(q.data(), 6);
   EXPECT_LT(gap(test::ur5FromWorld(test::ur5BaseToEeLink(solved)), target), kIkTol);
+}
+
+TEST_F(RobotChainApp, CollideFindsPackageMeshesThroughThePackagePath) {
+  // base_link's sphere as a package:// mesh (a 1 cm tetrahedron) of a package in a workspace that
+  // neither the URDF's folder nor those above it hold.
+  std::string text = test::kUr5ShapedUrdf;
+  const std::string sphere = "<sphere radius=\"0.1\"/>";
+  text.replace(text.find(sphere), sphere.size(),
+               "<mesh filename=\"package://ur5_pkg/meshes/base.stl\" scale=\"0.01 0.01 0.01\"/>");
+  std::filesystem::create_directories(file("ws/src/ur5_pkg/meshes"));
+  test::writeFile(file("ws/src/ur5_pkg/package.xml"), "<package/>");
+  test::writeFile(file("ws/src/ur5_pkg/meshes/base.stl"),
+                  "solid t\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                  "vertex 0 1 0\nendloop\nendfacet\nfacet normal 0 0 0\nouter loop\n"
+                  "vertex 0 0 0\nvertex 0 0 1\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n");
+  test::writeFile(urdf_, text);
+  const std::string args = robot("--tip tool0") + " --q " + kQText;
+  const test::RunResult found = test::run("env -u ROS_PACKAGE_PATH " + kTools[2].exe + args +
+                                          " --package-path " + file("ws"));
+  EXPECT_EQ(found.exit_code, 0) << found.err;
+  const test::RunResult lost = test::run("env -u ROS_PACKAGE_PATH " + kTools[2].exe + args);
+  EXPECT_EQ(lost.exit_code, 1);
+  EXPECT_THAT(
+      lost.err,
+      HasSubstr("link 'base_link' <collision> 1: mesh "
+                "'package://ur5_pkg/meshes/base.stl': package 'ur5_pkg' not found; "
+                "looked in --package-path (none); ROS_PACKAGE_PATH (unset); and for a "
+                "folder 'ur5_pkg' in " +
+                std::filesystem::path(urdf_).parent_path().string() + " and each folder above it"));
+  EXPECT_EQ(test::lineCount(lost.err), 1) << lost.err;
 }
 
 TEST_F(RobotChainApp, CollideModelsTheChainChosen) {

@@ -5,7 +5,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
+#include <vector>
 
 #include "kinematics/ur5_shaped_urdf.h"
 #include "mcws/core/error.h"
@@ -85,7 +87,7 @@ TEST_F(ScenarioRobot, ChainErrorsNameTheLineAndTheKey) {
 
 TEST_F(ScenarioRobot, BadEntries) {
   expectError("robot: {file: ur5.urdf, tipp: tool0}", 2,
-              "robot: unknown key 'tipp' (allowed: base, file, tip)");
+              "robot: unknown key 'tipp' (allowed: base, file, package_path, tip)");
   expectError("robot: {tip: tool0}", 2, "robot: missing field 'file'");
   expectError("robot: {file: ur5.urdf, tip: ''}", 2, "robot: tip: must not be empty");
   expectError("robot: {file: [ur5.urdf], tip: tool0}", 2, "robot: file: must be a single value");
@@ -96,6 +98,30 @@ TEST_F(ScenarioRobot, BadEntries) {
   const std::string dh = test::robotPath("maintenance4");
   expectError("robot: {file: " + dh + ", tip: tool0}", 2,
               "robot: tip: base and tip need a .urdf robot ('" + dh + "' is not)");
+}
+
+TEST_F(ScenarioRobot, PackagePathFindsThePackageMeshes) {
+  // base_link's sphere as a package:// mesh of a package in ws/, which the upward search from the
+  // URDF's folder does not find.
+  std::string text = test::kUr5ShapedUrdf;
+  const std::string sphere = "<sphere radius=\"0.1\"/>";
+  text.replace(text.find(sphere), sphere.size(),
+               "<mesh filename=\"package://ur5_pkg/meshes/base.stl\"/>");
+  test::writeFile(urdf_, text);
+  std::filesystem::create_directories(dir_.file("ws/ur5_pkg/meshes"));
+  test::writeFile(dir_.file("ws/ur5_pkg/package.xml"), "<package/>");
+  test::writeFile(dir_.file("ws/ur5_pkg/meshes/base.stl"),
+                  "solid t\nfacet normal 0 0 0\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                  "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+  const mcws::Scenario scenario = load("robot: {file: ur5.urdf, tip: tool0, package_path: [ws]}");
+  EXPECT_EQ(scenario.problem.robot.package_path, std::vector<std::string>{dir_.file("ws")});
+  ASSERT_EQ(scenario.problem.collision.links[0].shapes.size(), 1u);
+  EXPECT_EQ(scenario.problem.collision.links[0].shapes[0].type, ShapeType::kMesh);
+  expectError("robot: {file: ur5.urdf, tip: tool0, package_path: wss}", 2,
+              "robot: package_path: 'wss' is not a folder (looked for " + dir_.file("wss") + ")");
+  const std::string dh = test::robotPath("maintenance4");
+  expectError("robot: {file: " + dh + ", package_path: ws}", 2,
+              "robot: package_path: needs a .urdf robot ('" + dh + "' is not)");
 }
 
 }  // namespace

@@ -65,6 +65,7 @@ class BehaviorModelReader : YamlReader {
     model_.robot_line = lineOf(entry.file_node);
     try {
       model_.robot = loadRobot(entry.path, entry.chain);
+      model_.robot->package_path = entry.package_path;
     } catch (const UrdfChainError& e) {
       entry.failChain(*this, e);
     } catch (const Error& e) {

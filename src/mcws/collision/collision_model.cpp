@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "mcws/collision/package_uri.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
@@ -227,20 +228,23 @@ class CollisionYamlReader : YamlReader {
 };
 
 /// The file a URDF `<mesh filename>` names: a path relative to the URDF file's directory, an
-/// absolute path, or a `file://` URI. \throws mcws::Error for `package://` and other URIs.
+/// absolute path, a `file://` URI or a `package://` URI (resolvePackageUri()).
+/// \throws mcws::Error for other URIs and packages not found.
 std::string urdfMeshPath(const std::string& filename, const std::string& source,
-                         const std::string& where) {
+                         const std::string& where, const PackageSearch& packages) {
   std::string path = filename;
   if (filename.rfind("file://", 0) == 0) {
     path = filename.substr(7);
   } else if (filename.rfind("package://", 0) == 0) {
-    throw Error(where + ": mesh '" + filename +
-                "': package:// URIs are not resolved (that needs ROS); give the path relative to "
-                "the URDF file, or an absolute path");
+    try {
+      path = resolvePackageUri(filename, source, packages);
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
   } else if (filename.find("://") != std::string::npos) {
     throw Error(where + ": mesh '" + filename +
-                "': URI scheme not supported (a path relative to the URDF file, an absolute path "
-                "or file://)");
+                "': URI scheme not supported (a path relative to the URDF file, an absolute path, "
+                "file:// or package://)");
   }
   std::filesystem::path file = path;
   if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
@@ -255,7 +259,8 @@ std::string urdfMeshPath(const std::string& filename, const std::string& source,
 
 /// The shape of one URDF `<collision>` element, with lengths times `unit` (robot length units
 /// per metre).
-ShapeSpec urdfShape(const UrdfCollision& in, double unit, const std::string& source) {
+ShapeSpec urdfShape(const UrdfCollision& in, double unit, const std::string& source,
+                    const PackageSearch& packages) {
   const std::string where =
       source + ": link '" + in.link + "' <collision> " + std::to_string(in.element);
   ShapeSpec shape;
@@ -280,7 +285,7 @@ ShapeSpec urdfShape(const UrdfCollision& in, double unit, const std::string& sou
       break;
     case UrdfGeometry::kMesh: {
       shape.type = ShapeType::kMesh;
-      const std::string path = urdfMeshPath(in.filename, source, where);
+      const std::string path = urdfMeshPath(in.filename, source, where, packages);
       TriangleMesh mesh;
       try {
         mesh = readMeshFile(path);
@@ -375,8 +380,9 @@ CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
   }
   const double unit = 1.0 / unitInMetres(robot.length_unit);
   CollisionModel model = emptyModel(robot);
+  const PackageSearch packages = packageSearchFromEnvironment(robot.package_path);
   for (const UrdfCollision& element : urdf.collisions) {
-    ShapeSpec shape = urdfShape(element, unit, source);
+    ShapeSpec shape = urdfShape(element, unit, source, packages);
     switch (element.body) {
       case UrdfBody::kBase:
         model.links[0].shapes.push_back(std::move(shape));

@@ -101,17 +101,19 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 /// frame; objects in the order of their link names, as urdfdom keeps no file order). Geometry:
 /// `<sphere>`, `<box>`, `<cylinder>` (along z, centred on its origin, as ShapeType::kCylinder),
 /// `<mesh filename scale>` of an STL or OBJ file (loadMesh(); a path relative to the URDF file's
-/// directory, an absolute path, or a `file://` URI; `package://` and other URIs are errors, since
-/// resolving a ROS package needs ROS). URDF has no capsule: a `<cylinder>` and two `<sphere>`s of
-/// its radius centred on its end faces, in one body, are read as one capsule, which is the same
-/// set of points, so that it is tested by the exact segment distance as a YAML capsule is.
-/// Adjacent links are not checked (as for YAML); URDF gives no other allowed pairs (an SRDF is not
-/// read). Lengths are converted from metres to the robot's length unit.
-/// \param robot the chain read from the same text (joint names must match).
-/// \param text the URDF text; \param source its file name, for messages and mesh paths.
-/// \param chain base and tip links, as given to loadRobotUrdf() for `robot`.
-/// \throws mcws::Error, one line naming the file and the link: as loadRobotUrdfGeometry(); a
-///   chain whose joints are not the robot's; an unsupported mesh URI or format; a missing or
+/// directory, an absolute path, a `file://` URI, or a `package://` URI resolved as ROS does through
+/// Robot::package_path and the `ROS_PACKAGE_PATH` variable, then upward from the URDF's folder:
+/// resolvePackageUri(), collision/package_uri.h; other URIs are errors). URDF has no capsule: a
+/// `<cylinder>` and two `<sphere>`s of its radius centred on its end faces, in one body, are read
+/// as one capsule, which is the same set of points, so that it is tested by the exact segment
+/// distance as a YAML capsule is. Adjacent links are not checked (as for YAML); URDF gives no other
+/// allowed pairs (an SRDF is not read). Lengths are converted from metres to the robot's length
+/// unit. \param robot the chain read from the same text (joint names must match). \param text the
+/// URDF text; \param source its file name, for messages and mesh paths. \param chain base and tip
+/// links, as given to loadRobotUrdf() for `robot`. \throws mcws::Error, one line naming the file
+/// and the link: as loadRobotUrdfGeometry(); a
+///   chain whose joints are not the robot's; an unsupported mesh URI or format; a package not
+///   found (naming the URI and every place looked); a missing or
 ///   unreadable mesh; an environment link named as the base, the tool or a joint.
 CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
                                   const std::string& source, const UrdfChainOptions& chain = {});

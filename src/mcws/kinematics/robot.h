@@ -64,6 +64,9 @@ struct Robot {
   /// whose frame is the flange frame, so that what else is read from the file (its collision
   /// model) follows the same chain. Empty for a D-H robot.
   std::string base_link, tip_link;
+  /// A URDF robot's folders to look for `package://` packages in, before `ROS_PACKAGE_PATH` (the
+  /// tools' --package-path), for what else is read from the file (its meshes).
+  std::vector<std::string> package_path;
   /// Joints of the chain that follow a free joint (URDF `<mimic>`), in chain order; empty for a
   /// D-H robot.
   std::vector<MimicJoint> mimic_joints;

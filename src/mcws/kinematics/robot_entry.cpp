@@ -7,10 +7,30 @@
 #include "mcws/kinematics/robot_yaml.h"
 
 namespace mcws {
+namespace {
+
+/// The `package_path:` folders of a URDF entry, resolved against the naming file's directory.
+void readPackagePath(const YamlReader& reader, const YAML::Node& node, RobotEntry& entry) {
+  if (std::filesystem::path(entry.path).extension() != ".urdf") {
+    reader.fail(node, "robot: package_path: needs a .urdf robot ('" + entry.file + "' is not)");
+  }
+  for (const std::string& folder : reader.texts(node, "robot: package_path")) {
+    std::filesystem::path path(folder);
+    if (path.is_relative()) path = std::filesystem::path(reader.source()).parent_path() / path;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(path, ec)) {
+      reader.fail(node, "robot: package_path: '" + folder + "' is not a folder (looked for " +
+                            path.string() + ")");
+    }
+    entry.package_path.push_back(path.string());
+  }
+}
+
+}  // namespace
 
 RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node) {
   const bool map = node.IsMap();
-  if (map) reader.checkKeys(node, "robot", {"file", "base", "tip"});
+  if (map) reader.checkKeys(node, "robot", {"file", "base", "tip", "package_path"});
   RobotEntry entry;
   // An absent key as an undefined node: yaml-cpp's stand-in for it (a "zombie") cannot be kept.
   const auto optional = [&](const char* key) {
@@ -38,12 +58,16 @@ RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node) {
                     ": base and tip need a .urdf robot ('" + entry.file + "' is not)");
   }
   entry.path = path.string();
+  const YAML::Node packages = optional("package_path");
+  if (packages) readPackagePath(reader, packages, entry);
   return entry;
 }
 
 Robot RobotEntry::load(const YamlReader& reader) const {
   try {
-    return loadRobot(path, chain);
+    Robot robot = loadRobot(path, chain);
+    robot.package_path = package_path;
+    return robot;
   } catch (const UrdfChainError& e) {
     failChain(reader, e);
   }

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <string>
+#include <vector>
 
 #include "mcws/core/yaml_reader.h"
 #include "mcws/kinematics/robot.h"
@@ -20,9 +21,13 @@ struct RobotEntry {
   UrdfChainOptions chain;          ///< the `base:` and `tip:` links (empty when not given)
   YAML::Node file_node;            ///< where the file is named, for messages
   YAML::Node base_node, tip_node;  ///< the `base:` and `tip:` values (undefined when absent)
+  /// The `package_path:` folders, resolved against the naming file's directory: where package://
+  /// mesh URIs are looked for first (Robot::package_path).
+  std::vector<std::string> package_path;
 
-  /// \brief loadRobot(path, chain). \param reader the naming file's reader, for messages.
-  /// \throws mcws::Error as loadRobot(); for a UrdfChainError, "source:line: robot: tip: 'hand'
+  /// \brief loadRobot(path, chain), with Robot::package_path set. \param reader the naming file's
+  /// reader, for messages. \throws mcws::Error as loadRobot(); for a UrdfChainError, "source:line:
+  /// robot: tip: 'hand'
   ///   is not a link of robot 'arm' in arm.urdf" at the line of the key it concerns, or
   ///   "source:line: robot: arm.urdf: link 'world' has 2 leaf links below it (tool0, ee_link):
   ///   choose one with robot: {file: FILE, tip: LINK}" at the file's line.
@@ -37,13 +42,15 @@ struct RobotEntry {
 /// \code{.yaml}
 /// robot: ../robots/arm.urdf
 /// robot: {file: ../robots/arm.urdf, base: base_link, tip: tool0}   # base, tip optional
+/// robot: {file: arm/urdf/arm.urdf, package_path: [ws/src]}         # a folder or a list
 /// \endcode
 /// A relative file is resolved against the directory of the reader's source.
 /// \param reader the naming file's reader (its source and messages).
 /// \param node the value of `robot:`.
 /// \throws mcws::Error "source:line: robot: ..." for a list or an empty value, an unknown key, a
-///   missing `file:`, an empty link name, a file that does not exist, `base:` or `tip:` with a
-///   robot file that is not `.urdf`.
+///   missing `file:`, an empty link name, a file that does not exist, `base:`, `tip:` or
+///   `package_path:` with a robot file that is not `.urdf`, a `package_path:` entry that is not
+///   a folder.
 RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node);
 
 }  // namespace mcws
