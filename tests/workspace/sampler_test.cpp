@@ -7,9 +7,11 @@
 #include <pcl/io/pcd_io.h>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/kinematics/robot_urdf.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "test_support.h"
 
@@ -282,6 +284,46 @@ TEST(WriteSamples, StreamedFileEqualsTheCloudInMemory) {
   EXPECT_EQ(summary.points, n);
   EXPECT_FLOAT_EQ(summary.min.x(), min.x);
   EXPECT_FLOAT_EQ(summary.max.z(), max.z);
+}
+
+// A URDF with a continuous joint without limits (one turn, [-pi, pi)), one with limits [-1, 2),
+// and a mimic joint between them (x 0.5 of the first, issue 33 item 2): the sampler draws the two
+// free joints over those ranges, and each point is the FK of its joint values.
+TEST(RobotSampler, ContinuousJointsAndAMimicJointOfAUrdf) {
+  const Robot robot = parseRobotUrdf(R"(<robot name="c">
+    <link name="a"/><link name="b"/><link name="c"/><link name="d"/><link name="tool"/>
+    <joint name="j1" type="continuous"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/></joint>
+    <joint name="m" type="revolute"><parent link="b"/><child link="c"/><origin xyz="0.3 0 0"/>
+      <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/>
+      <mimic joint="j1" multiplier="0.5"/></joint>
+    <joint name="j2" type="continuous"><parent link="c"/><child link="d"/><origin xyz="0.2 0 0"/>
+      <axis xyz="1 0 0"/><limit lower="-1" upper="2" effort="1" velocity="1"/></joint>
+    <joint name="t" type="fixed"><parent link="d"/><child link="tool"/><origin xyz="0 0.1 0"/>
+    </joint></robot>)",
+                                     "c.urdf");
+  ASSERT_EQ(robot.dof(), 2);
+  const RobotSampler sampler(robot, {});
+  constexpr int kCount = 4000;
+  std::vector<WorkspacePoint> points(kCount);
+  sampler.generate(0, kCount, points.data());
+  double low[2] = {10, 10}, high[2] = {-10, -10};
+  for (int i = 0; i < kCount; ++i) {
+    double q[2];
+    sampler.jointValues(i, q);
+    for (int j = 0; j < 2; ++j) low[j] = std::min(low[j], q[j]), high[j] = std::max(high[j], q[j]);
+    ASSERT_GE(q[0], -M_PI);
+    ASSERT_LT(q[0], M_PI);
+    ASSERT_GE(q[1], -1.0);
+    ASSERT_LT(q[1], 2.0);
+    const Eigen::Vector3d p = toolPose(robot, Eigen::Vector2d(q[0], q[1])).translation();
+    // Float coordinates of points within 0.6 m [m].
+    ASSERT_LT((p - Eigen::Vector3d(points[i].x, points[i].y, points[i].z)).norm(), 1e-6) << i;
+  }
+  // Uniform draws fill the ranges: 4000 of them leave gaps of about range / 4000 at the ends.
+  EXPECT_LT(low[0], -M_PI + 0.02);
+  EXPECT_GT(high[0], M_PI - 0.02);
+  EXPECT_LT(low[1], -1.0 + 0.01);
+  EXPECT_GT(high[1], 2.0 - 0.01);
 }
 
 }  // namespace
