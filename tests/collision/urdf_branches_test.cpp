@@ -14,6 +14,7 @@
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_urdf.h"
+#include "test_support.h"
 
 namespace mcws {
 namespace {
@@ -130,13 +131,7 @@ TEST(UrdfBranches, AFingerAsTipTakesItsJointAsAFreeOne) {
 }
 
 std::string geometryError(const std::string& text, const UrdfChainOptions& chain) {
-  try {
-    parseRobotUrdfGeometry(text, "ur5_gripper.urdf", chain);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
+  return test::errorOf([&] { parseRobotUrdfGeometry(text, "ur5_gripper.urdf", chain); });
 }
 
 TEST(UrdfBranches, FloatingJointOffTheChainIsRefusedOnlyWithGeometryBelowIt) {

@@ -15,6 +15,7 @@
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/kinematics/point_kinematics.h"
 #include "mcws/kinematics/robot_urdf.h"
+#include "test_support.h"
 
 namespace mcws {
 namespace {
@@ -58,14 +59,9 @@ Eigen::Isometry3d handTool(double q1, double q3) {
                            AngleAxisd(3 * q3, Vector3d::UnitX()) * Translation3d(0.1, 0, 0));
 }
 
-std::string errorOf(const std::string& urdf, const UrdfChainOptions& options = {}) {
-  try {
-    parseRobotUrdf(urdf, "bad.urdf", options);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no error";
-  return "";
+/// The message of parsing `urdf` as "bad.urdf".
+std::string errorOf(const std::string& urdf) {
+  return test::errorOf([&] { parseRobotUrdf(urdf, "bad.urdf"); });
 }
 
 TEST(UrdfMimic, MimicJointsOnTheChainAreNoDegreesOfFreedom) {
