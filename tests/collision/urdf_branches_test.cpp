@@ -10,6 +10,7 @@
 #include <string>
 
 #include "kinematics/ur5_shaped_urdf.h"
+#include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -162,6 +163,45 @@ TEST(UrdfBranches, LinksMovedByAMimicJointOfTheChainAreRefused) {
             "ur5_gripper.urdf: link 'tool0' has <collision> elements but is not part of the "
             "chain: it moves with joint 'wrist_3_joint', a mimic joint of the chain (not "
             "supported yet)");
+}
+
+TEST(UrdfBranches, TheCheckerPlacesTheBodiesPastAMimicJointOfTheChain) {
+  // j1 (z), then m (y at x 0.3, mimic j1 x 0.5 + 0.1), then j2 (x at x 0.2) carrying a sphere, and
+  // a tool frame 0.1 along y. The checker's body of j2 against the hand composition.
+  const std::string text = R"(<robot name="m">
+    <link name="a"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+    <link name="b"/><link name="c"/><link name="tool"/>
+    <link name="d"><collision><geometry><sphere radius="0.02"/></geometry></collision></link>
+    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+      <limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+    <joint name="m" type="revolute"><parent link="b"/><child link="c"/><origin xyz="0.3 0 0"/>
+      <axis xyz="0 1 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/>
+      <mimic joint="j1" multiplier="0.5" offset="0.1"/></joint>
+    <joint name="j2" type="revolute"><parent link="c"/><child link="d"/><origin xyz="0.2 0 0"/>
+      <axis xyz="1 0 0"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+    <joint name="t" type="fixed"><parent link="d"/><child link="tool"/><origin xyz="0 0.1 0"/>
+    </joint></robot>)";
+  const Robot robot = parseRobotUrdf(text, "m.urdf");
+  ASSERT_EQ(robot.dof(), 2);
+  const CollisionChecker checker(robot, parseCollisionUrdf(robot, text, "m.urdf"));
+  CollisionChecker::Scratch scratch;
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> angle(-3, 3);
+  for (int sample = 0; sample < 50; ++sample) {
+    const double q[2] = {angle(rng), angle(rng)};
+    const Eigen::Isometry3d expected(
+        Eigen::AngleAxisd(q[0], Eigen::Vector3d::UnitZ()) * Eigen::Translation3d(0.3, 0, 0) *
+        Eigen::AngleAxisd(0.5 * q[0] + 0.1, Eigen::Vector3d::UnitY()) *
+        Eigen::Translation3d(0.2, 0, 0) * Eigen::AngleAxisd(q[1], Eigen::Vector3d::UnitX()));
+    checker.place(q, Eigen::Isometry3d::Identity(), scratch);
+    EXPECT_LT((checker.bodyPose(2, scratch).matrix() - expected.matrix()).cwiseAbs().maxCoeff(),
+              kTolerance);
+    const Eigen::Isometry3d tool = expected * Eigen::Translation3d(0, 0.1, 0);
+    EXPECT_LT((checker.bodyPose(checker.toolBody(), scratch).matrix() - tool.matrix())
+                  .cwiseAbs()
+                  .maxCoeff(),
+              kTolerance);
+  }
 }
 
 }  // namespace
