@@ -27,6 +27,7 @@ from ._mcws import (
     _boundary,
     _measure,
     _point_dtype,
+    _refine,
     _write_points,
     read_pcd,
     read_provenance,
@@ -44,6 +45,7 @@ __all__ = [
     "read_provenance",
     "write_pcd",
     "boundary",
+    "refine",
     "measure",
     "Measure",
 ]
@@ -171,6 +173,46 @@ def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None
     """
     return _boundary(_positions(points), plane, radius, auto_radius, adaptive, outer_radius,
                      min_gap, hull_depth, threads)
+
+
+def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="tool", fix=None,
+           collision=False):
+    """New samples near a cloud's boundary (Liu et al. 2013), as mcws_refine draws them.
+
+    robot: the mcws.Robot the points were sampled from.
+    boundary_points: the boundary points with their joint values: a structured array with fields
+        x, y, z and q1..q<dof> [rad | length unit] (points[boundary(points)], or read_pcd() of
+        mcws_boundary's output).
+    n: number of new samples (int >= 0).
+    seed: random seed, a whole number >= 0 (mcws_refine's default is 1).
+    threads: worker threads, 0 = all cores. The result is the same bytes for any thread count.
+    spread: neighbourhood half-width, a fraction of each joint's range in (0, 1] (default 0.1):
+        sample i moves each joint of boundary point i mod P by up to spread x its range, clamped
+        to its limits.
+    point: "tool" or "flange": the point the cloud was sampled at (sample()'s point).
+    fix: the joints pinned when the cloud was sampled (sample()'s fix), a dict joint name ->
+        value [rad | length unit]; they keep their value. None: the joints with one value in
+        every boundary point (of two or more) are taken as pinned; {}: none is.
+    collision: label the new samples by their collision status, as sample(collision=True).
+
+    Returns n new samples, a structured array as sample() returns (x, y, z [length unit],
+    q1..q<dof>, label): the points mcws_refine writes for the same boundary points, seed and
+    spread (a cloud sampled with --fix and --collision refined with the same fix and collision).
+    Append them to the cloud (numpy.concatenate) and measure with correction="none".
+
+    Raises mcws.UsageError for a bad n, seed, threads, spread, point or fix, boundary points
+    without the joint fields, none at all, or one whose joint values lie outside the robot's
+    limits; mcws.Error for collision=True on a robot file without collision geometry.
+    """
+    if not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    packed, quality, joints = _packed_points(boundary_points)
+    if quality:  # the refinement reads positions and joints only
+        plain = _np.zeros(packed.shape[0], dtype=_point_dtype(joints, False))
+        for name in plain.dtype.names:
+            plain[name] = packed[name]
+        packed = plain
+    return _refine(robot, packed, joints, n, seed, threads, spread, point, fix, collision)
 
 
 class Measure(dict):

@@ -21,6 +21,19 @@ def write_pcd(
     provenance: Optional[Dict[str, Any]] = None,
 ) -> None: ...
 
+def refine(
+    robot: Robot,
+    boundary_points: npt.ArrayLike,
+    n: int,
+    seed: int = 0,
+    threads: int = 0,
+    *,
+    spread: float = 0.1,
+    point: str = "tool",
+    fix: Optional[Dict[str, float]] = None,
+    collision: bool = False,
+) -> npt.NDArray[np.void]: ...
+
 class Measure(Dict[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
 

@@ -90,3 +90,15 @@ def _measure(
     threads: int,
     length_unit: Optional[str],
 ) -> str: ...
+def _refine(
+    robot: Robot,
+    records: npt.NDArray[np.void],
+    joints: int,
+    n: int,
+    seed: int,
+    threads: int,
+    spread: float,
+    point: str,
+    fix: Optional[Dict[str, float]],
+    collision: bool,
+) -> npt.NDArray[np.void]: ...

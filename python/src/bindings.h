@@ -31,6 +31,8 @@ void bindSampling(py::module_& m);
 void bindCloud(py::module_& m);
 /// \brief The C++ parts of mcws.boundary and mcws.measure.
 void bindWorkspace(py::module_& m);
+/// \brief The C++ part of mcws.refine.
+void bindRefine(py::module_& m);
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).

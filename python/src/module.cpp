@@ -77,4 +77,5 @@ PYBIND11_MODULE(_mcws, m) {
   bindSampling(m);
   bindCloud(m);
   bindWorkspace(m);
+  bindRefine(m);
 }

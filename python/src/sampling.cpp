@@ -2,8 +2,6 @@
 // module, as mcws_sample draws them) handed to NumPy without a copy.
 #include <pybind11/stl.h>
 
-#include <Eigen/Core>
-#include <algorithm>
 #include <optional>
 
 #include "bindings.h"
@@ -13,36 +11,9 @@
 #include "mcws/reach/quality.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/sampling/sampler.h"
-#include "point_layout.h"
+#include "sample_array.h"
 
 namespace mcws::python {
-
-namespace {
-
-/// Samples computed between two looks for Ctrl-C (a fraction of a second of work).
-constexpr std::size_t kPiece = std::size_t{1} << 16;
-
-/// Samples 0 .. n-1 of `generator` on `threads` threads (0: all cores) with the GIL released,
-/// into an array of pointDtype(joints, PointT) that owns them. The points do not depend on
-/// `threads` (a sample's random numbers depend on its index only). Ctrl-C stops the loop within
-/// a piece and raises KeyboardInterrupt.
-template <typename PointT>
-py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t n, int threads,
-                       int joints) {
-  auto points = std::make_unique<std::vector<PointT, Eigen::aligned_allocator<PointT>>>(n);
-  PointT* out = points->data();
-  {
-    py::gil_scoped_release release;
-    for (std::size_t begin = 0; begin < n; begin += kPiece) {
-      generateParallel(generator, begin, std::min(kPiece, n - begin), out + begin, threads);
-      py::gil_scoped_acquire acquire;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    }
-  }
-  const py::dtype dtype = pointDtype<PointT>(joints);
-  return ownedArray(std::move(points), dtype, {static_cast<py::ssize_t>(n)},
-                    {static_cast<py::ssize_t>(sizeof(PointT))}, out);
-}
 
 std::size_t sampleCount(std::int64_t n) {
   if (n < 0) throw UsageError("n: " + std::to_string(n) + " is negative");
@@ -71,6 +42,15 @@ std::vector<std::pair<std::string, double>> fixedJoints(const py::handle& fix) {
   return fixed;
 }
 
+SamplePoint samplePoint(const std::string& point) {
+  if (point != "tool" && point != "flange") {
+    throw UsageError("point: '" + point + "' is not one of tool, flange");
+  }
+  return point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
+}
+
+namespace {
+
 QualityOptions qualityOptions(const Robot& robot, const std::optional<std::string>& task,
                               const std::optional<double>& length) {
   QualityOptions quality = defaultQualityOptions(robot);
@@ -91,10 +71,7 @@ py::array sample(const LoadedRobot& loaded, std::int64_t n, std::int64_t seed, i
   RobotSamplerOptions options;
   options.seed = nonNegative(seed, "seed");
   threads = threadCount(threads);
-  if (point != "tool" && point != "flange") {
-    throw UsageError("point: '" + point + "' is not one of tool, flange");
-  }
-  options.point = point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
+  options.point = samplePoint(point);
   options.fixed = fixedJoints(fix);
   if (!quality && (quality_task || length)) {
     throw UsageError("quality_task and length need quality=True");

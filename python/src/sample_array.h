@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// \brief Samples of a point generator (the library's sampling module) computed with the GIL
+/// released and handed to NumPy without a copy: what mcws.sample, mcws.sample_shape and
+/// mcws.refine return.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "bindings.h"
+#include "mcws/sampling/sampler.h"
+#include "point_layout.h"
+
+namespace mcws::python {
+
+/// \brief Samples computed between two looks for Ctrl-C (a fraction of a second of work).
+constexpr std::size_t kSamplePiece = std::size_t{1} << 16;
+
+/// \brief Samples 0 .. n-1 of `generator` on `threads` threads (0: all cores) with the GIL
+/// released, into an array of pointDtype(joints, PointT) that owns them. The points do not depend
+/// on `threads` (a sample's random numbers depend on its index only). Ctrl-C stops the loop
+/// within a piece and raises KeyboardInterrupt.
+template <typename PointT>
+py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t n, int threads,
+                       int joints) {
+  auto points = std::make_unique<std::vector<PointT, Eigen::aligned_allocator<PointT>>>(n);
+  PointT* out = points->data();
+  {
+    py::gil_scoped_release release;
+    for (std::size_t begin = 0; begin < n; begin += kSamplePiece) {
+      generateParallel(generator, begin, std::min(kSamplePiece, n - begin), out + begin, threads);
+      py::gil_scoped_acquire acquire;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+  }
+  const py::dtype dtype = pointDtype<PointT>(joints);
+  return ownedArray(std::move(points), dtype, {static_cast<py::ssize_t>(n)},
+                    {static_cast<py::ssize_t>(sizeof(PointT))}, out);
+}
+
+/// \brief A sample count n >= 0. \throws UsageError "n: ... is negative".
+std::size_t sampleCount(std::int64_t n);
+
+/// \brief mcws.sample's `fix`: a dict joint name -> value [rad | length unit], or None (empty).
+/// \throws UsageError naming `fix` and the bad entry.
+std::vector<std::pair<std::string, double>> fixedJoints(const py::handle& fix);
+
+/// \brief The sample point "tool" or "flange". \throws UsageError naming `point` and the value.
+SamplePoint samplePoint(const std::string& point);
+
+}  // namespace mcws::python
