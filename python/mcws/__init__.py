@@ -25,6 +25,7 @@ from ._mcws import (
     Robot,
     UsageError,
     _boundary,
+    _envelope,
     _measure,
     _point_dtype,
     _refine,
@@ -48,6 +49,8 @@ __all__ = [
     "refine",
     "measure",
     "Measure",
+    "envelope",
+    "Envelope",
 ]
 
 for _name in ("Error", "UsageError", "Robot"):
@@ -254,3 +257,82 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
     """
     return Measure(_json.loads(
         _measure(_positions(points), plane, alpha, correction, threads, length_unit)))
+
+
+class Envelope(dict):
+    """The envelope of a 3-D cloud, as mcws_envelope makes it: a closed triangle mesh, every
+    triangle counter-clockwise seen from outside, enclosing the volume measure() gives.
+
+    A dict of mcws_envelope --json's numbers but for its files and seconds (dict(result) gives
+    its keys; they are also attributes): volume (enclosed by the mesh) [length unit^3],
+    measure_volume (mcws_measure's), uncorrected, filled_volume [length unit^3], area
+    [length unit^2], offset [length unit], alpha [local spacings], correction, points, vertices
+    and triangles (the counts), edges, euler_characteristic, closed_and_oriented,
+    non_manifold_edges, length_unit and units (the unit of each number).
+
+    vertices: the mesh's vertices, a float64 (V, 3) array [length unit] (the attribute; the count
+        is result["vertices"]).
+    triangles: the mesh's triangles, a uint32 (T, 3) array of vertex indices (likewise).
+    """
+
+    def __init__(self, mesh):
+        super().__init__(_json.loads(mesh.summary()))
+        self._mesh = mesh
+        self.vertices = mesh.vertices()
+        self.triangles = mesh.triangles()
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def save(self, path, source="points"):
+        """Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by
+        the extension of path (.ply, .stl, .vtk), lengths in the positions' unit; the file
+        appears whole or not at all. source names the cloud in the file's comment
+        ("mcws_envelope of <source>, lengths in <unit>"): mcws_envelope's --input path gives
+        its bytes.
+
+        Raises mcws.Error naming the file for another extension or when it cannot be written.
+        """
+        self._mesh.save(_os.fspath(path), str(source))
+
+    def drawing(self, azimuth=0.0):
+        """The numbers of the datasheet drawing, as mcws_envelope --drawing --json gives them
+        under "drawing" (its "units" here under "units"): the side view, the section of the mesh
+        by the vertical plane through the z axis at azimuth [deg from +x] (azimuth [deg],
+        section_area [length unit^2], front_reach, back_reach, section_highest, section_lowest
+        [length unit]); the top view of the samples (max_reach, min_reach [length unit],
+        swept_angle, sweep_from, sweep_to [deg]); the envelope's highest and lowest [length
+        unit]. Returns a Measure (a dict whose keys are also attributes).
+
+        Raises mcws.UsageError when the plane misses the mesh or azimuth is not finite.
+        """
+        return Measure(_json.loads(self._mesh.drawing(float(azimuth))))
+
+
+def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None):
+    """The workspace envelope of a 3-D cloud as a closed, outward-oriented triangle mesh, as
+    mcws_envelope makes it: the surface of the tetrahedra measure() keeps (the alpha shape at the
+    same alpha), moved outward so that it encloses measure()'s volume (with correction "none",
+    the alpha surface as it is); cavities filled and pinches mended to make it a 2-manifold.
+
+    points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
+        float32 as a PCD file holds them.
+    alpha: simplex size limit [local spacings] in [1, 1000] (default 3, 5 with correction "none").
+    correction: "efron" (uniform samples; default) or "none" (refined clouds).
+    threads: worker threads, 0 = all cores (the result does not depend on it).
+    length_unit: "m", "cm" or "mm": the unit of the positions, named in the result's units and
+        the files (default: "unrecorded", as mcws_envelope for a cloud that records none).
+
+    Returns an Envelope: .vertices (V, 3), .triangles (T, 3), .volume, .units, .save(path),
+    .drawing(azimuth) and the rest of mcws_envelope --json: the same numbers and, saved, the same
+    file as the tool for the same points. The GIL is released; Ctrl-C interrupts between phases.
+
+    Raises mcws.UsageError for a bad alpha, correction, threads or length_unit; mcws.Error for too
+    few distinct points, a flat cloud, or an offset that does not converge.
+    """
+    return Envelope(_envelope(_positions(points), alpha, correction, threads, length_unit))

@@ -58,3 +58,19 @@ def measure(
     threads: int = 0,
     length_unit: Optional[str] = None,
 ) -> Measure: ...
+
+class Envelope(Dict[str, Any]):
+    vertices: npt.NDArray[np.float64]
+    triangles: npt.NDArray[np.uint32]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"], source: str = "points") -> None: ...
+    def drawing(self, azimuth: float = 0.0) -> Measure: ...
+
+def envelope(
+    points: npt.ArrayLike,
+    *,
+    alpha: Optional[float] = None,
+    correction: str = "efron",
+    threads: int = 0,
+    length_unit: Optional[str] = None,
+) -> Envelope: ...

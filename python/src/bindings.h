@@ -33,6 +33,8 @@ void bindCloud(py::module_& m);
 void bindWorkspace(py::module_& m);
 /// \brief The C++ part of mcws.refine.
 void bindRefine(py::module_& m);
+/// \brief The C++ part of mcws.envelope.
+void bindEnvelope(py::module_& m);
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).

@@ -78,4 +78,5 @@ PYBIND11_MODULE(_mcws, m) {
   bindCloud(m);
   bindWorkspace(m);
   bindRefine(m);
+  bindEnvelope(m);
 }
