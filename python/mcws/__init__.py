@@ -28,6 +28,8 @@ from ._mcws import (
     _envelope,
     _measure,
     _point_dtype,
+    _reach_map,
+    _ReachMap,
     _refine,
     _write_points,
     read_pcd,
@@ -51,6 +53,8 @@ __all__ = [
     "Measure",
     "envelope",
     "Envelope",
+    "reach_map",
+    "ReachMap",
 ]
 
 for _name in ("Error", "UsageError", "Robot"):
@@ -336,3 +340,140 @@ def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=N
     few distinct points, a flat cloud, or an offset that does not converge.
     """
     return Envelope(_envelope(_positions(points), alpha, correction, threads, length_unit))
+
+
+class ReachMap:
+    """A reachability map (Zacharias, Borst & Hirzinger 2007), as mcws_reach builds it: position
+    voxels of edge .resolution [length unit] x orientation bins (.orientations approach regions of
+    the sphere x .rolls roll bins). Only voxels some sample reached are stored, in the order of
+    the tool's outputs (by index, z fastest).
+
+    Per voxel (arrays of len(map) rows, read-only, made on first use):
+    voxels: int32 (V, 3) voxel indices (floor(x / resolution), ...);
+    centres: float64 (V, 3) voxel centres [length unit];
+    reachability: float64 (V,) the reachability index D, the share of orientation bins reached
+        [1], in (0, 1];
+    manipulability: float32 (V,) the best manipulability of the voxel's samples (the unit of
+        .summary["manipulability"]["manipulability_unit"]; 0 without it);
+    count: uint64 (V,) the samples that fell in the voxel.
+
+    header: the map file's header as a dict (robot, robot_file, robot_sha256, length_unit,
+        samples, seed, collision, manipulability); length_unit: its length unit.
+    summary: mcws_reach --json's summary but for files, processes and seconds (a dict), or None
+        for a map read with ReachMap.load.
+    """
+
+    def __init__(self, core):
+        if not isinstance(core, _ReachMap):
+            raise UsageError("ReachMap: made by mcws.reach_map() or mcws.ReachMap.load(path)")
+        self._map = core
+        self._arrays = {}
+        self.resolution, self.orientations, self.rolls = core.grid()
+        self.header = _json.loads(core.header())
+        self.summary = _json.loads(core.summary())
+        self.length_unit = self.header.get("length_unit", "unrecorded")
+
+    @classmethod
+    def load(cls, path):
+        """Reads a map file (mcws_reach --map, ReachMap.save; docs/reach_map.md).
+
+        Raises mcws.Error naming the file when it is missing, unreadable or malformed.
+        """
+        return cls(_ReachMap.load(_os.fspath(path)))
+
+    def _array(self, name):
+        if name not in self._arrays:
+            array = getattr(self._map, name)()
+            array.flags.writeable = False
+            self._arrays[name] = array
+        return self._arrays[name]
+
+    voxels = property(lambda self: self._array("voxels"), doc="int32 (V, 3) voxel indices")
+    centres = property(lambda self: self._array("centres"),
+                       doc="float64 (V, 3) voxel centres [length unit]")
+    reachability = property(lambda self: self._array("reachability"),
+                            doc="float64 (V,) reachability index D [1]")
+    manipulability = property(lambda self: self._array("manipulability"),
+                              doc="float32 (V,) best manipulability of the voxel's samples")
+    count = property(lambda self: self._array("count"), doc="uint64 (V,) samples in the voxel")
+
+    def __len__(self):
+        return len(self._map)
+
+    def __repr__(self):
+        return (f"<mcws.ReachMap of {self.header.get('robot', '?')}: {len(self)} voxels of "
+                f"{self.resolution} {self.length_unit}, {self.orientations} x {self.rolls} bins>")
+
+    def query(self, points, directions=None):
+        """Looks points (and tool orientations) up in the map.
+
+        points: (N, 3) or (3,) positions [length unit], any float dtype.
+        directions: None; approach directions (the tool's z axis, any length), (N, 3) or (3,);
+            or tool rotations, (N, 3, 3) or (3, 3).
+
+        Returns a dict of arrays of N entries (scalars for a single point): "voxel" (int64, the
+        row of the point's voxel in .voxels & co., -1 where no sample fell or the point is not
+        finite), "reachability" [1], "manipulability" and "count" of that voxel (0 where voxel
+        is -1), and with directions "reached" (bool): whether a sample fell in the point's voxel
+        with its orientation in the direction's bin (any roll bin for an approach direction).
+
+        Raises mcws.UsageError for other shapes, or a direction that is zero or not finite.
+        """
+        p = _np.asarray(points, dtype=_np.float64)
+        single = p.ndim == 1
+        if single:
+            p = p[None, :]
+            if directions is not None:
+                directions = _np.asarray(directions, dtype=_np.float64)[None, ...]
+        result = self._map.query(p, directions)
+        return {k: v[0] for k, v in result.items()} if single else result
+
+    def save(self, path):
+        """Writes the map file, byte for byte what mcws_reach --map writes for the same map
+        (docs/reach_map.md); it appears whole or not at all.
+
+        Raises mcws.Error naming the file when it cannot be written.
+        """
+        self._map.save(_os.fspath(path))
+
+    def save_points(self, path):
+        """Writes the voxel centres with fields reachability, manipulability and count as a
+        binary PCD, byte for byte what mcws_reach --output writes for the same map (the robot
+        its header names recorded in the file).
+
+        Raises mcws.Error naming the file when it cannot be written.
+        """
+        self._map.save_points(_os.fspath(path))
+
+
+def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200, rolls=1,
+              manipulability=True, collision=False, quality_task=None, length=None):
+    """The reachability map of a robot, as mcws_reach builds it: joint values drawn uniformly
+    within their limits (sample i's values depend only on seed and i, the joint values of
+    sample(robot, samples, seed)) through forward kinematics to the tool pose, whose point falls
+    in a cubic voxel of edge resolution and whose orientation in one of orientations x rolls bins.
+
+    robot: an mcws.Robot.
+    resolution: the voxel edge [length unit] (the robot's .length_unit), > 0.
+    samples: joint samples (int >= 1; mcws_reach's default is 5e8, 1e7 gives a first look).
+    seed: random seed, a whole number >= 0 (mcws_reach's default is 1).
+    threads: worker threads, 0 = all cores. The map is the same for any thread count.
+    orientations: approach-direction bins on the sphere, 1 .. 65536 (default 200).
+    rolls: roll bins about the approach (default 1: any roll counts).
+    manipulability: compute the Jacobian and keep each voxel's best manipulability (mcws_reach
+        --no-manipulability is False).
+    collision: count only collision-free samples (the robot file's collision model).
+    quality_task, length: how manipulability is measured, as sample(quality=True).
+
+    Returns a ReachMap: .save(path) writes the file mcws_reach --map writes for the same
+    arguments, byte for byte; .save_points(path) its --output. The GIL is released; Ctrl-C
+    interrupts (KeyboardInterrupt) between chunks of 4 million samples.
+
+    Raises mcws.UsageError for a bad resolution, samples, seed, threads, orientations, rolls,
+    quality_task or length; mcws.Error for collision=True without collision geometry, a tool
+    point beyond the grid's index range, or no sample counted.
+    """
+    if not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    return ReachMap(_reach_map(robot, resolution, samples, seed, threads, orientations, rolls,
+                               manipulability, collision, quality_task, length))

@@ -74,3 +74,42 @@ def envelope(
     threads: int = 0,
     length_unit: Optional[str] = None,
 ) -> Envelope: ...
+
+class ReachMap:
+    resolution: float
+    orientations: int
+    rolls: int
+    header: Dict[str, Any]
+    summary: Optional[Dict[str, Any]]
+    length_unit: str
+    @classmethod
+    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "ReachMap": ...
+    @property
+    def voxels(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def centres(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def reachability(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def manipulability(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def count(self) -> npt.NDArray[np.uint64]: ...
+    def __len__(self) -> int: ...
+    def query(self, points: npt.ArrayLike, directions: Optional[npt.ArrayLike] = None) -> Dict[str, Any]: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    def save_points(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+def reach_map(
+    robot: Robot,
+    resolution: float,
+    samples: int,
+    seed: int = 0,
+    threads: int = 0,
+    *,
+    orientations: int = 200,
+    rolls: int = 1,
+    manipulability: bool = True,
+    collision: bool = False,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+) -> ReachMap: ...

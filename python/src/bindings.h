@@ -35,6 +35,8 @@ void bindWorkspace(py::module_& m);
 void bindRefine(py::module_& m);
 /// \brief The C++ part of mcws.envelope.
 void bindEnvelope(py::module_& m);
+/// \brief mcws.reach_map's C++ part and the map class behind mcws.ReachMap.
+void bindReach(py::module_& m);
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).

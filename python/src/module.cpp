@@ -79,4 +79,5 @@ PYBIND11_MODULE(_mcws, m) {
   bindWorkspace(m);
   bindRefine(m);
   bindEnvelope(m);
+  bindReach(m);
 }

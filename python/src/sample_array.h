@@ -7,9 +7,12 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "bindings.h"
+#include "mcws/reach/quality.h"
 #include "mcws/sampling/sampler.h"
 #include "point_layout.h"
 
@@ -49,5 +52,11 @@ std::vector<std::pair<std::string, double>> fixedJoints(const py::handle& fix);
 
 /// \brief The sample point "tool" or "flange". \throws UsageError naming `point` and the value.
 SamplePoint samplePoint(const std::string& point);
+
+/// \brief How manipulability is measured: the robot's default (defaultQualityOptions()), with the
+/// task "position" or "full" and the characteristic length L [length unit] of "full" if given.
+/// \throws UsageError naming quality_task or length and the bad value.
+QualityOptions qualityOptions(const Robot& robot, const std::optional<std::string>& task,
+                              const std::optional<double>& length);
 
 }  // namespace mcws::python

@@ -49,8 +49,6 @@ SamplePoint samplePoint(const std::string& point) {
   return point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
 }
 
-namespace {
-
 QualityOptions qualityOptions(const Robot& robot, const std::optional<std::string>& task,
                               const std::optional<double>& length) {
   QualityOptions quality = defaultQualityOptions(robot);
@@ -61,6 +59,8 @@ QualityOptions qualityOptions(const Robot& robot, const std::optional<std::strin
   }
   return quality;
 }
+
+namespace {
 
 py::array sample(const LoadedRobot& loaded, std::int64_t n, std::int64_t seed, int threads,
                  const py::object& fix, bool collision, bool quality, const std::string& point,
