@@ -27,6 +27,8 @@ from ._mcws import (
     _boundary,
     _envelope,
     _measure,
+    _place,
+    _reach_study,
     _point_dtype,
     _reach_map,
     _ReachMap,
@@ -55,6 +57,10 @@ __all__ = [
     "Envelope",
     "reach_map",
     "ReachMap",
+    "reach_study",
+    "ReachStudy",
+    "place",
+    "Placement",
 ]
 
 for _name in ("Error", "UsageError", "Robot"):
@@ -477,3 +483,150 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
     return ReachMap(_reach_map(robot, resolution, samples, seed, threads, orientations, rolls,
                                manipulability, collision, quality_task, length))
+
+
+class _PointsResult(dict):
+    """A summary dict (keys also attributes) with .points and .save(path)."""
+
+    _joints = 0
+
+    def __init__(self, core, joints=0):
+        super().__init__(_json.loads(core.summary()))
+        self._core = core
+        self.points = core.points(joints)
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def save(self, path):
+        """Writes .points as a binary PCD, byte for byte the tool's --output for the same
+        arguments. Raises mcws.Error naming the file when it cannot be written."""
+        self._core.save(_os.fspath(path))
+
+
+class ReachStudy(_PointsResult):
+    """A reach study's result, as mcws_reach --targets gives it: a dict of its --json summary but
+    for output and seconds (keys also attributes): targets, reached, solved, share_reached [1],
+    mean_score, mean_manipulability_reached, manipulability (how it is measured),
+    min_clearance_reached [length unit] (None when not measured), collision,
+    approach_tolerance_deg [deg], ik_starts, seed and unreached (per target not reached: solved,
+    label, position_error [length unit], orientation_error_deg [deg]).
+
+    points: the heat map, a structured array of one record per target (viewing the C++ points):
+        x, y, z the target point [length unit]; normal_x, normal_y, normal_z its surface normal;
+        q1..q<dof> the chosen joint values [rad | length unit] (0 when not solved); label;
+        reached (1 or 0); score (manipulability where reached, else 0); manipulability;
+        clearance [length unit] (-1 where not measured); orientation_error [rad].
+    save(path): the heat map as mcws_reach --targets --output writes it.
+    """
+
+
+class Placement(_PointsResult):
+    """A base placement, as mcws_place gives it: a dict of its --json summary but for output and
+    seconds (keys also attributes): targets, positions, map (its grid and where it came from),
+    manipulability, collision, approach_tolerance_deg [deg], candidates (per position: offset
+    [length unit], map_share and ik_share [1], map_score and ik_score; ik_* None where IK did not
+    confirm it) and best (the best confirmed candidate with reached and base_position [length
+    unit], or None).
+
+    points: per position a record x, y, z (where the base frame lands [length unit]), map_share,
+        map_score, ik_share, ik_score (-1 where not confirmed).
+    save(path): those points as mcws_place --output writes them.
+    """
+
+
+def _targets_argument(targets):
+    if isinstance(targets, (str, _os.PathLike)):
+        return _os.fspath(targets)
+    return targets
+
+
+def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_tolerance=0.0,
+                ik_starts=4, seed=0, threads=0, collision=True, quality_task=None, length=None):
+    """Solves target poses by inverse kinematics, as mcws_reach --targets (ROS-Industrial REACH):
+    each target from ik_starts starting joint vectors, the best solution kept (collision-free
+    first, then the highest manipulability).
+
+    robot: an mcws.Robot.
+    targets: a targets file (str or os.PathLike: PCD with normals or CSV, as mcws_reach
+        --targets reads); or target points (N, 3) [length unit] with normals; or tool poses
+        (N, 4, 4) [length unit] (the whole orientation counts).
+    normals: the surface normals (N, 3) of target points (any length): the tool's z axis
+        approaches against the normal, its roll free.
+    standoff: distance of the tool point from each target's surface, along its normal
+        [length unit] (default 0).
+    approach_tolerance: the largest accepted approach (or orientation) error [deg] in [0, 180]
+        (default 0: exact).
+    ik_starts: IK starting joint vectors per target, 1 .. 1000 (default 4).
+    seed: random seed of the starts, a whole number >= 0 (mcws_reach's default is 1).
+    threads: worker threads, 0 = all cores. The result does not depend on it.
+    collision: use the robot file's collision model when it has one (mcws_reach --no-collision
+        is False).
+    quality_task, length: how manipulability is measured, as sample(quality=True).
+
+    Returns a ReachStudy (its summary, .points, .save(path)): the numbers and heat map of
+    mcws_reach --targets with the same arguments. The GIL is released; Ctrl-C interrupts.
+
+    Raises mcws.UsageError for targets or normals of another shape, a zero or non-finite normal,
+    a bad standoff, approach_tolerance, ik_starts, seed, threads, quality_task or length;
+    mcws.Error for a targets file that is missing or malformed (naming it).
+    """
+    if not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    core = _reach_study(robot, _targets_argument(targets), normals, standoff,
+                        approach_tolerance, ik_starts, seed, threads, collision, quality_task,
+                        length)
+    return ReachStudy(core, robot.dof)
+
+
+def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=None,
+          resolution=None, samples=None, orientations=200, rolls=1, manipulability=True,
+          confirm=5, standoff=0.0, approach_tolerance=0.0, ik_starts=4, seed=0, threads=0,
+          collision=True, quality_task=None, length=None):
+    """Where to put the robot's base so its arm reaches the targets, as mcws_place: the whole
+    robot moved by every offset of line (x) x across (y) x up (z), the environment of its
+    collision model staying in place; each position scored from a reachability map (the share
+    of targets whose voxel and approach bin the map marks reached, their mean best
+    manipulability), the best `confirm` by the map solved by inverse kinematics as reach_study.
+
+    robot, targets, normals, standoff, approach_tolerance, ik_starts, seed, threads, collision,
+        quality_task, length: as reach_study() (seed also draws a map built here).
+    line, across, up: base offsets along x, y, z [length unit], sequences of values (the
+        tool's "first last step" is first + k step, k = 0, 1, ...; numpy.arange gives them).
+    map: an mcws.ReachMap of this robot file (mcws_reach --map read with ReachMap.load, or
+        reach_map()), without collision filtering; or None and resolution [length unit] and
+        samples to build one here, counting the samples free of self-collision (when
+        collision and the robot file has a collision model), with orientations, rolls and
+        manipulability as reach_map().
+    confirm: positions confirmed by IK: a number >= 0 (default 5) or None for all.
+    The summary's map.about names where the map came from: the file ReachMap.load read,
+    "reach_map()", or "built" (here).
+
+    Returns a Placement (its summary with the candidates and the best, .points,
+    .save(path)): the numbers and file of mcws_place with the same arguments (--map or
+    --resolution and --samples). The GIL is released; Ctrl-C interrupts.
+
+    Raises mcws.UsageError as reach_study() and reach_map(), for empty or non-finite offsets,
+    more than 1e6 positions, both or neither of map and resolution, a map of another robot file,
+    chain, unit or manipulability, or a map counting only samples free of the environment.
+    """
+    if not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    if map is not None and not isinstance(map, ReachMap):
+        raise UsageError(f"map: {type(map).__name__} is not an mcws.ReachMap")
+    if resolution is not None and samples is None:
+        raise UsageError("samples: give the sample count of the map built at resolution")
+    core = _place(robot, _targets_argument(targets), normals,
+                  [float(v) for v in _np.atleast_1d(line)],
+                  [float(v) for v in _np.atleast_1d(across)],
+                  [float(v) for v in _np.atleast_1d(up)],
+                  -1 if confirm is None else confirm, None if map is None else map._map,
+                  resolution, 0 if samples is None else samples, orientations, rolls,
+                  manipulability, standoff, approach_tolerance, ik_starts, seed, threads,
+                  collision, quality_task, length)
+    return Placement(core)

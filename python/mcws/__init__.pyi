@@ -1,7 +1,7 @@
 """Type stubs of the mcws package (see _mcws.pyi for the extension's functions)."""
 
 import os
-from typing import Any, Dict, Optional, Union
+from typing import Any, Dict, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -113,3 +113,54 @@ def reach_map(
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
 ) -> ReachMap: ...
+
+_Targets = Union[str, "os.PathLike[str]", npt.ArrayLike]
+
+class ReachStudy(Dict[str, Any]):
+    points: npt.NDArray[np.void]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+class Placement(Dict[str, Any]):
+    points: npt.NDArray[np.void]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+def reach_study(
+    robot: Robot,
+    targets: _Targets,
+    normals: Optional[npt.ArrayLike] = None,
+    *,
+    standoff: float = 0.0,
+    approach_tolerance: float = 0.0,
+    ik_starts: int = 4,
+    seed: int = 0,
+    threads: int = 0,
+    collision: bool = True,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+) -> ReachStudy: ...
+def place(
+    robot: Robot,
+    targets: _Targets,
+    line: Sequence[float],
+    across: Sequence[float] = (0.0,),
+    up: Sequence[float] = (0.0,),
+    *,
+    normals: Optional[npt.ArrayLike] = None,
+    map: Optional[ReachMap] = None,
+    resolution: Optional[float] = None,
+    samples: Optional[int] = None,
+    orientations: int = 200,
+    rolls: int = 1,
+    manipulability: bool = True,
+    confirm: Optional[int] = 5,
+    standoff: float = 0.0,
+    approach_tolerance: float = 0.0,
+    ik_starts: int = 4,
+    seed: int = 0,
+    threads: int = 0,
+    collision: bool = True,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+) -> Placement: ...

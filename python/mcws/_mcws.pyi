@@ -147,3 +147,50 @@ def _reach_map(
     quality_task: Optional[str],
     length: Optional[float],
 ) -> _ReachMap: ...
+
+class _ReachStudy:
+    def summary(self) -> str: ...
+    def save(self, path: _Path) -> None: ...
+    def points(self, joints: int) -> npt.NDArray[np.void]: ...
+
+class _Placement:
+    def summary(self) -> str: ...
+    def save(self, path: _Path) -> None: ...
+    def points(self, joints: int) -> npt.NDArray[np.void]: ...
+
+def _reach_study(
+    robot: Robot,
+    targets: Any,
+    normals: Optional[_Floats],
+    standoff: float,
+    approach_tolerance: float,
+    ik_starts: int,
+    seed: int,
+    threads: int,
+    collision: bool,
+    quality_task: Optional[str],
+    length: Optional[float],
+) -> _ReachStudy: ...
+def _place(
+    robot: Robot,
+    targets: Any,
+    normals: Optional[_Floats],
+    line: List[float],
+    across: List[float],
+    up: List[float],
+    confirm: int,
+    map: Optional[_ReachMap],
+    resolution: Optional[float],
+    samples: int,
+    orientations: int,
+    rolls: int,
+    manipulability: bool,
+    standoff: float,
+    approach_tolerance: float,
+    ik_starts: int,
+    seed: int,
+    threads: int,
+    collision: bool,
+    quality_task: Optional[str],
+    length: Optional[float],
+) -> _Placement: ...

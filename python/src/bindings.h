@@ -37,6 +37,8 @@ void bindRefine(py::module_& m);
 void bindEnvelope(py::module_& m);
 /// \brief mcws.reach_map's C++ part and the map class behind mcws.ReachMap.
 void bindReach(py::module_& m);
+/// \brief mcws.reach_study's and mcws.place's C++ parts.
+void bindReachStudy(py::module_& m);
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).
@@ -45,6 +47,9 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 /// \brief `value` as a DoubleArray. \throws UsageError "argument: ..." when NumPy cannot make
 /// numbers of it.
 DoubleArray doubleArray(const py::handle& value, const std::string& argument);
+
+/// \brief An array's shape as Python writes it: "(4, 2)", "(3,)".
+std::string shapeText(const py::array& array);
 
 /// \brief A path argument (str or os.PathLike) as a string.
 std::string pathArgument(const py::handle& path);

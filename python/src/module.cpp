@@ -17,6 +17,14 @@ DoubleArray doubleArray(const py::handle& value, const std::string& argument) {
   return array;
 }
 
+std::string shapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t i = 0; i < array.ndim(); ++i) {
+    text += (i ? ", " : "") + std::to_string(array.shape(i));
+  }
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
 std::string pathArgument(const py::handle& path) {
   return py::str(py::module_::import("os").attr("fspath")(path));
 }
@@ -80,4 +88,5 @@ PYBIND11_MODULE(_mcws, m) {
   bindRefine(m);
   bindEnvelope(m);
   bindReach(m);
+  bindReachStudy(m);
 }

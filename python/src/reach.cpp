@@ -18,30 +18,13 @@
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sampler.h"
+#include "reach_map_result.h"
 #include "reach_query.h"
 #include "sample_array.h"
 
 namespace mcws::python {
 
 namespace {
-
-/// A map and the header its file records (mapFileHeader()); a map built here also keeps its
-/// summary (mapSummary(), as mcws_reach --json but for the files and seconds).
-struct MapResult {
-  ReachMap map;
-  std::string header;   ///< compact JSON
-  std::string summary;  ///< compact JSON, or "null" for a map read from a file
-};
-
-/// How mcws.reach_map fills a map, as mcws_reach's flags.
-struct MapArguments {
-  double resolution;
-  std::int64_t samples, seed;
-  int threads, orientations, rolls;
-  bool manipulability, collision;
-  std::optional<std::string> quality_task;
-  std::optional<double> length;
-};
 
 ReachGrid mapGrid(const MapArguments& a) {
   ReachGrid grid;
@@ -62,7 +45,10 @@ ReachGrid mapGrid(const MapArguments& a) {
   return grid;
 }
 
-std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a) {
+}  // namespace
+
+std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a,
+                                    const CollisionChecker* checker) {
   const Robot& robot = loaded.robot;
   const ReachGrid grid = mapGrid(a);
   if (a.samples < 1) throw UsageError("samples: " + std::to_string(a.samples) + " is not >= 1");
@@ -75,9 +61,7 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
     throw UsageError("quality_task and length need manipulability=True");
   }
   sampling.quality = qualityOptions(robot, a.quality_task, a.length);
-  std::unique_ptr<CollisionChecker> checker;
-  if (a.collision) checker = collisionChecker(loaded);
-  sampling.collision = checker.get();
+  sampling.collision = checker;
   const io::CloudProvenance provenance = robotProvenance(robot);
   auto result = std::make_unique<MapResult>();
   {
@@ -89,11 +73,14 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
   }
   if (result->map.size() == 0) throw Error("no sample counted: every sample collides");
   const nlohmann::json summary =
-      mapSummary(robot, grid, sampling, sampling.samples, result->map, a.collision);
+      mapSummary(robot, grid, sampling, sampling.samples, result->map, checker != nullptr);
   result->header = mapFileHeader(robot, provenance.file, provenance.sha256, summary);
   result->summary = summary.dump();
+  result->source = "reach_map()";
   return result;
 }
+
+namespace {
 
 std::unique_ptr<MapResult> loadMap(const py::object& path_value) {
   const std::string path = pathArgument(path_value);
@@ -112,6 +99,7 @@ std::unique_ptr<MapResult> loadMap(const py::object& path_value) {
   }
   result->header = members.dump();
   result->summary = "null";
+  result->source = path;
   return result;
 }
 
@@ -204,8 +192,12 @@ void bindReach(py::module_& m) {
       [](const LoadedRobot& robot, double resolution, std::int64_t samples, std::int64_t seed,
          int threads, int orientations, int rolls, bool manipulability, bool collision,
          const std::optional<std::string>& quality_task, const std::optional<double>& length) {
-        return buildMap(robot, {resolution, samples, seed, threads, orientations, rolls,
-                                manipulability, collision, quality_task, length});
+        const std::unique_ptr<CollisionChecker> checker =
+            collision ? collisionChecker(robot) : nullptr;
+        return buildMap(robot,
+                        {resolution, samples, seed, threads, orientations, rolls, manipulability,
+                         quality_task, length},
+                        checker.get());
       },
       "mcws.reach_map's C++ part.", py::arg("robot"), py::arg("resolution"), py::arg("samples"),
       py::arg("seed"), py::arg("threads"), py::arg("orientations"), py::arg("rolls"),

@@ -9,14 +9,6 @@ namespace mcws::python {
 
 namespace {
 
-std::string shapeText(const py::array& array) {
-  std::string text = "(";
-  for (py::ssize_t k = 0; k < array.ndim(); ++k) {
-    text += (k ? ", " : "") + std::to_string(array.shape(k));
-  }
-  return text + (array.ndim() == 1 ? ",)" : ")");
-}
-
 /// Whether any roll bin of approach region `region` was reached in voxel v.
 bool approachReached(const ReachMap& map, std::size_t v, int region) {
   const int rolls = map.bins().rolls();
