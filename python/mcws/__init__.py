@@ -228,7 +228,19 @@ def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="t
     return _refine(robot, packed, joints, n, seed, threads, spread, point, fix, collision)
 
 
-class Measure(dict):
+class _Record(dict):
+    """A dict whose keys are also attributes (names starting with _ excepted)."""
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+class Measure(_Record):
     """The area or volume of a region, as mcws_measure --json gives it: a dict (dict(result)
     gives its keys) whose keys are also attributes.
 
@@ -239,11 +251,6 @@ class Measure(dict):
     length_unit; units: the unit of each dimensioned number.
     """
 
-    def __getattr__(self, name):
-        try:
-            return self[name]
-        except KeyError:
-            raise AttributeError(name) from None
 
 
 def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None):
@@ -269,7 +276,7 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         _measure(_positions(points), plane, alpha, correction, threads, length_unit)))
 
 
-class Envelope(dict):
+class Envelope(_Record):
     """The envelope of a 3-D cloud, as mcws_envelope makes it: a closed triangle mesh, every
     triangle counter-clockwise seen from outside, enclosing the volume measure() gives.
 
@@ -290,14 +297,6 @@ class Envelope(dict):
         self._mesh = mesh
         self.vertices = mesh.vertices()
         self.triangles = mesh.triangles()
-
-    def __getattr__(self, name):
-        if name.startswith("_"):
-            raise AttributeError(name)
-        try:
-            return self[name]
-        except KeyError:
-            raise AttributeError(name) from None
 
     def save(self, path, source="points"):
         """Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by
@@ -485,23 +484,13 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
                                manipulability, collision, quality_task, length))
 
 
-class _PointsResult(dict):
+class _PointsResult(_Record):
     """A summary dict (keys also attributes) with .points and .save(path)."""
-
-    _joints = 0
 
     def __init__(self, core, joints=0):
         super().__init__(_json.loads(core.summary()))
         self._core = core
         self.points = core.points(joints)
-
-    def __getattr__(self, name):
-        if name.startswith("_"):
-            raise AttributeError(name)
-        try:
-            return self[name]
-        except KeyError:
-            raise AttributeError(name) from None
 
     def save(self, path):
         """Writes .points as a binary PCD, byte for byte the tool's --output for the same

@@ -1,9 +1,25 @@
 // The mcws extension module (_mcws): errors and the helpers every binding file shares; the
-// bindings themselves are one file per library module (robot.cpp, sampling.cpp, cloud.cpp,
-// workspace.cpp).
+// bindings themselves are one file per job (robot.cpp, sampling.cpp, cloud.cpp, workspace.cpp,
+// refine.cpp, envelope.cpp, reach.cpp, reach_query.cpp, reach_study.cpp).
 #include <limits>
 
 #include "bindings.h"
+
+PYBIND11_MODULE(_mcws, m) {
+  using namespace mcws::python;
+  m.doc() =
+      "mcws: Monte Carlo workspace analysis of robot manipulators (the C++ library's extension "
+      "module; import mcws).";
+  bindErrors(m);
+  bindRobot(m);
+  bindSampling(m);
+  bindCloud(m);
+  bindWorkspace(m);
+  bindRefine(m);
+  bindEnvelope(m);
+  bindReach(m);
+  bindReachStudy(m);
+}
 
 namespace mcws::python {
 
@@ -74,19 +90,3 @@ void bindErrors(py::module_& m) {
 }
 
 }  // namespace mcws::python
-
-PYBIND11_MODULE(_mcws, m) {
-  using namespace mcws::python;
-  m.doc() =
-      "mcws: Monte Carlo workspace analysis of robot manipulators (the C++ library's extension "
-      "module; import mcws).";
-  bindErrors(m);
-  bindRobot(m);
-  bindSampling(m);
-  bindCloud(m);
-  bindWorkspace(m);
-  bindRefine(m);
-  bindEnvelope(m);
-  bindReach(m);
-  bindReachStudy(m);
-}

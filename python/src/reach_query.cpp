@@ -9,21 +9,12 @@ namespace mcws::python {
 
 namespace {
 
-/// Whether any roll bin of approach region `region` was reached in voxel v.
-bool approachReached(const ReachMap& map, std::size_t v, int region) {
-  const int rolls = map.bins().rolls();
-  for (int k = 0; k < rolls; ++k) {
-    if (map.reached(v, region * rolls + k)) return true;
-  }
-  return false;
-}
-
 /// Whether row i of `directions` (N, 3) or (N, 3, 3) was reached in voxel v.
 bool orientationReached(const ReachMap& map, std::size_t v, const DoubleArray& directions,
                         py::ssize_t i) {
   const double* d = directions.data() + i * (directions.ndim() == 2 ? 3 : 9);
   if (directions.ndim() == 2) {
-    return approachReached(map, v, map.bins().sphere().region(Eigen::Vector3d(d[0], d[1], d[2])));
+    return map.approachReached(v, map.bins().sphere().region(Eigen::Vector3d(d[0], d[1], d[2])));
   }
   const Eigen::Matrix3d R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d);
   return map.reached(v, map.bins().bin(R.col(2), R.col(0)));
