@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import mcws
-from conftest import robot_path, run_tool, tool_json
+from conftest import interrupted_cpu, robot_path, tool_json
 
 # The TA1400's map at 10 cm (the robot's unit is mm): small and fast.
 ARGS = {"resolution": 100.0, "samples": 20000, "seed": 3, "orientations": 50}
@@ -106,3 +106,12 @@ def test_reach_map_errors(ta1400, own_map, tmp_path):
     bad.write_bytes(b"not a map")
     with pytest.raises(mcws.Error, match=r"bad.bin"):
         mcws.ReachMap.load(bad)
+
+
+def test_ctrl_c_interrupts_a_long_map():
+    # 2e9 samples through forward kinematics on one thread: several minutes of CPU. SIGINT ends
+    # the call between chunks of 4 194 304 samples (about a second each).
+    cpu = interrupted_cpu(robot_path("ta1400.yaml"),
+                          "mcws.reach_map(robot, 100.0, 2_000_000_000, threads=1, "
+                          "manipulability=False)")
+    assert cpu < 15.0  # seconds; the whole call takes about 400 s of CPU

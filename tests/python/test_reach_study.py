@@ -3,7 +3,6 @@ and seeds (summaries and files byte for byte), against the planar 2R arm's close
 reachable annulus, its manipulability l1 l2 |sin q2|), the same result for threads 1 and 2, and
 bad input."""
 
-import json
 import math
 
 import numpy as np
