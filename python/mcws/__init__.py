@@ -267,7 +267,8 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         (default: "unrecorded", as mcws_measure for a cloud that records none).
 
     Returns a Measure with .area or .volume, .units and the rest of mcws_measure --json but for
-    its input and seconds: the same numbers for the same points.
+    its input and seconds: the same numbers for the same points. The GIL is released; Ctrl-C
+    interrupts between the phases (local spacing, triangulation, alpha test, edge correction).
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit, or a cloud
     flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D cloud.

@@ -40,6 +40,11 @@ void bindReach(py::module_& m);
 /// \brief mcws.reach_study's and mcws.place's C++ parts.
 void bindReachStudy(py::module_& m);
 
+/// \brief Raises KeyboardInterrupt (throws py::error_already_set) when Ctrl-C was pressed: called
+/// with the GIL released, on the thread that released it (a library's progress or phase
+/// callback, between pieces of a long computation), it takes the GIL for the look.
+void checkSignals();
+
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;

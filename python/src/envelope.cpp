@@ -24,12 +24,6 @@ struct EnvelopeResult {
   pcl::PointCloud<pcl::PointXYZ> points;
 };
 
-/// Checks for Ctrl-C from a library callback on the calling thread (the GIL released around it).
-void checkSignals() {
-  py::gil_scoped_acquire acquire;
-  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-}
-
 std::unique_ptr<EnvelopeResult> makeEnvelope(const FloatRows& xyz,
                                              const std::optional<double>& alpha,
                                              const std::string& correction, int threads,

@@ -33,6 +33,11 @@ DoubleArray doubleArray(const py::handle& value, const std::string& argument) {
   return array;
 }
 
+void checkSignals() {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
 std::string shapeText(const py::array& array) {
   std::string text = "(";
   for (py::ssize_t i = 0; i < array.ndim(); ++i) {

@@ -67,8 +67,7 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
   {
     py::gil_scoped_release release;
     result->map = buildReachMap(robot, grid, sampling, [](std::uint64_t, std::uint64_t) {
-      py::gil_scoped_acquire acquire;  // between chunks of samples, on the calling thread
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      checkSignals();  // between chunks of samples, on the calling thread
     });
   }
   if (result->map.size() == 0) throw Error("no sample counted: every sample collides");

@@ -127,12 +127,6 @@ ReachStudyOptions studyOptions(const Robot& robot, const StudyArguments& a) {
   return options;
 }
 
-/// Checks for Ctrl-C from a library callback on the calling thread (the GIL released around it).
-void checkSignals() {
-  py::gil_scoped_acquire acquire;
-  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-}
-
 std::unique_ptr<StudyResult> reachStudy(const LoadedRobot& loaded, const py::handle& targets_value,
                                         const py::handle& normals, const StudyArguments& a) {
   const Robot& robot = loaded.robot;

@@ -34,8 +34,7 @@ py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t
     py::gil_scoped_release release;
     for (std::size_t begin = 0; begin < n; begin += kSamplePiece) {
       generateParallel(generator, begin, std::min(kSamplePiece, n - begin), out + begin, threads);
-      py::gil_scoped_acquire acquire;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      checkSignals();
     }
   }
   const py::dtype dtype = pointDtype<PointT>(joints);

@@ -181,7 +181,8 @@ std::string measureJson(const FloatRows& xyz, const std::optional<std::string>& 
                         const std::optional<double>& alpha, const std::string& correction,
                         int threads, const std::optional<std::string>& length_unit) {
   const BoundaryPlane plane = planeOf(plane_name);
-  const MeasureOptions options = regionOptions(alpha, correction, threads);
+  MeasureOptions options = regionOptions(alpha, correction, threads);
+  options.phase = [](const std::string&) { checkSignals(); };  // Ctrl-C between phases
   const ResultUnits units = resultUnits(length_unit);
   const io::WorkspaceCloud::Ptr cloud = cloudOf(xyz);
   py::gil_scoped_release release;
