@@ -189,7 +189,7 @@ def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None
 
 
 def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="tool", fix=None,
-           collision=False):
+           collision=False, progress=None):
     """New samples near a cloud's boundary (Liu et al. 2013), as mcws_refine draws them.
 
     robot: the mcws.Robot the points were sampled from.
@@ -207,6 +207,8 @@ def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="t
         value [rad | length unit]; they keep their value. None: the joints with one value in
         every boundary point (of two or more) are taken as pinned; {}: none is.
     collision: label the new samples by their collision status, as sample(collision=True).
+    progress: True for progress lines on stderr, or a callable called with (samples done, n)
+        every 65536 samples; None: silent (as sample()).
 
     Returns n new samples, a structured array as sample() returns (x, y, z [length unit],
     q1..q<dof>, label): the points mcws_refine writes for the same boundary points, seed and
@@ -225,7 +227,8 @@ def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="t
         for name in plain.dtype.names:
             plain[name] = packed[name]
         packed = plain
-    return _refine(robot, packed, joints, n, seed, threads, spread, point, fix, collision)
+    return _refine(robot, packed, joints, n, seed, threads, spread, point, fix, collision,
+                   progress)
 
 
 class _Record(dict):
@@ -453,7 +456,8 @@ class ReachMap:
 
 
 def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200, rolls=1,
-              manipulability=True, collision=False, quality_task=None, length=None):
+              manipulability=True, collision=False, quality_task=None, length=None,
+              progress=None):
     """The reachability map of a robot, as mcws_reach builds it: joint values drawn uniformly
     within their limits (sample i's values depend only on seed and i, the joint values of
     sample(robot, samples, seed)) through forward kinematics to the tool pose, whose point falls
@@ -470,6 +474,8 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
         --no-manipulability is False).
     collision: count only collision-free samples (the robot file's collision model).
     quality_task, length: how manipulability is measured, as sample(quality=True).
+    progress: True for progress lines on stderr as mcws_reach writes them, or a callable called
+        with (samples done, samples) after each chunk; None: silent.
 
     Returns a ReachMap: .save(path) writes the file mcws_reach --map writes for the same
     arguments, byte for byte; .save_points(path) its --output. The GIL is released; Ctrl-C
@@ -482,7 +488,7 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
     if not isinstance(robot, Robot):
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
     return ReachMap(_reach_map(robot, resolution, samples, seed, threads, orientations, rolls,
-                               manipulability, collision, quality_task, length))
+                               manipulability, collision, quality_task, length, progress))
 
 
 class _PointsResult(_Record):
@@ -537,7 +543,8 @@ def _targets_argument(targets):
 
 
 def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_tolerance=0.0,
-                ik_starts=4, seed=0, threads=0, collision=True, quality_task=None, length=None):
+                ik_starts=4, seed=0, threads=0, collision=True, quality_task=None, length=None,
+                progress=None):
     """Solves target poses by inverse kinematics, as mcws_reach --targets (ROS-Industrial REACH):
     each target from ik_starts starting joint vectors, the best solution kept (collision-free
     first, then the highest manipulability).
@@ -558,6 +565,8 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
     collision: use the robot file's collision model when it has one (mcws_reach --no-collision
         is False).
     quality_task, length: how manipulability is measured, as sample(quality=True).
+    progress: True for progress lines on stderr, or a callable called with (targets done,
+        targets) now and then; None: silent.
 
     Returns a ReachStudy (its summary, .points, .save(path)): the numbers and heat map of
     mcws_reach --targets with the same arguments. The GIL is released; Ctrl-C interrupts.
@@ -570,14 +579,14 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
     core = _reach_study(robot, _targets_argument(targets), normals, standoff,
                         approach_tolerance, ik_starts, seed, threads, collision, quality_task,
-                        length)
+                        length, progress)
     return ReachStudy(core, robot.dof)
 
 
 def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=None,
           resolution=None, samples=None, orientations=200, rolls=1, manipulability=True,
           confirm=5, standoff=0.0, approach_tolerance=0.0, ik_starts=4, seed=0, threads=0,
-          collision=True, quality_task=None, length=None):
+          collision=True, quality_task=None, length=None, progress=None):
     """Where to put the robot's base so its arm reaches the targets, as mcws_place: the whole
     robot moved by every offset of line (x) x across (y) x up (z), the environment of its
     collision model staying in place; each position scored from a reachability map (the share
@@ -586,6 +595,8 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
 
     robot, targets, normals, standoff, approach_tolerance, ik_starts, seed, threads, collision,
         quality_task, length: as reach_study() (seed also draws a map built here).
+    progress: as reach_study()'s, for the samples of a map built here, then for the positions
+        confirmed.
     line, across, up: base offsets along x, y, z [length unit], sequences of values (the
         tool's "first last step" is first + k step, k = 0, 1, ...; numpy.arange gives them).
     map: an mcws.ReachMap of this robot file (mcws_reach --map read with ReachMap.load, or
@@ -618,5 +629,5 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
                   -1 if confirm is None else confirm, None if map is None else map._map,
                   resolution, 0 if samples is None else samples, orientations, rolls,
                   manipulability, standoff, approach_tolerance, ik_starts, seed, threads,
-                  collision, quality_task, length)
+                  collision, quality_task, length, progress)
     return Placement(core)

@@ -32,6 +32,7 @@ def refine(
     point: str = "tool",
     fix: Optional[Dict[str, float]] = None,
     collision: bool = False,
+    progress: Any = None,
 ) -> npt.NDArray[np.void]: ...
 
 class Measure(Dict[str, Any]):
@@ -112,6 +113,7 @@ def reach_map(
     collision: bool = False,
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
+    progress: Any = None,
 ) -> ReachMap: ...
 
 _Targets = Union[str, "os.PathLike[str]", npt.ArrayLike]
@@ -137,6 +139,7 @@ def reach_study(
     collision: bool = True,
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
+    progress: Any = None,
 ) -> ReachStudy: ...
 def place(
     robot: Robot,
@@ -161,4 +164,5 @@ def place(
     collision: bool = True,
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
+    progress: Any = None,
 ) -> Placement: ...

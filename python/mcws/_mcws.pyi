@@ -58,8 +58,11 @@ def sample(
     point: str = "tool",
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
+    progress: Any = None,
 ) -> npt.NDArray[np.void]: ...
-def sample_shape(shape: str, n: int, seed: int = 0, threads: int = 0) -> npt.NDArray[np.void]: ...
+def sample_shape(
+    shape: str, n: int, seed: int = 0, threads: int = 0, *, progress: Any = None
+) -> npt.NDArray[np.void]: ...
 def read_pcd(path: _Path) -> npt.NDArray[np.void]: ...
 def read_provenance(path: _Path) -> Optional[Dict[str, Any]]: ...
 def _point_dtype(joints: int, quality: bool) -> np.dtype: ...
@@ -101,6 +104,7 @@ def _refine(
     point: str,
     fix: Optional[Dict[str, float]],
     collision: bool,
+    progress: Any,
 ) -> npt.NDArray[np.void]: ...
 
 class _Envelope:
@@ -146,6 +150,7 @@ def _reach_map(
     collision: bool,
     quality_task: Optional[str],
     length: Optional[float],
+    progress: Any,
 ) -> _ReachMap: ...
 
 class _PointsResult:
@@ -168,6 +173,7 @@ def _reach_study(
     collision: bool,
     quality_task: Optional[str],
     length: Optional[float],
+    progress: Any,
 ) -> _ReachStudy: ...
 def _place(
     robot: Robot,
@@ -191,4 +197,5 @@ def _place(
     collision: bool,
     quality_task: Optional[str],
     length: Optional[float],
+    progress: Any,
 ) -> _Placement: ...

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/io/progress.h"
 
 namespace mcws::python {
 
@@ -44,6 +45,25 @@ void bindReachStudy(py::module_& m);
 /// with the GIL released, on the thread that released it (a library's progress or phase
 /// callback, between pieces of a long computation), it takes the GIL for the look.
 void checkSignals();
+
+/// \brief What a long call does between its pieces of work (chunks of samples, targets,
+/// positions): raises KeyboardInterrupt on Ctrl-C (checkSignals()) and reports its progress as
+/// the call's `progress` argument asks: None or False nothing, True a line on stderr as the tools
+/// write it ("mcws.sample: 45% (4500000/10000000 samples)", for calls over a second, at most
+/// twice a second), a callable called with (done, total) on the calling thread (what it raises
+/// ends the call).
+class Checkpoint {
+ public:
+  /// \param program the function's name on the stderr line; \param what what is counted.
+  /// \throws UsageError for a `progress` of another kind.
+  Checkpoint(const py::object& progress, const std::string& program, const std::string& what);
+  /// \brief Called with the GIL released, on the thread that released it.
+  void operator()(std::uint64_t done, std::uint64_t total);
+
+ private:
+  py::object callback_;  ///< None, or the callable
+  std::unique_ptr<io::Progress> line_;
+};
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).

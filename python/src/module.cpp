@@ -38,6 +38,28 @@ void checkSignals() {
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
 }
 
+Checkpoint::Checkpoint(const py::object& progress, const std::string& program,
+                       const std::string& what) {
+  if (progress.is_none() || (py::isinstance<py::bool_>(progress) && !progress.cast<bool>())) {
+    return;
+  }
+  if (py::isinstance<py::bool_>(progress)) {
+    line_ = std::make_unique<io::Progress>(program, what);
+  } else if (PyCallable_Check(progress.ptr()) != 0) {
+    callback_ = progress;
+  } else {
+    throw UsageError("progress: " + std::string(py::repr(progress)).substr(0, 60) +
+                     " is not True, False, None or a callable (done, total)");
+  }
+}
+
+void Checkpoint::operator()(std::uint64_t done, std::uint64_t total) {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  if (line_) line_->update(static_cast<std::size_t>(done), static_cast<std::size_t>(total));
+  if (callback_) callback_(done, total);
+}
+
 std::string shapeText(const py::array& array) {
   std::string text = "(";
   for (py::ssize_t i = 0; i < array.ndim(); ++i) {

@@ -48,7 +48,7 @@ ReachGrid mapGrid(const MapArguments& a) {
 }  // namespace
 
 std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a,
-                                    const CollisionChecker* checker) {
+                                    const CollisionChecker* checker, Checkpoint& checkpoint) {
   const Robot& robot = loaded.robot;
   const ReachGrid grid = mapGrid(a);
   if (a.samples < 1) throw UsageError("samples: " + std::to_string(a.samples) + " is not >= 1");
@@ -66,9 +66,8 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
   auto result = std::make_unique<MapResult>();
   {
     py::gil_scoped_release release;
-    result->map = buildReachMap(robot, grid, sampling, [](std::uint64_t, std::uint64_t) {
-      checkSignals();  // between chunks of samples, on the calling thread
-    });
+    // Between chunks of samples, on the calling thread.
+    result->map = buildReachMap(robot, grid, sampling, std::ref(checkpoint));
   }
   if (result->map.size() == 0) throw Error("no sample counted: every sample collides");
   const nlohmann::json summary =
@@ -190,18 +189,20 @@ void bindReach(py::module_& m) {
       "_reach_map",
       [](const LoadedRobot& robot, double resolution, std::int64_t samples, std::int64_t seed,
          int threads, int orientations, int rolls, bool manipulability, bool collision,
-         const std::optional<std::string>& quality_task, const std::optional<double>& length) {
+         const std::optional<std::string>& quality_task, const std::optional<double>& length,
+         const py::object& progress) {
+        Checkpoint checkpoint(progress, "mcws.reach_map", "samples");
         const std::unique_ptr<CollisionChecker> checker =
             collision ? collisionChecker(robot) : nullptr;
         return buildMap(robot,
                         {resolution, samples, seed, threads, orientations, rolls, manipulability,
                          quality_task, length},
-                        checker.get());
+                        checker.get(), checkpoint);
       },
       "mcws.reach_map's C++ part.", py::arg("robot"), py::arg("resolution"), py::arg("samples"),
       py::arg("seed"), py::arg("threads"), py::arg("orientations"), py::arg("rolls"),
       py::arg("manipulability"), py::arg("collision"), py::arg("quality_task").none(true),
-      py::arg("length").none(true));
+      py::arg("length").none(true), py::arg("progress"));
 }
 
 }  // namespace mcws::python

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "bindings.h"
 #include "loaded_robot.h"
 #include "mcws/reach/reach_map.h"
 
@@ -33,9 +34,10 @@ struct MapArguments {
 };
 
 /// \brief The map of `a`, as mcws_reach builds it, its file header and summary; `checker`: count
-/// only the samples it finds free (nullptr: all). The GIL is released; Ctrl-C interrupts.
+/// only the samples it finds free (nullptr: all). The GIL is released; `checkpoint` after each
+/// chunk of samples (Ctrl-C, progress).
 /// \throws UsageError naming a bad argument; mcws::Error when no sample counts.
 std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a,
-                                    const CollisionChecker* checker);
+                                    const CollisionChecker* checker, Checkpoint& checkpoint);
 
 }  // namespace mcws::python

@@ -107,6 +107,7 @@ struct StudyArguments {
   bool collision;
   std::optional<std::string> quality_task;
   std::optional<double> length;
+  py::object progress;  ///< the call's progress argument (Checkpoint)
 };
 
 ReachStudyOptions studyOptions(const Robot& robot, const StudyArguments& a) {
@@ -134,14 +135,15 @@ std::unique_ptr<StudyResult> reachStudy(const LoadedRobot& loaded, const py::han
   const std::vector<ReachTarget> targets = targetsOf(targets_value, normals, a.standoff);
   const std::unique_ptr<CollisionChecker> checker =
       a.collision ? collisionCheckerIfModelled(loaded, true) : nullptr;
+  Checkpoint checkpoint(a.progress, "mcws.reach_study", "targets");
   auto result = std::make_unique<StudyResult>();
   result->provenance = robotProvenance(robot);
   std::vector<TargetReach> reaches;
   {
     py::gil_scoped_release release;
     const ReachStudy study(robot, checker.get(), options);
-    reaches = study.evaluate(targets, Eigen::Isometry3d::Identity(),
-                             [](std::size_t, std::size_t) { checkSignals(); });
+    // From OpenMP's thread 0, the calling thread.
+    reaches = study.evaluate(targets, Eigen::Isometry3d::Identity(), std::ref(checkpoint));
   }
   for (std::size_t i = 0; i < targets.size(); ++i) {
     result->points.push_back(reachTargetPoint(targets[i], reaches[i]));
@@ -178,7 +180,8 @@ const ReachMap& placementMap(const LoadedRobot& loaded, const PlaceMap& source,
   if (!source.build) throw UsageError("give map (an mcws.ReachMap) or resolution and samples");
   const std::unique_ptr<CollisionChecker> self =
       a.collision ? collisionCheckerIfModelled(loaded, false) : nullptr;
-  built = buildMap(loaded, *source.build, self.get());
+  Checkpoint checkpoint(a.progress, "mcws.place", "map samples");
+  built = buildMap(loaded, *source.build, self.get(), checkpoint);
   about = {{"source", "built"},
            {"samples", static_cast<std::uint64_t>(source.build->samples)},
            {"self_collision", self != nullptr}};
@@ -218,12 +221,12 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
   const ReachMap& map = placementMap(loaded, source, a, options, built, about);
   const std::unique_ptr<CollisionChecker> checker =
       a.collision ? collisionCheckerIfModelled(loaded, true) : nullptr;
+  Checkpoint checkpoint(a.progress, "mcws.place", "positions confirmed");
   std::vector<BaseCandidate> candidates;
   {
     py::gil_scoped_release release;
     const ReachStudy study(robot, checker.get(), options);
-    candidates = placeBase(map, study, targets, moves, placement,
-                           [](std::size_t, std::size_t) { checkSignals(); });
+    candidates = placeBase(map, study, targets, moves, placement, std::ref(checkpoint));
   }
   auto result = std::make_unique<PlaceResult>();
   for (const BasePoint& p : basePoints(candidates, robot.T_world_base)) result->points.push_back(p);
@@ -263,15 +266,15 @@ void bindReachStudy(py::module_& m) {
       [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
          double standoff, double approach_tolerance, int ik_starts, std::int64_t seed, int threads,
          bool collision, const std::optional<std::string>& quality_task,
-         const std::optional<double>& length) {
+         const std::optional<double>& length, const py::object& progress) {
         return reachStudy(robot, targets, normals,
                           {standoff, approach_tolerance, ik_starts, seed, threads, collision,
-                           quality_task, length});
+                           quality_task, length, progress});
       },
       "mcws.reach_study's C++ part.", py::arg("robot"), py::arg("targets"),
       py::arg("normals").none(true), py::arg("standoff"), py::arg("approach_tolerance"),
       py::arg("ik_starts"), py::arg("seed"), py::arg("threads"), py::arg("collision"),
-      py::arg("quality_task").none(true), py::arg("length").none(true));
+      py::arg("quality_task").none(true), py::arg("length").none(true), py::arg("progress"));
   m.def(
       "_place",
       [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
@@ -280,7 +283,8 @@ void bindReachStudy(py::module_& m) {
          std::optional<double> resolution, std::int64_t samples, int orientations, int rolls,
          bool manipulability, double standoff, double approach_tolerance, int ik_starts,
          std::int64_t seed, int threads, bool collision,
-         const std::optional<std::string>& quality_task, const std::optional<double>& length) {
+         const std::optional<std::string>& quality_task, const std::optional<double>& length,
+         const py::object& progress) {
         PlaceMap source{map, std::nullopt};
         if (resolution) {
           source.build =
@@ -289,14 +293,15 @@ void bindReachStudy(py::module_& m) {
         }
         return place(robot, targets, normals, line, across, up, confirm, source,
                      {standoff, approach_tolerance, ik_starts, seed, threads, collision,
-                      quality_task, length});
+                      quality_task, length, progress});
       },
       "mcws.place's C++ part.", py::arg("robot"), py::arg("targets"), py::arg("normals").none(true),
       py::arg("line"), py::arg("across"), py::arg("up"), py::arg("confirm"),
       py::arg("map").none(true), py::arg("resolution").none(true), py::arg("samples"),
       py::arg("orientations"), py::arg("rolls"), py::arg("manipulability"), py::arg("standoff"),
       py::arg("approach_tolerance"), py::arg("ik_starts"), py::arg("seed"), py::arg("threads"),
-      py::arg("collision"), py::arg("quality_task").none(true), py::arg("length").none(true));
+      py::arg("collision"), py::arg("quality_task").none(true), py::arg("length").none(true),
+      py::arg("progress"));
 }
 
 }  // namespace mcws::python

@@ -31,8 +31,9 @@ pcl::PointCloud<WorkspacePoint> parentCloud(const py::array& records) {
 
 py::array refine(const LoadedRobot& loaded, const py::array& records, int joints, std::int64_t n,
                  std::int64_t seed, int threads, double spread, const std::string& point,
-                 const py::object& fix, bool collision) {
+                 const py::object& fix, bool collision, const py::object& progress) {
   const Robot& robot = loaded.robot;
+  Checkpoint checkpoint(progress, "mcws.refine", "samples");
   const std::size_t samples = sampleCount(n);
   if (joints < robot.dof()) {
     throw UsageError("boundary_points: has no field 'q" + std::to_string(joints + 1) +
@@ -53,10 +54,10 @@ py::array refine(const LoadedRobot& loaded, const py::array& records, int joints
   const std::string checked = fix.is_none() ? "boundary_points" : "boundary_points and fix";
   const RefineSampler refined =
       asUsageError(checked, [&] { return RefineSampler(robot, parents, options); });
-  if (!collision) return samplePoints(refined, samples, threads, robot.dof());
+  if (!collision) return samplePoints(refined, samples, threads, robot.dof(), checkpoint);
   const std::unique_ptr<CollisionChecker> checker = collisionChecker(loaded);
   const LabelledSampler<RefineSampler> labelled(refined, *checker);
-  return samplePoints(labelled, samples, threads, robot.dof());
+  return samplePoints(labelled, samples, threads, robot.dof(), checkpoint);
 }
 
 }  // namespace
@@ -67,7 +68,7 @@ void bindRefine(py::module_& m) {
         "as _point_dtype(joints, False).",
         py::arg("robot"), py::arg("records"), py::arg("joints"), py::arg("n"), py::arg("seed"),
         py::arg("threads"), py::arg("spread"), py::arg("point"), py::arg("fix").none(true),
-        py::arg("collision"));
+        py::arg("collision"), py::arg("progress"));
 }
 
 }  // namespace mcws::python

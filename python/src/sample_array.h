@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cstring>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,18 +24,20 @@ constexpr std::size_t kSamplePiece = std::size_t{1} << 16;
 
 /// \brief Samples 0 .. n-1 of `generator` on `threads` threads (0: all cores) with the GIL
 /// released, into an array of pointDtype(joints, PointT) that owns them. The points do not depend
-/// on `threads` (a sample's random numbers depend on its index only). Ctrl-C stops the loop
-/// within a piece and raises KeyboardInterrupt.
+/// on `threads` (a sample's random numbers depend on its index only). `checkpoint` after each
+/// piece: Ctrl-C stops the loop and raises KeyboardInterrupt.
 template <typename PointT>
 py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t n, int threads,
-                       int joints) {
+                       int joints, Checkpoint& checkpoint) {
   auto points = std::make_unique<std::vector<PointT, Eigen::aligned_allocator<PointT>>>(n);
   PointT* out = points->data();
+  // The records' padding too is defined (zero), so that equal points are equal bytes.
+  if (n > 0) std::memset(static_cast<void*>(out), 0, n * sizeof(PointT));
   {
     py::gil_scoped_release release;
     for (std::size_t begin = 0; begin < n; begin += kSamplePiece) {
       generateParallel(generator, begin, std::min(kSamplePiece, n - begin), out + begin, threads);
-      checkSignals();
+      checkpoint(begin + std::min(kSamplePiece, n - begin), n);
     }
   }
   const py::dtype dtype = pointDtype<PointT>(joints);
