@@ -5,6 +5,7 @@ over a second; anything else is refused."""
 import subprocess
 import sys
 import threading
+import time
 
 import pytest
 
@@ -79,3 +80,29 @@ def test_progress_true_writes_lines_for_long_calls():
 def test_bad_progress(ta1400):
     with pytest.raises(mcws.UsageError, match=r"progress: 'yes' is not True, False, None or a"):
         mcws.sample(ta1400, 10, progress="yes")
+
+
+def test_sample_releases_the_gil(ta1400):
+    # Another Python thread runs while sample() computes: its counter moves between two progress
+    # calls (2^16 samples apart). The spinning thread gives the GIL back at every turn
+    # (time.sleep(0)) and the switch interval is made 100 s, so it can run only where sample()
+    # has released the GIL: held through the call, the counter could not move in between.
+    counter, seen, done = [0], [], threading.Event()
+
+    def spin():
+        while not done.is_set():
+            counter[0] += 1
+            time.sleep(0)
+
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(100)
+    spinner = threading.Thread(target=spin)
+    spinner.start()
+    try:
+        mcws.sample(ta1400, 400_000, threads=1, progress=lambda d, n: seen.append(counter[0]))
+    finally:
+        done.set()
+        spinner.join()
+        sys.setswitchinterval(interval)
+    assert len(seen) == 7
+    assert max(b - a for a, b in zip(seen, seen[1:])) > 0
