@@ -166,3 +166,16 @@ def place(
     length: Optional[float] = None,
     progress: Any = None,
 ) -> Placement: ...
+
+class Plan(Dict[str, Any]):
+    path: Optional[npt.NDArray[np.float64]]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+def plan(
+    scenario: Union[str, "os.PathLike[str]"],
+    seed: Optional[int] = None,
+    validation_poses: Optional[int] = None,
+    threads: int = 0,
+    progress: Any = None,
+) -> Plan: ...

@@ -199,3 +199,16 @@ def _place(
     length: Optional[float],
     progress: Any,
 ) -> _Placement: ...
+
+class _Plan:
+    def report(self) -> str: ...
+    def path(self) -> Optional[npt.NDArray[np.float64]]: ...
+    def save(self, path: _Path) -> None: ...
+
+def _plan(
+    scenario: _Path,
+    seed: Optional[int],
+    validation_poses: Optional[int],
+    threads: int,
+    progress: Any,
+) -> _Plan: ...

@@ -40,6 +40,8 @@ void bindEnvelope(py::module_& m);
 void bindReach(py::module_& m);
 /// \brief mcws.reach_study's and mcws.place's C++ parts.
 void bindReachStudy(py::module_& m);
+/// \brief mcws.plan's C++ part.
+void bindPlan(py::module_& m);
 
 /// \brief Raises KeyboardInterrupt (throws py::error_already_set) when Ctrl-C was pressed: called
 /// with the GIL released, on the thread that released it (a library's progress or phase

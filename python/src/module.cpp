@@ -19,6 +19,7 @@ PYBIND11_MODULE(_mcws, m) {
   bindEnvelope(m);
   bindReach(m);
   bindReachStudy(m);
+  bindPlan(m);
 }
 
 namespace mcws::python {
