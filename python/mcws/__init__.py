@@ -35,7 +35,7 @@ from ._mcws import (
     sample,
     sample_shape,
 )
-from ._plan import Plan, plan
+from ._plan import Behavior, Plan, behave, plan
 from ._reach import Placement, ReachMap, ReachStudy, place, reach_map, reach_study
 from ._record import _Record
 
@@ -62,10 +62,12 @@ __all__ = [
     "Placement",
     "plan",
     "Plan",
+    "behave",
+    "Behavior",
 ]
 
 for _name in ("Error", "UsageError", "Robot", "ReachMap", "ReachStudy", "Placement", "Plan",
-              "reach_map", "reach_study", "place", "plan"):
+              "Behavior", "reach_map", "reach_study", "place", "plan", "behave"):
     globals()[_name].__module__ = __name__
 
 _JOINT_FIELDS = tuple(f"q{i}" for i in range(1, 9))

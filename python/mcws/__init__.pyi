@@ -1,7 +1,7 @@
 """Type stubs of the mcws package (see _mcws.pyi for the extension's functions)."""
 
 import os
-from typing import Any, Dict, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -179,3 +179,19 @@ def plan(
     threads: int = 0,
     progress: Any = None,
 ) -> Plan: ...
+
+class Behavior(Dict[str, Any]):
+    log: List[Dict[str, Any]]
+    failure: Optional[str]
+    pose_findings: List[str]
+    def __getattr__(self, name: str) -> Any: ...
+
+def behave(
+    model: Union[str, "os.PathLike[str]"],
+    insulators: int,
+    faults: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    log: Optional[Union[str, "os.PathLike[str]"]] = None,
+    timeline: Optional[Union[str, "os.PathLike[str]"]] = None,
+    timeline_period: float = 0.1,
+) -> Behavior: ...

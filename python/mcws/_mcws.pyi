@@ -212,3 +212,11 @@ def _plan(
     threads: int,
     progress: Any,
 ) -> _Plan: ...
+def _behave(
+    model: str,
+    insulators: int,
+    faults: Optional[str],
+    log: Optional[str],
+    timeline: Optional[str],
+    timeline_period: float,
+) -> Tuple[str, str, List[str]]: ...

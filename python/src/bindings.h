@@ -42,6 +42,8 @@ void bindReach(py::module_& m);
 void bindReachStudy(py::module_& m);
 /// \brief mcws.plan's C++ part.
 void bindPlan(py::module_& m);
+/// \brief mcws.behave's C++ part.
+void bindBehave(py::module_& m);
 
 /// \brief Raises KeyboardInterrupt (throws py::error_already_set) when Ctrl-C was pressed: called
 /// with the GIL released, on the thread that released it (a library's progress or phase

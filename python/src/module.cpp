@@ -20,6 +20,7 @@ PYBIND11_MODULE(_mcws, m) {
   bindReach(m);
   bindReachStudy(m);
   bindPlan(m);
+  bindBehave(m);
 }
 
 namespace mcws::python {
