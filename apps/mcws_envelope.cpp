@@ -69,7 +69,6 @@ void declareFlags(app::CommandLine& cli) {
 /// The files of a run and how to write them.
 struct Files {
   std::string input, output, plot, drawing;
-  MeshFormat format{};
   DrawingFormat drawing_format{};
 };
 
@@ -79,7 +78,7 @@ Files readFiles(const app::CommandLine& cli) {
   if (files.output.empty() && files.drawing.empty() && files.plot.empty())
     throw app::UsageError("give at least one of --output, --plot and --drawing");
   if (!files.output.empty())
-    files.format = app::asUsageError("output", [&] { return meshFormatOf(files.output); });
+    app::asUsageError("output", [&] { meshFormatOf(files.output); });  // refused before the work
   if (!files.drawing.empty()) {
     files.drawing_format =
         app::asUsageError("drawing", [&] { return drawingFormatOf(files.drawing); });
@@ -100,17 +99,7 @@ void saveOutputs(const Files& files, const TriangleSurface& shown,
                  const std::optional<EnvelopeDrawing>& drawing, const ResultUnits& units) {
   const std::string name = std::filesystem::path(files.input).filename().string();
   io::OutputSet outputs;
-  if (!files.output.empty()) {
-    io::AtomicFile file(files.output);
-    try {
-      writeSurface(shown, files.format,
-                   "mcws_envelope of " + files.input + ", lengths in " + units.lengthName(),
-                   file.stream());
-    } catch (const Error& e) {
-      throw Error("cannot write '" + files.output + "': " + e.what());
-    }
-    file.commit();
-  }
+  if (!files.output.empty()) saveSurface(shown, files.output, files.input, units.lengthName());
   if (!files.plot.empty())
     io::writeWholeFile(files.plot, renderEnvelopePng(shown, name, units.lengthName()));
   if (drawing) {

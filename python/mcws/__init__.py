@@ -25,14 +25,19 @@ from ._mcws import (
     Robot,
     UsageError,
     _boundary,
+    _envelope,
     _measure,
     _point_dtype,
+    _refine,
     _write_points,
     read_pcd,
     read_provenance,
     sample,
     sample_shape,
 )
+from ._plan import Behavior, Plan, behave, plan
+from ._reach import Placement, ReachMap, ReachStudy, place, reach_map, reach_study
+from ._record import _Record
 
 __all__ = [
     "Error",
@@ -44,11 +49,25 @@ __all__ = [
     "read_provenance",
     "write_pcd",
     "boundary",
+    "refine",
     "measure",
     "Measure",
+    "envelope",
+    "Envelope",
+    "reach_map",
+    "ReachMap",
+    "reach_study",
+    "ReachStudy",
+    "place",
+    "Placement",
+    "plan",
+    "Plan",
+    "behave",
+    "Behavior",
 ]
 
-for _name in ("Error", "UsageError", "Robot"):
+for _name in ("Error", "UsageError", "Robot", "ReachMap", "ReachStudy", "Placement", "Plan",
+              "Behavior", "reach_map", "reach_study", "place", "plan", "behave"):
     globals()[_name].__module__ = __name__
 
 _JOINT_FIELDS = tuple(f"q{i}" for i in range(1, 9))
@@ -173,7 +192,50 @@ def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None
                      min_gap, hull_depth, threads)
 
 
-class Measure(dict):
+def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="tool", fix=None,
+           collision=False, progress=None):
+    """New samples near a cloud's boundary (Liu et al. 2013), as mcws_refine draws them.
+
+    robot: the mcws.Robot the points were sampled from.
+    boundary_points: the boundary points with their joint values: a structured array with fields
+        x, y, z and q1..q<dof> [rad | length unit] (points[boundary(points)], or read_pcd() of
+        mcws_boundary's output).
+    n: number of new samples (int >= 0).
+    seed: random seed, a whole number >= 0 (mcws_refine's default is 1).
+    threads: worker threads, 0 = all cores. The result is the same bytes for any thread count.
+    spread: neighbourhood half-width, a fraction of each joint's range in (0, 1] (default 0.1):
+        sample i moves each joint of boundary point i mod P by up to spread x its range, clamped
+        to its limits.
+    point: "tool" or "flange": the point the cloud was sampled at (sample()'s point).
+    fix: the joints pinned when the cloud was sampled (sample()'s fix), a dict joint name ->
+        value [rad | length unit]; they keep their value. None: the joints with one value in
+        every boundary point (of two or more) are taken as pinned; {}: none is.
+    collision: label the new samples by their collision status, as sample(collision=True).
+    progress: True for progress lines on stderr, or a callable called with (samples done, n)
+        every 65536 samples; None: silent (as sample()).
+
+    Returns n new samples, a structured array as sample() returns (x, y, z [length unit],
+    q1..q<dof>, label): the points mcws_refine writes for the same boundary points, seed and
+    spread (a cloud sampled with --fix and --collision refined with the same fix and collision).
+    Append them to the cloud (numpy.concatenate) and measure with correction="none".
+
+    Raises mcws.UsageError for a bad n, seed, threads, spread, point or fix, boundary points
+    without the joint fields, none at all, or one whose joint values lie outside the robot's
+    limits; mcws.Error for collision=True on a robot file without collision geometry.
+    """
+    if not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    packed, quality, joints = _packed_points(boundary_points)
+    if quality:  # the refinement reads positions and joints only
+        plain = _np.zeros(packed.shape[0], dtype=_point_dtype(joints, False))
+        for name in plain.dtype.names:
+            plain[name] = packed[name]
+        packed = plain
+    return _refine(robot, packed, joints, n, seed, threads, spread, point, fix, collision,
+                   progress)
+
+
+class Measure(_Record):
     """The area or volume of a region, as mcws_measure --json gives it: a dict (dict(result)
     gives its keys) whose keys are also attributes.
 
@@ -184,11 +246,6 @@ class Measure(dict):
     length_unit; units: the unit of each dimensioned number.
     """
 
-    def __getattr__(self, name):
-        try:
-            return self[name]
-        except KeyError:
-            raise AttributeError(name) from None
 
 
 def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None):
@@ -205,10 +262,82 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         (default: "unrecorded", as mcws_measure for a cloud that records none).
 
     Returns a Measure with .area or .volume, .units and the rest of mcws_measure --json but for
-    its input and seconds: the same numbers for the same points.
+    its input and seconds: the same numbers for the same points. The GIL is released; Ctrl-C
+    interrupts between the phases (local spacing, triangulation, alpha test, edge correction).
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit, or a cloud
     flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D cloud.
     """
     return Measure(_json.loads(
         _measure(_positions(points), plane, alpha, correction, threads, length_unit)))
+
+
+class Envelope(_Record):
+    """The envelope of a 3-D cloud, as mcws_envelope makes it: a closed triangle mesh, every
+    triangle counter-clockwise seen from outside, enclosing the volume measure() gives.
+
+    A dict of mcws_envelope --json's numbers but for its files and seconds (dict(result) gives
+    its keys; they are also attributes): volume (enclosed by the mesh) [length unit^3],
+    measure_volume (mcws_measure's), uncorrected, filled_volume [length unit^3], area
+    [length unit^2], offset [length unit], alpha [local spacings], correction, points, vertices
+    and triangles (the counts), edges, euler_characteristic, closed_and_oriented,
+    non_manifold_edges, length_unit and units (the unit of each number).
+
+    vertices: the mesh's vertices, a float64 (V, 3) array [length unit] (the attribute; the count
+        is result["vertices"]).
+    triangles: the mesh's triangles, a uint32 (T, 3) array of vertex indices (likewise).
+    """
+
+    def __init__(self, mesh):
+        super().__init__(_json.loads(mesh.summary()))
+        self._mesh = mesh
+        self.vertices = mesh.vertices()
+        self.triangles = mesh.triangles()
+
+    def save(self, path, source="points"):
+        """Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by
+        the extension of path (.ply, .stl, .vtk), lengths in the positions' unit; the file
+        appears whole or not at all. source names the cloud in the file's comment
+        ("mcws_envelope of <source>, lengths in <unit>"): mcws_envelope's --input path gives
+        its bytes.
+
+        Raises mcws.Error naming the file for another extension or when it cannot be written.
+        """
+        self._mesh.save(_os.fspath(path), str(source))
+
+    def drawing(self, azimuth=0.0):
+        """The numbers of the datasheet drawing, as mcws_envelope --drawing --json gives them
+        under "drawing" (its "units" here under "units"): the side view, the section of the mesh
+        by the vertical plane through the z axis at azimuth [deg from +x] (azimuth [deg],
+        section_area [length unit^2], front_reach, back_reach, section_highest, section_lowest
+        [length unit]); the top view of the samples (max_reach, min_reach [length unit],
+        swept_angle, sweep_from, sweep_to [deg]); the envelope's highest and lowest [length
+        unit]. Returns a Measure (a dict whose keys are also attributes).
+
+        Raises mcws.UsageError when the plane misses the mesh or azimuth is not finite.
+        """
+        return Measure(_json.loads(self._mesh.drawing(float(azimuth))))
+
+
+def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None):
+    """The workspace envelope of a 3-D cloud as a closed, outward-oriented triangle mesh, as
+    mcws_envelope makes it: the surface of the tetrahedra measure() keeps (the alpha shape at the
+    same alpha), moved outward so that it encloses measure()'s volume (with correction "none",
+    the alpha surface as it is); cavities filled and pinches mended to make it a 2-manifold.
+
+    points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
+        float32 as a PCD file holds them.
+    alpha: simplex size limit [local spacings] in [1, 1000] (default 3, 5 with correction "none").
+    correction: "efron" (uniform samples; default) or "none" (refined clouds).
+    threads: worker threads, 0 = all cores (the result does not depend on it).
+    length_unit: "m", "cm" or "mm": the unit of the positions, named in the result's units and
+        the files (default: "unrecorded", as mcws_envelope for a cloud that records none).
+
+    Returns an Envelope: .vertices (V, 3), .triangles (T, 3), .volume, .units, .save(path),
+    .drawing(azimuth) and the rest of mcws_envelope --json: the same numbers and, saved, the same
+    file as the tool for the same points. The GIL is released; Ctrl-C interrupts between phases.
+
+    Raises mcws.UsageError for a bad alpha, correction, threads or length_unit; mcws.Error for too
+    few distinct points, a flat cloud, or an offset that does not converge.
+    """
+    return Envelope(_envelope(_positions(points), alpha, correction, threads, length_unit))

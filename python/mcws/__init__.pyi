@@ -1,7 +1,7 @@
 """Type stubs of the mcws package (see _mcws.pyi for the extension's functions)."""
 
 import os
-from typing import Any, Dict, Optional, Union
+from typing import Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -20,6 +20,20 @@ def write_pcd(
     robot: Optional[Robot] = None,
     provenance: Optional[Dict[str, Any]] = None,
 ) -> None: ...
+
+def refine(
+    robot: Robot,
+    boundary_points: npt.ArrayLike,
+    n: int,
+    seed: int = 0,
+    threads: int = 0,
+    *,
+    spread: float = 0.1,
+    point: str = "tool",
+    fix: Optional[Dict[str, float]] = None,
+    collision: bool = False,
+    progress: Any = None,
+) -> npt.NDArray[np.void]: ...
 
 class Measure(Dict[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
@@ -45,3 +59,139 @@ def measure(
     threads: int = 0,
     length_unit: Optional[str] = None,
 ) -> Measure: ...
+
+class Envelope(Dict[str, Any]):
+    vertices: npt.NDArray[np.float64]
+    triangles: npt.NDArray[np.uint32]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"], source: str = "points") -> None: ...
+    def drawing(self, azimuth: float = 0.0) -> Measure: ...
+
+def envelope(
+    points: npt.ArrayLike,
+    *,
+    alpha: Optional[float] = None,
+    correction: str = "efron",
+    threads: int = 0,
+    length_unit: Optional[str] = None,
+) -> Envelope: ...
+
+class ReachMap:
+    resolution: float
+    orientations: int
+    rolls: int
+    header: Dict[str, Any]
+    summary: Optional[Dict[str, Any]]
+    length_unit: str
+    @classmethod
+    def load(cls, path: Union[str, "os.PathLike[str]"]) -> "ReachMap": ...
+    @property
+    def voxels(self) -> npt.NDArray[np.int32]: ...
+    @property
+    def centres(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def reachability(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def manipulability(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def count(self) -> npt.NDArray[np.uint64]: ...
+    def __len__(self) -> int: ...
+    def query(self, points: npt.ArrayLike, directions: Optional[npt.ArrayLike] = None) -> Dict[str, Any]: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    def save_points(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+def reach_map(
+    robot: Robot,
+    resolution: float,
+    samples: int,
+    seed: int = 0,
+    threads: int = 0,
+    *,
+    orientations: int = 200,
+    rolls: int = 1,
+    manipulability: bool = True,
+    collision: bool = False,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+    progress: Any = None,
+) -> ReachMap: ...
+
+_Targets = Union[str, "os.PathLike[str]", npt.ArrayLike]
+
+class _PointsResult(Dict[str, Any]):
+    points: npt.NDArray[np.void]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+class ReachStudy(_PointsResult): ...
+class Placement(_PointsResult): ...
+
+def reach_study(
+    robot: Robot,
+    targets: _Targets,
+    normals: Optional[npt.ArrayLike] = None,
+    *,
+    standoff: float = 0.0,
+    approach_tolerance: float = 0.0,
+    ik_starts: int = 4,
+    seed: int = 0,
+    threads: int = 0,
+    collision: bool = True,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+    progress: Any = None,
+) -> ReachStudy: ...
+def place(
+    robot: Robot,
+    targets: _Targets,
+    line: Sequence[float],
+    across: Sequence[float] = (0.0,),
+    up: Sequence[float] = (0.0,),
+    *,
+    normals: Optional[npt.ArrayLike] = None,
+    map: Optional[ReachMap] = None,
+    resolution: Optional[float] = None,
+    samples: Optional[int] = None,
+    orientations: int = 200,
+    rolls: int = 1,
+    manipulability: bool = True,
+    confirm: Optional[int] = 5,
+    standoff: float = 0.0,
+    approach_tolerance: float = 0.0,
+    ik_starts: int = 4,
+    seed: int = 0,
+    threads: int = 0,
+    collision: bool = True,
+    quality_task: Optional[str] = None,
+    length: Optional[float] = None,
+    progress: Any = None,
+) -> Placement: ...
+
+class Plan(Dict[str, Any]):
+    path: Optional[npt.NDArray[np.float64]]
+    def __getattr__(self, name: str) -> Any: ...
+    def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+
+def plan(
+    scenario: Union[str, "os.PathLike[str]"],
+    seed: Optional[int] = None,
+    validation_poses: Optional[int] = None,
+    threads: int = 0,
+    progress: Any = None,
+) -> Plan: ...
+
+class Behavior(Dict[str, Any]):
+    log: List[Dict[str, Any]]
+    failure: Optional[str]
+    pose_findings: List[str]
+    def __getattr__(self, name: str) -> Any: ...
+
+def behave(
+    model: Union[str, "os.PathLike[str]"],
+    insulators: int,
+    faults: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    log: Optional[Union[str, "os.PathLike[str]"]] = None,
+    timeline: Optional[Union[str, "os.PathLike[str]"]] = None,
+    timeline_period: float = 0.1,
+) -> Behavior: ...

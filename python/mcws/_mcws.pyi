@@ -2,7 +2,7 @@
 rad or that length unit; see the docstrings, help(mcws.Robot) & co.)."""
 
 import os
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -58,8 +58,11 @@ def sample(
     point: str = "tool",
     quality_task: Optional[str] = None,
     length: Optional[float] = None,
+    progress: Any = None,
 ) -> npt.NDArray[np.void]: ...
-def sample_shape(shape: str, n: int, seed: int = 0, threads: int = 0) -> npt.NDArray[np.void]: ...
+def sample_shape(
+    shape: str, n: int, seed: int = 0, threads: int = 0, *, progress: Any = None
+) -> npt.NDArray[np.void]: ...
 def read_pcd(path: _Path) -> npt.NDArray[np.void]: ...
 def read_provenance(path: _Path) -> Optional[Dict[str, Any]]: ...
 def _point_dtype(joints: int, quality: bool) -> np.dtype: ...
@@ -90,3 +93,130 @@ def _measure(
     threads: int,
     length_unit: Optional[str],
 ) -> str: ...
+def _refine(
+    robot: Robot,
+    records: npt.NDArray[np.void],
+    joints: int,
+    n: int,
+    seed: int,
+    threads: int,
+    spread: float,
+    point: str,
+    fix: Optional[Dict[str, float]],
+    collision: bool,
+    progress: Any,
+) -> npt.NDArray[np.void]: ...
+
+class _Envelope:
+    def summary(self) -> str: ...
+    def vertices(self) -> npt.NDArray[np.float64]: ...
+    def triangles(self) -> npt.NDArray[np.uint32]: ...
+    def save(self, path: _Path, source: str) -> None: ...
+    def drawing(self, azimuth: float) -> str: ...
+
+def _envelope(
+    xyz: npt.NDArray[np.float32],
+    alpha: Optional[float],
+    correction: str,
+    threads: int,
+    length_unit: Optional[str],
+) -> _Envelope: ...
+
+class _ReachMap:
+    @staticmethod
+    def load(path: _Path) -> "_ReachMap": ...
+    def save(self, path: _Path) -> None: ...
+    def save_points(self, path: _Path) -> None: ...
+    def header(self) -> str: ...
+    def summary(self) -> str: ...
+    def grid(self) -> Tuple[float, int, int]: ...
+    def __len__(self) -> int: ...
+    def voxels(self) -> npt.NDArray[np.int32]: ...
+    def centres(self) -> npt.NDArray[np.float64]: ...
+    def reachability(self) -> npt.NDArray[np.float64]: ...
+    def manipulability(self) -> npt.NDArray[np.float32]: ...
+    def count(self) -> npt.NDArray[np.uint64]: ...
+    def query(self, points: npt.NDArray[np.float64], directions: Optional[_Floats]) -> Dict[str, npt.NDArray[Any]]: ...
+
+def _reach_map(
+    robot: Robot,
+    resolution: float,
+    samples: int,
+    seed: int,
+    threads: int,
+    orientations: int,
+    rolls: int,
+    manipulability: bool,
+    collision: bool,
+    quality_task: Optional[str],
+    length: Optional[float],
+    progress: Any,
+) -> _ReachMap: ...
+
+class _PointsResult:
+    def summary(self) -> str: ...
+    def save(self, path: _Path) -> None: ...
+    def points(self, joints: int) -> npt.NDArray[np.void]: ...
+
+class _ReachStudy(_PointsResult): ...
+class _Placement(_PointsResult): ...
+
+def _reach_study(
+    robot: Robot,
+    targets: Any,
+    normals: Optional[_Floats],
+    standoff: float,
+    approach_tolerance: float,
+    ik_starts: int,
+    seed: int,
+    threads: int,
+    collision: bool,
+    quality_task: Optional[str],
+    length: Optional[float],
+    progress: Any,
+) -> _ReachStudy: ...
+def _place(
+    robot: Robot,
+    targets: Any,
+    normals: Optional[_Floats],
+    line: List[float],
+    across: List[float],
+    up: List[float],
+    confirm: int,
+    map: Optional[_ReachMap],
+    resolution: Optional[float],
+    samples: int,
+    orientations: int,
+    rolls: int,
+    manipulability: bool,
+    standoff: float,
+    approach_tolerance: float,
+    ik_starts: int,
+    seed: int,
+    threads: int,
+    collision: bool,
+    quality_task: Optional[str],
+    length: Optional[float],
+    progress: Any,
+) -> _Placement: ...
+
+class _Plan:
+    def report(self) -> str: ...
+    def path(self) -> Optional[npt.NDArray[np.float64]]: ...
+    def save(self, path: _Path) -> None: ...
+
+def _plan(
+    scenario: _Path,
+    seed: Optional[int],
+    validation_poses: Optional[int],
+    threads: int,
+    progress: Any,
+) -> _Plan: ...
+def _behave(
+    model: str,
+    insulators: int,
+    faults: Optional[str],
+    log: Optional[str],
+    timeline: Optional[str],
+    timeline_period: float,
+) -> Tuple[str, str, List[str]]: ...

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/io/progress.h"
 
 namespace mcws::python {
 
@@ -31,6 +32,42 @@ void bindSampling(py::module_& m);
 void bindCloud(py::module_& m);
 /// \brief The C++ parts of mcws.boundary and mcws.measure.
 void bindWorkspace(py::module_& m);
+/// \brief The C++ part of mcws.refine.
+void bindRefine(py::module_& m);
+/// \brief The C++ part of mcws.envelope.
+void bindEnvelope(py::module_& m);
+/// \brief mcws.reach_map's C++ part and the map class behind mcws.ReachMap.
+void bindReach(py::module_& m);
+/// \brief mcws.reach_study's and mcws.place's C++ parts.
+void bindReachStudy(py::module_& m);
+/// \brief mcws.plan's C++ part.
+void bindPlan(py::module_& m);
+/// \brief mcws.behave's C++ part.
+void bindBehave(py::module_& m);
+
+/// \brief Raises KeyboardInterrupt (throws py::error_already_set) when Ctrl-C was pressed: called
+/// with the GIL released, on the thread that released it (a library's progress or phase
+/// callback, between pieces of a long computation), it takes the GIL for the look.
+void checkSignals();
+
+/// \brief What a long call does between its pieces of work (chunks of samples, targets,
+/// positions): raises KeyboardInterrupt on Ctrl-C (checkSignals()) and reports its progress as
+/// the call's `progress` argument asks: None or False nothing, True a line on stderr as the tools
+/// write it ("mcws.sample: 45% (4500000/10000000 samples)", for calls over a second, at most
+/// twice a second), a callable called with (done, total) on the calling thread (what it raises
+/// ends the call).
+class Checkpoint {
+ public:
+  /// \param program the function's name on the stderr line; \param what what is counted.
+  /// \throws UsageError for a `progress` of another kind.
+  Checkpoint(const py::object& progress, const std::string& program, const std::string& what);
+  /// \brief Called with the GIL released, on the thread that released it.
+  void operator()(std::uint64_t done, std::uint64_t total);
+
+ private:
+  py::object callback_;  ///< None, or the callable
+  std::unique_ptr<io::Progress> line_;
+};
 
 /// \brief A float64, C-ordered array: what array arguments of any float dtype and memory layout
 /// are converted to (once, and only when they are not one already).
@@ -39,6 +76,9 @@ using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecas
 /// \brief `value` as a DoubleArray. \throws UsageError "argument: ..." when NumPy cannot make
 /// numbers of it.
 DoubleArray doubleArray(const py::handle& value, const std::string& argument);
+
+/// \brief An array's shape as Python writes it: "(4, 2)", "(3,)".
+std::string shapeText(const py::array& array);
 
 /// \brief A path argument (str or os.PathLike) as a string.
 std::string pathArgument(const py::handle& path);

@@ -31,4 +31,10 @@ LoadedRobot loadRobotFile(const std::string& path, const std::string& base, cons
 /// builds it. \throws mcws::Error "<path>: has no collision geometry ..." when the file has none.
 std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded);
 
+/// \brief The collision checker of the robot's collision model, or nullptr when the file has no
+/// collision geometry (as the reach tools' checker of a study); `environment` false: the links
+/// and the tool only (a map meant for other base positions).
+std::unique_ptr<CollisionChecker> collisionCheckerIfModelled(const LoadedRobot& loaded,
+                                                             bool environment);
+
 }  // namespace mcws::python

@@ -1,9 +1,27 @@
 // The mcws extension module (_mcws): errors and the helpers every binding file shares; the
-// bindings themselves are one file per library module (robot.cpp, sampling.cpp, cloud.cpp,
-// workspace.cpp).
+// bindings themselves are one file per job (robot.cpp, sampling.cpp, cloud.cpp, workspace.cpp,
+// refine.cpp, envelope.cpp, reach.cpp, reach_query.cpp, reach_study.cpp).
 #include <limits>
 
 #include "bindings.h"
+
+PYBIND11_MODULE(_mcws, m) {
+  using namespace mcws::python;
+  m.doc() =
+      "mcws: Monte Carlo workspace analysis of robot manipulators (the C++ library's extension "
+      "module; import mcws).";
+  bindErrors(m);
+  bindRobot(m);
+  bindSampling(m);
+  bindCloud(m);
+  bindWorkspace(m);
+  bindRefine(m);
+  bindEnvelope(m);
+  bindReach(m);
+  bindReachStudy(m);
+  bindPlan(m);
+  bindBehave(m);
+}
 
 namespace mcws::python {
 
@@ -15,6 +33,41 @@ DoubleArray doubleArray(const py::handle& value, const std::string& argument) {
                      " is not an array of numbers");
   }
   return array;
+}
+
+void checkSignals() {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
+Checkpoint::Checkpoint(const py::object& progress, const std::string& program,
+                       const std::string& what) {
+  if (progress.is_none() || (py::isinstance<py::bool_>(progress) && !progress.cast<bool>())) {
+    return;
+  }
+  if (py::isinstance<py::bool_>(progress)) {
+    line_ = std::make_unique<io::Progress>(program, what);
+  } else if (PyCallable_Check(progress.ptr()) != 0) {
+    callback_ = progress;
+  } else {
+    throw UsageError("progress: " + std::string(py::repr(progress)).substr(0, 60) +
+                     " is not True, False, None or a callable (done, total)");
+  }
+}
+
+void Checkpoint::operator()(std::uint64_t done, std::uint64_t total) {
+  py::gil_scoped_acquire acquire;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  if (line_) line_->update(static_cast<std::size_t>(done), static_cast<std::size_t>(total));
+  if (callback_) callback_(done, total);
+}
+
+std::string shapeText(const py::array& array) {
+  std::string text = "(";
+  for (py::ssize_t i = 0; i < array.ndim(); ++i) {
+    text += (i ? ", " : "") + std::to_string(array.shape(i));
+  }
+  return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
 std::string pathArgument(const py::handle& path) {
@@ -66,15 +119,3 @@ void bindErrors(py::module_& m) {
 }
 
 }  // namespace mcws::python
-
-PYBIND11_MODULE(_mcws, m) {
-  using namespace mcws::python;
-  m.doc() =
-      "mcws: Monte Carlo workspace analysis of robot manipulators (the C++ library's extension "
-      "module; import mcws).";
-  bindErrors(m);
-  bindRobot(m);
-  bindSampling(m);
-  bindCloud(m);
-  bindWorkspace(m);
-}

@@ -11,6 +11,7 @@
 #include "loaded_robot.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
+#include "mcws/collision/robot_bodies.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
@@ -26,14 +27,6 @@ bool isUrdf(const std::string& path) { return std::filesystem::path(path).extens
 CollisionModel collisionModel(const LoadedRobot& loaded) {
   if (isUrdf(loaded.path)) return loadCollisionUrdf(loaded.robot, loaded.path, loaded.chain);
   return loadCollisionModel(loaded.robot, loaded.path);
-}
-
-std::string shapeText(const py::array& array) {
-  std::string text = "(";
-  for (py::ssize_t i = 0; i < array.ndim(); ++i) {
-    text += (i ? ", " : "") + std::to_string(array.shape(i));
-  }
-  return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
 /// Joint vectors given as (dof,) or (N, dof): the array and how many rows it holds.
@@ -261,6 +254,14 @@ LoadedRobot loadRobotFile(const std::string& path, const std::string& base,
   loaded.chain = {base, tip};
   loaded.robot = chain ? loadRobotUrdf(path, loaded.chain) : loadRobot(path);
   return loaded;
+}
+
+std::unique_ptr<CollisionChecker> collisionCheckerIfModelled(const LoadedRobot& loaded,
+                                                             bool environment) {
+  CollisionModel model = collisionModel(loaded);
+  if (!environment) model = robotBodiesOnly(std::move(model));
+  if (!hasGeometry(model)) return nullptr;
+  return std::make_unique<CollisionChecker>(loaded.robot, model);
 }
 
 std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded) {

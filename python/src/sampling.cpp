@@ -2,8 +2,6 @@
 // module, as mcws_sample draws them) handed to NumPy without a copy.
 #include <pybind11/stl.h>
 
-#include <Eigen/Core>
-#include <algorithm>
 #include <optional>
 
 #include "bindings.h"
@@ -13,36 +11,9 @@
 #include "mcws/reach/quality.h"
 #include "mcws/reach/quality_sampler.h"
 #include "mcws/sampling/sampler.h"
-#include "point_layout.h"
+#include "sample_array.h"
 
 namespace mcws::python {
-
-namespace {
-
-/// Samples computed between two looks for Ctrl-C (a fraction of a second of work).
-constexpr std::size_t kPiece = std::size_t{1} << 16;
-
-/// Samples 0 .. n-1 of `generator` on `threads` threads (0: all cores) with the GIL released,
-/// into an array of pointDtype(joints, PointT) that owns them. The points do not depend on
-/// `threads` (a sample's random numbers depend on its index only). Ctrl-C stops the loop within
-/// a piece and raises KeyboardInterrupt.
-template <typename PointT>
-py::array samplePoints(const BasicPointGenerator<PointT>& generator, std::size_t n, int threads,
-                       int joints) {
-  auto points = std::make_unique<std::vector<PointT, Eigen::aligned_allocator<PointT>>>(n);
-  PointT* out = points->data();
-  {
-    py::gil_scoped_release release;
-    for (std::size_t begin = 0; begin < n; begin += kPiece) {
-      generateParallel(generator, begin, std::min(kPiece, n - begin), out + begin, threads);
-      py::gil_scoped_acquire acquire;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-    }
-  }
-  const py::dtype dtype = pointDtype<PointT>(joints);
-  return ownedArray(std::move(points), dtype, {static_cast<py::ssize_t>(n)},
-                    {static_cast<py::ssize_t>(sizeof(PointT))}, out);
-}
 
 std::size_t sampleCount(std::int64_t n) {
   if (n < 0) throw UsageError("n: " + std::to_string(n) + " is negative");
@@ -71,6 +42,13 @@ std::vector<std::pair<std::string, double>> fixedJoints(const py::handle& fix) {
   return fixed;
 }
 
+SamplePoint samplePoint(const std::string& point) {
+  if (point != "tool" && point != "flange") {
+    throw UsageError("point: '" + point + "' is not one of tool, flange");
+  }
+  return point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
+}
+
 QualityOptions qualityOptions(const Robot& robot, const std::optional<std::string>& task,
                               const std::optional<double>& length) {
   QualityOptions quality = defaultQualityOptions(robot);
@@ -82,19 +60,19 @@ QualityOptions qualityOptions(const Robot& robot, const std::optional<std::strin
   return quality;
 }
 
+namespace {
+
 py::array sample(const LoadedRobot& loaded, std::int64_t n, std::int64_t seed, int threads,
                  const py::object& fix, bool collision, bool quality, const std::string& point,
                  const std::optional<std::string>& quality_task,
-                 const std::optional<double>& length) {
+                 const std::optional<double>& length, const py::object& progress) {
   const Robot& robot = loaded.robot;
+  Checkpoint checkpoint(progress, "mcws.sample", "samples");
   const std::size_t samples = sampleCount(n);
   RobotSamplerOptions options;
   options.seed = nonNegative(seed, "seed");
   threads = threadCount(threads);
-  if (point != "tool" && point != "flange") {
-    throw UsageError("point: '" + point + "' is not one of tool, flange");
-  }
-  options.point = point == "tool" ? SamplePoint::kTool : SamplePoint::kFlange;
+  options.point = samplePoint(point);
   options.fixed = fixedJoints(fix);
   if (!quality && (quality_task || length)) {
     throw UsageError("quality_task and length need quality=True");
@@ -109,17 +87,19 @@ py::array sample(const LoadedRobot& loaded, std::int64_t n, std::int64_t seed, i
     if (checker) return std::make_unique<LabelledRobotSampler>(robot, options, *checker);
     return std::make_unique<RobotSampler>(robot, options);
   });
-  if (!quality) return samplePoints(*generator, samples, threads, robot.dof());
+  if (!quality) return samplePoints(*generator, samples, threads, robot.dof(), checkpoint);
   const QualitySampler measured(robot, options, *generator,
                                 qualityOptions(robot, quality_task, length));
-  return samplePoints(measured, samples, threads, robot.dof());
+  return samplePoints(measured, samples, threads, robot.dof(), checkpoint);
 }
 
-py::array sampleShape(const std::string& name, std::int64_t n, std::int64_t seed, int threads) {
+py::array sampleShape(const std::string& name, std::int64_t n, std::int64_t seed, int threads,
+                      const py::object& progress) {
+  Checkpoint checkpoint(progress, "mcws.sample_shape", "samples");
   const std::size_t samples = sampleCount(n);
   const Shape shape = asUsageError("shape", [&] { return parseShape(name); });
   const ShapeSampler generator(shape, nonNegative(seed, "seed"));
-  return samplePoints(generator, samples, threadCount(threads), 0);
+  return samplePoints(generator, samples, threadCount(threads), 0, checkpoint);
 }
 
 constexpr char kSampleDoc[] =
@@ -138,6 +118,8 @@ quality: add the fields manipulability and inverse_condition, as mcws_sample --q
 point: "tool" (default) or "flange": which point's position to record.
 quality_task: "position" or "full" (as --quality-task; default: full for 6 or more joints).
 length: the characteristic length L of quality_task "full" [length unit] (as --length).
+progress: True for progress lines on stderr as mcws_sample writes them, or a callable called
+    with (samples done, n) every 65536 samples, on the calling thread; None: silent.
 
 Returns a NumPy structured array of n records (the C++ points themselves, no copy) with the fields
 of mcws_sample's PCD: x, y, z (float32, [length unit], the robot's .length_unit), q1 .. q<dof>
@@ -158,6 +140,7 @@ shape: "disk" (unit disk, z = 0, area pi), "annulus" (0.5 <= r <= 1, z = 0, area
 n: number of samples (int >= 0).
 seed: random seed, a whole number >= 0.
 threads: worker threads, 0 = all cores (the result does not depend on it).
+progress: as sample()'s.
 
 Returns a structured array with fields x, y, z (float32, dimensionless: the shapes have no
 recorded length unit) and label (uint32, 0), the points mcws_sample --shape writes.
@@ -170,9 +153,11 @@ void bindSampling(py::module_& m) {
   m.def("sample", &sample, kSampleDoc, py::arg("robot"), py::arg("n"), py::arg("seed") = 0,
         py::arg("threads") = 0, py::arg("fix") = py::none(), py::arg("collision") = false,
         py::arg("quality") = false, py::kw_only(), py::arg("point") = "tool",
-        py::arg("quality_task") = py::none(), py::arg("length") = py::none());
+        py::arg("quality_task") = py::none(), py::arg("length") = py::none(),
+        py::arg("progress") = py::none());
   m.def("sample_shape", &sampleShape, kSampleShapeDoc, py::arg("shape"), py::arg("n"),
-        py::arg("seed") = 0, py::arg("threads") = 0);
+        py::arg("seed") = 0, py::arg("threads") = 0, py::kw_only(),
+        py::arg("progress") = py::none());
   m.def(
       "_point_dtype",
       [](int joints, bool quality) {

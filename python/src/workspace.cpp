@@ -14,16 +14,9 @@
 #include "mcws/io/cloud_io.h"
 #include "mcws/workspace/measure.h"
 #include "mcws/workspace/measure_report.h"
+#include "positions.h"
 
 namespace mcws::python {
-
-namespace {
-
-using FloatRows = py::array_t<float, py::array::c_style | py::array::forcecast>;
-using Filter = OrthantBoundary<WorkspacePoint>;
-
-/// What the messages call the points (a tool names its --input file).
-constexpr char kPoints[] = "points";
 
 io::WorkspaceCloud::Ptr cloudOf(const FloatRows& xyz) {
   if (xyz.ndim() != 2 || xyz.shape(1) != 3) throw UsageError("points: not an (N, 3) array");
@@ -50,6 +43,43 @@ std::string number(double value) {
   text << value;
   return text.str();
 }
+
+/// The cloud checked as mcws_boundary and mcws_measure check theirs, and summarised.
+CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing) {
+  const CloudSummary region =
+      summarizeCloud(cloud, plane, spacing ? SummaryDetail::kSpacing : SummaryDetail::kCounts);
+  requireRegionPoints(region, kPoints);
+  if (plane == BoundaryPlane::k3D) io::requireVolume(cloud, kPoints);
+  asUsageError("plane", [&] { requirePlaneFits(region, kPoints); });
+  return region;
+}
+
+MeasureOptions regionOptions(const std::optional<double>& alpha, const std::string& correction,
+                             int threads) {
+  MeasureOptions options;
+  if (correction != "efron" && correction != "none") {
+    throw UsageError("correction: '" + correction + "' is not one of efron, none");
+  }
+  options.edge_correction = correction == "efron";
+  options.alpha_factor = alpha.value_or(options.edge_correction ? 3.0 : 5.0);  // as the tools
+  if (!(options.alpha_factor >= 1.0 && options.alpha_factor <= 1000.0)) {
+    throw UsageError("alpha: " + number(options.alpha_factor) +
+                     " is not in [1, 1000] local spacings");
+  }
+  options.threads = threadCount(threads);
+  return options;
+}
+
+ResultUnits resultUnits(const std::optional<std::string>& length_unit) {
+  if (!length_unit) return ResultUnits(std::nullopt, std::nullopt);
+  const std::optional<LengthUnit> unit = lengthUnitNamed(*length_unit);
+  if (!unit) throw UsageError("length_unit: '" + *length_unit + "' is not one of m, cm, mm");
+  return ResultUnits(unit, std::nullopt);
+}
+
+namespace {
+
+using Filter = OrthantBoundary<WorkspacePoint>;
 
 /// UsageError "name: value is not in [low, high] unit (why)" unless `range` holds `value`.
 void requireWithin(const char* name, double value, const SettingRange& range) {
@@ -109,16 +139,6 @@ std::shared_ptr<Filter> orthantFilter(BoundaryPlane plane, const OrthantSettings
   return filter;
 }
 
-/// The cloud checked as mcws_boundary and mcws_measure check theirs, and summarised.
-CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing) {
-  const CloudSummary region =
-      summarizeCloud(cloud, plane, spacing ? SummaryDetail::kSpacing : SummaryDetail::kCounts);
-  requireRegionPoints(region, kPoints);
-  if (plane == BoundaryPlane::k3D) io::requireVolume(cloud, kPoints);
-  asUsageError("plane", [&] { requirePlaneFits(region, kPoints); });
-  return region;
-}
-
 py::array boundaryMask(const FloatRows& xyz, const std::optional<std::string>& plane_name,
                        const OrthantSettings& settings) {
   const BoundaryPlane plane = planeOf(plane_name);
@@ -161,40 +181,20 @@ std::string measureJson(const FloatRows& xyz, const std::optional<std::string>& 
                         const std::optional<double>& alpha, const std::string& correction,
                         int threads, const std::optional<std::string>& length_unit) {
   const BoundaryPlane plane = planeOf(plane_name);
-  MeasureOptions options;
-  if (correction != "efron" && correction != "none") {
-    throw UsageError("correction: '" + correction + "' is not one of efron, none");
-  }
-  options.edge_correction = correction == "efron";
-  options.alpha_factor = alpha.value_or(options.edge_correction ? 3.0 : 5.0);  // as mcws_measure
-  if (!(options.alpha_factor >= 1.0 && options.alpha_factor <= 1000.0)) {
-    throw UsageError("alpha: " + number(options.alpha_factor) +
-                     " is not in [1, 1000] local spacings");
-  }
-  options.threads = threadCount(threads);
-  std::optional<LengthUnit> unit;
-  if (length_unit) {
-    unit = lengthUnitNamed(*length_unit);
-    if (!unit) throw UsageError("length_unit: '" + *length_unit + "' is not one of m, cm, mm");
-  }
+  MeasureOptions options = regionOptions(alpha, correction, threads);
+  options.phase = [](const std::string&) { checkSignals(); };  // Ctrl-C between phases
+  const ResultUnits units = resultUnits(length_unit);
   const io::WorkspaceCloud::Ptr cloud = cloudOf(xyz);
   py::gil_scoped_release release;
   checkedRegion(*cloud, plane, false);
   const int dimensions = boundaryDimensions(plane);
   const pcl::PointCloud<pcl::PointXYZ> region = projectedToPlane(*cloud, plane);
-  const RegionMeasure measured = [&] {
-    try {
-      return delaunayMeasure(region, dimensions, options);
-    } catch (const UsageError&) {
-      throw;
-    } catch (const Error& e) {
-      throw Error(std::string(kPoints) + ": " + e.what());
-    }
-  }();
-  nlohmann::json out = regionMeasureJson(measured, options, dimensions, ResultUnits(unit, {}));
+  const RegionMeasure measured =
+      namingPoints([&] { return delaunayMeasure(region, dimensions, options); });
+  nlohmann::json out = regionMeasureJson(measured, options, dimensions, units);
   out["plane"] = boundaryPlaneName(plane);
   out["method"] = "delaunay";
-  out["length_unit"] = ResultUnits(unit, {}).lengthName();
+  out["length_unit"] = units.lengthName();
   return out.dump();
 }
 

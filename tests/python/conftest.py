@@ -3,7 +3,11 @@ MCWS_*_EXE, as tests/CMakeLists.txt passes them to test_apps), and a runner for 
 
 import json
 import os
+import resource
+import signal
 import subprocess
+import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -34,6 +38,32 @@ def run_tool(name, *args, expect=0):
 def tool_json(name, *args):
     """The JSON object mcws_<name> ... --json prints."""
     return json.loads(run_tool(name, *args, "--json")[1])
+
+
+def interrupted_cpu(robot_file, call):
+    """Runs `call` (Python text using `mcws` and `robot`, an mcws.Robot of robot_file) in a child
+    interpreter, sends it SIGINT 0.3 s after the call starts and checks that the call ends with
+    KeyboardInterrupt before it returns; returns the child's CPU time [s], to compare with the
+    whole call's (without the checks for signals inside the call, Python would raise
+    KeyboardInterrupt only after all of it)."""
+    script = (
+        "import mcws\n"
+        f"robot = mcws.Robot({robot_file!r})\n"
+        "print('started', flush=True)\n"
+        f"{call}\n"
+        "print('finished', flush=True)\n"
+    )
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True)
+    assert child.stdout.readline() == "started\n"
+    time.sleep(0.3)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    assert "finished" not in out
+    assert err.rstrip().endswith("KeyboardInterrupt")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 @pytest.fixture(scope="session")

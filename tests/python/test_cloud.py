@@ -5,7 +5,6 @@ import numpy as np
 import pytest
 
 import mcws
-from conftest import robot_path
 
 
 def test_write_then_read_keeps_every_field_and_the_robot(tmp_path, deicing):

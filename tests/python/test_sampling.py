@@ -2,17 +2,14 @@
 with mcws.read_pcd), the same bytes for any thread count, closed forms of the shapes."""
 
 import math
-import resource
-import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
 
 import mcws
-from conftest import robot_path, run_tool
+from conftest import interrupted_cpu, robot_path, run_tool
 
 
 def tool_cloud(tmp_path, *args):
@@ -177,22 +174,6 @@ def test_ctrl_c_interrupts_a_long_sample():
     # SIGINT 0.3 s after the call starts ends it with KeyboardInterrupt before it returns, within
     # a piece of 2^16 samples: the child uses a fraction of that CPU time (without the check for
     # signals between pieces, Python would raise it only after the whole call).
-    script = (
-        "import mcws\n"
-        f"robot = mcws.Robot({robot_path('ta1400_mesh.yaml')!r})\n"
-        "print('started', flush=True)\n"
-        "mcws.sample(robot, 2_000_000, threads=1, collision=True, quality=True)\n"
-        "print('finished', flush=True)\n"
-    )
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
-                             stderr=subprocess.PIPE, text=True)
-    assert child.stdout.readline() == "started\n"
-    time.sleep(0.3)
-    child.send_signal(signal.SIGINT)
-    out, err = child.communicate(timeout=120)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    assert "finished" not in out
-    assert err.rstrip().endswith("KeyboardInterrupt")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    cpu = interrupted_cpu(robot_path("ta1400_mesh.yaml"),
+                          "mcws.sample(robot, 2_000_000, threads=1, collision=True, quality=True)")
     assert cpu < 8.0  # seconds; the whole call takes about 24 s of CPU

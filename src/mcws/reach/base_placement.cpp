@@ -16,19 +16,6 @@
 
 namespace mcws {
 
-namespace {
-
-/// Whether any roll bin of direction region `region` is reached in voxel v.
-bool regionReached(const ReachMap& map, std::size_t v, int region) {
-  const int rolls = map.bins().rolls();
-  for (int k = 0; k < rolls; ++k) {
-    if (map.reached(v, region * rolls + k)) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vector3d& offset,
                 double approach_tolerance, float* manipulability) {
   const long found = map.find(target.pose.translation() - offset);
@@ -40,7 +27,7 @@ bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vec
     reached = map.reached(v, map.bins().bin(R.col(2), R.col(0)));
   } else {
     const SpherePartition& sphere = map.bins().sphere();
-    reached = regionReached(map, v, sphere.region(R.col(2)));
+    reached = map.approachReached(v, sphere.region(R.col(2)));
     // Rings of directions around the approach out to the tolerance, spaced at most half a
     // region's diameter (about 3.5 / sqrt(N) rad) apart, along and across the rings.
     const double spacing = 1.75 / std::sqrt(static_cast<double>(sphere.regions()));
@@ -55,7 +42,7 @@ bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vec
         const Eigen::Vector3d d =
             std::cos(tilt) * R.col(2) +
             std::sin(tilt) * (std::cos(turn) * R.col(0) + std::sin(turn) * R.col(1));
-        reached = regionReached(map, v, sphere.region(d));
+        reached = map.approachReached(v, sphere.region(d));
       }
     }
   }

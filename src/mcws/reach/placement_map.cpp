@@ -57,14 +57,9 @@ void checkHeader(const nlohmann::json& h, const std::string& path, const Robot& 
 
 }  // namespace
 
-ReachMap readPlacementMap(const std::string& path, const Robot& robot,
-                          const std::string& robot_file, const std::string& manipulability,
-                          std::uint64_t& samples) {
-  requireInputFile(path, "reachability map");  // regular file, noted as an input of the run
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the reachability map");
-  std::string header;
-  ReachMap map = ReachMap::read(in, path, &header);
+void checkPlacementMap(const std::string& header, const std::string& path, const Robot& robot,
+                       const std::string& robot_file, const std::string& manipulability,
+                       std::uint64_t& samples) {
   const nlohmann::json h = nlohmann::json::parse(header, nullptr, false);
   // A header member of the wrong type (a number for "robot") throws nlohmann's own exception,
   // whose message names no file: one line naming the map instead.
@@ -76,6 +71,17 @@ ReachMap readPlacementMap(const std::string& path, const Robot& robot,
     throw Error(path + ": the map's header has a member of the wrong type: " +
                 what.substr(what.find(']') == std::string::npos ? 0 : what.find(']') + 2));
   }
+}
+
+ReachMap readPlacementMap(const std::string& path, const Robot& robot,
+                          const std::string& robot_file, const std::string& manipulability,
+                          std::uint64_t& samples) {
+  requireInputFile(path, "reachability map");  // regular file, noted as an input of the run
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot open the reachability map");
+  std::string header;
+  ReachMap map = ReachMap::read(in, path, &header);
+  checkPlacementMap(header, path, robot, robot_file, manipulability, samples);
   return map;
 }
 

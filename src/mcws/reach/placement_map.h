@@ -28,4 +28,11 @@ ReachMap readPlacementMap(const std::string& path, const Robot& robot,
                           const std::string& robot_file, const std::string& manipulability,
                           std::uint64_t& samples);
 
+/// \brief The checks of readPlacementMap() on a map's header (the JSON text ReachMap::read()
+/// gives, or mapFileHeader()'s): `path` names the map in the messages.
+/// \throws mcws::Error as readPlacementMap() does for the header.
+void checkPlacementMap(const std::string& header, const std::string& path, const Robot& robot,
+                       const std::string& robot_file, const std::string& manipulability,
+                       std::uint64_t& samples);
+
 }  // namespace mcws

@@ -236,6 +236,14 @@ bool ReachMap::reached(std::size_t v, int bin) const {
   return (bitsOf(v)[bin / 64] >> (bin % 64)) & 1u;
 }
 
+bool ReachMap::approachReached(std::size_t v, int region) const {
+  const int rolls = bins_.rolls();
+  for (int k = 0; k < rolls; ++k) {
+    if (reached(v, region * rolls + k)) return true;
+  }
+  return false;
+}
+
 long ReachMap::find(const Eigen::Vector3d& p) const {
   Eigen::Vector3i index;
   return inGrid(p, index) ? lookup(keyOf(index)) : -1;

@@ -109,6 +109,9 @@ class ReachMap {
   double meanReachability() const;
   /// \brief Whether a bin of voxel v was reached. \throws mcws::Error for a bin out of range.
   bool reached(std::size_t v, int bin) const;
+  /// \brief Whether any roll bin of approach-direction region `region` (bins().sphere()) was
+  /// reached in voxel v: a tool approach reached with any roll.
+  bool approachReached(std::size_t v, int region) const;
   /// \brief The stored voxel holding p, or -1 (also for p beyond the grid's range or NaN).
   long find(const Eigen::Vector3d& p) const;
   /// \brief Whether the map holds a sample with tool point in p's voxel and orientation in R's

@@ -12,6 +12,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
+#include "mcws/io/atomic_file.h"
 #include "mcws/io/gnuplot.h"
 
 namespace mcws {
@@ -231,6 +232,19 @@ void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::
       writeVtk(surface, comment, out);
       break;
   }
+}
+
+void saveSurface(const TriangleSurface& surface, const std::string& path, const std::string& source,
+                 const std::string& length_unit) {
+  const MeshFormat format = meshFormatOf(path);
+  io::AtomicFile file(path);
+  try {
+    writeSurface(surface, format, "mcws_envelope of " + source + ", lengths in " + length_unit,
+                 file.stream());
+  } catch (const Error& e) {
+    throw Error("cannot write '" + path + "': " + e.what());
+  }
+  file.commit();
 }
 
 std::string renderEnvelopePng(const TriangleSurface& surface, const std::string& title,

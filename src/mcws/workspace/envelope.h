@@ -78,6 +78,13 @@ MeshFormat meshFormatOf(const std::string& path);
 void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::string& comment,
                   std::FILE* out);
 
+/// \brief Writes the surface to `path` in the format its extension names (meshFormatOf()),
+/// appearing whole on success (io::AtomicFile, committed into the io::OutputSet alive on the
+/// thread, if any), its comment "mcws_envelope of <source>, lengths in <length_unit>".
+/// \throws mcws::Error naming the file for another extension, or when it cannot be written.
+void saveSurface(const TriangleSurface& surface, const std::string& path, const std::string& source,
+                 const std::string& length_unit);
+
 /// \brief A shaded picture of the surface from two views (front-left from above, and from the
 /// side along -y), drawn by gnuplot (pm3d lighting on the triangles), axes in `unit`.
 /// \return the PNG's bytes. \throws mcws::Error when gnuplot fails or the surface is empty.

@@ -1,0 +1,307 @@
+// mcws.reach_study and mcws.place: targets solved by inverse kinematics (the library's reach
+// module, ReachStudy, as mcws_reach --targets solves them) and base placement (placeBase, as
+// mcws_place), their per-target and per-position points and their summaries.
+#include <pybind11/stl.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "bindings.h"
+#include "loaded_robot.h"
+#include "mcws/collision/collision_checker.h"
+#include "mcws/io/pcd_stream_writer.h"
+#include "mcws/reach/base_placement.h"
+#include "mcws/reach/placement_map.h"
+#include "mcws/reach/reach_report.h"
+#include "mcws/reach/reach_study.h"
+#include "mcws/reach/targets_file.h"
+#include "mcws/sampling/sampler.h"
+#include "point_layout.h"
+#include "reach_map_result.h"
+#include "sample_array.h"
+
+namespace mcws::python {
+
+namespace {
+
+/// The points of a study or a placement, the summary and the robot a saved file records.
+template <typename PointT>
+struct PointsResult {
+  std::vector<PointT, Eigen::aligned_allocator<PointT>> points;
+  std::string summary;  ///< compact JSON
+  std::optional<io::CloudProvenance> provenance;
+
+  void save(const py::object& path_value) const {
+    const std::string path = pathArgument(path_value);
+    py::gil_scoped_release release;
+    io::PcdStreamWriter<PointT> cloud(path, points.size(), io::PcdFormat::kBinary, provenance);
+    cloud.write(points.data(), points.size());
+    cloud.commit();
+  }
+};
+using StudyResult = PointsResult<ReachTargetPoint>;
+using PlaceResult = PointsResult<BasePoint>;
+
+/// The targets of a file (a path), of points (N, 3) with normals (N, 3), or of poses (N, 4, 4),
+/// moved `standoff` off their surface.
+std::vector<ReachTarget> targetsOf(const py::handle& value, const py::handle& normals_value,
+                                   double standoff) {
+  std::vector<ReachTarget> targets;
+  if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) {
+    if (!normals_value.is_none()) throw UsageError("normals: a targets file holds its own");
+    targets = loadTargets(pathArgument(value));
+  } else {
+    const DoubleArray array = doubleArray(value, "targets");
+    const bool poses = array.ndim() == 3 && array.shape(1) == 4 && array.shape(2) == 4;
+    if (!poses && !(array.ndim() == 2 && array.shape(1) == 3)) {
+      throw UsageError("targets: shape " + shapeText(array) +
+                       " is neither (N, 3) points (with normals) nor (N, 4, 4) poses");
+    }
+    const py::ssize_t n = array.shape(0);
+    if (poses != normals_value.is_none()) {
+      throw UsageError(poses ? "normals: poses (N, 4, 4) hold their orientation"
+                             : "normals: give the (N, 3) surface normals of the points");
+    }
+    std::optional<DoubleArray> normals;
+    if (!poses) {
+      normals = doubleArray(normals_value, "normals");
+      if (normals->ndim() != 2 || normals->shape(0) != n || normals->shape(1) != 3) {
+        throw UsageError("normals: shape " + shapeText(*normals) + " is not (" + std::to_string(n) +
+                         ", 3)");
+      }
+    }
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const std::string row = "targets: row " + std::to_string(i);
+      if (poses) {
+        ReachTarget target;
+        target.pose.matrix() =
+            Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(array.data() + 16 * i);
+        target.free_roll = false;
+        if (!target.pose.matrix().allFinite()) throw UsageError(row + ": not finite");
+        targets.push_back(target);
+        continue;
+      }
+      const double* p = array.data() + 3 * i;
+      const double* d = normals->data() + 3 * i;
+      targets.push_back(asUsageError(row, [&] {
+        return targetFromNormal(Eigen::Vector3d(p[0], p[1], p[2]),
+                                Eigen::Vector3d(d[0], d[1], d[2]));
+      }));
+    }
+    if (targets.empty()) throw UsageError("targets: none given");
+  }
+  if (!std::isfinite(standoff)) throw UsageError("standoff: not a finite length");
+  if (standoff != 0.0) applyStandoff(targets, standoff);
+  return targets;
+}
+
+/// How targets are solved, as mcws_reach --targets' flags.
+struct StudyArguments {
+  double standoff, approach_tolerance_deg;
+  int ik_starts;
+  std::int64_t seed;
+  int threads;
+  bool collision;
+  std::optional<std::string> quality_task;
+  std::optional<double> length;
+  py::object progress;  ///< the call's progress argument (Checkpoint)
+};
+
+ReachStudyOptions studyOptions(const Robot& robot, const StudyArguments& a) {
+  ReachStudyOptions options;
+  if (!(a.approach_tolerance_deg >= 0.0 && a.approach_tolerance_deg <= 180.0)) {
+    throw UsageError(
+        "approach_tolerance: " + py::str(py::float_(a.approach_tolerance_deg)).cast<std::string>() +
+        " is not in [0, 180] deg");
+  }
+  options.approach_tolerance = a.approach_tolerance_deg * M_PI / 180.0;
+  if (a.ik_starts < 1 || a.ik_starts > 1000) {
+    throw UsageError("ik_starts: " + std::to_string(a.ik_starts) + " is not in 1 .. 1000");
+  }
+  options.starts = a.ik_starts;
+  options.ik.seed = nonNegative(a.seed, "seed");
+  options.threads = threadCount(a.threads);
+  options.quality = qualityOptions(robot, a.quality_task, a.length);
+  return options;
+}
+
+std::unique_ptr<StudyResult> reachStudy(const LoadedRobot& loaded, const py::handle& targets_value,
+                                        const py::handle& normals, const StudyArguments& a) {
+  const Robot& robot = loaded.robot;
+  const ReachStudyOptions options = studyOptions(robot, a);
+  const std::vector<ReachTarget> targets = targetsOf(targets_value, normals, a.standoff);
+  const std::unique_ptr<CollisionChecker> checker =
+      a.collision ? collisionCheckerIfModelled(loaded, true) : nullptr;
+  Checkpoint checkpoint(a.progress, "mcws.reach_study", "targets");
+  auto result = std::make_unique<StudyResult>();
+  result->provenance = robotProvenance(robot);
+  std::vector<TargetReach> reaches;
+  {
+    py::gil_scoped_release release;
+    const ReachStudy study(robot, checker.get(), options);
+    // From OpenMP's thread 0, the calling thread.
+    reaches = study.evaluate(targets, Eigen::Isometry3d::Identity(), std::ref(checkpoint));
+  }
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    result->points.push_back(reachTargetPoint(targets[i], reaches[i]));
+  }
+  result->summary = studySummary(robot, options, reaches, checker != nullptr).dump();
+  return result;
+}
+
+/// The map a placement scores from, as mcws_place's: a given ReachMap (its header checked as
+/// --map's) or one built here (`build` set), whose samples count when free of self-collision.
+struct PlaceMap {
+  py::object given;  ///< a _ReachMap, or None
+  std::optional<MapArguments> build;
+};
+
+/// The map of `source`, held in `built` when built here; its "about" for the summary.
+const ReachMap& placementMap(const LoadedRobot& loaded, const PlaceMap& source,
+                             const StudyArguments& a, const ReachStudyOptions& options,
+                             std::unique_ptr<MapResult>& built, nlohmann::json& about) {
+  const Robot& robot = loaded.robot;
+  if (!source.given.is_none()) {
+    if (source.build) throw UsageError("resolution is for a map built here, not with map");
+    if (!py::isinstance<MapResult>(source.given)) {
+      throw UsageError("map: " + std::string(py::str(py::type::of(source.given).attr("__name__"))) +
+                       " is not an mcws.ReachMap");
+    }
+    const auto& given = source.given.cast<const MapResult&>();
+    std::uint64_t samples = 0;
+    checkPlacementMap(given.header, given.source, robot, loaded.path,
+                      qualitySummary(options.quality, robot).dump(), samples);
+    about = {{"source", given.source}, {"samples", samples}};
+    return given.map;
+  }
+  if (!source.build) throw UsageError("give map (an mcws.ReachMap) or resolution and samples");
+  const std::unique_ptr<CollisionChecker> self =
+      a.collision ? collisionCheckerIfModelled(loaded, false) : nullptr;
+  Checkpoint checkpoint(a.progress, "mcws.place", "map samples");
+  built = buildMap(loaded, *source.build, self.get(), checkpoint);
+  about = {{"source", "built"},
+           {"samples", static_cast<std::uint64_t>(source.build->samples)},
+           {"self_collision", self != nullptr}};
+  return built->map;
+}
+
+std::vector<Eigen::Vector3d> offsetsOf(const std::vector<double>& xs, const std::vector<double>& ys,
+                                       const std::vector<double>& zs) {
+  for (const auto& [name, values] : {std::pair{"line", &xs}, {"across", &ys}, {"up", &zs}}) {
+    if (values->empty()) throw UsageError(std::string(name) + ": no offsets given");
+    for (const double v : *values) {
+      if (!std::isfinite(v)) throw UsageError(std::string(name) + ": an offset is not finite");
+    }
+  }
+  if (xs.size() * ys.size() * zs.size() > 1000000) {
+    throw UsageError("line x across x up: more than 1000000 base positions");
+  }
+  return offsetGrid(xs, ys, zs);
+}
+
+std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& targets_value,
+                                   const py::handle& normals, const std::vector<double>& xs,
+                                   const std::vector<double>& ys, const std::vector<double>& zs,
+                                   int confirm, const PlaceMap& source, const StudyArguments& a) {
+  const Robot& robot = loaded.robot;
+  const ReachStudyOptions options = studyOptions(robot, a);
+  const std::vector<ReachTarget> targets = targetsOf(targets_value, normals, a.standoff);
+  const std::vector<Eigen::Vector3d> moves = offsetsOf(xs, ys, zs);
+  if (confirm < -1 || confirm > 1000000) {
+    throw UsageError("confirm: " + std::to_string(confirm) + " is not in 0 .. 1000000 (-1: all)");
+  }
+  PlacementOptions placement;
+  placement.confirm = confirm;
+  placement.approach_tolerance = options.approach_tolerance;
+  nlohmann::json about;
+  std::unique_ptr<MapResult> built;
+  const ReachMap& map = placementMap(loaded, source, a, options, built, about);
+  const std::unique_ptr<CollisionChecker> checker =
+      a.collision ? collisionCheckerIfModelled(loaded, true) : nullptr;
+  Checkpoint checkpoint(a.progress, "mcws.place", "positions confirmed");
+  std::vector<BaseCandidate> candidates;
+  {
+    py::gil_scoped_release release;
+    const ReachStudy study(robot, checker.get(), options);
+    candidates = placeBase(map, study, targets, moves, placement, std::ref(checkpoint));
+  }
+  auto result = std::make_unique<PlaceResult>();
+  for (const BasePoint& p : basePoints(candidates, robot.T_world_base)) result->points.push_back(p);
+  result->summary = placementSummary(robot, targets.size(), map, about, options, checker != nullptr,
+                                     candidates, bestCandidate(candidates))
+                        .dump();
+  return result;
+}
+
+/// The points of `result` as a structured array viewing them (kept alive by `owner`).
+template <typename PointT>
+py::array pointArray(const PointsResult<PointT>& result, const py::object& owner, int joints) {
+  return py::array(pointDtype<PointT>(joints), {static_cast<py::ssize_t>(result.points.size())},
+                   {static_cast<py::ssize_t>(sizeof(PointT))}, result.points.data(), owner);
+}
+
+template <typename PointT>
+void bindPointsResult(py::module_& m, const char* name) {
+  py::class_<PointsResult<PointT>>(m, name)
+      .def("summary", [](const PointsResult<PointT>& r) { return r.summary; })
+      .def("save", &PointsResult<PointT>::save, py::arg("path"))
+      .def(
+          "points",
+          [](const py::object& self, int joints) {
+            return pointArray(self.cast<const PointsResult<PointT>&>(), self, joints);
+          },
+          py::arg("joints"));
+}
+
+}  // namespace
+
+void bindReachStudy(py::module_& m) {
+  bindPointsResult<ReachTargetPoint>(m, "_ReachStudy");
+  bindPointsResult<BasePoint>(m, "_Placement");
+  m.def(
+      "_reach_study",
+      [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
+         double standoff, double approach_tolerance, int ik_starts, std::int64_t seed, int threads,
+         bool collision, const std::optional<std::string>& quality_task,
+         const std::optional<double>& length, const py::object& progress) {
+        return reachStudy(robot, targets, normals,
+                          {standoff, approach_tolerance, ik_starts, seed, threads, collision,
+                           quality_task, length, progress});
+      },
+      "mcws.reach_study's C++ part.", py::arg("robot"), py::arg("targets"),
+      py::arg("normals").none(true), py::arg("standoff"), py::arg("approach_tolerance"),
+      py::arg("ik_starts"), py::arg("seed"), py::arg("threads"), py::arg("collision"),
+      py::arg("quality_task").none(true), py::arg("length").none(true), py::arg("progress"));
+  m.def(
+      "_place",
+      [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
+         const std::vector<double>& line, const std::vector<double>& across,
+         const std::vector<double>& up, int confirm, const py::object& map,
+         std::optional<double> resolution, std::int64_t samples, int orientations, int rolls,
+         bool manipulability, double standoff, double approach_tolerance, int ik_starts,
+         std::int64_t seed, int threads, bool collision,
+         const std::optional<std::string>& quality_task, const std::optional<double>& length,
+         const py::object& progress) {
+        PlaceMap source{map, std::nullopt};
+        if (resolution) {
+          source.build =
+              MapArguments{*resolution, samples,        seed,         threads, orientations,
+                           rolls,       manipulability, quality_task, length};
+        }
+        return place(robot, targets, normals, line, across, up, confirm, source,
+                     {standoff, approach_tolerance, ik_starts, seed, threads, collision,
+                      quality_task, length, progress});
+      },
+      "mcws.place's C++ part.", py::arg("robot"), py::arg("targets"), py::arg("normals").none(true),
+      py::arg("line"), py::arg("across"), py::arg("up"), py::arg("confirm"),
+      py::arg("map").none(true), py::arg("resolution").none(true), py::arg("samples"),
+      py::arg("orientations"), py::arg("rolls"), py::arg("manipulability"), py::arg("standoff"),
+      py::arg("approach_tolerance"), py::arg("ik_starts"), py::arg("seed"), py::arg("threads"),
+      py::arg("collision"), py::arg("quality_task").none(true), py::arg("length").none(true),
+      py::arg("progress"));
+}
+
+}  // namespace mcws::python

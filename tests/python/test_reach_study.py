@@ -1,0 +1,124 @@
+"""mcws.reach_study and mcws.place against mcws_reach --targets and mcws_place on the same targets
+and seeds (summaries and files byte for byte), against the planar 2R arm's closed forms (its
+reachable annulus, its manipulability l1 l2 |sin q2|), the same result for threads 1 and 2, and
+bad input."""
+
+import math
+
+import numpy as np
+import pytest
+
+import mcws
+from conftest import robot_path, run_tool, tool_json
+
+# planar2: links 40 and 30 cm, |q2| <= 160 deg: the tool point reaches the annulus
+# R_MIN <= r <= 70 cm of the plane z = 0, its z axis always +z.
+R_MIN = math.sqrt(40**2 + 30**2 + 2 * 40 * 30 * math.cos(math.radians(160)))
+RADII = [R_MIN - 2, R_MIN + 2, 40, 55, 69, 71, 5]
+
+
+@pytest.fixture(scope="module")
+def planar2():
+    return mcws.Robot(robot_path("planar2.yaml"))
+
+
+@pytest.fixture(scope="module")
+def targets(tmp_path_factory):
+    """Point-and-normal targets in the plane z = 0 approached along +z: points, normals, CSV."""
+    angles = [0.7 * i - 2.0 for i in range(len(RADII))]
+    points = np.array([[r * math.cos(t), r * math.sin(t), 0.0] for r, t in zip(RADII, angles)])
+    normals = np.tile([0.0, 0.0, -1.0], (len(RADII), 1))
+    path = tmp_path_factory.mktemp("targets") / "targets.csv"
+    lines = ["x,y,z,normal_x,normal_y,normal_z"]
+    lines += [",".join(repr(float(v)) for v in (*p, *n)) for p, n in zip(points, normals)]
+    path.write_text("\n".join(lines) + "\n")
+    return points, normals, path
+
+
+def without(summary, *names):
+    return {k: v for k, v in summary.items() if k not in names}
+
+
+def test_reach_study_is_mcws_reach_targets(planar2, targets, tmp_path):
+    points, normals, path = targets
+    heat = tmp_path / "heat.pcd"
+    expected = tool_json("reach", "--robot", robot_path("planar2.yaml"), "--targets", path,
+                         "--quality-task", "position", "--seed", 2, "--output", heat)
+    study = mcws.reach_study(planar2, path, quality_task="position", seed=2, threads=2)
+    assert dict(study) == without(expected, "output", "seconds")
+    own = tmp_path / "own.pcd"
+    study.save(own)
+    assert own.read_bytes() == heat.read_bytes()
+    # The same targets given as arrays, on one thread: the same heat map.
+    again = mcws.reach_study(planar2, points, normals, quality_task="position", seed=2, threads=1)
+    for name in study.points.dtype.names:
+        assert again.points[name].tobytes() == study.points[name].tobytes(), name
+    assert dict(again) == dict(study)
+
+
+def test_reach_study_is_the_planar_arm_closed_form(planar2, targets):
+    points, normals, _ = targets
+    study = mcws.reach_study(planar2, points, normals, quality_task="position", collision=False)
+    heat = study.points
+    assert heat.dtype.names[6:8] == ("q1", "q2") and "q3" not in heat.dtype.names
+    for i, r in enumerate(RADII):
+        reachable = R_MIN <= r <= 70
+        assert heat["reached"][i] == (1.0 if reachable else 0.0), r
+        if reachable:
+            c2 = (r * r - 40**2 - 30**2) / (2 * 40 * 30)  # law of cosines
+            assert heat["manipulability"][i] == pytest.approx(40 * 30 * math.sqrt(1 - c2 * c2),
+                                                              abs=1e-3)
+            assert abs(heat["q2"][i]) == pytest.approx(math.acos(c2), abs=1e-5)
+            assert heat["clearance"][i] == -1.0  # no collision model used
+    assert study.reached == sum(R_MIN <= r <= 70 for r in RADII)
+    assert study.collision is False
+
+
+def test_place_is_mcws_place(planar2, targets, tmp_path):
+    _, _, path = targets
+    common = ["--robot", robot_path("planar2.yaml"), "--targets", path, "--quality-task",
+              "position", "--seed", 2]
+    bases = tmp_path / "bases.pcd"
+    expected = tool_json("place", *common, "--along", "-40 40 20", "--resolution", 5,
+                         "--samples", 30000, "--output", bases)
+    result = mcws.place(planar2, path, np.arange(-40, 41, 20), resolution=5, samples=30000,
+                        quality_task="position", seed=2)
+    assert dict(result) == without(expected, "output", "seconds")
+    own = tmp_path / "own.pcd"
+    result.save(own)
+    assert own.read_bytes() == bases.read_bytes()
+    assert list(result.points["x"]) == [-40, -20, 0, 20, 40]  # planar2's base is at the origin
+    # With a map file from mcws_reach, read by ReachMap.load, as mcws_place --map.
+    map_file = tmp_path / "planar2.bin"
+    run_tool("reach", "--robot", robot_path("planar2.yaml"), "--resolution", 5, "--samples",
+             30000, "--quality-task", "position", "--seed", 2, "--map", map_file, "--output",
+             tmp_path / "voxels.pcd")
+    expected = tool_json("place", *common, "--along", "0 20 10", "--map", map_file, "--output",
+                         bases, "--confirm", "all")
+    result = mcws.place(planar2, path, [0, 10, 20], map=mcws.ReachMap.load(map_file),
+                        quality_task="position", seed=2, confirm=None)
+    assert dict(result) == without(expected, "output", "seconds")
+    assert result.best is not None and result.map["about"]["source"] == str(map_file)
+
+
+def test_reach_study_and_place_errors(planar2, ta1400, targets, tmp_path):
+    points, normals, _ = targets
+    with pytest.raises(mcws.UsageError, match=r"targets: shape \(7, 2\) is neither"):
+        mcws.reach_study(planar2, points[:, :2])
+    with pytest.raises(mcws.UsageError, match=r"normals: give the \(N, 3\) surface normals"):
+        mcws.reach_study(planar2, points)
+    zero = normals.copy()
+    zero[3] = 0
+    with pytest.raises(mcws.UsageError, match=r"targets: row 3: "):
+        mcws.reach_study(planar2, points, zero)
+    with pytest.raises(mcws.UsageError, match=r"approach_tolerance: 200(\.0)? is not in"):
+        mcws.reach_study(planar2, points, normals, approach_tolerance=200)
+    with pytest.raises(mcws.Error, match=r"missing.csv"):
+        mcws.reach_study(planar2, tmp_path / "missing.csv")
+    with pytest.raises(mcws.UsageError, match=r"give map \(an mcws.ReachMap\) or resolution"):
+        mcws.place(planar2, points, [0.0], normals=normals)
+    with pytest.raises(mcws.UsageError, match=r"line: no offsets given"):
+        mcws.place(planar2, points, [], normals=normals, resolution=5, samples=100)
+    other = mcws.reach_map(ta1400, 200.0, 1000)
+    with pytest.raises(mcws.Error, match=r"reach_map\(\): the map is of robot 'ta1400'"):
+        mcws.place(planar2, points, [0.0], normals=normals, map=other)
