@@ -62,7 +62,16 @@ struct CollisionModel {
   std::vector<BodySpec> environment;
   /// Body pairs never checked, by name (adjacent links are never checked anyway).
   std::vector<std::pair<std::string, std::string>> allowed;
+  /// A URDF model's links that carry geometry, each with the name of the body that carries it
+  /// (a link fixed to another shares its body); empty for a YAML model, whose bodies are its links.
+  std::vector<std::pair<std::string, std::string>> link_bodies;
+  /// A URDF model's link names, with or without geometry (what an SRDF may name); empty for YAML.
+  std::vector<std::string> link_names;
 };
+
+/// \brief Links of `model` that carry geometry, each with the body that carries it:
+/// CollisionModel::link_bodies, or for a YAML model each body with shapes as its own link.
+std::vector<std::pair<std::string, std::string>> linkBodies(const CollisionModel& model);
 
 /// \brief Parses the `collision:` section of a robot YAML document.
 ///
