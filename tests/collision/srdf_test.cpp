@@ -10,6 +10,7 @@
 #include <string>
 #include <tuple>
 
+#include "collision/column_urdf.h"
 #include "mcws/collision/allowed_pairs.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
@@ -23,46 +24,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-/// Three joints on a column of 10 cm boxes, each centred on the z axis, which every joint turns
-/// about or slides along, so heights [m] decide every overlap:
-/// - base_link z in [-0.1, 0.1] (a 20 cm box); link1 (j1 about z at 0.2) z in [0.15, 0.25];
-/// - link2 (j2 about z, 0.3 above j1) z in [0.45, 0.55], with link2_cap fixed to it (5 cm box at
-///   z 0.54): one body, so link2 - link2_cap is Adjacent;
-/// - link3 (j3 sliding 0 .. 5 cm along z, 0.1 above j2) has its box 0.4 below its frame: z in
-///   [0.15 + q3, 0.25 + q3], so it always overlaps link1 (and at the default q = 0: Default);
-/// - post, fixed to the base 1 m away along x: an environment object, Adjacent to base_link,
-///   never reached (the arm stays within 0.08 m of the axis).
-/// So: Adjacent base_link-link1, link1-link2, link1-link2_cap, link2-link3, link2_cap-link3,
-/// link2-link2_cap, base_link-post; Default link1-link3; Never every other pair with a moving link
-/// (the base below 0.1 m, link2 and its cap above 0.45 m, link3 between 0.15 and 0.30 m).
-const std::string kColumn = R"(<?xml version="1.0"?>
-<robot name="column">
-  <link name="base_link"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
-  <link name="link1"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="link2"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="link2_cap"><collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision>
-  </link>
-  <link name="link3"><collision><origin xyz="0 0 -0.4"/>
-    <geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="post"><collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
-  <link name="marker"/>
-  <joint name="j1" type="revolute"><parent link="base_link"/><child link="link1"/>
-    <origin xyz="0 0 0.2"/><axis xyz="0 0 1"/>
-    <limit lower="-3.14" upper="3.14" effort="1" velocity="1"/></joint>
-  <joint name="j2" type="revolute"><parent link="link1"/><child link="link2"/>
-    <origin xyz="0 0 0.3"/><axis xyz="0 0 1"/>
-    <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
-  <joint name="cap" type="fixed"><parent link="link2"/><child link="link2_cap"/>
-    <origin xyz="0 0 0.04"/></joint>
-  <joint name="j3" type="prismatic"><parent link="link2"/><child link="link3"/>
-    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/>
-    <limit lower="0" upper="0.05" effort="1" velocity="1"/></joint>
-  <joint name="post_joint" type="fixed"><parent link="base_link"/><child link="post"/>
-    <origin xyz="1 0 0"/></joint>
-  <joint name="marker_joint" type="fixed"><parent link="link3"/><child link="marker"/></joint>
-</robot>
-)";
-
 struct Column {
   Robot robot;
   CollisionModel model;
@@ -70,8 +31,8 @@ struct Column {
 
 Column column() {
   const UrdfChainOptions chain{"", "link3"};
-  Column c{parseRobotUrdf(kColumn, "column.urdf", chain), {}};
-  c.model = parseCollisionUrdf(c.robot, kColumn, "column.urdf", chain);
+  Column c{parseRobotUrdf(test::kColumnUrdf, "column.urdf", chain), {}};
+  c.model = parseCollisionUrdf(c.robot, test::kColumnUrdf, "column.urdf", chain);
   return c;
 }
 
@@ -144,7 +105,7 @@ TEST(Srdf, PairNamingAnUnknownLinkIsOneLineNamingFilePairAndLink) {
 TEST(Srdf, DisabledPairIsNoLongerChecked) {
   Column c = column();
   const Eigen::VectorXd q = Eigen::VectorXd::Zero(3);
-  // link1 and link3 overlap at q = 0 (see kColumn): label link-link.
+  // link1 and link3 overlap at q = 0 (see test::kColumnUrdf): label link-link.
   EXPECT_EQ(CollisionChecker(c.robot, c.model).label(q), kLabelLinkLink);
   // link3 is the one link of body j3; link2 and link2_cap make body j2, so disabling only
   // link2 - base_link keeps the base - j2 pair checked.
@@ -191,7 +152,7 @@ TEST(AllowedPairs, PairThatCollidesInSomeSamplesIsKept) {
   // link2 made a 0.7 m arm along x that j1 and j2 swing round through a post moved to 0.6 m along
   // y at its height: they collide only when the arm points at the post (not at q = 0), so that
   // pair is neither Default, Always nor Never.
-  std::string text = kColumn;
+  std::string text = test::kColumnUrdf;
   const std::string post = "<origin xyz=\"1 0 0\"/>";
   text.replace(text.find(post), post.size(), "<origin xyz=\"0 0.6 0.5\"/>");
   const std::string link2 = "<link name=\"link2\"><collision>";
