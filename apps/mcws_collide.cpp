@@ -101,13 +101,15 @@ int main(int argc, char** argv) {
     app::checkJointValues(
         robot, q, "q",
         cli.has("ignore-limits") ? app::JointLimits::kIgnore : app::JointLimits::kCheck);
-    const CollisionChecker checker(robot, loadRequiredCollisionModel(robot, path));
+    const CollisionModel model = loadRequiredCollisionModel(robot, path);
+    const CollisionChecker checker(robot, model);
 
     const std::vector<PairReport> pairs = checker.report(q);
     const std::uint32_t label = reportedLabel(pairs);
     const std::vector<PairReport> shown = pairsToShow(pairs, cli.has("all"));
     if (cli.has("json")) {
-      std::cout << collisionReportJson(robot, label, pairs.size(), shown).dump() << "\n";
+      std::cout << collisionReportJson(robot, label, pairs.size(), shown, model.link_bodies).dump()
+                << "\n";
     } else {
       printReport(robot, label, pairs.size(), shown);
     }

@@ -30,6 +30,9 @@ TEST(SrdfApps, DisabledPairIsNoLongerReported) {
   ASSERT_FALSE(out["pairs"].empty());
   EXPECT_EQ(out["pairs"][0]["a"], "j1");
   EXPECT_EQ(out["pairs"][0]["b"], "j3");
+  // The bodies named by their URDF links too.
+  EXPECT_EQ(out["pairs"][0]["links_a"], nlohmann::json::array({"link1"}));
+  EXPECT_EQ(out["pairs"][0]["links_b"], nlohmann::json::array({"link3"}));
 
   test::writeFile(dir.file("column.srdf"),
                   srdfText("column", {{"link3", "link1", "Default"}, {"marker", "post", "User"}}));
