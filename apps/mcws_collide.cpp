@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
     if (cli.has("find-allowed-pairs")) return findAllowed(cli);
+    if (cli.has("output") || cli.has("seed")) {
+      throw app::UsageError("--output and --seed need --find-allowed-pairs");
+    }
     const std::string path = cli.required("robot");
     const Eigen::VectorXd q = app::parseNumberList(cli.required("q"), "q");
 

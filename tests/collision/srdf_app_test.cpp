@@ -57,6 +57,8 @@ TEST(SrdfApps, BadSrdfIsOneLine) {
                           "--srdf: '" + dir.file("none.srdf") + "' is not a file", out);
   test::expectToolFailure(kCollide, robot + " --find-allowed-pairs 0 --output " + out.file("a"), 2,
                           "--find-allowed-pairs", out);
+  test::expectToolFailure(kCollide, robot + " --output " + out.file("a.srdf"), 2,
+                          "--output and --seed need --find-allowed-pairs", out);
 }
 
 TEST(SrdfApps, FindAllowedPairsWritesTheHandWorkedSrdf) {
