@@ -120,6 +120,7 @@ void declareRobotFlags(CommandLine& cli, const char* help) {
   cli.addValues("package-path",
                 "URDF: folder holding ROS packages for package:// mesh URIs, searched before "
                 "ROS_PACKAGE_PATH and the folders above the URDF (repeatable)");
+  cli.addValue("srdf", "SRDF file whose <disable_collisions> link pairs the collision checks skip");
 }
 
 Robot readRobot(const CommandLine& cli) {
@@ -139,10 +140,16 @@ Robot readRobot(const CommandLine& cli) {
       throw UsageError("--package-path: '" + folder + "' is not a folder");
     }
   }
+  const std::string srdf = cli.text("srdf", "");
+  std::error_code no_throw;
+  if (cli.has("srdf") && !std::filesystem::is_regular_file(srdf, no_throw)) {
+    throw UsageError("--srdf: '" + srdf + "' is not a file");
+  }
   const Activity reading("reading --robot '" + path + "'");
   try {
     Robot robot = loadRobot(path, chain);
     robot.package_path = packages;
+    robot.srdf = srdf;
     return robot;
   } catch (const UrdfChainError& e) {
     const bool leaves = e.problem() == UrdfChainError::Problem::kSeveralLeaves;

@@ -87,15 +87,17 @@ BoundaryPlane readPlane(const CommandLine& cli);
 
 /// \brief Declares --robot (described by `help`, e.g. "robot description (.yaml or .urdf)") and,
 /// for URDF robots, --base and --tip, the links the chain runs between, and --package-path
-/// (repeatable), where package:// mesh URIs are looked for (read by readRobot()).
+/// (repeatable), where package:// mesh URIs are looked for, and --srdf, an SRDF file whose
+/// `<disable_collisions>` pairs every collision check skips (read by readRobot()).
 void declareRobotFlags(CommandLine& cli, const char* help);
 
 /// \brief Loads --robot (.yaml or .urdf); for a URDF, the chain from --base (default the tree's
 /// root link) to --tip (default its one leaf), which any collision model read for it follows
 /// (loadCollisionModel() reads Robot::base_link and Robot::tip_link), its meshes' package://
-/// URIs looked for in the --package-path folders first (Robot::package_path).
+/// URIs looked for in the --package-path folders first (Robot::package_path), --srdf as
+/// Robot::srdf (loadCollisionModel() applies it).
 /// \throws UsageError for a missing --robot, --base/--tip or --package-path with a robot that is
-///   not .urdf, a --package-path that is not a folder, a
+///   not .urdf, a --package-path that is not a folder, an --srdf that is not a file, a
 ///   --base or --tip that is not a link of the robot, a --tip not below --base ("--tip: link
 ///   'link1' is not below --base link 'link3' in arm.urdf"), or several leaves and no --tip
 ///   ("--robot: arm.urdf: link 'world' has 2 leaf links below it (tool0, ee_link): choose one

@@ -87,7 +87,7 @@ TEST_F(ScenarioRobot, ChainErrorsNameTheLineAndTheKey) {
 
 TEST_F(ScenarioRobot, BadEntries) {
   expectError("robot: {file: ur5.urdf, tipp: tool0}", 2,
-              "robot: unknown key 'tipp' (allowed: base, file, package_path, tip)");
+              "robot: unknown key 'tipp' (allowed: base, file, package_path, srdf, tip)");
   expectError("robot: {tip: tool0}", 2, "robot: missing field 'file'");
   expectError("robot: {file: ur5.urdf, tip: ''}", 2, "robot: tip: must not be empty");
   expectError("robot: {file: [ur5.urdf], tip: tool0}", 2, "robot: file: must be a single value");
@@ -122,6 +122,21 @@ TEST_F(ScenarioRobot, PackagePathFindsThePackageMeshes) {
   const std::string dh = test::robotPath("maintenance4");
   expectError("robot: {file: " + dh + ", package_path: ws}", 2,
               "robot: package_path: needs a .urdf robot ('" + dh + "' is not)");
+}
+
+TEST_F(ScenarioRobot, SrdfEntryDisablesItsPairsInTheCollisionModel) {
+  // base_link carries the base's sphere, tool0 the tool's (tip tool0): the one pair of links with
+  // geometry is the base - tool pair of bodies.
+  test::writeFile(dir_.file("ur5.srdf"),
+                  "<robot name=\"ur5\"><disable_collisions link1=\"tool0\" link2=\"base_link\" "
+                  "reason=\"Never\"/></robot>");
+  EXPECT_TRUE(load("robot: {file: ur5.urdf, tip: tool0}").problem.collision.allowed.empty());
+  const mcws::Scenario scenario = load("robot: {file: ur5.urdf, tip: tool0, srdf: ur5.srdf}");
+  EXPECT_EQ(scenario.problem.robot.srdf, dir_.file("ur5.srdf"));
+  const std::vector<std::pair<std::string, std::string>> allowed = {{"base", "tool"}};
+  EXPECT_EQ(scenario.problem.collision.allowed, allowed);
+  expectError("robot: {file: ur5.urdf, tip: tool0, srdf: ur6.srdf}", 2,
+              "robot: srdf: 'ur6.srdf' is not a file (looked for " + dir_.file("ur6.srdf") + ")");
 }
 
 }  // namespace

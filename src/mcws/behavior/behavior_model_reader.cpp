@@ -66,6 +66,7 @@ class BehaviorModelReader : YamlReader {
     try {
       model_.robot = loadRobot(entry.path, entry.chain);
       model_.robot->package_path = entry.package_path;
+      model_.robot->srdf = entry.srdf;
     } catch (const UrdfChainError& e) {
       entry.failChain(*this, e);
     } catch (const Error& e) {

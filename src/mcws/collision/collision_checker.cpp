@@ -337,6 +337,10 @@ bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& d
   return false;
 }
 
+bool CollisionChecker::collides(std::size_t pair, Scratch& scratch) const {
+  return bodiesCollide(pairs_.at(pair), *scratch.data_);
+}
+
 std::uint32_t CollisionChecker::label(const double* q, Scratch& scratch) const {
   return label(q, robot_.T_world_base, scratch);
 }

@@ -107,6 +107,8 @@ class CollisionChecker {
   /// segment distance, others by fcl::distance less a tolerance of 1e-6 length units (FCL's
   /// GJK distance is accurate to about that), so the value is a lower bound of the true one.
   double clearance(std::size_t pair, double cap, Scratch& scratch) const;
+  /// \brief Whether the two bodies of pairs()[pair] collide as last placed (as label() tests).
+  bool collides(std::size_t pair, Scratch& scratch) const;
   /// \brief World pose of body i as last placed.
   const Eigen::Isometry3d& bodyPose(int body, const Scratch& scratch) const;
   /// \brief A sphere holding every shape of body i, in the body's frame (radius 0 for a body

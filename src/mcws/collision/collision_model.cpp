@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mcws/collision/package_uri.h"
+#include "mcws/collision/srdf.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/file_name.h"
@@ -381,8 +382,18 @@ CollisionModel parseCollisionUrdf(const Robot& robot, const std::string& text,
   const double unit = 1.0 / unitInMetres(robot.length_unit);
   CollisionModel model = emptyModel(robot);
   const PackageSearch packages = packageSearchFromEnvironment(robot.package_path);
+  model.link_names = urdf.links;
   for (const UrdfCollision& element : urdf.collisions) {
     ShapeSpec shape = urdfShape(element, unit, source, packages);
+    const std::string body = element.body == UrdfBody::kBase   ? model.links[0].name
+                             : element.body == UrdfBody::kLink ? model.links[element.joint + 1].name
+                             : element.body == UrdfBody::kTool ? model.tool.name
+                                                               : element.link;
+    const std::pair<std::string, std::string> carried{element.link, body};
+    if (std::find(model.link_bodies.begin(), model.link_bodies.end(), carried) ==
+        model.link_bodies.end()) {
+      model.link_bodies.push_back(carried);
+    }
     switch (element.body) {
       case UrdfBody::kBase:
         model.links[0].shapes.push_back(std::move(shape));
@@ -435,8 +446,23 @@ CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
 }
 
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path) {
-  if (isUrdfPath(path)) return loadCollisionUrdf(robot, path, {robot.base_link, robot.tip_link});
-  return parseCollisionYaml(robot, readTextFile(path, "robot file"), path);
+  CollisionModel model = isUrdfPath(path)
+                             ? loadCollisionUrdf(robot, path, {robot.base_link, robot.tip_link})
+                             : parseCollisionYaml(robot, readTextFile(path, "robot file"), path);
+  if (!robot.srdf.empty()) applySrdf(model, loadSrdf(robot.srdf), robot.srdf);
+  return model;
+}
+
+std::vector<std::pair<std::string, std::string>> linkBodies(const CollisionModel& model) {
+  if (!model.link_names.empty()) return model.link_bodies;
+  std::vector<std::pair<std::string, std::string>> out;
+  const auto add = [&](const BodySpec& body) {
+    if (!body.shapes.empty()) out.emplace_back(body.name, body.name);
+  };
+  for (const BodySpec& link : model.links) add(link);
+  add(model.tool);
+  for (const BodySpec& object : model.environment) add(object);
+  return out;
 }
 
 bool hasGeometry(const CollisionModel& model) {

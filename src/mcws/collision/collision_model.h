@@ -62,7 +62,16 @@ struct CollisionModel {
   std::vector<BodySpec> environment;
   /// Body pairs never checked, by name (adjacent links are never checked anyway).
   std::vector<std::pair<std::string, std::string>> allowed;
+  /// A URDF model's links that carry geometry, each with the name of the body that carries it
+  /// (a link fixed to another shares its body); empty for a YAML model, whose bodies are its links.
+  std::vector<std::pair<std::string, std::string>> link_bodies;
+  /// A URDF model's link names, with or without geometry (what an SRDF may name); empty for YAML.
+  std::vector<std::string> link_names;
 };
+
+/// \brief Links of `model` that carry geometry, each with the body that carries it:
+/// CollisionModel::link_bodies, or for a YAML model each body with shapes as its own link.
+std::vector<std::pair<std::string, std::string>> linkBodies(const CollisionModel& model);
 
 /// \brief Parses the `collision:` section of a robot YAML document.
 ///
@@ -107,11 +116,11 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 /// `<cylinder>` and two `<sphere>`s of its radius centred on its end faces, in one body, are read
 /// as one capsule, which is the same set of points, so that it is tested by the exact segment
 /// distance as a YAML capsule is. Adjacent links are not checked (as for YAML); URDF gives no other
-/// allowed pairs (an SRDF is not read). Lengths are converted from metres to the robot's length
-/// unit. \param robot the chain read from the same text (joint names must match). \param text the
-/// URDF text; \param source its file name, for messages and mesh paths. \param chain base and tip
-/// links, as given to loadRobotUrdf() for `robot`. \throws mcws::Error, one line naming the file
-/// and the link: as loadRobotUrdfGeometry(); a
+/// allowed pairs (loadCollisionModel() adds an SRDF's). Lengths are converted from metres to the
+/// robot's length unit. \param robot the chain read from the same text (joint names must match).
+/// \param text the URDF text; \param source its file name, for messages and mesh paths. \param
+/// chain base and tip links, as given to loadRobotUrdf() for `robot`. \throws mcws::Error, one line
+/// naming the file and the link: as loadRobotUrdfGeometry(); a
 ///   chain whose joints are not the robot's; an unsupported mesh URI or format; a package not
 ///   found (naming the URI and every place looked); a missing or
 ///   unreadable mesh; an environment link named as the base, the tool or a joint.
@@ -124,8 +133,9 @@ CollisionModel loadCollisionUrdf(const Robot& robot, const std::string& path,
 
 /// \brief The collision model of a robot file: loadCollisionUrdf() of the chain `robot` was read
 /// as (Robot::base_link to Robot::tip_link, so a robot read with --base/--tip gets the geometry of
-/// that chain) for a `.urdf` file, else parseCollisionYaml() of the file.
-/// \throws mcws::Error when the file cannot be read, and as those two.
+/// that chain) for a `.urdf` file, else parseCollisionYaml() of the file; with Robot::srdf, less
+/// the pairs that SRDF disables (applySrdf(), collision/srdf.h).
+/// \throws mcws::Error when a file cannot be read, and as those three and loadSrdf().
 CollisionModel loadCollisionModel(const Robot& robot, const std::string& path);
 
 /// \brief True when the model has at least one shape.

@@ -2,8 +2,17 @@
 
 namespace mcws {
 
-nlohmann::json collisionReportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
-                                   const std::vector<PairReport>& shown) {
+nlohmann::json collisionReportJson(
+    const Robot& robot, std::uint32_t label, std::size_t checked,
+    const std::vector<PairReport>& shown,
+    const std::vector<std::pair<std::string, std::string>>& link_bodies) {
+  const auto links = [&](const std::string& body) {
+    nlohmann::json names = nlohmann::json::array();
+    for (const auto& [link, carrier] : link_bodies) {
+      if (carrier == body) names.push_back(link);
+    }
+    return names;
+  };
   nlohmann::json out;
   out["robot"] = robot.name;
   out["length_unit"] = unitName(robot.length_unit);
@@ -18,6 +27,10 @@ nlohmann::json collisionReportJson(const Robot& robot, std::uint32_t label, std:
                         {"kind", labelName(pair.label)},
                         {"colliding", pair.colliding}};
     if (pair.depth_known) item["distance"] = pair.distance;
+    if (!link_bodies.empty()) {
+      item["links_a"] = links(pair.body_a);
+      item["links_b"] = links(pair.body_b);
+    }
     out["pairs"].push_back(item);
   }
   return out;

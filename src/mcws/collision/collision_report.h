@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "mcws/collision/collision_checker.h"
@@ -17,9 +19,13 @@ namespace mcws {
 /// \brief The check of one joint vector as JSON: "robot", "length_unit", "label" and its
 /// "label_name", "pairs_checked", and "pairs" (`shown`, pairsToShow()), each with its bodies "a"
 /// and "b", its "kind" (the label a collision of the pair gives), "colliding" and, where known,
-/// its "distance" [length unit] (negative: the penetration depth); with "units".
-nlohmann::json collisionReportJson(const Robot& robot, std::uint32_t label, std::size_t checked,
-                                   const std::vector<PairReport>& shown);
+/// its "distance" [length unit] (negative: the penetration depth); with "units". With
+/// `link_bodies` (CollisionModel::link_bodies of a URDF model, whose bodies are named by joint),
+/// each pair also names the URDF links with geometry of its bodies, "links_a" and "links_b".
+nlohmann::json collisionReportJson(
+    const Robot& robot, std::uint32_t label, std::size_t checked,
+    const std::vector<PairReport>& shown,
+    const std::vector<std::pair<std::string, std::string>>& link_bodies = {});
 
 /// \brief The points per collision label of a labelled sampling of `samples` samples, by label
 /// name (labelName()): for each of free, link-link, tool-link and environment its "label", the

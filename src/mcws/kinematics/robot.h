@@ -67,6 +67,9 @@ struct Robot {
   /// A URDF robot's folders to look for `package://` packages in, before `ROS_PACKAGE_PATH` (the
   /// tools' --package-path), for what else is read from the file (its meshes).
   std::vector<std::string> package_path;
+  /// An SRDF file whose `<disable_collisions>` pairs the collision model drops (the tools'
+  /// --srdf; applySrdf(), collision/srdf.h); empty for none.
+  std::string srdf;
   /// Joints of the chain that follow a free joint (URDF `<mimic>`), in chain order; empty for a
   /// D-H robot.
   std::vector<MimicJoint> mimic_joints;

@@ -30,7 +30,7 @@ void readPackagePath(const YamlReader& reader, const YAML::Node& node, RobotEntr
 
 RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node) {
   const bool map = node.IsMap();
-  if (map) reader.checkKeys(node, "robot", {"file", "base", "tip", "package_path"});
+  if (map) reader.checkKeys(node, "robot", {"file", "base", "tip", "package_path", "srdf"});
   RobotEntry entry;
   // An absent key as an undefined node: yaml-cpp's stand-in for it (a "zombie") cannot be kept.
   const auto optional = [&](const char* key) {
@@ -60,6 +60,18 @@ RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node) {
   entry.path = path.string();
   const YAML::Node packages = optional("package_path");
   if (packages) readPackagePath(reader, packages, entry);
+  if (const YAML::Node srdf = optional("srdf")) {
+    const std::string file = reader.text(srdf, "robot: srdf");
+    std::filesystem::path srdf_path(file);
+    if (srdf_path.is_relative()) {
+      srdf_path = std::filesystem::path(reader.source()).parent_path() / srdf_path;
+    }
+    if (!std::filesystem::is_regular_file(srdf_path, ec)) {
+      reader.fail(srdf, "robot: srdf: '" + file + "' is not a file (looked for " +
+                            srdf_path.string() + ")");
+    }
+    entry.srdf = srdf_path.string();
+  }
   return entry;
 }
 
@@ -67,6 +79,7 @@ Robot RobotEntry::load(const YamlReader& reader) const {
   try {
     Robot robot = loadRobot(path, chain);
     robot.package_path = package_path;
+    robot.srdf = srdf;
     return robot;
   } catch (const UrdfChainError& e) {
     failChain(reader, e);

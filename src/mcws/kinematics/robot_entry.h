@@ -24,10 +24,12 @@ struct RobotEntry {
   /// The `package_path:` folders, resolved against the naming file's directory: where package://
   /// mesh URIs are looked for first (Robot::package_path).
   std::vector<std::string> package_path;
+  /// The `srdf:` file, resolved against the naming file's directory (Robot::srdf); empty for none.
+  std::string srdf;
 
-  /// \brief loadRobot(path, chain), with Robot::package_path set. \param reader the naming file's
-  /// reader, for messages. \throws mcws::Error as loadRobot(); for a UrdfChainError, "source:line:
-  /// robot: tip: 'hand'
+  /// \brief loadRobot(path, chain), with Robot::package_path and Robot::srdf set. \param reader the
+  /// naming file's reader, for messages. \throws mcws::Error as loadRobot(); for a UrdfChainError,
+  /// "source:line: robot: tip: 'hand'
   ///   is not a link of robot 'arm' in arm.urdf" at the line of the key it concerns, or
   ///   "source:line: robot: arm.urdf: link 'world' has 2 leaf links below it (tool0, ee_link):
   ///   choose one with robot: {file: FILE, tip: LINK}" at the file's line.
@@ -43,6 +45,7 @@ struct RobotEntry {
 /// robot: ../robots/arm.urdf
 /// robot: {file: ../robots/arm.urdf, base: base_link, tip: tool0}   # base, tip optional
 /// robot: {file: arm/urdf/arm.urdf, package_path: [ws/src]}         # a folder or a list
+/// robot: {file: arm.urdf, srdf: arm.srdf}   # <disable_collisions> pairs the checks skip
 /// \endcode
 /// A relative file is resolved against the directory of the reader's source.
 /// \param reader the naming file's reader (its source and messages).
@@ -50,7 +53,7 @@ struct RobotEntry {
 /// \throws mcws::Error "source:line: robot: ..." for a list or an empty value, an unknown key, a
 ///   missing `file:`, an empty link name, a file that does not exist, `base:`, `tip:` or
 ///   `package_path:` with a robot file that is not `.urdf`, a `package_path:` entry that is not
-///   a folder.
+///   a folder, an `srdf:` that is not a file.
 RobotEntry readRobotEntry(const YamlReader& reader, const YAML::Node& node);
 
 }  // namespace mcws

@@ -587,6 +587,7 @@ UrdfRobotGeometry parseRobotUrdfGeometry(const std::string& text, const std::str
   UrdfRobotGeometry out;
   out.robot = reader.robot(chain);
   out.collisions = reader.collisions(chain, out.robot);
+  for (const auto& link : model->links_) out.links.push_back(link.first);
   return out;
 }
 

@@ -135,6 +135,7 @@ struct UrdfCollision {
 struct UrdfRobotGeometry {
   Robot robot;  ///< as loadRobotUrdf()
   std::vector<UrdfCollision> collisions;
+  std::vector<std::string> links;  ///< every link name of the file, sorted (for SRDF pair names)
 };
 
 /// \brief Reads the chain of a URDF file (as loadRobotUrdf()) and places each `<collision>`

@@ -171,58 +171,6 @@ void checkPlainDeclaration(const std::string& text, std::size_t at, const std::s
               " is not of the form <?xml name=\"value\" ...?>");
 }
 
-/// \brief Bounds the recursion of TinyXML (urdfdom's parser, one level per nested element)
-/// before it runs, and finds where the content of the `<robot>` element begins.
-///
-/// The scan splits the text as TinyXML 2.6 does: comments end at `-->`, CDATA at `]]>`, a start
-/// tag at its first '>' outside quotes (an empty element when `/>`), an end tag and any other
-/// markup (`<?xml ?>`, `<!DOCTYPE>`) at its first '>'. So it counts the parser's depth exactly
-/// up to the point where the parser stops at an error. Two places where TinyXML reads more than
-/// that would let a crafted file hide nesting from the count, so they are errors: a cut-short
-/// UTF-8 character (checkUtf8()) and a declaration with a '>' inside quotes
-/// (checkPlainDeclaration()). Each start tag's attributes are checked on the way
-/// (checkNoPercentInAttributes()).
-/// \return the offset just after the first top-level `<robot ...>` tag, or npos.
-/// \throws mcws::Error "source: XML nested deeper than 1000 elements", or as the two checks.
-std::size_t checkXmlNesting(const std::string& text, const std::string& source) {
-  checkUtf8(text, source);
-  std::size_t robot_content = std::string::npos;
-  int depth = 0;
-  for (std::size_t at = text.find('<'); at < text.size(); at = text.find('<', at)) {
-    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
-    if (text.compare(at, 4, "<!--") == 0) {
-      at = after(text, at + 4, "-->");
-    } else if (text.compare(at, 9, "<![CDATA[") == 0) {
-      at = after(text, at + 9, "]]>");
-    } else if (next == '/') {
-      depth = std::max(depth - 1, 0);
-      at = after(text, at, ">");
-    } else if (isAsciiLetter(next) || next == '_' || static_cast<unsigned char>(next) >= 127) {
-      const std::size_t end = startTagEnd(text, at);
-      if (end == text.size()) break;
-      checkNoPercentInAttributes(text, at, end, source);
-      if (text[end - 1] != '/') {
-        if (++depth > kMaxUrdfNesting) {
-          throw Error(source + ": XML nested deeper than " + std::to_string(kMaxUrdfNesting) +
-                      " elements");
-        }
-        if (depth == 1 && robot_content == std::string::npos &&
-            text.compare(at + 1, 5, "robot") == 0 && !isNameChar(text[at + 6])) {
-          robot_content = end + 1;
-        }
-      }
-      at = end + 1;
-    } else {
-      std::string opening = text.substr(at, 5);
-      std::transform(opening.begin(), opening.end(), opening.begin(),
-                     [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; });
-      if (opening == "<?xml") checkPlainDeclaration(text, at, source);
-      at = after(text, at, ">");
-    }
-  }
-  return robot_content;
-}
-
 /// Where the search of checkTree() stands with a link.
 enum class Visit { kNotYet, kOnPath, kDone };
 
@@ -350,6 +298,58 @@ void checkPrintableNames(const urdf::ModelInterface& model, const std::string& s
 }
 
 }  // namespace
+
+/// \brief Bounds the recursion of TinyXML (urdfdom's parser, one level per nested element)
+/// before it runs, and finds where the content of the `<robot>` element begins.
+///
+/// The scan splits the text as TinyXML 2.6 does: comments end at `-->`, CDATA at `]]>`, a start
+/// tag at its first '>' outside quotes (an empty element when `/>`), an end tag and any other
+/// markup (`<?xml ?>`, `<!DOCTYPE>`) at its first '>'. So it counts the parser's depth exactly
+/// up to the point where the parser stops at an error. Two places where TinyXML reads more than
+/// that would let a crafted file hide nesting from the count, so they are errors: a cut-short
+/// UTF-8 character (checkUtf8()) and a declaration with a '>' inside quotes
+/// (checkPlainDeclaration()). Each start tag's attributes are checked on the way
+/// (checkNoPercentInAttributes()).
+/// \return the offset just after the first top-level `<robot ...>` tag, or npos.
+/// \throws mcws::Error "source: XML nested deeper than 1000 elements", or as the two checks.
+std::size_t checkXmlNesting(const std::string& text, const std::string& source) {
+  checkUtf8(text, source);
+  std::size_t robot_content = std::string::npos;
+  int depth = 0;
+  for (std::size_t at = text.find('<'); at < text.size(); at = text.find('<', at)) {
+    const char next = at + 1 < text.size() ? text[at + 1] : '\0';
+    if (text.compare(at, 4, "<!--") == 0) {
+      at = after(text, at + 4, "-->");
+    } else if (text.compare(at, 9, "<![CDATA[") == 0) {
+      at = after(text, at + 9, "]]>");
+    } else if (next == '/') {
+      depth = std::max(depth - 1, 0);
+      at = after(text, at, ">");
+    } else if (isAsciiLetter(next) || next == '_' || static_cast<unsigned char>(next) >= 127) {
+      const std::size_t end = startTagEnd(text, at);
+      if (end == text.size()) break;
+      checkNoPercentInAttributes(text, at, end, source);
+      if (text[end - 1] != '/') {
+        if (++depth > kMaxUrdfNesting) {
+          throw Error(source + ": XML nested deeper than " + std::to_string(kMaxUrdfNesting) +
+                      " elements");
+        }
+        if (depth == 1 && robot_content == std::string::npos &&
+            text.compare(at + 1, 5, "robot") == 0 && !isNameChar(text[at + 6])) {
+          robot_content = end + 1;
+        }
+      }
+      at = end + 1;
+    } else {
+      std::string opening = text.substr(at, 5);
+      std::transform(opening.begin(), opening.end(), opening.begin(),
+                     [](char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; });
+      if (opening == "<?xml") checkPlainDeclaration(text, at, source);
+      at = after(text, at, ">");
+    }
+  }
+  return robot_content;
+}
 
 std::string oneLine(std::string text) {
   for (char& c : text) {

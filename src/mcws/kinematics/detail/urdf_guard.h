@@ -8,6 +8,7 @@
 #include <urdf_model/model.h>
 #include <urdf_world/types.h>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,13 @@ namespace mcws::detail {
 ///   first message).
 urdf::ModelInterfaceSharedPtr parseUrdfModel(const std::string& text, const std::string& source,
                                              std::vector<std::string>* logged = nullptr);
+
+/// \brief Bounds the recursion of TinyXML over `text` before it parses it (at most
+/// kMaxUrdfNesting nested elements, UTF-8, a plain XML declaration, no '%' in attributes); also
+/// for the SRDF reader of mcws_collision, which reads its XML with the same TinyXML.
+/// \return the offset just after the first top-level `<robot ...>` tag, or npos.
+/// \throws mcws::Error "source: ...", one line.
+std::size_t checkXmlNesting(const std::string& text, const std::string& source);
 
 /// Message text on one line: line breaks become spaces, trailing spaces are dropped.
 std::string oneLine(std::string text);
