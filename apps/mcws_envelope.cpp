@@ -78,7 +78,7 @@ Files readFiles(const app::CommandLine& cli) {
   if (files.output.empty() && files.drawing.empty() && files.plot.empty())
     throw app::UsageError("give at least one of --output, --plot and --drawing");
   if (!files.output.empty())
-    app::asUsageError("output", [&] { meshFormatOf(files.output); });  // refused before the work
+    app::asUsageError("output", [&] { surfaceFormatOf(files.output); });  // refused before the work
   if (!files.drawing.empty()) {
     files.drawing_format =
         app::asUsageError("drawing", [&] { return drawingFormatOf(files.drawing); });

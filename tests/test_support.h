@@ -20,6 +20,10 @@
 
 namespace mcws::test {
 
+/// The robot files of robots/ that every loader test reads.
+inline const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maintenance4",
+                                             "insulator_cleaner"};
+
 inline std::string robotPath(const std::string& name) {
   return std::string(MCWS_ROBOTS_DIR) + "/" + name + ".yaml";
 }
@@ -134,6 +138,13 @@ std::string errorOf(Call&& call) {
   }
   ADD_FAILURE() << "no mcws::Error thrown";
   return "";
+}
+
+/// `text` with the first `from` replaced by `to` (a failure when `from` is not in it).
+inline std::string replaceOnce(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
 }
 
 /// Number of lines in a text.

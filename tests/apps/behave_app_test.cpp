@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -18,7 +19,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kBehave = MCWS_BEHAVE_EXE;
 const std::string kModel = test::robotPath("insulator_cleaner_behaviors");
 const std::string kLiteral = std::string(MCWS_ROBOTS_DIR) +
                              "/../tests/behavior/data/insulator_cleaner_behaviors_literal.yaml";

@@ -11,6 +11,7 @@
 
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/sampling/sampler.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -18,8 +19,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kBoundary = MCWS_BOUNDARY_EXE;
-const std::string kSample = MCWS_SAMPLE_EXE;
 
 class BoundaryApp : public ::testing::Test {
  protected:

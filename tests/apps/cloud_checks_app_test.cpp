@@ -11,13 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
-const std::string kBoundary = MCWS_BOUNDARY_EXE;
-const std::string kMeasure = MCWS_MEASURE_EXE;
 
 /// An n x n grid of spacing 1 in the x-z plane (y = 0) shifted by `offset` along x.
 pcl::PointCloud<pcl::PointXYZ> xzGrid(int n, float offset = 0.0f) {

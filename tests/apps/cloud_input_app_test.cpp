@@ -12,14 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
-const std::string kBoundary = MCWS_BOUNDARY_EXE;
-const std::string kMeasure = MCWS_MEASURE_EXE;
-const std::string kSelect = MCWS_SELECT_EXE;
 
 /// A rejected file is rejected before any reading of its data: far below this even under
 /// AddressSanitizer (the 4 GB claim took 34 s before the checks).

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -14,9 +15,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kSample = MCWS_SAMPLE_EXE;
-const std::string kSelect = MCWS_SELECT_EXE;
-const std::string kCollide = MCWS_COLLIDE_EXE;
 
 class CollisionApps : public ::testing::Test {
  protected:

@@ -17,6 +17,7 @@
 
 #include "deicing_region.h"
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -26,9 +27,6 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using Json = nlohmann::json;
 
-const std::string kEnvelope = MCWS_ENVELOPE_EXE, kSample = MCWS_SAMPLE_EXE,
-                  kBoundary = MCWS_BOUNDARY_EXE, kRefine = MCWS_REFINE_EXE,
-                  kMeasure = MCWS_MEASURE_EXE;
 
 /// Samples `robot` (its --robot and --point flags), extracts the boundary and refines near it
 /// with as many samples again: the plain cloud, the rim and the refined cloud in `dir`.

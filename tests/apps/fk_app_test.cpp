@@ -5,6 +5,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -12,8 +13,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kFk = MCWS_FK_EXE;
-const std::string kInspection = " --robot " + test::robotPath("inspection6");
 // pi/3 pi/6 pi/2 pi/4 pi/3 pi/6, Liu, Han, Xu & Li 2021, section 1.1
 const std::string kSeedQ =
     " --q '1.0471975511965976 0.5235987755982988 1.5707963267948966 "

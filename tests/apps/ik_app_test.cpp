@@ -8,6 +8,7 @@
 
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -15,8 +16,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kIk = MCWS_IK_EXE;
-const std::string kInspection = " --robot " + test::robotPath("inspection6");
 // The pose matrix of Liu, Han, Xu & Li 2021 as printed (section 1.1, 4 decimals), at
 // q = [pi/3, pi/6, pi/2, pi/4, pi/3, pi/6].
 const std::string kPapersMatrix =

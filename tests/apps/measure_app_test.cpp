@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -11,7 +12,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kMeasure = MCWS_MEASURE_EXE;
 
 class MeasureApp : public ::testing::Test {
  protected:

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -225,7 +226,7 @@ TEST_P(OutputSetApp, AFullFileSystemLeavesEveryOutputPathAsItWas) {
   }
 }
 
-const std::string kTraj = " --robot " + kRobot +
+const std::string kTrajArgs = " --robot " + kRobot +
                           " --from '0 0' --to '0.1 0.2' --duration 1 "
                           "--rate 10";
 
@@ -240,7 +241,7 @@ INSTANTIATE_TEST_SUITE_P(
                       MCWS_BOUNDARY_EXE,
                       "--input {ball} --radius 0.3 --tiles 2",
                       {{"output", "b.pcd"}, {"interior", "i.pcd"}}},
-        OutputSetCase{"Traj", MCWS_TRAJ_EXE, kTraj, {{"output", "t.csv"}, {"plot", "t.png"}}},
+        OutputSetCase{"Traj", MCWS_TRAJ_EXE, kTrajArgs, {{"output", "t.csv"}, {"plot", "t.png"}}},
         OutputSetCase{"Envelope",
                       MCWS_ENVELOPE_EXE,
                       "--input {ball}",
@@ -274,10 +275,10 @@ TEST(OutputSpellings, TwoSpellingsOfOneNewOutputAreRefusedBeforeAnyWork) {
   fs::create_directory_symlink("real", dir.file("linked"));
   const std::string cd = "cd " + dir.file("") + " && ";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {std::string(MCWS_TRAJ_EXE) + kTraj + " --output t.csv --plot ./t.csv", "--plot"},
-      {std::string(MCWS_TRAJ_EXE) + kTraj + " --output t.csv --plot " + dir.file("t.csv"),
+      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output t.csv --plot ./t.csv", "--plot"},
+      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output t.csv --plot " + dir.file("t.csv"),
        "--plot"},
-      {std::string(MCWS_TRAJ_EXE) + kTraj + " --output real/t.csv --plot linked/t.csv", "--plot"},
+      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output real/t.csv --plot linked/t.csv", "--plot"},
       {std::string(MCWS_REACH_EXE) + " --robot " + kRobot +
            " --resolution 10cm --samples 1000 --output m.pcd --checkpoint ./m.pcd",
        "--checkpoint"},
@@ -320,7 +321,7 @@ TEST(OutputSpellings, DevStdoutAppendsToTheShellsLog) {
   test::writeFile(log, "earlier run\n");
   // In a subshell: test::run() sends the command's own stdout elsewhere.
   const test::RunResult r =
-      test::run("(" + std::string(MCWS_TRAJ_EXE) + kTraj + " --output /dev/stdout >> " + log + ")");
+      test::run("(" + std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output /dev/stdout >> " + log + ")");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const std::string text = test::readFile(log);
   EXPECT_EQ(text.rfind("earlier run\nt_s,", 0), 0u) << text.substr(0, 80);

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -28,8 +29,8 @@ const std::string kRobot = test::robotPath("planar2");
 const std::string kCloud = std::string(MCWS_CLOUDS_DIR) + "/annulus_2000_seed1.pcd";
 const std::string kBehaviors = std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner_behaviors.yaml";
 const std::string kScenario = std::string(MCWS_SCENARIOS_DIR) + "/planar2.yaml";
-const std::string kFaults = std::string(MCWS_SCENARIOS_DIR) + "/faults/low_battery.yaml";
-const std::string kTraj = " --from '0 0' --to '0.1 0.2' --duration 1 --rate 10";
+const std::string kLowBatteryFaults = std::string(MCWS_SCENARIOS_DIR) + "/faults/low_battery.yaml";
+const std::string kTrajArgs = " --from '0 0' --to '0.1 0.2' --duration 1 --rate 10";
 
 void replaceAll(std::string& text, const std::string& from, const std::string& to) {
   for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
@@ -96,8 +97,8 @@ INSTANTIATE_TEST_SUITE_P(
                      "output", "cloud", kCloud},
         SamePathCase{"SelectInput", MCWS_SELECT_EXE, "--input {in} --label 0", "output", "input",
                      kCloud},
-        SamePathCase{"TrajRobot", MCWS_TRAJ_EXE, "--robot {in}" + kTraj, "output", "robot", kRobot},
-        SamePathCase{"TrajPlot", MCWS_TRAJ_EXE, "--robot {in} --output {other}t.csv" + kTraj,
+        SamePathCase{"TrajRobot", MCWS_TRAJ_EXE, "--robot {in}" + kTrajArgs, "output", "robot", kRobot},
+        SamePathCase{"TrajPlot", MCWS_TRAJ_EXE, "--robot {in} --output {other}t.csv" + kTrajArgs,
                      "plot", "robot", kRobot},
         SamePathCase{"BoundaryInput", MCWS_BOUNDARY_EXE, "--input {in}", "output", "input", kCloud},
         SamePathCase{"BoundaryInterior", MCWS_BOUNDARY_EXE, "--input {in} --output {other}b.pcd",
@@ -117,7 +118,7 @@ INSTANTIATE_TEST_SUITE_P(
                      kBehaviors},
         SamePathCase{"BehaveFaults", MCWS_BEHAVE_EXE,
                      "--model " + kBehaviors + " --insulators 1 --faults {in}", "timeline",
-                     "faults", kFaults}),
+                     "faults", kLowBatteryFaults}),
     [](const ::testing::TestParamInfo<SamePathCase>& info) { return info.param.name; });
 
 }  // namespace

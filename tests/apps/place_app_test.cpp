@@ -14,6 +14,7 @@
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/reach_study.h"
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -21,8 +22,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kReach = MCWS_REACH_EXE;
-const std::string kPlace = MCWS_PLACE_EXE;
 
 /// planar2: links 40 and 30 cm, q2 within +-160 deg: the tool point reaches the annulus
 /// r_min <= r <= 70 cm of the plane z = 0, its z axis always world +z.

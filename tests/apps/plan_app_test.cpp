@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -19,7 +20,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-const std::string kPlan = MCWS_PLAN_EXE;
 const std::string kScenarios = MCWS_SCENARIOS_DIR;
 
 // CSV numbers have 12 significant digits; joint values here are at most 2 pi.

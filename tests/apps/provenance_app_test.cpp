@@ -8,6 +8,7 @@
 
 #include <filesystem>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -16,8 +17,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-const std::string kSample = MCWS_SAMPLE_EXE;
-const std::string kRefine = MCWS_REFINE_EXE;
 
 /// What `sha256sum` says of a file (an oracle independent of the tools' OpenSSL).
 std::string sha256sum(const std::string& path) {
@@ -213,8 +212,7 @@ TEST_F(ProvenanceApp, TheLineSurvivesBoundaryAndSelect) {
 }
 
 TEST_F(ProvenanceApp, ReachRecordsTheRobotInTheMapAndTheHeatMap) {
-  const std::string kReach = MCWS_REACH_EXE;
-  const std::string planar = test::robotPath("planar2");
+    const std::string planar = test::robotPath("planar2");
   const std::string expected =
       "# mcws robot=planar2 file=planar2.yaml sha256=" + sha256sum(planar) + " length_unit=cm";
   test::RunResult r = test::run(kReach + " --robot " + planar +

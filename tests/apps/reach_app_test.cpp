@@ -13,6 +13,7 @@
 #include "mcws/points/point_types.h"
 #include "mcws/reach/reach_map.h"
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -20,8 +21,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kReach = MCWS_REACH_EXE;
-const std::string kSample = MCWS_SAMPLE_EXE;
 
 /// A three-axis spherical wrist (standard D-H z-y-z, every axis through one point) whose tool
 /// point is the wrist centre, placed at (5, 5, 5) cm: the tool point never moves and every

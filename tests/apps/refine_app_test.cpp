@@ -10,6 +10,7 @@
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -17,8 +18,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kRefine = MCWS_REFINE_EXE;
-const std::string kSample = MCWS_SAMPLE_EXE;
 
 pcl::PointCloud<WorkspacePoint> readCloud(const std::string& path) {
   pcl::PointCloud<WorkspacePoint> cloud;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "kinematics/ur5_shaped_urdf.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {

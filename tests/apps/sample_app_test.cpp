@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -15,7 +16,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-const std::string kSample = MCWS_SAMPLE_EXE;
 
 class SampleApp : public ::testing::Test {
  protected:

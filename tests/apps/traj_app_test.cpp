@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "png_image.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -18,9 +19,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-const std::string kTraj = MCWS_TRAJ_EXE;
-const std::string kFk = MCWS_FK_EXE;
-const std::string kInspection = " --robot " + test::robotPath("inspection6");
 const std::string kInspectionUrdf = std::string(MCWS_ROBOTS_DIR) + "/inspection6.urdf";
 // Liu, Han, Xu & Li 2021, section 1.4: the end joint vector of its 10 s move (the start is not
 // legible in the paper; the arm's zero pose here).

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -14,11 +15,6 @@ namespace {
 using ::testing::HasSubstr;
 using Json = nlohmann::json;
 
-const std::string kSample = MCWS_SAMPLE_EXE, kBoundary = MCWS_BOUNDARY_EXE,
-                  kMeasure = MCWS_MEASURE_EXE, kRefine = MCWS_REFINE_EXE, kSelect = MCWS_SELECT_EXE,
-                  kFk = MCWS_FK_EXE, kIk = MCWS_IK_EXE, kCollide = MCWS_COLLIDE_EXE,
-                  kTraj = MCWS_TRAJ_EXE, kPlan = MCWS_PLAN_EXE, kReach = MCWS_REACH_EXE,
-                  kPlace = MCWS_PLACE_EXE;
 
 Json runJson(const std::string& command) {
   const test::RunResult r = test::run(command);

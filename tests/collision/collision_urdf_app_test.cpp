@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "mcws/points/point_types.h"
+#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -21,8 +22,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string kSample = MCWS_SAMPLE_EXE;
-const std::string kCollide = MCWS_COLLIDE_EXE;
 
 /// Agreement of a pair's distance from the URDF [m, times 1000] with the YAML's [mm]: the checker
 /// takes 1e-6 length units off FCL distances (1e-3 mm in metres, 1e-6 mm in mm) and GJK converges

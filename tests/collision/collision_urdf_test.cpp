@@ -254,16 +254,14 @@ std::string tinyUrdf(const std::string& extra = "") {
          "</robot>\n";
 }
 
-const UrdfChainOptions kToTool0{"", "tool0"};
-
 CollisionModel parseTiny(const std::string& text, const std::string& source = "tiny.urdf",
-                         const UrdfChainOptions& chain = kToTool0) {
+                         const UrdfChainOptions& chain = test::kUr5ToTool0) {
   return parseCollisionUrdf(parseRobotUrdf(text, source, chain), text, source, chain);
 }
 
 /// The message of the mcws::Error that parseTiny() throws, or "" when it does not throw.
 std::string tinyError(const std::string& text, const std::string& source = "tiny.urdf",
-                      const UrdfChainOptions& chain = kToTool0) {
+                      const UrdfChainOptions& chain = test::kUr5ToTool0) {
   try {
     parseTiny(text, source, chain);
   } catch (const Error& e) {
@@ -341,7 +339,7 @@ TEST(CollisionUrdf, PlacesEachPrimitiveOnItsBodyByHand) {
 }
 
 TEST(CollisionUrdf, LinkFramesAreTheChainsWorldPosesWorkedByHand) {
-  const Robot robot = parseRobotUrdf(tinyUrdf(), "tiny.urdf", kToTool0);
+  const Robot robot = parseRobotUrdf(tinyUrdf(), "tiny.urdf", test::kUr5ToTool0);
   const CollisionModel model = parseTiny(tinyUrdf());
   Eigen::VectorXd q(2);
   q << 0.3, -0.7;
@@ -419,7 +417,7 @@ TEST(CollisionUrdfBadInput, GeometryUrdfHasNoWordFor) {
   expectOneLine(message);
   // The robot itself still loads (urdfdom skipped the element), as before.
   EXPECT_EQ(
-      parseRobotUrdf(withGrip("<capsule radius='0.1' length='0.2'/>"), "tiny.urdf", kToTool0).dof(),
+      parseRobotUrdf(withGrip("<capsule radius='0.1' length='0.2'/>"), "tiny.urdf", test::kUr5ToTool0).dof(),
       2);
 }
 
@@ -485,7 +483,7 @@ TEST(CollisionUrdfBadInput, RobotOfAnotherChainAndEnvironmentNameClash) {
   const std::string text = tinyUrdf();
   const Robot other = parseRobotUrdf(text, "tiny.urdf", {"l1", "tool0"});
   try {
-    parseCollisionUrdf(other, text, "tiny.urdf", kToTool0);
+    parseCollisionUrdf(other, text, "tiny.urdf", test::kUr5ToTool0);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(),
@@ -507,8 +505,8 @@ TEST(CollisionUrdfBadInput, UrdfWithoutCollisionElements) {
     text.erase(at, text.find("</collision>", at) + 12 - at);
   }
   test::writeFile(dir.file("bare.urdf"), text);
-  const Robot robot = loadRobotUrdf(dir.file("bare.urdf"), kToTool0);
-  EXPECT_FALSE(hasGeometry(loadCollisionUrdf(robot, dir.file("bare.urdf"), kToTool0)));
+  const Robot robot = loadRobotUrdf(dir.file("bare.urdf"), test::kUr5ToTool0);
+  EXPECT_FALSE(hasGeometry(loadCollisionUrdf(robot, dir.file("bare.urdf"), test::kUr5ToTool0)));
   // Through the robot file loader, as the tools load it.
   test::writeFile(dir.file("single.urdf"),
                   "<robot name='bare'><link name='a'/><link name='b'/><joint name='j' "

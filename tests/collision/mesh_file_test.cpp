@@ -105,12 +105,6 @@ void expectTetrahedron(const TriangleMesh& mesh) {
   }
 }
 
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
 /// The message of the mcws::Error that loadMesh(path) throws ("" and a failure when none).
 std::string meshError(const std::string& path, double scale = 1.0) {
   try {
@@ -267,7 +261,7 @@ TEST(MeshFile, MalformedFilesGetOneLineAndNothingOnStderr) {
        "not an STL file: 0 bytes, too short for a binary STL (84-byte header), and not starting "
        "with 'solid' (ASCII STL)"},
       {stl, asciiStl("0 0"), "line 20: triangle 3 corner 2: 'vertex' is not a number"},
-      {stl, replace(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found 'lop'"},
+      {stl, test::replaceOnce(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found 'lop'"},
       {stl, asciiStl().substr(0, 100), "line 5: triangle 1 corner 2: the file ends"},
       {stl, asciiStl().substr(0, 88), "line 4: expected 'vertex', found the end of the file"},
       {stl, asciiStl() + "\x1b[31m",

@@ -50,8 +50,6 @@ std::string ur5WithGripper() {
   return text.replace(text.find("</robot>"), std::string("</robot>\n").size(), kGripper);
 }
 
-const UrdfChainOptions kToTool0{"", "tool0"};
-
 const UrdfCollision& element(const UrdfRobotGeometry& geometry, const std::string& link) {
   for (const UrdfCollision& collision : geometry.collisions) {
     if (collision.link == link) return collision;
@@ -60,8 +58,8 @@ const UrdfCollision& element(const UrdfRobotGeometry& geometry, const std::strin
 }
 
 TEST(UrdfBranches, GripperFingersDoNotChangeTheTipOrTheDof) {
-  const Robot arm = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", kToTool0);
-  const Robot gripped = parseRobotUrdf(ur5WithGripper(), "ur5_gripper.urdf", kToTool0);
+  const Robot arm = parseRobotUrdf(test::kUr5ShapedUrdf, "ur5.urdf", test::kUr5ToTool0);
+  const Robot gripped = parseRobotUrdf(ur5WithGripper(), "ur5_gripper.urdf", test::kUr5ToTool0);
   EXPECT_EQ(gripped.dof(), 6);  // the finger joints are off the chain
   EXPECT_TRUE(gripped.mimic_joints.empty());
   std::mt19937_64 rng(5);
@@ -79,7 +77,7 @@ TEST(UrdfBranches, FingersAreCarriedByTheToolAtTheirDefaultValues) {
   // Before issue 33 item 2: "link 'finger_left' has <collision> elements but is not part of the
   // chain: it moves with joint 'finger_left_joint', which is not in the chain ...".
   const UrdfRobotGeometry geometry =
-      parseRobotUrdfGeometry(ur5WithGripper(), "ur5_gripper.urdf", kToTool0);
+      parseRobotUrdfGeometry(ur5WithGripper(), "ur5_gripper.urdf", test::kUr5ToTool0);
   // In the flange frame (tool0's): palm 1 cm up; left finger frame (0, 0.02 + 0.005, 0.02), its
   // box 3 cm above; right (0, -0.02 - 0.004, 0.02).
   const std::pair<const char*, Eigen::Vector3d> expected[] = {
@@ -95,9 +93,9 @@ TEST(UrdfBranches, FingersAreCarriedByTheToolAtTheirDefaultValues) {
   }
   // The collision model's tool body holds them, in the same place, by link name: finger_left,
   // finger_right, palm, tool0.
-  const Robot robot = parseRobotUrdf(ur5WithGripper(), "ur5_gripper.urdf", kToTool0);
+  const Robot robot = parseRobotUrdf(ur5WithGripper(), "ur5_gripper.urdf", test::kUr5ToTool0);
   const CollisionModel model =
-      parseCollisionUrdf(robot, ur5WithGripper(), "ur5_gripper.urdf", kToTool0);
+      parseCollisionUrdf(robot, ur5WithGripper(), "ur5_gripper.urdf", test::kUr5ToTool0);
   ASSERT_EQ(model.tool.shapes.size(), 4u);
   EXPECT_EQ(model.tool.shapes[0].type, ShapeType::kBox);
   EXPECT_LT((model.tool.shapes[0].T_body_shape.translation() - expected[1].second).norm(),
@@ -141,7 +139,7 @@ TEST(UrdfBranches, FloatingJointOffTheChainIsRefusedOnlyWithGeometryBelowIt) {
       "<link name='camera'/><joint name='camera_mount' type='floating'><parent link='palm'/>"
       "<child link='camera'/></joint></robot>";
   const std::string bare = std::string(text).replace(text.find("</robot>"), 8, camera);
-  EXPECT_EQ(parseRobotUrdfGeometry(bare, "ur5_gripper.urdf", kToTool0).robot.dof(), 6);
+  EXPECT_EQ(parseRobotUrdfGeometry(bare, "ur5_gripper.urdf", test::kUr5ToTool0).robot.dof(), 6);
   const std::string with_box = std::string(text).replace(
       text.find("</robot>"), 8,
       "<link name='camera'><collision><geometry><sphere radius='0.01'/></geometry></collision>"
@@ -158,7 +156,7 @@ TEST(UrdfBranches, LinksMovedByAMimicJointOfTheChainAreRefused) {
   std::string text = test::kUr5ShapedUrdf;
   const std::string wrist3 = "<parent link=\"wrist_2_link\"/><child link=\"wrist_3_link\"/>";
   text.insert(text.find(wrist3) + wrist3.size(), "<mimic joint=\"wrist_2_joint\"/>");
-  EXPECT_EQ(parseRobotUrdf(text, "ur5_gripper.urdf", kToTool0).dof(), 5);
+  EXPECT_EQ(parseRobotUrdf(text, "ur5_gripper.urdf", test::kUr5ToTool0).dof(), 5);
   EXPECT_EQ(geometryError(text),
             "ur5_gripper.urdf: link 'tool0' has <collision> elements but is not part of the "
             "chain: it moves with joint 'wrist_3_joint', a mimic joint of the chain (not "

@@ -80,8 +80,8 @@ std::string errorOf(Filter& filter, const typename Filter::PointCloudConstPtr& c
 
 template <typename PointT>
 class BaselineTyped : public ::testing::Test {};
-using PointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZL, WorkspacePoint>;
-TYPED_TEST_SUITE(BaselineTyped, PointTypes);
+using BaselinePointTypes = ::testing::Types<pcl::PointXYZ, pcl::PointXYZL, WorkspacePoint>;
+TYPED_TEST_SUITE(BaselineTyped, BaselinePointTypes);
 
 // ---------------------------------------------------------------------------------------------
 // GridBoundary

@@ -58,8 +58,8 @@ bool onGridRim(const pcl::PointXYZ& p, int n, int dimensions) {
 
 template <typename PointT>
 class OrthantBoundaryTyped : public ::testing::Test {};
-using PointTypes = ::testing::Types<pcl::PointXYZ, WorkspacePoint>;
-TYPED_TEST_SUITE(OrthantBoundaryTyped, PointTypes);
+using OrthantPointTypes = ::testing::Types<pcl::PointXYZ, WorkspacePoint>;
+TYPED_TEST_SUITE(OrthantBoundaryTyped, OrthantPointTypes);
 
 TYPED_TEST(OrthantBoundaryTyped, KeepsExactlyTheRimOfASquareGridInEveryFrame) {
   constexpr int n = 21;

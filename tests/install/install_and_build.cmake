@@ -19,7 +19,8 @@ if(private_headers)
 endif()
 set(flags "")
 if(SANITIZE)
-  set(flags -DCMAKE_CXX_FLAGS=-fsanitize=address,undefined
+  # -O1, as the sanitizer build itself: the instrumented PCL templates compile in half the time.
+  set(flags -DCMAKE_CXX_FLAGS=-fsanitize=address,undefined "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
             -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined)
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER} -B ${WORK}/consumer

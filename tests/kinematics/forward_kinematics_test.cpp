@@ -20,9 +20,6 @@ namespace {
 constexpr double kRelativeTolerance = 1e-9;
 constexpr int kRandomVectors = 1000;
 
-const char* const kShippedRobots[] = {"deicing", "ta1400", "inspection6", "maintenance4",
-                                      "insulator_cleaner"};
-
 using test::randomJoints;
 
 double reach(const Robot& robot) {  // a length scale for tolerances
@@ -103,7 +100,7 @@ void expectMatchesKdl(const std::string& path) {
 }
 
 TEST(ForwardKinematics, MatchesKdlOnEveryShippedRobot) {
-  for (const char* name : kShippedRobots) {
+  for (const char* name : test::kShippedRobots) {
     SCOPED_TRACE(name);
     expectMatchesKdl(test::robotPath(name));
   }
@@ -156,7 +153,7 @@ TEST(Robot, CheckJointVectorNamesJointValueAndLimits) {
 // ---- the sampling kernel against the general chain ---------------------------------------------
 
 TEST(PointKinematics, AgreesWithChainPosesForToolAndFlange) {
-  for (const char* name : kShippedRobots) {
+  for (const char* name : test::kShippedRobots) {
     SCOPED_TRACE(name);
     const Robot robot = loadRobot(test::robotPath(name));
     const PointKinematics tool(robot, robot.T_flange_tool.translation());

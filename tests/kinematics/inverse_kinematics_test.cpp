@@ -275,64 +275,55 @@ TEST(InverseKinematics, PreparedSolverGivesSolveIksResults) {
 
 // ---- misuse throws ------------------------------------------------------------------------------
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(InverseKinematics, MisuseThrowsNamingTheProblem) {
   const Robot robot = loadRobot(test::robotPath("inspection6"));
   const Eigen::VectorXd q0 = Eigen::VectorXd::Zero(6);
   Eigen::Isometry3d nan_target = Eigen::Isometry3d::Identity();
   nan_target.translation().x() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(errorOf([&] { solveIk(robot, nan_target, q0); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, nan_target, q0); }),
             "solveIk: target pose entry (0, 3) is nan, not a finite number");
 
   Eigen::Isometry3d skewed = Eigen::Isometry3d::Identity();
   skewed.linear()(0, 1) = 0.1;
-  EXPECT_EQ(errorOf([&] {
+  EXPECT_EQ(test::errorOf([&] {
               solveIk(robot, skewed, q0);
             }).rfind("solveIk: target rotation is not orthonormal (|R^T R - I| = 0.1", 0),
             0u);
   Eigen::Isometry3d mirrored = Eigen::Isometry3d::Identity();
   mirrored.linear()(2, 2) = -1;
-  EXPECT_NE(errorOf([&] { solveIk(robot, mirrored, q0); }).find("det R = -1"), std::string::npos);
+  EXPECT_NE(test::errorOf([&] { solveIk(robot, mirrored, q0); }).find("det R = -1"), std::string::npos);
   Eigen::Isometry3d projective = Eigen::Isometry3d::Identity();
   projective.matrix()(3, 0) = 0.5;
-  EXPECT_EQ(errorOf([&] { solveIk(robot, projective, q0); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, projective, q0); }),
             "solveIk: target pose's last row is not 0 0 0 1");
 
-  EXPECT_EQ(errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd(5)); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd(5)); }),
             "robot 'inspection6' has 6 joints but 5 joint values were given");
   Eigen::VectorXd q_inf = q0;
   q_inf[2] = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q_inf); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q_inf); }),
             "IK seed value of joint 'j3' is inf, not a finite number");
 
   IkOptions options;
   options.position_tolerance = 0;
-  EXPECT_EQ(errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q0, options); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q0, options); }),
             "IK position tolerance 0 is not a positive number");
   options = {};
   options.restarts = -1;
-  EXPECT_EQ(errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q0, options); }),
+  EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q0, options); }),
             "IK restarts -1 is negative");
-  EXPECT_EQ(errorOf([&] { solveIkNewtonPoseEntries(robot, nan_target, q0); }),
+  EXPECT_EQ(test::errorOf([&] { solveIkNewtonPoseEntries(robot, nan_target, q0); }),
             "solveIkNewtonPoseEntries: target pose entry (0, 3) is nan, not a finite number");
   const Robot deicing = loadRobot(test::robotPath("deicing"));
-  EXPECT_EQ(errorOf([&] {
+  EXPECT_EQ(test::errorOf([&] {
               solveIkNewtonPoseEntries(deicing, Eigen::Isometry3d::Identity(),
                                        Eigen::VectorXd::Zero(4));
             }),
             "solveIkNewtonPoseEntries: robot 'deicing' has 4 joints, not 6");
-  EXPECT_EQ(errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 0); }),
+  EXPECT_EQ(test::errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 0); }),
             "solveIkNewtonPoseEntries: step tolerance 0 is not a positive number");
   EXPECT_EQ(
-      errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 1e-3, 0); }),
+      test::errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 1e-3, 0); }),
       "solveIkNewtonPoseEntries: max_iterations 0 is not at least 1");
 }
 

@@ -23,7 +23,7 @@ using test::differenceJacobian;
 using test::shippedRobotFiles;
 using test::tiltedAxesRobot;
 
-constexpr int kRandomVectors = 1000;
+constexpr int kRandomJointVectors = 1000;
 /// Central differences with step h: truncation error ~ h^2 |q'''| ~ 1e-10 reach, rounding error
 /// ~ 1e-16 reach / h ~ 1e-11 reach; 1e-8 of the reach leaves a margin of 100.
 constexpr double kDifferenceTolerance = 1e-8;
@@ -33,7 +33,7 @@ constexpr double kKdlTolerance = 1e-12;
 using test::randomJoints;
 
 /// A length scale: the sum of the chain's fixed offsets and prismatic strokes, at least 1.
-double reach(const Robot& robot) {
+double lengthScale(const Robot& robot) {
   double sum =
       1.0 + robot.T_last_flange.translation().norm() + robot.T_flange_tool.translation().norm();
   for (const Joint& joint : robot.joints) {
@@ -56,9 +56,9 @@ TEST(Jacobian, MatchesCentralDifferencesOnEveryShippedRobot) {
   for (const std::string& path : files) {
     SCOPED_TRACE(path);
     const Robot robot = loadRobot(path);
-    const double length = reach(robot);
+    const double length = lengthScale(robot);
     std::mt19937_64 rng(17);
-    for (int n = 0; n < kRandomVectors; ++n) {
+    for (int n = 0; n < kRandomJointVectors; ++n) {
       const Eigen::VectorXd q = randomJoints(robot, rng);
       ASSERT_LT(jacobianDifference(toolJacobian(robot, q), differenceJacobian(robot, q), length),
                 kDifferenceTolerance)
@@ -75,9 +75,9 @@ TEST(Jacobian, MatchesKdlChainJntToJacSolverOnEveryShippedRobot) {
     ASSERT_EQ(static_cast<int>(chain.getNrOfJoints()), robot.dof());
     KDL::ChainJntToJacSolver solver(chain);
     KDL::Jacobian kdl_jacobian(robot.dof());
-    const double length = reach(robot);
+    const double length = lengthScale(robot);
     std::mt19937_64 rng(19);
-    for (int n = 0; n < kRandomVectors; ++n) {
+    for (int n = 0; n < kRandomJointVectors; ++n) {
       const Eigen::VectorXd q = randomJoints(robot, rng);
       KDL::JntArray q_kdl(robot.dof());
       q_kdl.data = q;
@@ -95,7 +95,7 @@ TEST(Jacobian, TiltedAxesMatchCentralDifferences) {
   const Robot robot = tiltedAxesRobot();
   const KinematicChain chain(robot);
   std::mt19937_64 rng(23);
-  for (int n = 0; n < kRandomVectors; ++n) {
+  for (int n = 0; n < kRandomJointVectors; ++n) {
     const Eigen::VectorXd q = randomJoints(robot, rng);
     ASSERT_LT(jacobianDifference(toolJacobian(robot, q), differenceJacobian(robot, q), 1.0),
               kDifferenceTolerance);
@@ -116,9 +116,9 @@ TEST(Jacobian, PoseOfThePreparedChainIsTheToolPose) {
       Eigen::Vector3d p;
       Jacobian J(6, robot.dof());
       chain.toolPoseAndJacobian(q.data(), R, p, J.data());
-      ASSERT_LT((chain.toolPose(q.data()).matrix() - expected).norm(), 1e-9 * reach(robot));
+      ASSERT_LT((chain.toolPose(q.data()).matrix() - expected).norm(), 1e-9 * lengthScale(robot));
       ASSERT_LT((R - expected.topLeftCorner<3, 3>()).norm(), 1e-12);
-      ASSERT_LT((p - expected.topRightCorner<3, 1>()).norm(), 1e-9 * reach(robot));
+      ASSERT_LT((p - expected.topRightCorner<3, 1>()).norm(), 1e-9 * lengthScale(robot));
     }
   }
 }

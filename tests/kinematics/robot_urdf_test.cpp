@@ -53,13 +53,7 @@ const std::string kPlanar = R"(<?xml version="1.0"?>
 </robot>
 )";
 
-std::string replace(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
-}
-
-std::string errorOf(const std::string& urdf, const UrdfChainOptions& options = {}) {
+std::string urdfError(const std::string& urdf, const UrdfChainOptions& options = {}) {
   try {
     parseRobotUrdf(urdf, "bad.urdf", options);
   } catch (const Error& e) {
@@ -150,44 +144,44 @@ TEST(RobotUrdf, ReportsMissingFileAndMalformedXml) {
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "/nonexistent/arm.urdf: robot file does not exist");
   }
-  EXPECT_THAT(errorOf("<robot name='x'><link name='a'></robot>"),
+  EXPECT_THAT(urdfError("<robot name='x'><link name='a'></robot>"),
               HasSubstr("bad.urdf: malformed URDF: "));
-  EXPECT_THAT(errorOf("not xml at all"), HasSubstr("bad.urdf: malformed URDF"));
-  EXPECT_EQ(errorOf("<robot name='x'><link name='a'></robot>").find('\n'), std::string::npos);
+  EXPECT_THAT(urdfError("not xml at all"), HasSubstr("bad.urdf: malformed URDF"));
+  EXPECT_EQ(urdfError("<robot name='x'><link name='a'></robot>").find('\n'), std::string::npos);
 }
 
 TEST(RobotUrdf, MalformedUrdfPrintsNothing) {
   testing::internal::CaptureStderr();
   testing::internal::CaptureStdout();
-  errorOf("<robot name='x'><joint name='j' type='revolute'/></robot>");
+  urdfError("<robot name='x'><joint name='j' type='revolute'/></robot>");
   EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
 TEST(RobotUrdf, ReportsTipNotBelowBaseAndUnknownLinks) {
-  EXPECT_EQ(errorOf(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below base link 'l2'");
-  EXPECT_EQ(errorOf(kPlanar, {"", "hand"}),
+  EXPECT_EQ(urdfError(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below base link 'l2'");
+  EXPECT_EQ(urdfError(kPlanar, {"", "hand"}),
             "bad.urdf: tip link 'hand' is not a link of robot 'planar'");
-  EXPECT_EQ(errorOf(kPlanar, {"torso", ""}),
+  EXPECT_EQ(urdfError(kPlanar, {"torso", ""}),
             "bad.urdf: base link 'torso' is not a link of robot 'planar'");
 }
 
 TEST(RobotUrdf, ReportsJointWithoutLimits) {
   // urdfdom itself rejects a revolute joint without <limit>; its message names the joint.
   const std::string text =
-      replace(kPlanar, R"(<limit lower="-2" upper="2" effort="1" velocity="1"/>)", "");
-  EXPECT_THAT(errorOf(text), HasSubstr("bad.urdf: malformed URDF: "));
-  EXPECT_THAT(errorOf(text), HasSubstr("j1"));
+      test::replaceOnce(kPlanar, R"(<limit lower="-2" upper="2" effort="1" velocity="1"/>)", "");
+  EXPECT_THAT(urdfError(text), HasSubstr("bad.urdf: malformed URDF: "));
+  EXPECT_THAT(urdfError(text), HasSubstr("j1"));
 }
 
 TEST(RobotUrdf, ReportsFloatingAndPlanarJointsButReadsMimicJoints) {
-  EXPECT_EQ(errorOf(replace(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
             "bad.urdf: joint 'j1': floating joints are not supported (revolute, continuous, "
             "prismatic, fixed)");
-  EXPECT_THAT(errorOf(replace(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
+  EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
               HasSubstr("bad.urdf: joint 'j3': planar joints are not supported"));
   // A mimic joint is no error (issue 33): j2 follows j1 and is no degree of freedom.
-  const Robot mimic = parseRobotUrdf(replace(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
+  const Robot mimic = parseRobotUrdf(test::replaceOnce(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
                                              "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>"),
                                      "mimic.urdf");
   EXPECT_EQ(mimic.dof(), 2);
@@ -197,23 +191,23 @@ TEST(RobotUrdf, ReportsFloatingAndPlanarJointsButReadsMimicJoints) {
 
 TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {
   const std::string branched =
-      replace(kPlanar, "</robot>",
+      test::replaceOnce(kPlanar, "</robot>",
               "<link name='camera'/><joint name='cam' type='fixed'><parent link='l1'/>"
               "<child link='camera'/></joint></robot>");
-  EXPECT_EQ(errorOf(branched),
+  EXPECT_EQ(urdfError(branched),
             "bad.urdf: link 'base' has 2 leaf links below it (tool, camera): choose the tip link");
   EXPECT_EQ(parseRobotUrdf(branched, "ok.urdf", {"", "camera"}).dof(), 1);
-  EXPECT_EQ(errorOf(kPlanar, {"l3", "tool"}),
+  EXPECT_EQ(urdfError(kPlanar, {"l3", "tool"}),
             "bad.urdf: no revolute, continuous or prismatic joint between base link 'l3' and tip "
             "link 'tool'");
 }
 
 TEST(RobotUrdf, ReportsLimitsInTheWrongOrderZeroAxisAndOddNames) {
-  EXPECT_EQ(errorOf(replace(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0.4" upper="0")")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0.4" upper="0")")),
             "bad.urdf: joint 'j3': lower limit 0.4 is greater than upper limit 0");
-  EXPECT_EQ(errorOf(replace(kPlanar, R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 0"/>)")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 0"/>)")),
             "bad.urdf: joint 'j1': axis must be a finite non-zero vector");
-  EXPECT_EQ(errorOf(replace(kPlanar, R"("j3" type)", R"("j,3" type)")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j3" type)", R"("j,3" type)")),
             "bad.urdf: joint 'j,3': name contains '=', ',' or a space");
 }
 
@@ -226,7 +220,7 @@ std::string repeat(const std::string& text, int count) {
 
 /// kPlanar with `content` inside its tool link: the robot and tool elements are two levels.
 std::string planarWithToolContent(const std::string& content) {
-  return replace(kPlanar, R"(<link name="tool"/>)", R"(<link name="tool">)" + content + "</link>");
+  return test::replaceOnce(kPlanar, R"(<link name="tool"/>)", R"(<link name="tool">)" + content + "</link>");
 }
 
 /// The error of loading `text` written to the file `path`.
@@ -248,14 +242,14 @@ TEST(RobotUrdf, RefusesDeepNestingBeforeTheParserOverflowsItsStack) {
   EXPECT_EQ(
       parseRobotUrdf(planarWithToolContent(repeat("<x>", 998) + repeat("</x>", 998)), "ok").dof(),
       3);
-  EXPECT_EQ(errorOf(planarWithToolContent(repeat("<x>", 999) + repeat("</x>", 999))),
+  EXPECT_EQ(urdfError(planarWithToolContent(repeat("<x>", 999) + repeat("</x>", 999))),
             "bad.urdf: XML nested deeper than 1000 elements");
   // TinyXML recursed once per level and overflowed an 8 MB stack at 100,000 levels.
   EXPECT_EQ(
       fileErrorOf(path, planarWithToolContent(repeat("<x>", 100000) + repeat("</x>", 100000))),
       path + ": XML nested deeper than 1000 elements");
   // A quoted "/>" does not close an element.
-  EXPECT_EQ(errorOf(planarWithToolContent(repeat("<x a=\"/>\" b='>'>", 999) + repeat("</x>", 999))),
+  EXPECT_EQ(urdfError(planarWithToolContent(repeat("<x a=\"/>\" b='>'>", 999) + repeat("</x>", 999))),
             "bad.urdf: XML nested deeper than 1000 elements");
 }
 
@@ -272,10 +266,10 @@ TEST(RobotUrdf, NestingCountSkipsEmptyElementsCommentsCdataAndTheDeclaration) {
 
 TEST(RobotUrdf, RefusesTextThatCouldHideNestingFromTheCount) {
   // TinyXML would read "></x>" as the declaration's version and never see an end tag.
-  EXPECT_EQ(errorOf(planarWithToolContent("<x><?xml version=\"></x>\"?>")),
+  EXPECT_EQ(urdfError(planarWithToolContent("<x><?xml version=\"></x>\"?>")),
             "bad.urdf: XML declaration on line 4 is not of the form <?xml name=\"value\" ...?>");
   // TinyXML would take "\xC3<" as one character and never see the end tag.
-  EXPECT_EQ(errorOf(planarWithToolContent("<x>\xC3</x>")),
+  EXPECT_EQ(urdfError(planarWithToolContent("<x>\xC3</x>")),
             "bad.urdf: line 4 is not UTF-8 text (byte 0xC3 starts a cut-short character)");
   EXPECT_EQ(parseRobotUrdf(planarWithToolContent("<x>caf\xC3\xA9</x>"), "ok").dof(), 3);
 }
@@ -283,25 +277,25 @@ TEST(RobotUrdf, RefusesTextThatCouldHideNestingFromTheCount) {
 TEST(RobotUrdf, RefusesAPercentThatUrdfdomWouldTakeForAPrintfFormat) {
   // urdfdom 3.0 passed "Unable to parse component [0%1n=] ..." to printf as the format: a
   // crash (found by the robot_urdf fuzzer).
-  EXPECT_EQ(errorOf(replace(kPlanar, "xyz=\"0.1 0 0\"", "xyz=\"0%1n= 0 0.5\"")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, "xyz=\"0.1 0 0\"", "xyz=\"0%1n= 0 0.5\"")),
             "bad.urdf: line 14: attribute xyz=\"0%1n= 0 0.5\" holds a '%', which no URDF number "
             "or name needs (urdfdom would misread it)");
   // The same '%' written as a character reference, in another attribute, with single quotes.
-  EXPECT_THAT(errorOf(replace(kPlanar, "<link name=\"tool\"/>",
+  EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
                               "<link name='tool'><visual><geometry><sphere radius='&#x025;s'/>"
                               "</geometry></visual></link>")),
               HasSubstr("bad.urdf: line 4: attribute radius=\"&#x025;s\" holds a '%'"));
-  EXPECT_THAT(errorOf(replace(kPlanar, "name=\"j1\"", "name=\"j&#0037;s\"")),
+  EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, "name=\"j1\"", "name=\"j&#0037;s\"")),
               HasSubstr("attribute name=\"j&#0037;s\" holds a '%'"));
   // A mesh's file name may hold one; other references are untouched.
-  EXPECT_EQ(parseRobotUrdf(replace(kPlanar, "<link name=\"tool\"/>",
+  EXPECT_EQ(parseRobotUrdf(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
                                    "<link name='tool'><visual><geometry><mesh "
                                    "filename='tool%20v2.stl'/></geometry></visual></link>"),
                            "ok")
                 .dof(),
             3);
   EXPECT_EQ(
-      parseRobotUrdf(replace(kPlanar, "name=\"planar\"", "name=\"pl&#38;&#x26;nar\""), "ok").dof(),
+      parseRobotUrdf(test::replaceOnce(kPlanar, "name=\"planar\"", "name=\"pl&#38;&#x26;nar\""), "ok").dof(),
       3);
 }
 
@@ -341,7 +335,7 @@ TEST(RobotUrdf, NamesTheJointThatClosesALoop) {
   EXPECT_EQ(fileErrorOf(path, linksAndJoints({"j1 a b", "j2 b a"})),
             path + ": joint 'j2' closes a loop: its child link 'a' is also its ancestor");
   // A joint from a link to itself.
-  EXPECT_EQ(errorOf(linksAndJoints({"j0 base a", "j1 a b", "j2 b b"})),
+  EXPECT_EQ(urdfError(linksAndJoints({"j0 base a", "j1 a b", "j2 b b"})),
             "bad.urdf: joint 'j2' closes a loop: its child link 'b' is also its ancestor");
   // Every link has a parent, so urdfdom finds no root: the walk up from a meets a again first,
   // and the search from a returns to it by j2. urdfdom, rejecting this text itself, leaks the
@@ -349,7 +343,7 @@ TEST(RobotUrdf, NamesTheJointThatClosesALoop) {
 #if defined(__SANITIZE_ADDRESS__)
   const __lsan::ScopedDisabler urdfdom_leaks_the_loop_it_rejects;
 #endif
-  EXPECT_EQ(errorOf(R"(<robot name="r"><link name="a"/><link name="b"/>
+  EXPECT_EQ(urdfError(R"(<robot name="r"><link name="a"/><link name="b"/>
       <joint name="j1" type="fixed"><parent link="a"/><child link="b"/></joint>
       <joint name="j2" type="fixed"><parent link="b"/><child link="a"/></joint></robot>)"),
             "bad.urdf: joint 'j2' closes a loop: its child link 'a' is also its ancestor");
@@ -357,37 +351,37 @@ TEST(RobotUrdf, NamesTheJointThatClosesALoop) {
 
 TEST(RobotUrdf, RefusesALinkWithTwoParentJoints) {
   // base -> a by j1 and base -> b -> a by j3: the search reaches a by j1 first (name order).
-  EXPECT_EQ(errorOf(linksAndJoints({"j1 base a", "j2 base b", "j3 b a"})),
+  EXPECT_EQ(urdfError(linksAndJoints({"j1 base a", "j2 base b", "j3 b a"})),
             "bad.urdf: joint 'j3': link 'a' already has parent joint 'j1' (the joints must form "
             "a tree)");
 }
 
 TEST(RobotUrdf, RefusesLimitsAndOriginsLargerThan1e9LikeRobotYaml) {
   const std::string j1_limit = R"(lower="-2" upper="2")";
-  EXPECT_EQ(errorOf(replace(kPlanar, j1_limit, R"(lower="-1e308" upper="2")")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, j1_limit, R"(lower="-1e308" upper="2")")),
             "bad.urdf: joint 'j1': lower limit -1e+308 is out of range (at most 1e9 in size)");
-  EXPECT_EQ(errorOf(replace(kPlanar, j1_limit, R"(lower="-2" upper="1e308")")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, j1_limit, R"(lower="-2" upper="1e308")")),
             "bad.urdf: joint 'j1': upper limit 1e+308 is out of range (at most 1e9 in size)");
-  EXPECT_EQ(errorOf(replace(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0" upper="2e9")")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0" upper="2e9")")),
             "bad.urdf: joint 'j3': upper limit 2e+09 is out of range (at most 1e9 in size)");
   EXPECT_EQ(
-      errorOf(replace(kPlanar, R"(<origin xyz="0.2 0 0"/>)", R"(<origin xyz="0 -1e308 0"/>)")),
+      urdfError(test::replaceOnce(kPlanar, R"(<origin xyz="0.2 0 0"/>)", R"(<origin xyz="0 -1e308 0"/>)")),
       "bad.urdf: joint 'j2': origin coordinate -1e+308 is out of range (at most 1e9 in "
       "size)");
   const Robot robot =
-      parseRobotUrdf(replace(kPlanar, j1_limit, R"(lower="-1e9" upper="1e9")"), "ok.urdf");
+      parseRobotUrdf(test::replaceOnce(kPlanar, j1_limit, R"(lower="-1e9" upper="1e9")"), "ok.urdf");
   EXPECT_EQ(robot.joints[0].lower, -1e9);
   EXPECT_EQ(robot.joints[0].upper, 1e9);
 }
 
 TEST(RobotUrdf, RefusesControlCharactersInRobotLinkAndJointNames) {
   // XML character references write control characters into a name.
-  EXPECT_EQ(errorOf(replace(kPlanar, R"(<robot name="planar">)", R"(<robot name="pla&#10;nar">)")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<robot name="planar">)", R"(<robot name="pla&#10;nar">)")),
             "bad.urdf: robot name 'pla\\x0anar' holds a control byte (names are printable text)");
-  EXPECT_EQ(errorOf(replace(kPlanar, R"("j2" type)", R"("j&#9;2" type)")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j2" type)", R"("j&#9;2" type)")),
             "bad.urdf: joint name 'j\\x092' holds a control byte (names are printable text)");
   // A link off the chain too: every name of the file may reach a message.
-  EXPECT_EQ(errorOf(replace(kPlanar, R"(<link name="tool"/>)",
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<link name="tool"/>)",
                             R"(<link name="tool"/><link name="spare&#127;"/>)"
                             R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
                             R"(<child link="spare&#127;"/></joint>)")),

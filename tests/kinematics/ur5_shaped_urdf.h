@@ -14,6 +14,8 @@
 #include <cmath>
 #include <string>
 
+#include "mcws/kinematics/robot_urdf.h"
+
 namespace mcws::test {
 
 inline const std::string kUr5ShapedUrdf = R"(<?xml version="1.0"?>
@@ -59,6 +61,9 @@ inline const std::string kUr5ShapedUrdf = R"(<?xml version="1.0"?>
     <origin xyz="0.05 0 0.0823" rpy="0 -1.5707963267948966 0"/></joint>
 </robot>
 )";
+
+/// The chain from the root (world) to tool0, the leaf the tests measure.
+inline const UrdfChainOptions kUr5ToTool0{"", "tool0"};
 
 /// Height of base_link's frame above world's [m].
 constexpr double kUr5Pedestal = 0.5;

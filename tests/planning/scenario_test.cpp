@@ -184,7 +184,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
-class Scenario : public ::testing::Test {
+class ScenarioFile : public ::testing::Test {
  protected:
   void SetUp() override { test::writeFile(dir_.file("arm.yaml"), kRobot); }
 
@@ -210,7 +210,7 @@ class Scenario : public ::testing::Test {
   test::TempDir dir_;
 };
 
-TEST_F(Scenario, GoodFileConvertsEveryField) {
+TEST_F(ScenarioFile, GoodFileConvertsEveryField) {
   const mcws::Scenario s = load(kScenario);
   EXPECT_EQ(s.name, "good");
   EXPECT_EQ(s.source, path());
@@ -269,7 +269,7 @@ TEST_F(Scenario, GoodFileConvertsEveryField) {
       p.robot.T_world_base.isApprox(Eigen::Isometry3d(Eigen::Translation3d(1, 2, 3)), kTol));
 }
 
-TEST_F(Scenario, ParseScenarioFindsTheRobotNextToTheSource) {
+TEST_F(ScenarioFile, ParseScenarioFindsTheRobotNextToTheSource) {
   const mcws::Scenario s = parseScenario(kScenario, dir_.file("not_written.yaml"));
   EXPECT_EQ(s.source, dir_.file("not_written.yaml"));
   EXPECT_EQ(s.problem.robot.name, "rp2");
@@ -282,7 +282,7 @@ TEST_F(Scenario, ParseScenarioFindsTheRobotNextToTheSource) {
   EXPECT_EQ(absolute.robot_path, dir_.file("arm.yaml"));
 }
 
-TEST_F(Scenario, DefaultsWithoutPlannerJointScaleOrValidation) {
+TEST_F(ScenarioFile, DefaultsWithoutPlannerJointScaleOrValidation) {
   const mcws::Scenario s = load(kMinimal);
   const SwayPlanningProblem& p = s.problem;
   const SwayPlanningProblem defaults;
@@ -319,7 +319,7 @@ TEST_F(Scenario, DefaultsWithoutPlannerJointScaleOrValidation) {
   EXPECT_EQ(s.distance_unit, "sqrt(sum (s_i dq_i)^2) with s = 1/rad, 1/cm");
 }
 
-TEST_F(Scenario, AcceptanceFields) {
+TEST_F(ScenarioFile, AcceptanceFields) {
   const SwayPlanningProblem defaults = load(kScenario).problem;
   EXPECT_EQ(defaults.acceptance, Acceptance::kWholePath);
   EXPECT_EQ(defaults.max_collision_probability, 0.05);
@@ -337,7 +337,7 @@ TEST_F(Scenario, AcceptanceFields) {
       Acceptance::kWholePath);
 }
 
-TEST_F(Scenario, BadAcceptanceFields) {
+TEST_F(ScenarioFile, BadAcceptanceFields) {
   // Each replaces the threshold on line 24.
   auto with = [](const std::string& field) { return replaced(kScenario, "threshold: 0.8", field); };
   expectError(with("acceptance: P"), 24, {"planner: acceptance 'P' is not whole_path or patent_p"});
@@ -359,7 +359,7 @@ TEST_F(Scenario, BadAcceptanceFields) {
                "max_collision_probability", "patent_p"});
 }
 
-TEST_F(Scenario, PaddingAsALength) {
+TEST_F(ScenarioFile, PaddingAsALength) {
   EXPECT_NEAR(load(replaced(kScenario, "padding: auto", "padding: 3 cm")).problem.padding, 3.0,
               kTol);
   EXPECT_NEAR(load(replaced(kScenario, "padding: auto", "padding: 15 mm")).problem.padding, 1.5,
@@ -367,14 +367,14 @@ TEST_F(Scenario, PaddingAsALength) {
   EXPECT_EQ(load(replaced(kScenario, "padding: auto", "padding: 0 cm")).problem.padding, 0.0);
 }
 
-TEST_F(Scenario, MaxRoadmapNodesIsAtLeastRoadmapNodes) {
+TEST_F(ScenarioFile, MaxRoadmapNodesIsAtLeastRoadmapNodes) {
   const mcws::Scenario s =
       load(replaced(kScenario, "max_roadmap_nodes: 480", "max_roadmap_nodes: 60"));
   EXPECT_EQ(s.problem.roadmap.nodes, 120u);
   EXPECT_EQ(s.problem.roadmap.max_nodes, 120u);
 }
 
-TEST_F(Scenario, CovarianceBlockConvertsItsUnits) {
+TEST_F(ScenarioFile, CovarianceBlockConvertsItsUnits) {
   // Entries in mm and deg: (x, x) 4 mm^2 = 0.04 cm^2 (plus the slide's 1 cm^2),
   // (roll, roll) 9 deg^2 (plus the swing's (3 deg)^2), (x, roll) 2 mm deg =
   // 2 * (0.1 cm) * (pi/180 rad), (y, y) 100 mm^2 = 1 cm^2, (yaw, yaw) 1 deg^2.
@@ -423,7 +423,7 @@ TEST_F(Scenario, CovarianceBlockConvertsItsUnits) {
   EXPECT_EQ(M(1, 1), 0.0);
 }
 
-TEST_F(Scenario, BaseOverridesTheRobotsPose) {
+TEST_F(ScenarioFile, BaseOverridesTheRobotsPose) {
   // xyz (10 mm, 0 cm, -0.2 m) = (1, 0, -20) cm; R = Rz(90 deg) Ry(0) Rx(180 deg).
   const mcws::Scenario s = load(replaced(
       kScenario, "joint_scale:",
@@ -442,7 +442,7 @@ TEST_F(Scenario, BaseOverridesTheRobotsPose) {
       Eigen::Isometry3d(Eigen::Translation3d(0, 5, 0)), kTol));
 }
 
-TEST_F(Scenario, ShippedMaintenance4) {
+TEST_F(ScenarioFile, ShippedMaintenance4) {
   const std::string file = std::string(MCWS_ROBOTS_DIR) + "/../scenarios/maintenance4.yaml";
   const mcws::Scenario s = loadScenario(file);
   EXPECT_EQ(s.name, "maintenance4");
@@ -461,7 +461,7 @@ TEST_F(Scenario, ShippedMaintenance4) {
   EXPECT_GE(p.candidates, 1u);
 }
 
-TEST_F(Scenario, ShippedPlanar2) {
+TEST_F(ScenarioFile, ShippedPlanar2) {
   const std::string file = std::string(MCWS_ROBOTS_DIR) + "/../scenarios/planar2.yaml";
   if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " is not there yet";
   const mcws::Scenario s = loadScenario(file);
@@ -474,14 +474,14 @@ TEST_F(Scenario, ShippedPlanar2) {
 // ---------------------------------------------------------------------------------------------
 // Bad scenarios: one line "s.yaml:<line>: <field>: ..." with the bad value.
 
-TEST_F(Scenario, NegativeSigma) {
+TEST_F(ScenarioFile, NegativeSigma) {
   expectError(replaced(kScenario, "swing: 3 deg", "swing: -1 deg"), 9,
               {"sway: swing: sigma -1 deg must be >= 0"});
   expectError(replaced(kScenario, "slide: 1 cm", "slide: -2 mm"), 10,
               {"sway: slide: sigma -2 mm must be >= 0"});
 }
 
-TEST_F(Scenario, SigmaOfTheWrongKind) {
+TEST_F(ScenarioFile, SigmaOfTheWrongKind) {
   expectError(replaced(kScenario, "swing: 3 deg", "swing: 3 cm"), 9,
               {"sway: swing: ", "'3 cm' is a length; an angle is needed"});
   expectError(replaced(kScenario, "slide: 1 cm", "slide: 1"), 10,
@@ -503,7 +503,7 @@ const char* const kCovarianceAt11 =
     "      - [0, 0, 0, 0, 1, 0]\n"
     "      - [0, 0, 0, 0, 0, 1]\n";
 
-TEST_F(Scenario, CovarianceNotPositiveSemiDefinite) {
+TEST_F(ScenarioFile, CovarianceNotPositiveSemiDefinite) {
   // [[1, 2], [2, 1]] in the (x, y) block: eigenvalues 3 and -1.
   const std::string text =
       replaced(replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11),
@@ -513,37 +513,37 @@ TEST_F(Scenario, CovarianceNotPositiveSemiDefinite) {
   expectError(text, 12, {"sway: covariance is not positive semi-definite (eigenvalue -0.56"});
 }
 
-TEST_F(Scenario, CovarianceNotSymmetric) {
+TEST_F(ScenarioFile, CovarianceNotSymmetric) {
   const std::string text = replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11),
                                     "[0, 0, 1, 0, 0, 0]", "[0, 0.5, 1, 0, 0, 0]");
   expectError(text, 12, {"sway: covariance is not symmetric"});
 }
 
-TEST_F(Scenario, CovarianceRowOfFiveNumbers) {
+TEST_F(ScenarioFile, CovarianceRowOfFiveNumbers) {
   const std::string text = replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11),
                                     "[0, 0, 0, 1, 0, 0]", "[0, 0, 0, 1, 0]");
   expectError(text, 18, {"sway: covariance: row 4 must have 6 numbers"});
 }
 
-TEST_F(Scenario, CovarianceOfFiveRows) {
+TEST_F(ScenarioFile, CovarianceOfFiveRows) {
   const std::string text = replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11),
                                     "      - [0, 0, 0, 0, 0, 1]\n", "");
   expectError(text, 15, {"sway: covariance: matrix must have 6 rows"});
 }
 
-TEST_F(Scenario, CovarianceNegativeVariance) {
+TEST_F(ScenarioFile, CovarianceNegativeVariance) {
   const std::string text = replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11),
                                     "[0, 0, 0, 0, 1, 0]", "[0, 0, 0, 0, -1, 0]");
   expectError(text, 19, {"sway: covariance: variance -1", "of row 5 is negative"});
 }
 
-TEST_F(Scenario, CovarianceUnknownUnit) {
+TEST_F(ScenarioFile, CovarianceUnknownUnit) {
   const std::string text =
       replaced(replaced(kScenario, "  slide: 1 cm\n", kCovarianceAt11), "length: cm", "length: ft");
   expectError(text, 12, {"sway: covariance: ", "unknown unit 'ft'"});
 }
 
-TEST_F(Scenario, ConfidenceOutsideZeroOne) {
+TEST_F(ScenarioFile, ConfidenceOutsideZeroOne) {
   expectError(replaced(kScenario, "confidence: 0.9", "confidence: 0"), 11,
               {"sway: confidence 0 is outside (0, 1)"});
   expectError(replaced(kScenario, "confidence: 0.9", "confidence: 1.5"), 11,
@@ -552,7 +552,7 @@ TEST_F(Scenario, ConfidenceOutsideZeroOne) {
               {"sway: confidence 1 is outside (0, 1)"});
 }
 
-TEST_F(Scenario, PosesAndCandidatesZero) {
+TEST_F(ScenarioFile, PosesAndCandidatesZero) {
   expectError(replaced(kScenario, "poses: 40", "poses: 0"), 12,
               {"sway: poses: 0 must be a whole number of at least 1"});
   expectError(replaced(kScenario, "poses: 40", "poses: 2.5"), 12,
@@ -563,33 +563,33 @@ TEST_F(Scenario, PosesAndCandidatesZero) {
               {"validation: poses: 0 must be a whole number of at least 1"});
 }
 
-TEST_F(Scenario, StartOutsideTheJointLimits) {
+TEST_F(ScenarioFile, StartOutsideTheJointLimits) {
   expectError(replaced(kScenario, "start: [90 deg, 100 mm]", "start: [200 deg, 100 mm]"), 3,
               {"start: joint 'q1' value 200 deg is outside its limits", "([-180, 180] deg)"});
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]", "goal: [-pi/6 rad, 0.4 m]"), 4,
               {"goal: joint 's2' value 0.4 m is outside its limits [0, 30] cm"});
 }
 
-TEST_F(Scenario, GoalOfTheWrongLength) {
+TEST_F(ScenarioFile, GoalOfTheWrongLength) {
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]", "goal: [0 rad, 0 cm, 0 cm]"), 4,
               {"goal: has 3 values; robot 'rp2' has 2 joints"});
   expectError(replaced(kScenario, "start: [90 deg, 100 mm]", "start: 0 rad"), 3,
               {"start: must be a list of joint values with units"});
 }
 
-TEST_F(Scenario, JointValueWithoutUnit) {
+TEST_F(ScenarioFile, JointValueWithoutUnit) {
   expectError(replaced(kScenario, "start: [90 deg, 100 mm]", "start: [1.5, 100 mm]"), 3,
               {"start[1] (joint 'q1', revolute): '1.5' is not a value and a unit"});
 }
 
-TEST_F(Scenario, AngleUnitOnAPrismaticJoint) {
+TEST_F(ScenarioFile, AngleUnitOnAPrismaticJoint) {
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]", "goal: [-pi/6 rad, 1 rad]"), 4,
               {"goal[2] (joint 's2', prismatic): '1 rad' is an angle; a length is needed"});
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]", "goal: [5 cm, 0.2 m]"), 4,
               {"goal[1] (joint 'q1', revolute): '5 cm' is a length; an angle is needed"});
 }
 
-TEST_F(Scenario, UnknownFields) {
+TEST_F(ScenarioFile, UnknownFields) {
   expectError(replaced(kScenario, "joint_scale:", "speed: 3\njoint_scale:"), 5,
               {"scenario: unknown field 'speed'"});
   expectError(replaced(kScenario, "  candidates: 4", "  candidates: 4\n  iterations: 9"), 16,
@@ -600,7 +600,7 @@ TEST_F(Scenario, UnknownFields) {
               {"validation: unknown field 'samples'"});
 }
 
-TEST_F(Scenario, DuplicateFields) {
+TEST_F(ScenarioFile, DuplicateFields) {
   // The robot parser refuses a key given twice ("key 'x' given twice"); a scenario with two
   // goals must not silently plan to one of them.
   const std::string text = replaced(kScenario, "joint_scale:", "goal: [0 rad, 0 cm]\njoint_scale:");
@@ -615,17 +615,17 @@ TEST_F(Scenario, DuplicateFields) {
   }
 }
 
-TEST_F(Scenario, MissingFields) {
+TEST_F(ScenarioFile, MissingFields) {
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]\n", ""), 1,
               {"scenario: missing field 'goal'"});
 }
 
-TEST_F(Scenario, UnknownRule) {
+TEST_F(ScenarioFile, UnknownRule) {
   expectError(replaced(kScenario, "rule: literal", "rule: greedy"), 22,
               {"planner: rule 'greedy' is not literal or weighted"});
 }
 
-TEST_F(Scenario, BadPlannerNumbers) {
+TEST_F(ScenarioFile, BadPlannerNumbers) {
   expectError(replaced(kScenario, "segment_length: 0.25", "segment_length: 0"), 21,
               {"planner: segment_length 0 must be > 0"});
   expectError(replaced(kScenario, "weight: 2", "weight: -1"), 23,
@@ -646,7 +646,7 @@ TEST_F(Scenario, BadPlannerNumbers) {
               {"sway: line: must not be zero"});
 }
 
-TEST_F(Scenario, UnknownObstacleTypeInTheRobotFile) {
+TEST_F(ScenarioFile, UnknownObstacleTypeInTheRobotFile) {
   // The collision parser reports it with the robot file's name and line.
   std::string robot = kRobot;
   robot = replaced(robot, "{name: post, type: box, size: [4, 4, 4],",
@@ -660,20 +660,20 @@ TEST_F(Scenario, UnknownObstacleTypeInTheRobotFile) {
   EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
-TEST_F(Scenario, RobotFileThatDoesNotExist) {
+TEST_F(ScenarioFile, RobotFileThatDoesNotExist) {
   expectError(
       replaced(kScenario, "robot: arm.yaml", "robot: nowhere.yaml"), 2,
       {"robot: 'nowhere.yaml' does not exist (looked for " + dir_.file("nowhere.yaml") + ")"});
 }
 
-TEST_F(Scenario, RobotFileNameTooLongForTheFileSystem) {
+TEST_F(ScenarioFile, RobotFileNameTooLongForTheFileSystem) {
   // Found by the scenario fuzzer: std::filesystem::exists threw (ENAMETOOLONG) past the loader.
   const std::string name(5000, 'r');
   expectError(replaced(kScenario, "robot: arm.yaml", "robot: " + name), 2,
               {"robot: '" + name + "' cannot be looked up: File name too long"});
 }
 
-TEST_F(Scenario, AKeyThatIsAMapOrAList) {
+TEST_F(ScenarioFile, AKeyThatIsAMapOrAList) {
   // Found by the scenario fuzzer: YAML's "? key" form made the key reading throw past the loader.
   const std::string text = kScenario;
   const int next = test::lineCount(text) + 1;  // the line after the scenario's last
@@ -681,7 +681,7 @@ TEST_F(Scenario, AKeyThatIsAMapOrAList) {
   expectError(text + "? [a, b]\n: 1\n", next, {"scenario: a key must be a plain name"});
 }
 
-TEST_F(Scenario, RobotFileWithoutCollisionSection) {
+TEST_F(ScenarioFile, RobotFileWithoutCollisionSection) {
   std::string robot = kRobot;
   robot.erase(robot.find("collision:"));
   test::writeFile(dir_.file("bare.yaml"), robot);
@@ -689,14 +689,14 @@ TEST_F(Scenario, RobotFileWithoutCollisionSection) {
               {"robot: 'bare.yaml' has no collision geometry (collision: key)"});
 }
 
-TEST_F(Scenario, MalformedYaml) {
+TEST_F(ScenarioFile, MalformedYaml) {
   // An unclosed flow sequence: yaml-cpp stops at the end of the document.
   expectError(replaced(kScenario, "goal: [-pi/6 rad, 0.2 m]", "goal: [-pi/6 rad, 0.2 m"), 5,
               {"end of sequence"});
   expectError("- just\n- a list\n", 1, {"the document must be a map of scenario fields"});
 }
 
-TEST_F(Scenario, ScenarioFileThatCannotBeRead) {
+TEST_F(ScenarioFile, ScenarioFileThatCannotBeRead) {
   const std::string missing = dir_.file("missing.yaml");
   const std::string message = errorOf([&] { loadScenario(missing); });
   EXPECT_EQ(message, missing + ": scenario file does not exist");

@@ -17,12 +17,12 @@
 namespace mcws {
 namespace {
 
-constexpr double kTwoPi = 2.0 * M_PI;
+constexpr double kFullTurn = 2.0 * M_PI;
 /// Areas from acos'd bounds (cos(acos(z)) loses about 1e-16 / sin(colatitude), at most ~1e-14 at
 /// the smallest polar cap here): 1e-11 of a region's area.
 constexpr double kAreaRelative = 1e-11;
 /// Unit vectors built in code: rounding only.
-constexpr double kRounding = 1e-12;
+constexpr double kBinRounding = 1e-12;
 /// Monte Carlo shares: binomial standard deviations allowed per region.
 constexpr double kSigmas = 5.0;
 
@@ -59,11 +59,11 @@ double patchArea(const Bounds& b) {
 int bruteForceRegion(const SpherePartition& sphere, const Eigen::Vector3d& d) {
   const double theta = std::acos(std::clamp(d.z() / d.norm(), -1.0, 1.0));
   double phi = std::atan2(d.y(), d.x());
-  if (phi < 0.0) phi += kTwoPi;
+  if (phi < 0.0) phi += kFullTurn;
   for (int i = 0; i < sphere.regions(); ++i) {
     const Bounds b = boundsOf(sphere, i);
     const bool in_zone = theta >= b.theta0 && (theta < b.theta1 || b.theta1 == M_PI);
-    const bool last_sector = std::abs(b.phi1 - kTwoPi) < kRounding;  // 2 pi k / k may round
+    const bool last_sector = std::abs(b.phi1 - kFullTurn) < kBinRounding;  // 2 pi k / k may round
     if (in_zone && phi >= b.phi0 && (phi < b.phi1 || last_sector)) return i;
   }
   return -1;
@@ -94,14 +94,14 @@ TEST(SpherePartition, EveryRegionHasAreaFourPiOverN) {
       ASSERT_NEAR(patchArea(b), area, kAreaRelative * area) << "region " << i;
       ASSERT_LE(b.theta0, b.theta1);
       ASSERT_GE(b.phi0, 0.0);
-      ASSERT_LE(b.phi1, kTwoPi + kRounding);
+      ASSERT_LE(b.phi1, kFullTurn + kBinRounding);
       total += patchArea(b);
     }
     ASSERT_NEAR(total, 4.0 * M_PI, 1e-9);
     // The zones tile the colatitudes: the first starts at the north pole, the last ends at the
     // south pole, and each zone's longitudes run 0 .. 2 pi.
     EXPECT_EQ(boundsOf(sphere, 0).theta0, 0.0);
-    EXPECT_NEAR(boundsOf(sphere, n - 1).theta1, M_PI, kRounding);
+    EXPECT_NEAR(boundsOf(sphere, n - 1).theta1, M_PI, kBinRounding);
     EXPECT_EQ(static_cast<int>(regionsPerZone(sphere).size()), sphere.zones());
   }
   for (int n : {1000, 4000}) {
@@ -118,7 +118,7 @@ TEST(SpherePartition, RegionOfACentreIsThatRegion) {
     const SpherePartition sphere(n);
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d c = sphere.centre(i);
-      ASSERT_NEAR(c.norm(), 1.0, kRounding) << n << " " << i;
+      ASSERT_NEAR(c.norm(), 1.0, kBinRounding) << n << " " << i;
       ASSERT_EQ(sphere.region(c), i) << "N = " << n;
       // The centre lies inside its bounds (the poles are the caps' centres).
       ASSERT_EQ(bruteForceRegion(sphere, c), i) << "N = " << n;
@@ -160,18 +160,18 @@ TEST(SpherePartition, SmallCountsAreCapsAndHemispheres) {
   EXPECT_EQ(one.zones(), 1);
   const Bounds whole = boundsOf(one, 0);
   EXPECT_EQ(whole.theta0, 0.0);
-  EXPECT_NEAR(whole.theta1, M_PI, kRounding);
+  EXPECT_NEAR(whole.theta1, M_PI, kBinRounding);
   EXPECT_EQ(one.region({0.3, -0.2, -0.9}), 0);
 
   const SpherePartition two(2);  // hemispheres
   EXPECT_EQ(two.zones(), 2);
-  EXPECT_NEAR(boundsOf(two, 0).theta1, M_PI / 2, kRounding);
+  EXPECT_NEAR(boundsOf(two, 0).theta1, M_PI / 2, kBinRounding);
   EXPECT_EQ(two.region({0.1, 0.2, 0.3}), 0);
   EXPECT_EQ(two.region({0.1, 0.2, -0.3}), 1);
 
   const SpherePartition three(3);  // two caps of area 4 pi / 3 and one collar between them
   EXPECT_EQ(regionsPerZone(three), (std::vector<int>{1, 1, 1}));
-  EXPECT_NEAR(boundsOf(three, 0).theta1, std::acos(1.0 / 3.0), kRounding);
+  EXPECT_NEAR(boundsOf(three, 0).theta1, std::acos(1.0 / 3.0), kBinRounding);
 }
 
 TEST(SpherePartition, RegionAgreesWithTheBoundsOnRandomDirections) {
@@ -263,7 +263,7 @@ TEST(SpherePartition, PolesAndTheLongitudeSeam) {
       const Bounds b = boundsOf(sphere, region);
       EXPECT_EQ(b.phi0, 0.0) << theta;
       EXPECT_EQ(sphere.region(negative_zero), region) << theta;
-      EXPECT_NEAR(boundsOf(sphere, sphere.region(below)).phi1, kTwoPi, kRounding) << theta;
+      EXPECT_NEAR(boundsOf(sphere, sphere.region(below)).phi1, kFullTurn, kBinRounding) << theta;
       EXPECT_EQ(sphere.region(below), bruteForceRegion(sphere, below)) << theta;
     }
   }
@@ -318,8 +318,8 @@ TEST(OrientationBins, BinOfABinCentreIsThatBin) {
     for (int b = 0; b < bins.size(); ++b) {
       const Eigen::Matrix3d R = bins.centre(b);
       // A rotation: orthonormal, right-handed.
-      ASSERT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), kRounding);
-      ASSERT_NEAR(R.determinant(), 1.0, kRounding);
+      ASSERT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), kBinRounding);
+      ASSERT_NEAR(R.determinant(), 1.0, kBinRounding);
       ASSERT_EQ(bins.bin(R.col(2), R.col(0)), b) << directions << " x " << rolls;
       ASSERT_EQ(b / rolls, bins.sphere().region(R.col(2)));
     }
@@ -330,12 +330,12 @@ TEST(OrientationBins, RollBinIsTheAngleFromTheReferenceAboutTheApproach) {
   constexpr int kRolls = 8;
   const OrientationBins bins(50, kRolls);
   std::mt19937_64 rng(71);
-  std::uniform_real_distribution<double> angle(0.0, kTwoPi);
+  std::uniform_real_distribution<double> angle(0.0, kFullTurn);
   for (int k = 0; k < 5000; ++k) {
     const Eigen::Vector3d a = randomDirection(rng);
     const double roll = angle(rng);
     const Eigen::Matrix3d R = toolFrame(a, OrientationBins::rollReference(a), roll);
-    const int expected_roll = static_cast<int>(std::floor(roll / (kTwoPi / kRolls)));
+    const int expected_roll = static_cast<int>(std::floor(roll / (kFullTurn / kRolls)));
     ASSERT_EQ(bins.bin(R.col(2), R.col(0)), bins.sphere().region(a) * kRolls + expected_roll)
         << "roll " << roll;
   }
@@ -345,16 +345,16 @@ TEST(OrientationBins, TurningAboutTheApproachByOneBinMovesToTheNextRollBin) {
   std::mt19937_64 rng(73);
   for (int rolls : {2, 3, 6, 12}) {
     const OrientationBins bins(100, rolls);
-    const Eigen::AngleAxisd step_about_z(kTwoPi / rolls, Eigen::Vector3d::UnitZ());
+    const Eigen::AngleAxisd step_about_z(kFullTurn / rolls, Eigen::Vector3d::UnitZ());
     for (int k = 0; k < 2000; ++k) {
       // A random rotation: a random approach, then a random roll.
       const Eigen::Vector3d a = randomDirection(rng);
       const Eigen::Matrix3d R = toolFrame(a, OrientationBins::rollReference(a),
-                                          std::uniform_real_distribution<double>(0, kTwoPi)(rng));
+                                          std::uniform_real_distribution<double>(0, kFullTurn)(rng));
       const int b = bins.bin(R.col(2), R.col(0));
       // Turning the tool about its own approach: R * Rz(2 pi / rolls) (= Rot(a, step) * R).
       const Eigen::Matrix3d turned = R * step_about_z.toRotationMatrix();
-      ASSERT_LT((turned.col(2) - a).norm(), kRounding);
+      ASSERT_LT((turned.col(2) - a).norm(), kBinRounding);
       const int expected = (b / rolls) * rolls + (b % rolls + 1) % rolls;
       ASSERT_EQ(bins.bin(turned.col(2), turned.col(0)), expected) << "rolls " << rolls;
     }
@@ -363,7 +363,7 @@ TEST(OrientationBins, TurningAboutTheApproachByOneBinMovesToTheNextRollBin) {
 
 TEST(OrientationBins, BatchedBinsAgreeWithBin) {
   std::mt19937_64 rng(77);
-  std::uniform_real_distribution<double> angle(0.0, kTwoPi);
+  std::uniform_real_distribution<double> angle(0.0, kFullTurn);
   for (int rolls : {1, 5}) {
     const OrientationBins bins(200, rolls);
     for (int lanes = 1; lanes <= 8; ++lanes) {
@@ -391,7 +391,7 @@ TEST(OrientationBins, BatchedBinsAgreeWithBin) {
 TEST(OrientationBins, RollsOfOneIgnoreTheRoll) {
   const OrientationBins bins(30, 1);
   const Eigen::Vector3d a = Eigen::Vector3d(0.2, -0.5, 0.7).normalized();
-  for (double roll = 0.0; roll < kTwoPi; roll += 0.1) {
+  for (double roll = 0.0; roll < kFullTurn; roll += 0.1) {
     const Eigen::Matrix3d R = toolFrame(a, OrientationBins::rollReference(a), roll);
     EXPECT_EQ(bins.bin(R.col(2), R.col(0)), bins.sphere().region(a));
   }
@@ -416,28 +416,28 @@ TEST(OrientationBins, RollReferenceIsUnitAndNormalToTheApproach) {
   for (int k = 0; k < 2000; ++k) approaches.push_back(randomDirection(rng));
   for (const Eigen::Vector3d& a : approaches) {
     const Eigen::Vector3d r = OrientationBins::rollReference(a);
-    ASSERT_NEAR(r.norm(), 1.0, kRounding) << a.transpose();
-    ASSERT_NEAR(r.dot(a), 0.0, kRounding) << a.transpose();
+    ASSERT_NEAR(r.norm(), 1.0, kBinRounding) << a.transpose();
+    ASSERT_NEAR(r.dot(a), 0.0, kBinRounding) << a.transpose();
     // The documented rule: world x projected onto the plane normal to a, or world y within
     // 30 deg of +-x; the projection keeps the positive side of that axis.
     const Eigen::Vector3d axis =
         std::abs(a.x()) > c30 ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitX();
     const Eigen::Vector3d projected = axis - axis.dot(a) * a;
     ASSERT_GT(projected.norm(), 0.49) << a.transpose();  // never degenerate
-    ASSERT_LT((r - projected.normalized()).norm(), kRounding) << a.transpose();
+    ASSERT_LT((r - projected.normalized()).norm(), kBinRounding) << a.transpose();
   }
   // Hand-worked: approach +z -> reference +x; approach +x -> reference +y; approach
   // (1, 0, 1)/sqrt 2 (45 deg from x) -> x projected: (1/2, 0, -1/2), normalised (1, 0, -1)/sqrt 2.
   EXPECT_LT(
       (OrientationBins::rollReference(Eigen::Vector3d::UnitZ()) - Eigen::Vector3d::UnitX()).norm(),
-      kRounding);
+      kBinRounding);
   EXPECT_LT(
       (OrientationBins::rollReference(Eigen::Vector3d::UnitX()) - Eigen::Vector3d::UnitY()).norm(),
-      kRounding);
+      kBinRounding);
   EXPECT_LT((OrientationBins::rollReference(Eigen::Vector3d(1, 0, 1).normalized()) -
              Eigen::Vector3d(1, 0, -1).normalized())
                 .norm(),
-            kRounding);
+            kBinRounding);
 }
 
 TEST(OrientationBins, RejectsBadCountsAndBins) {

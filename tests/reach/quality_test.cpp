@@ -16,16 +16,19 @@
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "reach/planar2.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
+using test::kDeg;
+using test::kL1;
+using test::kL2;
+using test::planar2;
+
 using test::differenceJacobian;
 
-constexpr double kDeg = M_PI / 180.0;
-/// robots/planar2.yaml: upper arm and forearm [cm].
-constexpr double kL1 = 40.0, kL2 = 30.0;
 /// A closed form against an SVD of the same numbers: rounding only.
 constexpr double kRounding = 1e-12;
 /// The Cholesky path against the SVD, relative: the header promises about 1e-12 away from
@@ -50,7 +53,6 @@ double fastPathTolerance(double w, double ic) {
 constexpr double kDifferenceRelative = 1e-6;
 constexpr int kRandomVectors = 500;
 
-Robot planar2() { return loadRobot(test::robotPath("planar2")); }
 Robot inspection6() { return loadRobot(test::robotPath("inspection6")); }
 
 QualityOptions positionOnly() {

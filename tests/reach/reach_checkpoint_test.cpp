@@ -31,7 +31,7 @@ struct Planar {
   }
 };
 
-std::string bytesOf(const ReachMap& map) {
+std::string checkpointBytes(const ReachMap& map) {
   std::ostringstream out;
   map.write(out, "{}");
   return out.str();
@@ -46,7 +46,7 @@ TEST(ReachCheckpoint, PiecesGiveTheMapOfOneGo) {
       p.robot, p.grid, p.sampling, {dir.file("ck"), 30000, R"({"run":1})"}, {}, &resumed);
   EXPECT_EQ(resumed, 0u);
   EXPECT_EQ(pieces.samples(), p.sampling.samples);
-  EXPECT_EQ(bytesOf(pieces), bytesOf(whole));
+  EXPECT_EQ(checkpointBytes(pieces), checkpointBytes(whole));
   // The last piece's checkpoint is left for the caller to remove (after its outputs).
   EXPECT_TRUE(std::filesystem::exists(dir.file("ck")));
 }
@@ -74,7 +74,7 @@ TEST(ReachCheckpoint, InterruptedRunContinuesToTheSameMap) {
       &resumed);
   EXPECT_EQ(resumed, 40000u);  // two whole pieces were saved
   EXPECT_EQ(first_report, 40000u);
-  EXPECT_EQ(bytesOf(map), bytesOf(buildReachMap(p.robot, p.grid, p.sampling)));
+  EXPECT_EQ(checkpointBytes(map), checkpointBytes(buildReachMap(p.robot, p.grid, p.sampling)));
 }
 
 TEST(ReachCheckpoint, CheckpointOfAnotherRunIsRefused) {
@@ -94,7 +94,7 @@ TEST(ReachCheckpoint, CheckpointOfAnotherRunIsRefused) {
 TEST(ReachCheckpoint, AMapIsNotACheckpoint) {
   const Planar p;
   test::TempDir dir;
-  test::writeFile(dir.file("map.bin"), bytesOf(buildReachMap(p.robot, p.grid, p.sampling)));
+  test::writeFile(dir.file("map.bin"), checkpointBytes(buildReachMap(p.robot, p.grid, p.sampling)));
   const std::string message = test::errorOf([&] {
     buildReachMapInPieces(p.robot, p.grid, p.sampling, {dir.file("map.bin"), 50000, "{}"});
   });

@@ -31,17 +31,21 @@
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/reach/pose_batch.h"
 #include "mcws/sampling/sampler.h"
+#include "reach/planar2.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
+using test::kElbowLimit;
+using test::kL1;
+using test::kL2;
+using test::planar2;
+
 using test::shippedRobotFiles;
 using test::tiltedAxesRobot;
 
 constexpr double kTwoPi = 2.0 * M_PI;
-/// robots/planar2.yaml: upper arm, forearm [cm] and the elbow limit [rad].
-constexpr double kL1 = 40.0, kL2 = 30.0, kElbowLimit = 160.0 * M_PI / 180.0;
 /// A manipulability stored as float against the closed form in double: float rounding of values
 /// up to l1 l2 = 1200 cm^2 (ulp 1.2e-4), plus the Cholesky path's ~1e-12 relative.
 constexpr double kFloatManipulability = 1e-6 * kL1 * kL2;
@@ -483,7 +487,6 @@ TEST(ReachMap, WriteRejectsAHeaderThatIsNotAnObject) {
 // ---------------------------------------------------------------------------------------------
 // buildReachMap on the planar 2R arm.
 
-Robot planar2() { return loadRobot(test::robotPath("planar2")); }
 
 ReachSampling planarSampling(const Robot& robot, int threads) {
   ReachSampling sampling;

@@ -26,21 +26,24 @@
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/orientation_bins.h"
 #include "mcws/reach/reach_map.h"
+#include "reach/planar2.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-/// robots/planar2.yaml: upper arm, forearm [cm], elbow limit [rad], link capsule radius [cm],
-/// base sphere radius [cm].
-constexpr double kL1 = 40.0, kL2 = 30.0, kElbowLimit = 160.0 * kDeg;
+using test::kDeg;
+using test::kElbowLimit;
+using test::kL1;
+using test::kL2;
+using test::planar2;
+
+/// robots/planar2.yaml: link capsule radius [cm], base sphere radius [cm].
 constexpr double kLinkRadius = 2.5, kBaseRadius = 5.0;
 /// Outer and inner radius of planar2's annulus (the elbow bent to its limit).
 constexpr double kOuter = kL1 + kL2;
 const double kInner = std::sqrt(kL1 * kL1 + kL2 * kL2 + 2.0 * kL1 * kL2 * std::cos(kElbowLimit));
 
-Robot planar2() { return loadRobot(test::robotPath("planar2")); }
 
 /// Angle between two directions [rad], well conditioned at 0 and pi.
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {

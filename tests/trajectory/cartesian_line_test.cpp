@@ -17,7 +17,7 @@ using ::testing::StartsWith;
 // Planar two-link arm in the x-y plane: joint 1 at the origin, links of 1.0 m and 0.8 m.
 constexpr double kL1 = 1.0, kL2 = 0.8;
 // Closed-form IK and FK agree to rounding.
-constexpr double kExact = 1e-9;
+constexpr double kLineTolerance = 1e-9;
 
 Robot planarArm() {
   Robot robot;
@@ -74,12 +74,12 @@ TEST(CartesianLine, ToolFollowsTheStraightLineWithTheQuinticTiming) {
   for (int i = 0; i < tr.size(); ++i) {
     const Eigen::Vector3d p = toolPose(robot, tr.q.row(i).transpose()).translation();
     const Eigen::Vector3d along = p - p0;
-    EXPECT_LT((along - along.dot(direction) * direction).norm(), kExact) << "off the line, " << i;
+    EXPECT_LT((along - along.dot(direction) * direction).norm(), kLineTolerance) << "off the line, " << i;
     const double u = tr.t[i] / options.duration;
     const double s = 10 * std::pow(u, 3) - 15 * std::pow(u, 4) + 6 * std::pow(u, 5);
-    EXPECT_NEAR(along.norm() / (p1 - p0).norm(), s, kExact) << i;
+    EXPECT_NEAR(along.norm() / (p1 - p0).norm(), s, kLineTolerance) << i;
   }
-  EXPECT_LT((tr.q.row(tr.size() - 1).transpose() - Eigen::Vector2d(1.1, 0.6)).norm(), kExact);
+  EXPECT_LT((tr.q.row(tr.size() - 1).transpose() - Eigen::Vector2d(1.1, 0.6)).norm(), kLineTolerance);
 }
 
 TEST(CartesianLine, FiniteDifferenceVelocitiesMatchTheJacobian) {
@@ -134,8 +134,8 @@ TEST(CartesianLine, SeedsEachStepWithThePreviousSolutionAndSlerpsOrientation) {
   for (std::size_t k = 1; k < seeds.size(); ++k) EXPECT_EQ(seeds[k], answers[k - 1]) << k;
   // At t = 0.5, s = 0.5: the tool's heading (q1 + q2) is halfway between 1.0 and 1.4.
   const Eigen::Matrix3d R = targets[5].linear();
-  EXPECT_NEAR(std::atan2(R(1, 0), R(0, 0)), 1.2, kExact);
-  EXPECT_NEAR(R(2, 2), 1.0, kExact);
+  EXPECT_NEAR(std::atan2(R(1, 0), R(0, 0)), 1.2, kLineTolerance);
+  EXPECT_NEAR(R(2, 2), 1.0, kLineTolerance);
 }
 
 TEST(CartesianLine, ReportsTheTimeWhereIkFails) {

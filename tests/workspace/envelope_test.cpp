@@ -127,12 +127,12 @@ TEST(WorkspaceEnvelope, FilesReadBackWithTheirVerticesAndTriangles) {
     const std::string path = dir.file(name);
     std::FILE* out = std::fopen(path.c_str(), "wb");
     ASSERT_NE(out, nullptr);
-    writeSurface(s, meshFormatOf(path), "solid octahedron, r = 1.5", out);
+    writeSurface(s, surfaceFormatOf(path), "solid octahedron, r = 1.5", out);
     std::fclose(out);
     pcl::PolygonMesh mesh;
     if (vtk_readers) {
       ASSERT_GT(pcl::io::loadPolygonFile(path, mesh), 0) << name;
-    } else if (meshFormatOf(path) == MeshFormat::kPly) {
+    } else if (surfaceFormatOf(path) == SurfaceFormat::kPly) {
       ASSERT_EQ(pcl::io::loadPLYFile(path, mesh), 0) << name;
     } else {
       continue;
@@ -156,8 +156,8 @@ TEST(WorkspaceEnvelope, FilesReadBackWithTheirVerticesAndTriangles) {
           << name;
     }
   }
-  EXPECT_THROW(meshFormatOf("envelope.obj"), Error);
-  EXPECT_EQ(meshFormatOf("ENVELOPE.PLY"), MeshFormat::kPly);
+  EXPECT_THROW(surfaceFormatOf("envelope.obj"), Error);
+  EXPECT_EQ(surfaceFormatOf("ENVELOPE.PLY"), SurfaceFormat::kPly);
 }
 
 TEST(EnvelopeDrawing, SectionsOfAnOctahedronThroughItsAxis) {

@@ -11,20 +11,17 @@
 
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
+#include "workspace/shape_cloud.h"
 
 namespace mcws {
 namespace {
+
+using test::shapeCloud;
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vertex = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, K>;
 using Delaunay = CGAL::Delaunay_triangulation_3<
     K, CGAL::Triangulation_data_structure_3<Vertex, CGAL::Delaunay_triangulation_cell_base_3<K>>>;
-
-pcl::PointCloud<pcl::PointXYZ> shapeCloud(Shape shape, std::size_t n, std::uint64_t seed) {
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  pcl::copyPointCloud(sampleCloud(ShapeSampler(shape, seed), n, 0), cloud);
-  return cloud;
-}
 
 /// Counts the covered points that are a vertex of a Delaunay tetrahedron (of every point, CGAL)
 /// whose circumradius is at least the point's radius: the circumball is empty and its sphere

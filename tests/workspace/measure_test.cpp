@@ -12,18 +12,15 @@
 
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
+#include "workspace/shape_cloud.h"
 
 namespace mcws {
 namespace {
 
+using test::shapeCloud;
+
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-
-pcl::PointCloud<pcl::PointXYZ> shapeCloud(Shape shape, std::size_t n, std::uint64_t seed) {
-  pcl::PointCloud<pcl::PointXYZ> cloud;
-  pcl::copyPointCloud(sampleCloud(ShapeSampler(shape, seed), n, 0), cloud);
-  return cloud;
-}
 
 double relativeError(Shape shape, std::size_t n, std::uint64_t seed) {
   const RegionMeasure m = delaunayMeasure(shapeCloud(shape, n, seed), shapeIsPlanar(shape) ? 2 : 3);

@@ -211,24 +211,24 @@ Envelope workspaceEnvelope(const pcl::PointCloud<pcl::PointXYZ>& points,
   return envelope;
 }
 
-MeshFormat meshFormatOf(const std::string& path) {
+SurfaceFormat surfaceFormatOf(const std::string& path) {
   const std::string extension = lowercaseExtension(path);
-  if (extension == ".ply") return MeshFormat::kPly;
-  if (extension == ".stl") return MeshFormat::kStl;
-  if (extension == ".vtk") return MeshFormat::kVtk;
+  if (extension == ".ply") return SurfaceFormat::kPly;
+  if (extension == ".stl") return SurfaceFormat::kStl;
+  if (extension == ".vtk") return SurfaceFormat::kVtk;
   throw Error(path + ": not a mesh file name this tool writes (.ply, .stl or .vtk)");
 }
 
-void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::string& comment,
+void writeSurface(const TriangleSurface& surface, SurfaceFormat format, const std::string& comment,
                   std::FILE* out) {
   switch (format) {
-    case MeshFormat::kPly:
+    case SurfaceFormat::kPly:
       writePly(surface, comment, out);
       break;
-    case MeshFormat::kStl:
+    case SurfaceFormat::kStl:
       writeStl(surface, comment, out);
       break;
-    case MeshFormat::kVtk:
+    case SurfaceFormat::kVtk:
       writeVtk(surface, comment, out);
       break;
   }
@@ -236,7 +236,7 @@ void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::
 
 void saveSurface(const TriangleSurface& surface, const std::string& path, const std::string& source,
                  const std::string& length_unit) {
-  const MeshFormat format = meshFormatOf(path);
+  const SurfaceFormat format = surfaceFormatOf(path);
   io::AtomicFile file(path);
   try {
     writeSurface(surface, format, "mcws_envelope of " + source + ", lengths in " + length_unit,

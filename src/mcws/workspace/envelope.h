@@ -66,19 +66,20 @@ struct SurfaceTopology {
 };
 SurfaceTopology surfaceTopology(const TriangleSurface& surface);
 
-/// \brief Mesh file formats.
-enum class MeshFormat { kPly, kStl, kVtk };
+/// \brief The file formats an envelope surface is written in (mcws::MeshFormat is what
+/// robot meshes are read from).
+enum class SurfaceFormat { kPly, kStl, kVtk };
 /// \brief The format a file name's extension names (.ply, .stl, .vtk, any case).
 /// \throws mcws::Error naming the file for any other extension.
-MeshFormat meshFormatOf(const std::string& path);
+SurfaceFormat surfaceFormatOf(const std::string& path);
 /// \brief Writes the surface: binary little-endian PLY (float vertices, int faces), binary STL
 /// (with each triangle's unit normal) or legacy ASCII VTK POLYDATA. `comment` goes into the PLY
 /// and VTK headers and the STL's 80-byte header (cut to fit). \throws mcws::Error on a write
 /// error.
-void writeSurface(const TriangleSurface& surface, MeshFormat format, const std::string& comment,
+void writeSurface(const TriangleSurface& surface, SurfaceFormat format, const std::string& comment,
                   std::FILE* out);
 
-/// \brief Writes the surface to `path` in the format its extension names (meshFormatOf()),
+/// \brief Writes the surface to `path` in the format its extension names (surfaceFormatOf()),
 /// appearing whole on success (io::AtomicFile, committed into the io::OutputSet alive on the
 /// thread, if any), its comment "mcws_envelope of <source>, lengths in <length_unit>".
 /// \throws mcws::Error naming the file for another extension, or when it cannot be written.
