@@ -147,6 +147,12 @@ inline std::string replaceOnce(std::string text, const std::string& from, const 
   return text.replace(at, from.size(), to);
 }
 
+/// Replaces every `from` in `text` by `to`.
+inline void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
 /// Number of lines in a text.
 inline int lineCount(const std::string& text) {
   int lines = 0;

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "png_image.h"
 #include "apps/tool_paths.h"
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {

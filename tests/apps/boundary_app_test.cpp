@@ -9,16 +9,15 @@
 #include <set>
 #include <tuple>
 
+#include "apps/tool_paths.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/sampling/sampler.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 class BoundaryApp : public ::testing::Test {
  protected:

@@ -10,13 +10,12 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "mcws/points/point_types.h"
 #include "apps/tool_paths.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
-
 
 /// An n x n grid of spacing 1 in the x-z plane (y = 0) shifted by `offset` along x.
 pcl::PointCloud<pcl::PointXYZ> xzGrid(int n, float offset = 0.0f) {

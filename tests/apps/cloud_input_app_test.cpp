@@ -11,13 +11,12 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "mcws/points/point_types.h"
 #include "apps/tool_paths.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
-
 
 /// A rejected file is rejected before any reading of its data: far below this even under
 /// AddressSanitizer (the 4 GB claim took 34 s before the checks).

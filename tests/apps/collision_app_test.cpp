@@ -6,15 +6,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mcws/points/point_types.h"
 #include "apps/tool_paths.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 class CollisionApps : public ::testing::Test {
  protected:

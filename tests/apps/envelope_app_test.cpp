@@ -15,9 +15,9 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "deicing_region.h"
 #include "png_image.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -26,7 +26,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::Not;
 using Json = nlohmann::json;
-
 
 /// Samples `robot` (its --robot and --point flags), extracts the boundary and refines near it
 /// with as many samples again: the plain cloud, the rim and the refined cloud in `dir`.

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {

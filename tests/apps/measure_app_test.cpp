@@ -12,7 +12,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-
 class MeasureApp : public ::testing::Test {
  protected:
   void SetUp() override {

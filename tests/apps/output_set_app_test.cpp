@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/output_test_inputs.h"
 #include "apps/tool_paths.h"
 #include "test_support.h"
 
@@ -28,11 +29,6 @@ namespace mcws {
 namespace {
 
 namespace fs = std::filesystem;
-
-const std::string kRobot = test::robotPath("planar2");
-const std::string kCloud = std::string(MCWS_CLOUDS_DIR) + "/annulus_2000_seed1.pcd";
-const std::string kBehaviors = std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner_behaviors.yaml";
-const std::string kScenario = std::string(MCWS_SCENARIOS_DIR) + "/planar2.yaml";
 
 /// A tool with several outputs: its flags but the outputs, and the output flags with a file name
 /// each (the extension picks the format).
@@ -44,11 +40,6 @@ struct OutputSetCase {
 };
 
 void PrintTo(const OutputSetCase& c, std::ostream* out) { *out << c.name; }
-
-void replaceAll(std::string& text, const std::string& from, const std::string& to) {
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-    text.replace(at, from.size(), to);
-}
 
 /// A 3-D cloud for mcws_envelope: 3000 points of the unit ball, made once.
 const std::string& ballCloud() {
@@ -70,20 +61,14 @@ std::string commandOf(const OutputSetCase& c, const std::string& dir) {
   if (command.find("{targets}") != std::string::npos) {
     test::writeFile(dir + "targets.csv",
                     "x,y,z,normal_x,normal_y,normal_z\n0,50,0,0,0,-1\n40,50,0,0,0,-1\n");
-    replaceAll(command, "{targets}", dir + "targets.csv");
+    test::replaceAll(command, "{targets}", dir + "targets.csv");
   }
-  if (command.find("{ball}") != std::string::npos) replaceAll(command, "{ball}", ballCloud());
-  replaceAll(command, "{dir}", dir);
+  if (command.find("{ball}") != std::string::npos) test::replaceAll(command, "{ball}", ballCloud());
+  test::replaceAll(command, "{dir}", dir);
   return command;
 }
 
 /// Names in a directory.
-std::set<std::string> listing(const std::string& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
-  return names;
-}
-
 /// The type bits of what lies at `path` (a link not followed).
 mode_t typeOf(const std::string& path) {
   struct stat status {};
@@ -149,7 +134,7 @@ class OutputSetApp : public ::testing::TestWithParam<OutputSetCase> {
       if (!small->unusable().empty()) GTEST_SKIP() << small->unusable();
     }
     std::string command = commandOf(c, inputs.file(""));
-    const std::set<std::string> inputs_before = listing(inputs.file(""));
+    const std::set<std::string> inputs_before = test::listing(inputs.file(""));
     std::map<std::string, std::string> before;  // path -> old content ("" for a FIFO)
     for (std::size_t k = 0; k < c.outputs.size(); ++k) {
       const auto& [flag, name] = c.outputs[k];
@@ -166,7 +151,7 @@ class OutputSetApp : public ::testing::TestWithParam<OutputSetCase> {
       command += " --" + flag + " " + path;
     }
     if (small) small->fill();
-    const std::set<std::string> entries = listing(dir.file(""));
+    const std::set<std::string> entries = test::listing(dir.file(""));
 
     const test::RunResult r = test::run(command);
     EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.err;
@@ -174,7 +159,7 @@ class OutputSetApp : public ::testing::TestWithParam<OutputSetCase> {
     const std::string failed = c.outputs[failing].second;
     EXPECT_NE(r.err.rfind(failed), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find('\n', r.err.rfind(failed)), r.err.size() - 1) << r.err;
-    EXPECT_EQ(listing(inputs.file("")), inputs_before) << "written beside the inputs (--dot)";
+    EXPECT_EQ(test::listing(inputs.file("")), inputs_before) << "written beside the inputs (--dot)";
     for (const auto& [path, content] : before) {
       if (content.empty()) {
         EXPECT_EQ(typeOf(path), static_cast<mode_t>(S_IFIFO)) << path;
@@ -183,9 +168,9 @@ class OutputSetApp : public ::testing::TestWithParam<OutputSetCase> {
         EXPECT_EQ(test::readFile(path), content) << path << " was touched";
       }
     }
-    EXPECT_EQ(listing(dir.file("")), entries) << "entries came or went";
+    EXPECT_EQ(test::listing(dir.file("")), entries) << "entries came or went";
     if (small) {
-      EXPECT_EQ(listing(small->file("")),
+      EXPECT_EQ(test::listing(small->file("")),
                 (std::set<std::string>{".filler", c.outputs[failing].second}));
     }
   }
@@ -226,22 +211,23 @@ TEST_P(OutputSetApp, AFullFileSystemLeavesEveryOutputPathAsItWas) {
   }
 }
 
-const std::string kTrajArgs = " --robot " + kRobot +
-                          " --from '0 0' --to '0.1 0.2' --duration 1 "
-                          "--rate 10";
+const std::string kTrajRobotArgs = " --robot " + test::kPlanar2Robot +
+                                   " --from '0 0' --to '0.1 0.2' --duration 1 "
+                                   "--rate 10";
 
 INSTANTIATE_TEST_SUITE_P(
     EveryToolWithSeveralOutputs, OutputSetApp,
     ::testing::Values(
         OutputSetCase{"Boundary",
                       MCWS_BOUNDARY_EXE,
-                      "--input " + kCloud + " --plane xy",
+                      "--input " + test::kAnnulusCloud + " --plane xy",
                       {{"output", "b.pcd"}, {"interior", "i.pcd"}}},
         OutputSetCase{"BoundaryTiled",
                       MCWS_BOUNDARY_EXE,
                       "--input {ball} --radius 0.3 --tiles 2",
                       {{"output", "b.pcd"}, {"interior", "i.pcd"}}},
-        OutputSetCase{"Traj", MCWS_TRAJ_EXE, kTrajArgs, {{"output", "t.csv"}, {"plot", "t.png"}}},
+        OutputSetCase{
+            "Traj", MCWS_TRAJ_EXE, kTrajRobotArgs, {{"output", "t.csv"}, {"plot", "t.png"}}},
         OutputSetCase{"Envelope",
                       MCWS_ENVELOPE_EXE,
                       "--input {ball}",
@@ -249,21 +235,22 @@ INSTANTIATE_TEST_SUITE_P(
         OutputSetCase{
             "Reach",
             MCWS_REACH_EXE,
-            "--robot " + kRobot + " --resolution 10cm --samples 20000 --orientations 8",
+            "--robot " + test::kPlanar2Robot +
+                " --resolution 10cm --samples 20000 --orientations 8",
             {{"output", "r.pcd"}, {"map", "r.bin"}, {"halfcut", "h.png"}, {"histogram", "g.png"}}},
         OutputSetCase{"Place",
                       MCWS_PLACE_EXE,
-                      "--robot " + kRobot + " --targets {targets}" +
+                      "--robot " + test::kPlanar2Robot + " --targets {targets}" +
                           " --along '0 10 5' --resolution 10cm --samples 20000 --orientations 8 "
                           "--no-collision",
                       {{"output", "p.pcd"}, {"plot", "p.png"}}},
         OutputSetCase{"Plan",
                       MCWS_PLAN_EXE,
-                      "--scenario " + kScenario + " --validation-poses 0",
+                      "--scenario " + test::kPlanar2Scenario + " --validation-poses 0",
                       {{"output", "path.csv"}, {"plot", "c.png"}, {"plot-offsets", "o.png"}}},
         OutputSetCase{"Behave",
                       MCWS_BEHAVE_EXE,
-                      "--model " + kBehaviors + " --insulators 1 --dot {dir}",
+                      "--model " + test::kCleanerBehaviors + " --insulators 1 --dot {dir}",
                       {{"log", "log.jsonl"}, {"timeline", "t.csv"}, {"plot", "s.png"}}}),
     [](const ::testing::TestParamInfo<OutputSetCase>& info) { return info.param.name; });
 
@@ -275,14 +262,15 @@ TEST(OutputSpellings, TwoSpellingsOfOneNewOutputAreRefusedBeforeAnyWork) {
   fs::create_directory_symlink("real", dir.file("linked"));
   const std::string cd = "cd " + dir.file("") + " && ";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output t.csv --plot ./t.csv", "--plot"},
-      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output t.csv --plot " + dir.file("t.csv"),
+      {std::string(MCWS_TRAJ_EXE) + kTrajRobotArgs + " --output t.csv --plot ./t.csv", "--plot"},
+      {std::string(MCWS_TRAJ_EXE) + kTrajRobotArgs + " --output t.csv --plot " + dir.file("t.csv"),
        "--plot"},
-      {std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output real/t.csv --plot linked/t.csv", "--plot"},
-      {std::string(MCWS_REACH_EXE) + " --robot " + kRobot +
+      {std::string(MCWS_TRAJ_EXE) + kTrajRobotArgs + " --output real/t.csv --plot linked/t.csv",
+       "--plot"},
+      {std::string(MCWS_REACH_EXE) + " --robot " + test::kPlanar2Robot +
            " --resolution 10cm --samples 1000 --output m.pcd --checkpoint ./m.pcd",
        "--checkpoint"},
-      {std::string(MCWS_BOUNDARY_EXE) + " --input " + kCloud +
+      {std::string(MCWS_BOUNDARY_EXE) + " --input " + test::kAnnulusCloud +
            " --plane xy --output real/b.pcd --interior linked/../real/b.pcd",
        "--interior"}};
   for (const auto& [command, flag] : cases) {
@@ -291,8 +279,8 @@ TEST(OutputSpellings, TwoSpellingsOfOneNewOutputAreRefusedBeforeAnyWork) {
     EXPECT_NE(r.err.find(flag + ": must differ from --output"), std::string::npos) << r.err;
     EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
   }
-  EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"real", "linked"}));
-  EXPECT_TRUE(listing(dir.file("real")).empty());
+  EXPECT_EQ(test::listing(dir.file("")), (std::set<std::string>{"real", "linked"}));
+  EXPECT_TRUE(test::listing(dir.file("real")).empty());
 }
 
 TEST(OutputSpellings, AFileTheRunReadsThroughTheRobotFileIsNeverReplaced) {
@@ -320,8 +308,8 @@ TEST(OutputSpellings, DevStdoutAppendsToTheShellsLog) {
   const std::string log = dir.file("log");
   test::writeFile(log, "earlier run\n");
   // In a subshell: test::run() sends the command's own stdout elsewhere.
-  const test::RunResult r =
-      test::run("(" + std::string(MCWS_TRAJ_EXE) + kTrajArgs + " --output /dev/stdout >> " + log + ")");
+  const test::RunResult r = test::run("(" + std::string(MCWS_TRAJ_EXE) + kTrajRobotArgs +
+                                      " --output /dev/stdout >> " + log + ")");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const std::string text = test::readFile(log);
   EXPECT_EQ(text.rfind("earlier run\nt_s,", 0), 0u) << text.substr(0, 80);

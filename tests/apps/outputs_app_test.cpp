@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "apps/output_test_inputs.h"
 #include "apps/tool_paths.h"
 #include "test_support.h"
 
@@ -25,23 +26,8 @@ struct SamePathCase {
   std::string source;       ///< copied into a fresh directory as the input
 };
 
-const std::string kRobot = test::robotPath("planar2");
-const std::string kCloud = std::string(MCWS_CLOUDS_DIR) + "/annulus_2000_seed1.pcd";
-const std::string kBehaviors = std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner_behaviors.yaml";
-const std::string kScenario = std::string(MCWS_SCENARIOS_DIR) + "/planar2.yaml";
 const std::string kLowBatteryFaults = std::string(MCWS_SCENARIOS_DIR) + "/faults/low_battery.yaml";
 const std::string kTrajArgs = " --from '0 0' --to '0.1 0.2' --duration 1 --rate 10";
-
-void replaceAll(std::string& text, const std::string& from, const std::string& to) {
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-    text.replace(at, from.size(), to);
-}
-
-std::set<std::string> listing(const std::string& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir)) names.insert(entry.path().filename());
-  return names;
-}
 
 void PrintTo(const SamePathCase& c, std::ostream* out) { *out << c.name; }
 
@@ -54,19 +40,19 @@ TEST_P(SamePath, RefusedWithExitTwoNamingBothFlagsAndTheInputUntouched) {
   const std::string input = dir.file(name);
   // A scenario names its robot relative to itself: the copy names the original.
   std::string text = test::readFile(c.source);
-  replaceAll(text, "../robots/planar2.yaml", kRobot);
+  test::replaceAll(text, "../robots/planar2.yaml", test::kPlanar2Robot);
   test::writeFile(input, text);
   fs::create_symlink(name, dir.file("link"));
   // mcws_plan's robot comes from the scenario: a scenario (elsewhere) that names the copy.
-  std::string scenario = test::readFile(kScenario);
-  replaceAll(scenario, "../robots/planar2.yaml", input);
+  std::string scenario = test::readFile(test::kPlanar2Scenario);
+  test::replaceAll(scenario, "../robots/planar2.yaml", input);
   test::writeFile(other.file("scenario.yaml"), scenario);
   std::string args = c.args;
-  replaceAll(args, "{in}", input);
-  replaceAll(args, "{scenario}", other.file("scenario.yaml"));
-  replaceAll(args, "{other}", other.file(""));
+  test::replaceAll(args, "{in}", input);
+  test::replaceAll(args, "{scenario}", other.file("scenario.yaml"));
+  test::replaceAll(args, "{other}", other.file(""));
   const std::string original = test::readFile(input);
-  const std::set<std::string> before = listing(dir.file(""));
+  const std::set<std::string> before = test::listing(dir.file(""));
 
   for (const std::string& output : {input, "./" + name, dir.file("link")}) {
     const test::RunResult r = test::run("cd " + dir.file("") + " && " + c.tool + " " + args +
@@ -78,47 +64,55 @@ TEST_P(SamePath, RefusedWithExitTwoNamingBothFlagsAndTheInputUntouched) {
         << r.err;
     EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
     EXPECT_TRUE(test::readFile(input) == original) << output << ": the input changed";
-    EXPECT_EQ(listing(dir.file("")), before) << output;
+    EXPECT_EQ(test::listing(dir.file("")), before) << output;
     EXPECT_TRUE(fs::is_symlink(dir.file("link")));
   }
-  EXPECT_EQ(listing(other.file("")), std::set<std::string>{"scenario.yaml"});
+  EXPECT_EQ(test::listing(other.file("")), std::set<std::string>{"scenario.yaml"});
 }
 
 INSTANTIATE_TEST_SUITE_P(
     EveryTool, SamePath,
     ::testing::Values(
-        SamePathCase{"SampleRobot", MCWS_SAMPLE_EXE, "--robot {in}", "output", "robot", kRobot},
+        SamePathCase{"SampleRobot", MCWS_SAMPLE_EXE, "--robot {in}", "output", "robot",
+                     test::kPlanar2Robot},
         SamePathCase{"RefineRobot", MCWS_REFINE_EXE,
-                     "--robot {in} --input " + kCloud + " --samples 10", "output", "robot", kRobot},
+                     "--robot {in} --input " + test::kAnnulusCloud + " --samples 10", "output",
+                     "robot", test::kPlanar2Robot},
         SamePathCase{"RefineInput", MCWS_REFINE_EXE,
-                     "--robot " + kRobot + " --input {in} --samples 10", "output", "input", kCloud},
+                     "--robot " + test::kPlanar2Robot + " --input {in} --samples 10", "output",
+                     "input", test::kAnnulusCloud},
         SamePathCase{"RefineCloud", MCWS_REFINE_EXE,
-                     "--robot " + kRobot + " --input " + kCloud + " --cloud {in} --samples 10",
-                     "output", "cloud", kCloud},
+                     "--robot " + test::kPlanar2Robot + " --input " + test::kAnnulusCloud +
+                         " --cloud {in} --samples 10",
+                     "output", "cloud", test::kAnnulusCloud},
         SamePathCase{"SelectInput", MCWS_SELECT_EXE, "--input {in} --label 0", "output", "input",
-                     kCloud},
-        SamePathCase{"TrajRobot", MCWS_TRAJ_EXE, "--robot {in}" + kTrajArgs, "output", "robot", kRobot},
+                     test::kAnnulusCloud},
+        SamePathCase{"TrajRobot", MCWS_TRAJ_EXE, "--robot {in}" + kTrajArgs, "output", "robot",
+                     test::kPlanar2Robot},
         SamePathCase{"TrajPlot", MCWS_TRAJ_EXE, "--robot {in} --output {other}t.csv" + kTrajArgs,
-                     "plot", "robot", kRobot},
-        SamePathCase{"BoundaryInput", MCWS_BOUNDARY_EXE, "--input {in}", "output", "input", kCloud},
+                     "plot", "robot", test::kPlanar2Robot},
+        SamePathCase{"BoundaryInput", MCWS_BOUNDARY_EXE, "--input {in}", "output", "input",
+                     test::kAnnulusCloud},
         SamePathCase{"BoundaryInterior", MCWS_BOUNDARY_EXE, "--input {in} --output {other}b.pcd",
-                     "interior", "input", kCloud},
+                     "interior", "input", test::kAnnulusCloud},
         SamePathCase{"ReachRobot", MCWS_REACH_EXE, "--robot {in} --resolution 10cm", "output",
-                     "robot", kRobot},
-        SamePathCase{"ReachTargets", MCWS_REACH_EXE, "--robot " + kRobot + " --targets {in}",
-                     "output", "targets", kCloud},
-        SamePathCase{"PlaceTargets", MCWS_PLACE_EXE,
-                     "--robot " + kRobot + " --targets {in} --along '0 10 5' --resolution 10cm",
-                     "output", "targets", kCloud},
+                     "robot", test::kPlanar2Robot},
+        SamePathCase{"ReachTargets", MCWS_REACH_EXE,
+                     "--robot " + test::kPlanar2Robot + " --targets {in}", "output", "targets",
+                     test::kAnnulusCloud},
+        SamePathCase{
+            "PlaceTargets", MCWS_PLACE_EXE,
+            "--robot " + test::kPlanar2Robot + " --targets {in} --along '0 10 5' --resolution 10cm",
+            "output", "targets", test::kAnnulusCloud},
         SamePathCase{"PlanScenario", MCWS_PLAN_EXE, "--scenario {in}", "output", "scenario",
-                     kScenario},
+                     test::kPlanar2Scenario},
         SamePathCase{"PlanScenariosRobot", MCWS_PLAN_EXE, "--scenario {scenario}", "output",
-                     "scenario's robot", kRobot},
+                     "scenario's robot", test::kPlanar2Robot},
         SamePathCase{"BehaveModel", MCWS_BEHAVE_EXE, "--model {in} --insulators 1", "log", "model",
-                     kBehaviors},
+                     test::kCleanerBehaviors},
         SamePathCase{"BehaveFaults", MCWS_BEHAVE_EXE,
-                     "--model " + kBehaviors + " --insulators 1 --faults {in}", "timeline",
-                     "faults", kLowBatteryFaults}),
+                     "--model " + test::kCleanerBehaviors + " --insulators 1 --faults {in}",
+                     "timeline", "faults", kLowBatteryFaults}),
     [](const ::testing::TestParamInfo<SamePathCase>& info) { return info.param.name; });
 
 }  // namespace

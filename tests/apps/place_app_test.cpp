@@ -11,17 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "apps/tool_paths.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/reach_study.h"
 #include "png_image.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 /// planar2: links 40 and 30 cm, q2 within +-160 deg: the tool point reaches the annulus
 /// r_min <= r <= 70 cm of the plane z = 0, its z axis always world +z.

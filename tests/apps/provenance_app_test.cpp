@@ -17,7 +17,6 @@ namespace {
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-
 /// What `sha256sum` says of a file (an oracle independent of the tools' OpenSSL).
 std::string sha256sum(const std::string& path) {
   const test::RunResult r = test::run("sha256sum " + path);
@@ -212,7 +211,7 @@ TEST_F(ProvenanceApp, TheLineSurvivesBoundaryAndSelect) {
 }
 
 TEST_F(ProvenanceApp, ReachRecordsTheRobotInTheMapAndTheHeatMap) {
-    const std::string planar = test::robotPath("planar2");
+  const std::string planar = test::robotPath("planar2");
   const std::string expected =
       "# mcws robot=planar2 file=planar2.yaml sha256=" + sha256sum(planar) + " length_unit=cm";
   test::RunResult r = test::run(kReach + " --robot " + planar +

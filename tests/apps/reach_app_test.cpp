@@ -10,17 +10,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "mcws/points/point_types.h"
 #include "mcws/reach/reach_map.h"
 #include "png_image.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 /// A three-axis spherical wrist (standard D-H z-y-z, every axis through one point) whose tool
 /// point is the wrist centre, placed at (5, 5, 5) cm: the tool point never moves and every

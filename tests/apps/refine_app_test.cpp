@@ -7,17 +7,16 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "apps/tool_paths.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/points/point_types.h"
-#include "apps/tool_paths.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 pcl::PointCloud<WorkspacePoint> readCloud(const std::string& path) {
   pcl::PointCloud<WorkspacePoint> cloud;

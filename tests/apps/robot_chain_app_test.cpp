@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "kinematics/ur5_shaped_urdf.h"
 #include "apps/tool_paths.h"
+#include "kinematics/ur5_shaped_urdf.h"
 #include "test_support.h"
 
 namespace mcws {

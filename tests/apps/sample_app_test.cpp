@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mcws/points/point_types.h"
 #include "apps/tool_paths.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -15,7 +15,6 @@ namespace {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
-
 
 class SampleApp : public ::testing::Test {
  protected:

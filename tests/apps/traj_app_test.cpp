@@ -9,8 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "png_image.h"
 #include "apps/tool_paths.h"
+#include "png_image.h"
 #include "test_support.h"
 
 namespace mcws {

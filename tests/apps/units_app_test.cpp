@@ -15,7 +15,6 @@ namespace {
 using ::testing::HasSubstr;
 using Json = nlohmann::json;
 
-
 Json runJson(const std::string& command) {
   const test::RunResult r = test::run(command);
   EXPECT_EQ(r.exit_code, 0) << command << "\n" << r.err;

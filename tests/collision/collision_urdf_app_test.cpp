@@ -13,15 +13,14 @@
 #include <set>
 #include <sstream>
 
-#include "mcws/points/point_types.h"
 #include "apps/tool_paths.h"
+#include "mcws/points/point_types.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
 
 /// Agreement of a pair's distance from the URDF [m, times 1000] with the YAML's [mm]: the checker
 /// takes 1e-6 length units off FCL distances (1e-3 mm in metres, 1e-6 mm in mm) and GJK converges

@@ -416,9 +416,10 @@ TEST(CollisionUrdfBadInput, GeometryUrdfHasNoWordFor) {
             "not parse collision element for Link [grip]");
   expectOneLine(message);
   // The robot itself still loads (urdfdom skipped the element), as before.
-  EXPECT_EQ(
-      parseRobotUrdf(withGrip("<capsule radius='0.1' length='0.2'/>"), "tiny.urdf", test::kUr5ToTool0).dof(),
-      2);
+  EXPECT_EQ(parseRobotUrdf(withGrip("<capsule radius='0.1' length='0.2'/>"), "tiny.urdf",
+                           test::kUr5ToTool0)
+                .dof(),
+            2);
 }
 
 TEST(CollisionUrdfBadInput, MeshFormatsAndUrisThatAreNotRead) {

@@ -261,7 +261,8 @@ TEST(MeshFile, MalformedFilesGetOneLineAndNothingOnStderr) {
        "not an STL file: 0 bytes, too short for a binary STL (84-byte header), and not starting "
        "with 'solid' (ASCII STL)"},
       {stl, asciiStl("0 0"), "line 20: triangle 3 corner 2: 'vertex' is not a number"},
-      {stl, test::replaceOnce(asciiStl(), "outer loop", "outer lop"), "line 3: expected 'loop', found 'lop'"},
+      {stl, test::replaceOnce(asciiStl(), "outer loop", "outer lop"),
+       "line 3: expected 'loop', found 'lop'"},
       {stl, asciiStl().substr(0, 100), "line 5: triangle 1 corner 2: the file ends"},
       {stl, asciiStl().substr(0, 88), "line 4: expected 'vertex', found the end of the file"},
       {stl, asciiStl() + "\x1b[31m",

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "apps/tool_paths.h"
 #include "collision/column_urdf.h"
 #include "mcws/collision/srdf.h"
 #include "test_support.h"
@@ -14,8 +15,6 @@ namespace mcws {
 namespace {
 
 using ::testing::HasSubstr;
-
-const std::string kCollide = MCWS_COLLIDE_EXE;
 
 TEST(SrdfApps, DisabledPairIsNoLongerReported) {
   test::TempDir dir;

@@ -291,14 +291,16 @@ TEST(InverseKinematics, MisuseThrowsNamingTheProblem) {
             0u);
   Eigen::Isometry3d mirrored = Eigen::Isometry3d::Identity();
   mirrored.linear()(2, 2) = -1;
-  EXPECT_NE(test::errorOf([&] { solveIk(robot, mirrored, q0); }).find("det R = -1"), std::string::npos);
+  EXPECT_NE(test::errorOf([&] { solveIk(robot, mirrored, q0); }).find("det R = -1"),
+            std::string::npos);
   Eigen::Isometry3d projective = Eigen::Isometry3d::Identity();
   projective.matrix()(3, 0) = 0.5;
   EXPECT_EQ(test::errorOf([&] { solveIk(robot, projective, q0); }),
             "solveIk: target pose's last row is not 0 0 0 1");
 
-  EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd(5)); }),
-            "robot 'inspection6' has 6 joints but 5 joint values were given");
+  EXPECT_EQ(
+      test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), Eigen::VectorXd(5)); }),
+      "robot 'inspection6' has 6 joints but 5 joint values were given");
   Eigen::VectorXd q_inf = q0;
   q_inf[2] = std::numeric_limits<double>::infinity();
   EXPECT_EQ(test::errorOf([&] { solveIk(robot, Eigen::Isometry3d::Identity(), q_inf); }),
@@ -320,11 +322,13 @@ TEST(InverseKinematics, MisuseThrowsNamingTheProblem) {
                                        Eigen::VectorXd::Zero(4));
             }),
             "solveIkNewtonPoseEntries: robot 'deicing' has 4 joints, not 6");
-  EXPECT_EQ(test::errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 0); }),
-            "solveIkNewtonPoseEntries: step tolerance 0 is not a positive number");
   EXPECT_EQ(
-      test::errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 1e-3, 0); }),
-      "solveIkNewtonPoseEntries: max_iterations 0 is not at least 1");
+      test::errorOf([&] { solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 0); }),
+      "solveIkNewtonPoseEntries: step tolerance 0 is not a positive number");
+  EXPECT_EQ(test::errorOf([&] {
+              solveIkNewtonPoseEntries(robot, Eigen::Isometry3d::Identity(), q0, 1e-3, 0);
+            }),
+            "solveIkNewtonPoseEntries: max_iterations 0 is not at least 1");
 }
 
 }  // namespace

@@ -159,7 +159,8 @@ TEST(RobotUrdf, MalformedUrdfPrintsNothing) {
 }
 
 TEST(RobotUrdf, ReportsTipNotBelowBaseAndUnknownLinks) {
-  EXPECT_EQ(urdfError(kPlanar, {"l2", "l1"}), "bad.urdf: tip link 'l1' is not below base link 'l2'");
+  EXPECT_EQ(urdfError(kPlanar, {"l2", "l1"}),
+            "bad.urdf: tip link 'l1' is not below base link 'l2'");
   EXPECT_EQ(urdfError(kPlanar, {"", "hand"}),
             "bad.urdf: tip link 'hand' is not a link of robot 'planar'");
   EXPECT_EQ(urdfError(kPlanar, {"torso", ""}),
@@ -175,15 +176,18 @@ TEST(RobotUrdf, ReportsJointWithoutLimits) {
 }
 
 TEST(RobotUrdf, ReportsFloatingAndPlanarJointsButReadsMimicJoints) {
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
-            "bad.urdf: joint 'j1': floating joints are not supported (revolute, continuous, "
-            "prismatic, fixed)");
-  EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
-              HasSubstr("bad.urdf: joint 'j3': planar joints are not supported"));
+  EXPECT_EQ(
+      urdfError(test::replaceOnce(kPlanar, R"("j1" type="revolute")", R"("j1" type="floating")")),
+      "bad.urdf: joint 'j1': floating joints are not supported (revolute, continuous, "
+      "prismatic, fixed)");
+  EXPECT_THAT(
+      urdfError(test::replaceOnce(kPlanar, R"("j3" type="prismatic")", R"("j3" type="planar")")),
+      HasSubstr("bad.urdf: joint 'j3': planar joints are not supported"));
   // A mimic joint is no error (issue 33): j2 follows j1 and is no degree of freedom.
-  const Robot mimic = parseRobotUrdf(test::replaceOnce(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
-                                             "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>"),
-                                     "mimic.urdf");
+  const Robot mimic =
+      parseRobotUrdf(test::replaceOnce(kPlanar, "<axis xyz=\"0 0 1\"/></joint>",
+                                       "<axis xyz=\"0 0 1\"/><mimic joint=\"j1\"/></joint>"),
+                     "mimic.urdf");
   EXPECT_EQ(mimic.dof(), 2);
   ASSERT_EQ(mimic.mimic_joints.size(), 1u);
   EXPECT_EQ(mimic.mimic_joints[0].joint.name, "j2");
@@ -192,8 +196,8 @@ TEST(RobotUrdf, ReportsFloatingAndPlanarJointsButReadsMimicJoints) {
 TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {
   const std::string branched =
       test::replaceOnce(kPlanar, "</robot>",
-              "<link name='camera'/><joint name='cam' type='fixed'><parent link='l1'/>"
-              "<child link='camera'/></joint></robot>");
+                        "<link name='camera'/><joint name='cam' type='fixed'><parent link='l1'/>"
+                        "<child link='camera'/></joint></robot>");
   EXPECT_EQ(urdfError(branched),
             "bad.urdf: link 'base' has 2 leaf links below it (tool, camera): choose the tip link");
   EXPECT_EQ(parseRobotUrdf(branched, "ok.urdf", {"", "camera"}).dof(), 1);
@@ -203,10 +207,12 @@ TEST(RobotUrdf, ReportsAmbiguousTipAndEmptyChain) {
 }
 
 TEST(RobotUrdf, ReportsLimitsInTheWrongOrderZeroAxisAndOddNames) {
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0.4" upper="0")")),
-            "bad.urdf: joint 'j3': lower limit 0.4 is greater than upper limit 0");
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 0"/>)")),
-            "bad.urdf: joint 'j1': axis must be a finite non-zero vector");
+  EXPECT_EQ(
+      urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0.4" upper="0")")),
+      "bad.urdf: joint 'j3': lower limit 0.4 is greater than upper limit 0");
+  EXPECT_EQ(
+      urdfError(test::replaceOnce(kPlanar, R"(<axis xyz="0 0 2"/>)", R"(<axis xyz="0 0 0"/>)")),
+      "bad.urdf: joint 'j1': axis must be a finite non-zero vector");
   EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j3" type)", R"("j,3" type)")),
             "bad.urdf: joint 'j,3': name contains '=', ',' or a space");
 }
@@ -220,7 +226,8 @@ std::string repeat(const std::string& text, int count) {
 
 /// kPlanar with `content` inside its tool link: the robot and tool elements are two levels.
 std::string planarWithToolContent(const std::string& content) {
-  return test::replaceOnce(kPlanar, R"(<link name="tool"/>)", R"(<link name="tool">)" + content + "</link>");
+  return test::replaceOnce(kPlanar, R"(<link name="tool"/>)",
+                           R"(<link name="tool">)" + content + "</link>");
 }
 
 /// The error of loading `text` written to the file `path`.
@@ -249,8 +256,9 @@ TEST(RobotUrdf, RefusesDeepNestingBeforeTheParserOverflowsItsStack) {
       fileErrorOf(path, planarWithToolContent(repeat("<x>", 100000) + repeat("</x>", 100000))),
       path + ": XML nested deeper than 1000 elements");
   // A quoted "/>" does not close an element.
-  EXPECT_EQ(urdfError(planarWithToolContent(repeat("<x a=\"/>\" b='>'>", 999) + repeat("</x>", 999))),
-            "bad.urdf: XML nested deeper than 1000 elements");
+  EXPECT_EQ(
+      urdfError(planarWithToolContent(repeat("<x a=\"/>\" b='>'>", 999) + repeat("</x>", 999))),
+      "bad.urdf: XML nested deeper than 1000 elements");
 }
 
 TEST(RobotUrdf, NestingCountSkipsEmptyElementsCommentsCdataAndTheDeclaration) {
@@ -281,22 +289,25 @@ TEST(RobotUrdf, RefusesAPercentThatUrdfdomWouldTakeForAPrintfFormat) {
             "bad.urdf: line 14: attribute xyz=\"0%1n= 0 0.5\" holds a '%', which no URDF number "
             "or name needs (urdfdom would misread it)");
   // The same '%' written as a character reference, in another attribute, with single quotes.
-  EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
-                              "<link name='tool'><visual><geometry><sphere radius='&#x025;s'/>"
-                              "</geometry></visual></link>")),
-              HasSubstr("bad.urdf: line 4: attribute radius=\"&#x025;s\" holds a '%'"));
+  EXPECT_THAT(
+      urdfError(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
+                                  "<link name='tool'><visual><geometry><sphere radius='&#x025;s'/>"
+                                  "</geometry></visual></link>")),
+      HasSubstr("bad.urdf: line 4: attribute radius=\"&#x025;s\" holds a '%'"));
   EXPECT_THAT(urdfError(test::replaceOnce(kPlanar, "name=\"j1\"", "name=\"j&#0037;s\"")),
               HasSubstr("attribute name=\"j&#0037;s\" holds a '%'"));
   // A mesh's file name may hold one; other references are untouched.
-  EXPECT_EQ(parseRobotUrdf(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
-                                   "<link name='tool'><visual><geometry><mesh "
-                                   "filename='tool%20v2.stl'/></geometry></visual></link>"),
-                           "ok")
+  EXPECT_EQ(
+      parseRobotUrdf(test::replaceOnce(kPlanar, "<link name=\"tool\"/>",
+                                       "<link name='tool'><visual><geometry><mesh "
+                                       "filename='tool%20v2.stl'/></geometry></visual></link>"),
+                     "ok")
+          .dof(),
+      3);
+  EXPECT_EQ(parseRobotUrdf(
+                test::replaceOnce(kPlanar, "name=\"planar\"", "name=\"pl&#38;&#x26;nar\""), "ok")
                 .dof(),
             3);
-  EXPECT_EQ(
-      parseRobotUrdf(test::replaceOnce(kPlanar, "name=\"planar\"", "name=\"pl&#38;&#x26;nar\""), "ok").dof(),
-      3);
 }
 
 TEST(RobotUrdf, RefusesAFileLargerThan64MiB) {
@@ -362,30 +373,33 @@ TEST(RobotUrdf, RefusesLimitsAndOriginsLargerThan1e9LikeRobotYaml) {
             "bad.urdf: joint 'j1': lower limit -1e+308 is out of range (at most 1e9 in size)");
   EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, j1_limit, R"(lower="-2" upper="1e308")")),
             "bad.urdf: joint 'j1': upper limit 1e+308 is out of range (at most 1e9 in size)");
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0" upper="2e9")")),
-            "bad.urdf: joint 'j3': upper limit 2e+09 is out of range (at most 1e9 in size)");
   EXPECT_EQ(
-      urdfError(test::replaceOnce(kPlanar, R"(<origin xyz="0.2 0 0"/>)", R"(<origin xyz="0 -1e308 0"/>)")),
-      "bad.urdf: joint 'j2': origin coordinate -1e+308 is out of range (at most 1e9 in "
-      "size)");
-  const Robot robot =
-      parseRobotUrdf(test::replaceOnce(kPlanar, j1_limit, R"(lower="-1e9" upper="1e9")"), "ok.urdf");
+      urdfError(test::replaceOnce(kPlanar, R"(lower="0" upper="0.4")", R"(lower="0" upper="2e9")")),
+      "bad.urdf: joint 'j3': upper limit 2e+09 is out of range (at most 1e9 in size)");
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<origin xyz="0.2 0 0"/>)",
+                                        R"(<origin xyz="0 -1e308 0"/>)")),
+            "bad.urdf: joint 'j2': origin coordinate -1e+308 is out of range (at most 1e9 in "
+            "size)");
+  const Robot robot = parseRobotUrdf(
+      test::replaceOnce(kPlanar, j1_limit, R"(lower="-1e9" upper="1e9")"), "ok.urdf");
   EXPECT_EQ(robot.joints[0].lower, -1e9);
   EXPECT_EQ(robot.joints[0].upper, 1e9);
 }
 
 TEST(RobotUrdf, RefusesControlCharactersInRobotLinkAndJointNames) {
   // XML character references write control characters into a name.
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<robot name="planar">)", R"(<robot name="pla&#10;nar">)")),
+  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<robot name="planar">)",
+                                        R"(<robot name="pla&#10;nar">)")),
             "bad.urdf: robot name 'pla\\x0anar' holds a control byte (names are printable text)");
   EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"("j2" type)", R"("j&#9;2" type)")),
             "bad.urdf: joint name 'j\\x092' holds a control byte (names are printable text)");
   // A link off the chain too: every name of the file may reach a message.
-  EXPECT_EQ(urdfError(test::replaceOnce(kPlanar, R"(<link name="tool"/>)",
-                            R"(<link name="tool"/><link name="spare&#127;"/>)"
-                            R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
-                            R"(<child link="spare&#127;"/></joint>)")),
-            "bad.urdf: link name 'spare\\x7f' holds a control byte (names are printable text)");
+  EXPECT_EQ(
+      urdfError(test::replaceOnce(kPlanar, R"(<link name="tool"/>)",
+                                  R"(<link name="tool"/><link name="spare&#127;"/>)"
+                                  R"(<joint name="spare_mount" type="fixed"><parent link="tool"/>)"
+                                  R"(<child link="spare&#127;"/></joint>)")),
+      "bad.urdf: link name 'spare\\x7f' holds a control byte (names are printable text)");
 }
 
 // The UR5-shaped URDF of tests/kinematics/ur5_shaped_urdf.h: its tool0 and ee_link are fixed

@@ -139,11 +139,13 @@ TEST(RobotYaml, ReportsEmptyJointListAndSyntaxErrors) {
 
 TEST(RobotYaml, RefusesControlBytesBeforeYamlCppSeesThem) {
   // Found by the robot_yaml fuzzer: yaml-cpp 0.7 looped forever on a file with NUL bytes.
-  EXPECT_EQ(yamlError(test::replaceOnce(kValid, "convention: standard", std::string("convention: sta\0d", 17))),
+  EXPECT_EQ(yamlError(test::replaceOnce(kValid, "convention: standard",
+                                        std::string("convention: sta\0d", 17))),
             "bad.yaml:3: control byte \\x00 at column 16 (a robot file is text)");
   EXPECT_EQ(yamlError(test::replaceOnce(kValid, "name: two", "name: t\x1bwo")),
             "bad.yaml:1: control byte \\x1b at column 8 (a robot file is text)");
-  EXPECT_EQ(parseRobotYaml(test::replaceOnce(kValid, "name: two", "name:\ttwo\r"), "ok.yaml").name, "two");
+  EXPECT_EQ(parseRobotYaml(test::replaceOnce(kValid, "name: two", "name:\ttwo\r"), "ok.yaml").name,
+            "two");
 }
 
 TEST(RobotYaml, ReportsTextAfterTheDocumentThatTheParserCannotPlace) {
@@ -160,10 +162,12 @@ TEST(RobotYaml, ReportsAnUnterminatedQuoteWhereItStarts) {
   EXPECT_THAT(yamlError(text), StartsWith("bad.yaml:1: a quoted value runs over"));
   EXPECT_THAT(yamlError(text), HasSubstr("several lines: a missing closing quote (\")?"));
   // Quotes that close, with escaped quotes inside, are fine.
-  EXPECT_EQ(parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: 'tw''o\\'"), "ok.yaml").name,
-            "tw'o\\");
-  EXPECT_EQ(parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: \"t\\\"wo\""), "ok.yaml").name,
-            "t\"wo");
+  EXPECT_EQ(
+      parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: 'tw''o\\'"), "ok.yaml").name,
+      "tw'o\\");
+  EXPECT_EQ(
+      parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: \"t\\\"wo\""), "ok.yaml").name,
+      "t\"wo");
   EXPECT_THAT(yamlError(test::replaceOnce(kValid, "convention: standard", "convention: 'standard")),
               StartsWith("bad.yaml:3: a quoted value runs over"));
 }
@@ -199,7 +203,8 @@ TEST(RobotYaml, ReportsEmptyFileName) {
 }
 
 TEST(RobotYaml, ReportsBadToolPose) {
-  EXPECT_THAT(yamlError(kValid + "tool: {xyz: [1, 2]}\n"), HasSubstr("tool: xyz must be [x, y, z]"));
+  EXPECT_THAT(yamlError(kValid + "tool: {xyz: [1, 2]}\n"),
+              HasSubstr("tool: xyz must be [x, y, z]"));
   EXPECT_THAT(yamlError(kValid + "tool: {rot: [1, 2, 3]}\n"), HasSubstr("tool: unknown key 'rot'"));
 }
 
@@ -220,8 +225,10 @@ TEST(RobotYaml, RefusesControlCharactersInRobotAndJointNames) {
             "bad.yaml:5: joint 1: name 'j\\x0d1' holds a control byte (names are printable "
             "text)");
   // Bytes from 0x80 up are text (UTF-8).
-  EXPECT_EQ(parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: zwei_\xc3\xa4rme"), "ok.yaml").name,
-            "zwei_\xc3\xa4rme");
+  EXPECT_EQ(
+      parseRobotYaml(test::replaceOnce(kValid, "name: two", "name: zwei_\xc3\xa4rme"), "ok.yaml")
+          .name,
+      "zwei_\xc3\xa4rme");
 }
 
 TEST(RobotYaml, RefusesControlCharactersInTheRobotFileName) {

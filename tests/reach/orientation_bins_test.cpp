@@ -349,8 +349,9 @@ TEST(OrientationBins, TurningAboutTheApproachByOneBinMovesToTheNextRollBin) {
     for (int k = 0; k < 2000; ++k) {
       // A random rotation: a random approach, then a random roll.
       const Eigen::Vector3d a = randomDirection(rng);
-      const Eigen::Matrix3d R = toolFrame(a, OrientationBins::rollReference(a),
-                                          std::uniform_real_distribution<double>(0, kFullTurn)(rng));
+      const Eigen::Matrix3d R =
+          toolFrame(a, OrientationBins::rollReference(a),
+                    std::uniform_real_distribution<double>(0, kFullTurn)(rng));
       const int b = bins.bin(R.col(2), R.col(0));
       // Turning the tool about its own approach: R * Rz(2 pi / rolls) (= Rot(a, step) * R).
       const Eigen::Matrix3d turned = R * step_about_z.toRotationMatrix();

@@ -487,7 +487,6 @@ TEST(ReachMap, WriteRejectsAHeaderThatIsNotAnObject) {
 // ---------------------------------------------------------------------------------------------
 // buildReachMap on the planar 2R arm.
 
-
 ReachSampling planarSampling(const Robot& robot, int threads) {
   ReachSampling sampling;
   sampling.samples = kPlanarSamples;

@@ -44,7 +44,6 @@ constexpr double kLinkRadius = 2.5, kBaseRadius = 5.0;
 constexpr double kOuter = kL1 + kL2;
 const double kInner = std::sqrt(kL1 * kL1 + kL2 * kL2 + 2.0 * kL1 * kL2 * std::cos(kElbowLimit));
 
-
 /// Angle between two directions [rad], well conditioned at 0 and pi.
 double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));

@@ -74,12 +74,14 @@ TEST(CartesianLine, ToolFollowsTheStraightLineWithTheQuinticTiming) {
   for (int i = 0; i < tr.size(); ++i) {
     const Eigen::Vector3d p = toolPose(robot, tr.q.row(i).transpose()).translation();
     const Eigen::Vector3d along = p - p0;
-    EXPECT_LT((along - along.dot(direction) * direction).norm(), kLineTolerance) << "off the line, " << i;
+    EXPECT_LT((along - along.dot(direction) * direction).norm(), kLineTolerance)
+        << "off the line, " << i;
     const double u = tr.t[i] / options.duration;
     const double s = 10 * std::pow(u, 3) - 15 * std::pow(u, 4) + 6 * std::pow(u, 5);
     EXPECT_NEAR(along.norm() / (p1 - p0).norm(), s, kLineTolerance) << i;
   }
-  EXPECT_LT((tr.q.row(tr.size() - 1).transpose() - Eigen::Vector2d(1.1, 0.6)).norm(), kLineTolerance);
+  EXPECT_LT((tr.q.row(tr.size() - 1).transpose() - Eigen::Vector2d(1.1, 0.6)).norm(),
+            kLineTolerance);
 }
 
 TEST(CartesianLine, FiniteDifferenceVelocitiesMatchTheJacobian) {
