@@ -123,16 +123,16 @@ TEST(CollisionUrdfApps, UnsupportedGeometryIsOneLineNamingFileAndLink) {
   std::string text = test::readFile(urdf());
   const std::string box = "<box size=\"0.06 0.15 0.05\"/>";
   ASSERT_NE(text.find(box), std::string::npos);
-  text.replace(text.find(box), box.size(), "<mesh filename=\"camera.dae\"/>");
+  text.replace(text.find(box), box.size(), "<mesh filename=\"camera.ply\"/>");
   test::writeFile(dir.file("arm.urdf"), text);
   test::expectToolFailure(kCollide, "--robot " + dir.file("arm.urdf") + " --q '0 0 0 0 0 0'", 1,
                           dir.file("arm.urdf") +
-                              ": link 'flange' <collision> 1: mesh 'camera.dae': .dae meshes are "
-                              "not supported (STL or OBJ)",
+                              ": link 'flange' <collision> 1: mesh 'camera.ply': .ply meshes are "
+                              "not supported (STL, OBJ or COLLADA .dae)",
                           out);
   test::expectToolFailure(
       kSample, "--robot " + dir.file("arm.urdf") + " --collision --output " + out.file("x.pcd"), 1,
-      ": link 'flange' <collision> 1: mesh 'camera.dae'", out);
+      ": link 'flange' <collision> 1: mesh 'camera.ply'", out);
   // Not the YAML parser's message of before.
   const test::RunResult r =
       test::run(kCollide + " --robot " + dir.file("arm.urdf") + " --q '0 0 0 0 0 0'");

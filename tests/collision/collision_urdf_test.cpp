@@ -423,10 +423,11 @@ TEST(CollisionUrdfBadInput, GeometryUrdfHasNoWordFor) {
 }
 
 TEST(CollisionUrdfBadInput, MeshFormatsAndUrisThatAreNotRead) {
-  std::string message = tinyError(withGrip("<mesh filename='meshes/grip.dae'/>"));
+  // .dae is read since issue 33 item 4 (tests/collision/collada_mesh_test.cpp).
+  std::string message = tinyError(withGrip("<mesh filename='meshes/grip.ply'/>"));
   EXPECT_EQ(message,
-            "tiny.urdf: link 'grip' <collision> 1: mesh 'meshes/grip.dae': .dae meshes are not "
-            "supported (STL or OBJ)");
+            "tiny.urdf: link 'grip' <collision> 1: mesh 'meshes/grip.ply': .ply meshes are not "
+            "supported (STL, OBJ or COLLADA .dae)");
   expectOneLine(message);
   // package:// URIs are resolved (issue 33 item 3; tests/collision/package_uri_test.cpp): a
   // package found nowhere is named with the places looked.

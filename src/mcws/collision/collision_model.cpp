@@ -250,10 +250,10 @@ std::string urdfMeshPath(const std::string& filename, const std::string& source,
   std::filesystem::path file = path;
   if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
   const std::string extension = lowercaseExtension(file);
-  if (extension != ".stl" && extension != ".obj") {
+  if (extension != ".stl" && extension != ".obj" && extension != ".dae") {
     throw Error(where + ": mesh '" + filename +
                 "': " + (extension.empty() ? std::string("a file without extension") : extension) +
-                " meshes are not supported (STL or OBJ)");
+                " meshes are not supported (STL, OBJ or COLLADA .dae)");
   }
   return file.string();
 }

@@ -88,8 +88,8 @@ std::vector<std::pair<std::string, std::string>> linkBodies(const CollisionModel
 ///   allowed: [[j1, j3]]       # pairs never checked
 /// \endcode
 /// Shapes: capsule (from, to, radius), sphere (center, radius), box (size, xyz, rpy), cylinder
-/// (radius, length, xyz, rpy), mesh (file relative to the YAML file, STL or OBJ, scale, xyz,
-/// rpy). Angles in the file's angle unit, lengths in its length unit.
+/// (radius, length, xyz, rpy), mesh (file relative to the YAML file, STL, OBJ or COLLADA, scale,
+/// xyz, rpy). Angles in the file's angle unit, lengths in its length unit.
 /// \param robot the robot the same file describes (link names, length unit).
 /// \param text the whole YAML document; \param source its file name, for messages and for mesh
 ///   paths.
@@ -109,10 +109,11 @@ CollisionModel parseCollisionYaml(const Robot& robot, const std::string& text,
 /// environment object named by its link (a link fixed to the base off the chain, in the world
 /// frame; objects in the order of their link names, as urdfdom keeps no file order). Geometry:
 /// `<sphere>`, `<box>`, `<cylinder>` (along z, centred on its origin, as ShapeType::kCylinder),
-/// `<mesh filename scale>` of an STL or OBJ file (loadMesh(); a path relative to the URDF file's
-/// directory, an absolute path, a `file://` URI, or a `package://` URI resolved as ROS does through
-/// Robot::package_path and the `ROS_PACKAGE_PATH` variable, then upward from the URDF's folder:
-/// resolvePackageUri(), collision/package_uri.h; other URIs are errors). URDF has no capsule: a
+/// `<mesh filename scale>` of an STL, OBJ or COLLADA file (loadMesh(); a path relative to the
+/// URDF file's directory, an absolute path, a `file://` URI, or a `package://` URI resolved as
+/// ROS does through Robot::package_path and the `ROS_PACKAGE_PATH` variable, then upward from the
+/// URDF's folder: resolvePackageUri(), collision/package_uri.h; other URIs are errors). URDF has
+/// no capsule: a
 /// `<cylinder>` and two `<sphere>`s of its radius centred on its end faces, in one body, are read
 /// as one capsule, which is the same set of points, so that it is tested by the exact segment
 /// distance as a YAML capsule is. Adjacent links are not checked (as for YAML); URDF gives no other
@@ -146,8 +147,9 @@ bool hasGeometry(const CollisionModel& model);
 /// or "(no <collision> element on a link of its chain)" for a URDF, when the model has no shape.
 CollisionModel loadRequiredCollisionModel(const Robot& robot, const std::string& path);
 
-/// \brief Reads a triangle mesh (STL or OBJ, by extension; see mcws::readMeshFile()) and scales
-/// it; polygons with more than three corners are fanned into triangles.
+/// \brief Reads a triangle mesh (STL, OBJ or COLLADA, by extension; see mcws::readMeshFile(); a
+/// COLLADA file's vertices in metres) and scales it; polygons with more than three corners are
+/// fanned into triangles.
 /// \param scale factor applied to the vertices (e.g. 1000 for a file in metres and a robot in mm).
 /// \throws mcws::Error naming the file when it is missing, not a regular file, malformed, holds
 ///   no triangles, or a coordinate that is not a finite number or, as written or scaled, larger

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "mcws/collision/collada_mesh.h"
+#include "mcws/collision/detail/mesh_checks.h"
 #include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
@@ -25,16 +27,6 @@ namespace {
 constexpr std::size_t kStlHeaderBytes = 84;
 constexpr std::size_t kStlTriangleBytes = 50;
 
-/// At most this many bytes of a word are quoted in a message.
-constexpr std::size_t kQuotedBytes = 32;
-
-/// `word` in quotes for a message: cut to kQuotedBytes, control bytes written as \xNN so that a
-/// binary file's bytes cannot break the one-line message.
-std::string quoted(std::string_view word) {
-  return "'" + escapedControlBytes(word.substr(0, kQuotedBytes)) +
-         (word.size() > kQuotedBytes ? "...'" : "'");
-}
-
 bool isSpace(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
 }
@@ -47,32 +39,6 @@ bool equalsIgnoringCase(std::string_view word, std::string_view keyword) {
     if (c != keyword[k]) return false;
   }
   return true;
-}
-
-/// The number a whole word spells ("1.5", "-2e3", "+4", "nan"), or false.
-bool parseNumber(std::string_view word, double& value) {
-  if (word.size() > 1 && word[0] == '+' && word[1] != '+' && word[1] != '-') word.remove_prefix(1);
-  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-  if (word.empty() || end != word.data() + word.size()) return false;
-  if (error == std::errc::result_out_of_range) {
-    // Too large for a double (refused by the caller as out of range) or too small (0 or a
-    // denormal); strtod tells which.
-    value = std::strtod(std::string(word).c_str(), nullptr);
-    return true;
-  }
-  return error == std::errc();
-}
-
-/// Throws unless a coordinate is finite and at most kLargestMeshCoordinate in size. `where`
-/// names it ("'a.obj': line 5: vertex 3: y"), `text` is as the file writes it: "inf" is not a
-/// finite number, "1e400" (a finite number too large for a double) is out of range.
-void checkCoordinate(double value, const std::string& where, const std::string& text) {
-  std::string lower = text;
-  for (char& c : lower) c = c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c;
-  if (std::isnan(value) || lower.find("inf") != std::string::npos)
-    throw Error(where + " coordinate " + text + " is not a finite number");
-  if (!(std::abs(value) <= kLargestMeshCoordinate))
-    throw Error(where + " coordinate " + text + " is out of range (at most 1e9 in size)");
 }
 
 /// Collects the corners of triangles into vertices, one per distinct position.
@@ -124,10 +90,11 @@ TriangleMesh parseBinaryStl(const std::string& bytes, const std::string& source)
         const std::uint32_t bits = littleEndian32(triangle + 12 * (c + 1) + 4 * k);
         float value = 0.f;
         std::memcpy(&value, &bits, sizeof value);
-        checkCoordinate(value,
-                        where + ": triangle " + std::to_string(t + 1) + " corner " +
-                            std::to_string(c + 1) + ": " + std::string(1, "xyz"[k]),
-                        formatNumber(value, 9));  // 9 digits read back as the same float
+        detail::checkMeshCoordinate(
+            value,
+            where + ": triangle " + std::to_string(t + 1) + " corner " + std::to_string(c + 1) +
+                ": " + std::string(1, "xyz"[k]),
+            formatNumber(value, 9));  // 9 digits read back as the same float
         p[k] = value;
       }
       corners[c] = merger.add(p);
@@ -174,17 +141,18 @@ TriangleMesh parseAsciiStl(const std::string& text, const std::string& source) {
   const auto expect = [&](std::string_view keyword) {
     const std::string_view word = words.next();
     if (!equalsIgnoringCase(word, keyword)) {
-      throw Error(where() + ": expected '" + std::string(keyword) + "', found " +
-                  (word.empty() ? std::string("the end of the file") : quoted(word)));
+      throw Error(
+          where() + ": expected '" + std::string(keyword) + "', found " +
+          (word.empty() ? std::string("the end of the file") : detail::quotedMeshWord(word)));
     }
   };
   const auto number = [&](const std::string& what) {
     const std::string_view word = words.next();
     double value = 0.0;
-    if (!parseNumber(word, value)) {
-      throw Error(
-          where() + ": " + what + ": " +
-          (word.empty() ? std::string("the file ends") : quoted(word) + " is not a number"));
+    if (!detail::parseMeshNumber(word, value)) {
+      throw Error(where() + ": " + what + ": " +
+                  (word.empty() ? std::string("the file ends")
+                                : detail::quotedMeshWord(word) + " is not a number"));
     }
     return std::make_pair(value, std::string(word));
   };
@@ -200,13 +168,14 @@ TriangleMesh parseAsciiStl(const std::string& text, const std::string& source) {
       if (word.empty()) break;
       if (!equalsIgnoringCase(word, "solid")) {
         throw Error(where() + ": expected 'solid' or the end of the file after 'endsolid', found " +
-                    quoted(word));
+                    detail::quotedMeshWord(word));
       }
       words.skipLine();
       continue;
     }
     if (!equalsIgnoringCase(word, "facet")) {
-      throw Error(where() + ": expected 'facet' or 'endsolid', found " + quoted(word));
+      throw Error(where() + ": expected 'facet' or 'endsolid', found " +
+                  detail::quotedMeshWord(word));
     }
     const std::string triangle = "triangle " + std::to_string(mesh.triangles.size() + 1);
     expect("normal");
@@ -220,7 +189,8 @@ TriangleMesh parseAsciiStl(const std::string& text, const std::string& source) {
       Eigen::Vector3d p;
       for (int k = 0; k < 3; ++k) {
         const auto [value, written] = number(corner);
-        checkCoordinate(value, where() + ": " + corner + ": " + std::string(1, "xyz"[k]), written);
+        detail::checkMeshCoordinate(
+            value, where() + ": " + corner + ": " + std::string(1, "xyz"[k]), written);
         p[k] = value;
       }
       corners[c] = merger.add(p);
@@ -284,10 +254,11 @@ Eigen::Vector3d objVertex(const std::vector<std::string_view>& words, const std:
   Eigen::Vector3d p;
   for (std::size_t k = 1; k < words.size(); ++k) {
     double value = 0.0;
-    if (!parseNumber(words[k], value))
-      throw Error(vertex + ": " + quoted(words[k]) + " is not a number");
+    if (!detail::parseMeshNumber(words[k], value))
+      throw Error(vertex + ": " + detail::quotedMeshWord(words[k]) + " is not a number");
     if (k <= 3) {
-      checkCoordinate(value, vertex + ": " + std::string(1, "xyz"[k - 1]), std::string(words[k]));
+      detail::checkMeshCoordinate(value, vertex + ": " + std::string(1, "xyz"[k - 1]),
+                                  std::string(words[k]));
       p[int(k) - 1] = value;
     }
   }
@@ -309,7 +280,7 @@ ObjFace objFace(const std::vector<std::string_view>& words, const std::string& w
     const auto [stop, error] = std::from_chars(index.data(), index.data() + index.size(), value);
     if (index.empty() || stop != index.data() + index.size() || error != std::errc() ||
         value == 0) {
-      throw Error(where + ": face corner " + quoted(words[k]) +
+      throw Error(where + ": face corner " + detail::quotedMeshWord(words[k]) +
                   " does not start with a vertex number (1, 2, ... or -1, -2, ... from the "
                   "last vertex)");
     }
@@ -360,7 +331,7 @@ TriangleMesh parseObj(const std::string& text, const std::string& source) {
     } else if (keyword != "vt" && keyword != "vn" && keyword != "vp" && keyword != "l" &&
                keyword != "p" && keyword != "g" && keyword != "o" && keyword != "s" &&
                keyword != "usemtl" && keyword != "mtllib") {
-      throw Error(where + ": unknown keyword " + quoted(keyword) +
+      throw Error(where + ": unknown keyword " + detail::quotedMeshWord(keyword) +
                   " (v and f are read; vt, vn, vp, l, p, g, o, s, usemtl and mtllib skipped)");
     }
   }
@@ -370,9 +341,59 @@ TriangleMesh parseObj(const std::string& text, const std::string& source) {
 
 }  // namespace
 
+namespace detail {
+
+/// At most this many bytes of a word are quoted in a message.
+constexpr std::size_t kMeshQuotedBytes = 32;
+
+/// `word` in quotes for a message: cut to kMeshQuotedBytes, control bytes written as \xNN so that a
+/// binary file's bytes cannot break the one-line message.
+std::string quotedMeshWord(std::string_view word) {
+  return "'" + escapedControlBytes(word.substr(0, kMeshQuotedBytes)) +
+         (word.size() > kMeshQuotedBytes ? "...'" : "'");
+}
+
+/// The number a whole word spells ("1.5", "-2e3", "+4", "nan"), or false.
+bool parseMeshNumber(std::string_view word, double& value) {
+  if (word.size() > 1 && word[0] == '+' && word[1] != '+' && word[1] != '-') word.remove_prefix(1);
+  const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+  if (word.empty() || end != word.data() + word.size()) return false;
+  if (error == std::errc::result_out_of_range) {
+    // Too large for a double (refused by the caller as out of range) or too small (0 or a
+    // denormal); strtod tells which.
+    value = std::strtod(std::string(word).c_str(), nullptr);
+    return true;
+  }
+  return error == std::errc();
+}
+
+/// Throws unless a coordinate is finite and at most kLargestMeshCoordinate in size. `where`
+/// names it ("'a.obj': line 5: vertex 3: y"), `text` is as the file writes it: "inf" is not a
+/// finite number, "1e400" (a finite number too large for a double) is out of range.
+void checkMeshCoordinate(double value, const std::string& where, const std::string& text) {
+  std::string lower = text;
+  for (char& c : lower) c = c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c;
+  if (std::isnan(value) || lower.find("inf") != std::string::npos)
+    throw Error(where + " coordinate " + text + " is not a finite number");
+  if (!(std::abs(value) <= kLargestMeshCoordinate))
+    throw Error(where + " coordinate " + text + " is out of range (at most 1e9 in size)");
+}
+
+}  // namespace detail
+
 TriangleMesh parseMesh(const std::string& bytes, MeshFormat format, const std::string& source) {
-  TriangleMesh mesh =
-      format == MeshFormat::kStl ? parseStl(bytes, source) : parseObj(bytes, source);
+  TriangleMesh mesh;
+  switch (format) {
+    case MeshFormat::kStl:
+      mesh = parseStl(bytes, source);
+      break;
+    case MeshFormat::kObj:
+      mesh = parseObj(bytes, source);
+      break;
+    case MeshFormat::kCollada:
+      mesh = parseColladaMesh(bytes, source);
+      break;
+  }
   if (mesh.triangles.empty()) throw Error("'" + source + "': holds no triangles");
   return mesh;
 }
@@ -382,14 +403,20 @@ TriangleMesh readMeshFile(const std::string& path) {
   if (!path.empty() && !std::filesystem::exists(path, ec))
     throw Error("'" + path + "': file does not exist");
   const std::string extension = lowercaseExtension(path);
-  if (extension != ".stl" && extension != ".obj")
-    throw Error("'" + path + "': not an STL or OBJ file (by its extension)");
+  MeshFormat format = MeshFormat::kStl;
+  if (extension == ".obj") {
+    format = MeshFormat::kObj;
+  } else if (extension == ".dae") {
+    format = MeshFormat::kCollada;
+  } else if (extension != ".stl") {
+    throw Error("'" + path + "': not an STL, OBJ or COLLADA (.dae) file (by its extension)");
+  }
   requireInputFile(path, "collision mesh");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error("'" + path + "': cannot open: " + std::strerror(errno));
   const std::string bytes = readRest(in);
   if (in.bad()) throw Error("'" + path + "': cannot read");
-  return parseMesh(bytes, extension == ".stl" ? MeshFormat::kStl : MeshFormat::kObj, path);
+  return parseMesh(bytes, format, path);
 }
 
 }  // namespace mcws

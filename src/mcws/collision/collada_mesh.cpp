@@ -1,0 +1,134 @@
+#include "mcws/collision/collada_mesh.h"
+
+#include <tinyxml.h>
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <Eigen/Core>
+#include <array>
+#include <assimp/Importer.hpp>
+#include <cmath>
+#include <vector>
+
+#include "mcws/collision/detail/mesh_checks.h"
+#include "mcws/core/control_bytes.h"
+#include "mcws/core/decimal.h"
+#include "mcws/core/error.h"
+
+namespace mcws {
+namespace {
+
+/// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
+/// absent. \throws mcws::Error when the bytes are not XML, the root element is not `<COLLADA>`,
+/// or the unit is not a number > 0 of at most kLargestMeshCoordinate.
+double colladaUnitLength(const std::string& bytes, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(bytes.c_str());
+  if (document.Error()) {
+    const std::string line =
+        document.ErrorRow() > 0 ? " at line " + std::to_string(document.ErrorRow()) : "";
+    throw Error("'" + source + "': not a COLLADA file: malformed XML" + line + ": " +
+                escapedControlBytes(document.ErrorDesc()));
+  }
+  const TiXmlElement* root = document.RootElement();
+  if (root == nullptr || std::string(root->Value()) != "COLLADA") {
+    throw Error("'" + source + "': not a COLLADA file: its root element is " +
+                (root ? "<" + escapedControlBytes(root->Value()) + ">" : std::string("missing")) +
+                ", not <COLLADA>");
+  }
+  const TiXmlElement* asset = root->FirstChildElement("asset");
+  const TiXmlElement* unit = asset ? asset->FirstChildElement("unit") : nullptr;
+  const char* meter = unit ? unit->Attribute("meter") : nullptr;
+  if (meter == nullptr) return 1.0;
+  double length = 0.0;
+  if (!detail::parseMeshNumber(meter, length) || !(length > 0.0) ||
+      !(length <= kLargestMeshCoordinate)) {
+    throw Error("'" + source + "': <unit meter=" + detail::quotedMeshWord(meter) +
+                ">: the length of the file's unit must be a number > 0 [m] (at most 1e9)");
+  }
+  return length;
+}
+
+Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d out;
+  for (unsigned r = 0; r < 4; ++r) {
+    for (unsigned c = 0; c < 4; ++c) out(r, c) = m[r][c];
+  }
+  return out;
+}
+
+/// Adds one instance of `in`, placed by `T_file_node` [m per file unit], to `mesh`.
+void addInstance(const aiMesh& in, const Eigen::Matrix4d& T_file_node, const std::string& source,
+                 TriangleMesh& mesh) {
+  const std::string name = "'" + source + "': mesh " + detail::quotedMeshWord(in.mName.C_Str());
+  const int offset = int(mesh.vertices.size());
+  for (unsigned v = 0; v < in.mNumVertices; ++v) {
+    const aiVector3D& written = in.mVertices[v];
+    const std::string where = name + " vertex " + std::to_string(v + 1) + ": ";
+    for (int k = 0; k < 3; ++k) {
+      // 9 digits read back as the same float (assimp reads floats).
+      detail::checkMeshCoordinate(written[k], where + "xyz"[k], formatNumber(written[k], 9));
+    }
+    const Eigen::Vector3d p =
+        (T_file_node * Eigen::Vector4d(written.x, written.y, written.z, 1.0)).head<3>();
+    for (int k = 0; k < 3; ++k) {
+      detail::checkMeshCoordinate(p[k], where + "xyz"[k] + " (placed, in metres)",
+                                  formatNumber(p[k], 9));
+    }
+    mesh.vertices.push_back(p);
+  }
+  for (unsigned f = 0; f < in.mNumFaces; ++f) {
+    const aiFace& face = in.mFaces[f];
+    if (face.mNumIndices != 3) continue;  // a point or a line
+    std::array<int, 3> corners{};
+    for (int c = 0; c < 3; ++c) {
+      if (face.mIndices[c] >= in.mNumVertices) {
+        throw Error(name + " face " + std::to_string(f + 1) + ": refers to a missing vertex");
+      }
+      corners[c] = offset + int(face.mIndices[c]);
+    }
+    mesh.triangles.push_back(corners);
+  }
+}
+
+}  // namespace
+
+TriangleMesh parseColladaMesh(const std::string& bytes, const std::string& source) {
+  const double unit = colladaUnitLength(bytes, source);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFileFromMemory(
+      bytes.data(), bytes.size(), aiProcess_Triangulate | aiProcess_ValidateDataStructure, "dae");
+  if (scene == nullptr) {
+    throw Error("'" + source + "': assimp cannot read this COLLADA file: " +
+                escapedControlBytes(importer.GetErrorString()));
+  }
+  TriangleMesh mesh;
+  // An incomplete scene (no geometry) holds a dummy mesh of assimp's: no triangle of the file.
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr) return mesh;
+
+  // Depth first from the root, whose transform (assimp's unit scaling and turn to Y up) is
+  // replaced by the file's unit alone: <up_axis> is ignored, as in RViz and MoveIt.
+  struct Placed {
+    const aiNode* node;
+    Eigen::Matrix4d T_file_node;
+  };
+  Eigen::Matrix4d T_root = Eigen::Matrix4d::Identity();
+  T_root.topLeftCorner<3, 3>() *= unit;
+  std::vector<Placed> open{{scene->mRootNode, T_root}};
+  while (!open.empty()) {
+    const Placed placed = open.back();
+    open.pop_back();
+    const aiNode& node = *placed.node;
+    for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+      if (node.mMeshes[k] >= scene->mNumMeshes) continue;  // ValidateDataStructure refuses it
+      addInstance(*scene->mMeshes[node.mMeshes[k]], placed.T_file_node, source, mesh);
+    }
+    for (unsigned c = node.mNumChildren; c-- > 0;) {
+      const aiNode* child = node.mChildren[c];
+      open.push_back({child, placed.T_file_node * toEigen(child->mTransformation)});
+    }
+  }
+  return mesh;
+}
+
+}  // namespace mcws

@@ -1,0 +1,240 @@
+// COLLADA (.dae) collision meshes through assimp (issue 33, item 4): the triangles of every node
+// in metres (the file's <unit> applied), the vertices in the axes they are written in (the file's
+// <up_axis> ignored, as RViz and MoveIt do), the URDF's scale on top, and each bad file one line
+// naming it. The box files come from collada_box.h; every expected number is worked out from the
+// box's corners.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "collision/collada_box.h"
+#include "mcws/collision/collada_mesh.h"
+#include "mcws/collision/collision_model.h"
+#include "mcws/collision/mesh_file.h"
+#include "mcws/core/error.h"
+#include "mcws/kinematics/robot_urdf.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+/// assimp reads coordinates as floats: a millimetre coordinate of a few hundred, times 0.001, is
+/// within 1e-7 m of the exact value.
+constexpr double kFloatM = 1e-7;
+/// The volume of boxes of 1e-2 m^3 from such coordinates [m^3].
+constexpr double kFloatM3 = 1e-9;
+
+/// The smallest and largest coordinate of the vertices the triangles use.
+std::pair<Eigen::Vector3d, Eigen::Vector3d> boundsOf(const TriangleMesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& triangle : mesh.triangles) {
+    for (int corner : triangle) {
+      lo = lo.cwiseMin(mesh.vertices[corner]);
+      hi = hi.cwiseMax(mesh.vertices[corner]);
+    }
+  }
+  return {lo, hi};
+}
+
+/// The volume a closed, outward-wound mesh encloses (divergence theorem: the sum of the signed
+/// tetrahedra from the origin) [m^3].
+double volumeOf(const TriangleMesh& mesh) {
+  double six_volume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    six_volume += mesh.vertices[t[0]].dot(mesh.vertices[t[1]].cross(mesh.vertices[t[2]]));
+  }
+  return six_volume / 6.0;
+}
+
+/// A box of 100 x 200 x 300 mm from (10, 20, 30) mm, in a file in millimetres.
+test::ColladaBox millimetreBox() {
+  test::ColladaBox box;
+  box.lo = {10, 20, 30};
+  box.hi = {110, 220, 330};
+  box.unit_meter = "0.001";
+  return box;
+}
+
+void expectBounds(const TriangleMesh& mesh, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+  const auto [low, high] = boundsOf(mesh);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(low[k], lo[k], kFloatM) << "axis " << k;
+    EXPECT_NEAR(high[k], hi[k], kFloatM) << "axis " << k;
+  }
+}
+
+TEST(ColladaMesh, MillimetreBoxIsReadInMetresInTheAxesItIsWrittenIn) {
+  test::ColladaBox box = millimetreBox();
+  for (const char* up : {"Z_UP", "Y_UP", "X_UP", ""}) {
+    box.up_axis = up;
+    const TriangleMesh mesh = parseColladaMesh(test::colladaBoxText(box), "box.dae");
+    ASSERT_EQ(mesh.triangles.size(), 12u) << up;
+    // The corners in metres, whatever <up_axis> says (assimp alone would turn a Z_UP file by
+    // -90 degrees about x: y in [-0.33, -0.03], z in [0.02, 0.22]).
+    expectBounds(mesh, {0.01, 0.02, 0.03}, {0.11, 0.22, 0.33});
+    EXPECT_NEAR(volumeOf(mesh), 0.1 * 0.2 * 0.3, kFloatM3) << up;
+  }
+}
+
+TEST(ColladaMesh, AFileWithoutUnitIsInMetres) {
+  test::ColladaBox box;
+  box.hi = {1, 2, 3};
+  const TriangleMesh mesh = parseMesh(test::colladaBoxText(box), MeshFormat::kCollada, "b.dae");
+  expectBounds(mesh, {0, 0, 0}, {1, 2, 3});
+  EXPECT_NEAR(volumeOf(mesh), 6.0, 1e-12);
+  // Inches: 0.0254 m each.
+  box.unit_meter = "0.0254";
+  expectBounds(parseColladaMesh(test::colladaBoxText(box), "b.dae"), {0, 0, 0},
+               {0.0254, 0.0508, 0.0762});
+}
+
+TEST(ColladaMesh, QuadsAreTriangulated) {
+  test::ColladaBox box = millimetreBox();
+  box.quads = true;
+  const TriangleMesh mesh = parseColladaMesh(test::colladaBoxText(box), "quads.dae");
+  EXPECT_EQ(mesh.triangles.size(), 12u);
+  expectBounds(mesh, {0.01, 0.02, 0.03}, {0.11, 0.22, 0.33});
+  EXPECT_NEAR(volumeOf(mesh), 0.006, kFloatM3);
+}
+
+TEST(ColladaMesh, EachNodePlacesItsOwnInstance) {
+  test::ColladaBox box = millimetreBox();
+  // The box where it is, and once more 500 mm along x and turned 90 degrees about z
+  // (COLLADA's <translate> then <rotate>: p -> T (R p)): (x, y) -> (500 - y, x).
+  box.nodes = {"", "<translate>500 0 0</translate><rotate>0 0 1 90</rotate>"};
+  const TriangleMesh mesh = parseColladaMesh(test::colladaBoxText(box), "two.dae");
+  ASSERT_EQ(mesh.triangles.size(), 24u);
+  EXPECT_NEAR(volumeOf(mesh), 2 * 0.006, kFloatM3);
+  // The second box: x = 500 - y in [280, 480] mm, y = x in [10, 110] mm, z unchanged.
+  TriangleMesh second = mesh;
+  second.triangles.erase(second.triangles.begin(), second.triangles.begin() + 12);
+  expectBounds(second, {0.28, 0.01, 0.03}, {0.48, 0.11, 0.33});
+}
+
+TEST(ColladaMesh, ReadThroughTheFileReaderAndAUrdfPackageUriWithScale) {
+  test::TempDir dir;
+  std::filesystem::create_directories(dir.file("ws/my_robot/meshes"));
+  test::writeFile(dir.file("ws/my_robot/package.xml"), "<package/>");
+  // An upper-case extension, as CAD exports write it.
+  test::writeFile(dir.file("ws/my_robot/meshes/box.DAE"), test::colladaBoxText(millimetreBox()));
+  expectBounds(readMeshFile(dir.file("ws/my_robot/meshes/box.DAE")), {0.01, 0.02, 0.03},
+               {0.11, 0.22, 0.33});
+
+  const std::string urdf = dir.file("arm.urdf");
+  test::writeFile(urdf,
+                  "<robot name='arm'><link name='base'/><link name='tool'><collision><geometry>"
+                  "<mesh filename='package://my_robot/meshes/box.DAE' scale='2 3 0.5'/>"
+                  "</geometry></collision></link><joint name='j1' type='revolute'>"
+                  "<parent link='base'/><child link='tool'/><axis xyz='0 0 1'/>"
+                  "<limit lower='-1' upper='1' effort='1' velocity='1'/></joint></robot>");
+  Robot robot = loadRobotUrdf(urdf);
+  robot.package_path = {dir.file("ws")};
+  const CollisionModel model = loadCollisionModel(robot, urdf);
+  ASSERT_EQ(model.links.size(), 2u);
+  ASSERT_EQ(model.links[1].shapes.size(), 1u);
+  const ShapeSpec& shape = model.links[1].shapes[0];
+  ASSERT_EQ(shape.type, ShapeType::kMesh);
+  ASSERT_TRUE(shape.mesh);
+  // The URDF's scale times the file's corners in metres: x 2 * [0.01, 0.11], y 3 * [0.02, 0.22],
+  // z 0.5 * [0.03, 0.33]; the volume 2 * 3 * 0.5 times 0.006 m^3.
+  expectBounds(*shape.mesh, {0.02, 0.06, 0.015}, {0.22, 0.66, 0.165});
+  EXPECT_NEAR(volumeOf(*shape.mesh), 3 * 0.006, 3 * kFloatM3);
+}
+
+/// The message of the error parseColladaMesh() throws for `text`, "" when none.
+std::string colladaError(const std::string& text, const std::string& source = "bad.dae") {
+  try {
+    parseMesh(text, MeshFormat::kCollada, source);
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    return message;
+  }
+  return "";
+}
+
+TEST(ColladaMeshBadInput, NotANumberVertexNamesTheMeshAndVertex) {
+  test::ColladaBox box = millimetreBox();
+  box.first_x = "nan";
+  EXPECT_EQ(colladaError(test::colladaBoxText(box)),
+            "'bad.dae': mesh 'box' vertex 1: x coordinate nan is not a finite number");
+  box.first_x = "inf";
+  EXPECT_THAT(colladaError(test::colladaBoxText(box)),
+              ::testing::EndsWith("x coordinate inf is not a finite number"));
+  // Finite as written, out of range once placed: 10 mm times a node's scale of 1e13 (the float
+  // 9.99999983e12, as assimp reads it) is 1e11 m.
+  box.first_x = "10";
+  box.nodes = {"<scale>1e13 1 1</scale>"};
+  EXPECT_THAT(colladaError(test::colladaBoxText(box)),
+              ::testing::HasSubstr("'bad.dae': mesh 'box' vertex 1: x (placed, in metres) "
+                                   "coordinate 9.99999983e+10 is out of range (at most 1e9 in "
+                                   "size)"));
+}
+
+TEST(ColladaMeshBadInput, AMeshWithoutTrianglesIsEmpty) {
+  test::ColladaBox box = millimetreBox();
+  box.no_faces = true;
+  EXPECT_EQ(colladaError(test::colladaBoxText(box)), "'bad.dae': holds no triangles");
+  // A scene whose node names a geometry the file does not hold.
+  std::string text = test::colladaBoxText(millimetreBox());
+  text.replace(text.find("url=\"#box\""), 10, "url=\"#cup\"");
+  EXPECT_EQ(colladaError(text), "'bad.dae': holds no triangles");
+}
+
+TEST(ColladaMeshBadInput, FilesThatAreNotColladaOrThatAssimpCannotRead) {
+  EXPECT_EQ(colladaError("solid x\nendsolid x\n"),
+            "'bad.dae': not a COLLADA file: malformed XML: Error document empty.");
+  EXPECT_EQ(colladaError("<?xml version='1.0'?>\n<COLLADA><asset></COLLADA>"),
+            "'bad.dae': not a COLLADA file: malformed XML at line 2: Error reading end tag.");
+  EXPECT_EQ(colladaError("<?xml version='1.0'?><robot name='r'/>"),
+            "'bad.dae': not a COLLADA file: its root element is <robot>, not <COLLADA>");
+  std::string text = test::colladaBoxText(millimetreBox());
+  text.replace(text.find("<p>0 2 1 "), 9, "<p>0 2 9 ");  // vertex 9 of 8
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': assimp cannot read this COLLADA file: Invalid data index (9/8) in "
+            "primitive specification");
+}
+
+TEST(ColladaMeshBadInput, UnitThatIsNotALength) {
+  test::ColladaBox box = millimetreBox();
+  for (const char* unit : {"abc", "0", "-0.001", "nan", "1e10", "0.001m"}) {
+    box.unit_meter = unit;
+    EXPECT_EQ(colladaError(test::colladaBoxText(box)),
+              std::string("'bad.dae': <unit meter='") + unit +
+                  "'>: the length of the file's unit must be a number > 0 [m] (at most 1e9)");
+  }
+}
+
+TEST(ColladaMeshBadInput, MissingFileAndUnreadableMeshInAUrdf) {
+  test::TempDir dir;
+  try {
+    readMeshFile(dir.file("none.dae"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "'" + dir.file("none.dae") + "': file does not exist");
+  }
+  // Through a URDF: the file and the link first, then the mesh's own line.
+  test::writeFile(dir.file("bad.dae"), "<COLLADA/>");
+  test::writeFile(dir.file("arm.urdf"),
+                  "<robot name='arm'><link name='base'/><link name='tool'><collision><geometry>"
+                  "<mesh filename='bad.dae'/></geometry></collision></link>"
+                  "<joint name='j1' type='revolute'><parent link='base'/><child link='tool'/>"
+                  "<axis xyz='0 0 1'/><limit lower='-1' upper='1' effort='1' velocity='1'/>"
+                  "</joint></robot>");
+  const Robot robot = loadRobotUrdf(dir.file("arm.urdf"));
+  try {
+    loadCollisionModel(robot, dir.file("arm.urdf"));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_THAT(message,
+                ::testing::StartsWith(dir.file("arm.urdf") + ": link 'tool' <collision> 1: mesh '" +
+                                      dir.file("bad.dae") + "': "));
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace mcws
