@@ -62,19 +62,19 @@ void addInstance(const aiMesh& in, const Eigen::Matrix4d& T_file_node, const std
                  TriangleMesh& mesh) {
   const std::string name = "'" + source + "': mesh " + detail::quotedMeshWord(in.mName.C_Str());
   const int offset = int(mesh.vertices.size());
+  // The message is made only for a bad coordinate (9 digits read back as the same float).
+  const auto check = [&](double value, unsigned v, int k, const char* what) {
+    if (std::isfinite(value) && std::abs(value) <= kLargestMeshCoordinate) return;
+    detail::checkMeshCoordinate(value,
+                                name + " vertex " + std::to_string(v + 1) + ": " + "xyz"[k] + what,
+                                formatNumber(value, 9));
+  };
   for (unsigned v = 0; v < in.mNumVertices; ++v) {
     const aiVector3D& written = in.mVertices[v];
-    const std::string where = name + " vertex " + std::to_string(v + 1) + ": ";
-    for (int k = 0; k < 3; ++k) {
-      // 9 digits read back as the same float (assimp reads floats).
-      detail::checkMeshCoordinate(written[k], where + "xyz"[k], formatNumber(written[k], 9));
-    }
+    for (int k = 0; k < 3; ++k) check(written[k], v, k, "");
     const Eigen::Vector3d p =
         (T_file_node * Eigen::Vector4d(written.x, written.y, written.z, 1.0)).head<3>();
-    for (int k = 0; k < 3; ++k) {
-      detail::checkMeshCoordinate(p[k], where + "xyz"[k] + " (placed, in metres)",
-                                  formatNumber(p[k], 9));
-    }
+    for (int k = 0; k < 3; ++k) check(p[k], v, k, " (placed, in metres)");
     mesh.vertices.push_back(p);
   }
   for (unsigned f = 0; f < in.mNumFaces; ++f) {
