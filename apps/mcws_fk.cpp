@@ -7,6 +7,7 @@
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
     const std::string length = units.lengthName();
     if (cli.has("json")) {
       nlohmann::json out;
-      out["robot"] = robot.name;
+      addRobotNames(out, robot, frame == "tool" ? SamplePoint::kTool : SamplePoint::kFlange);
       out["length_unit"] = length;
       out["frame"] = frame;
       out["q"] = std::vector<double>(q.data(), q.data() + q.size());
