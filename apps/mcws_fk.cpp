@@ -18,7 +18,8 @@ constexpr char kSummary[] =
 joint vector. Joint values are in rad (revolute) and in the robot file's length unit (prismatic);
 the pose's translation is in that length unit, or in --unit's (m for ROS conventions). The plain
 output is the matrix under a '#' line naming the frame and the unit (numpy.loadtxt and gnuplot
-skip it); --json gives "pose", "position" and "q" with "length_unit" and "units".)";
+skip it); --json gives "pose", "position" and "q" with "length_unit" and "units", and "robot"
+and "tip" (the URDF tip link, or tool or flange), as every tool's --json names them.)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
   mcws::app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
