@@ -27,11 +27,11 @@ using ::testing::HasSubstr;
 
 /// An axis-aligned square post seen from above [cm]: the posts are 40 cm tall around z = 0, where
 /// the arm moves, so the 3-D distance is the distance in the x-y plane.
-struct Post {
+struct PlanarPost {
   Eigen::Vector2d centre;
   double half;
 };
-const Post kPosts[] = {{{30, 38}, 5}, {{-32, 36}, 5}, {{0, -52}, 4}};
+const PlanarPost kPosts[] = {{{30, 38}, 5}, {{-32, 36}, 5}, {{0, -52}, 4}};
 constexpr double kArmRadius = 2.5;  ///< both capsules [cm]
 /// Samples whose closed-form clearance is this close to zero may fall either way in the checker's
 /// arithmetic (GJK on float joint values) [cm].
@@ -43,12 +43,13 @@ double pointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Ei
   return (a + t * ab - p).norm();
 }
 
-double pointSquare(const Eigen::Vector2d& p, const Post& post) {
+double pointSquare(const Eigen::Vector2d& p, const PlanarPost& post) {
   const Eigen::Vector2d d = ((p - post.centre).cwiseAbs().array() - post.half).max(0.0);
   return d.norm();
 }
 
-bool segmentCrossesSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Post& post) {
+bool segmentCrossesSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                          const PlanarPost& post) {
   // Liang-Barsky clipping of the segment to the square.
   double t0 = 0.0, t1 = 1.0;
   const Eigen::Vector2d d = b - a;
@@ -68,7 +69,7 @@ bool segmentCrossesSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b, co
 }
 
 /// Distance between a segment and a square (0 when they meet).
-double segmentSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Post& post) {
+double segmentSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const PlanarPost& post) {
   if (segmentCrossesSquare(a, b, post)) return 0.0;
   double d = std::min(pointSquare(a, post), pointSquare(b, post));
   for (const double sx : {-1.0, 1.0}) {
@@ -83,11 +84,11 @@ double segmentSquare(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const P
 /// (negative: they overlap). The base sphere (radius 5 at the origin) reaches no post, and the
 /// forearm never comes within 15 cm of the base (q2 is within 160 deg), so the label is
 /// environment (3) exactly when this is negative, else free (0).
-double clearance(double q1, double q2) {
+double planar2Clearance(double q1, double q2) {
   const Eigen::Vector2d elbow = 40.0 * Eigen::Vector2d(std::cos(q1), std::sin(q1));
   const Eigen::Vector2d tip = elbow + 30.0 * Eigen::Vector2d(std::cos(q1 + q2), std::sin(q1 + q2));
   double least = 1e30;
-  for (const Post& post : kPosts) {
+  for (const PlanarPost& post : kPosts) {
     least = std::min({least, segmentSquare(Eigen::Vector2d::Zero(), elbow, post),
                       segmentSquare(elbow, tip, post)});
   }
@@ -96,7 +97,7 @@ double clearance(double q1, double q2) {
 
 // ---- the tool ----
 
-pcl::PointCloud<WorkspacePoint> loadCloud(const std::string& path) {
+pcl::PointCloud<WorkspacePoint> loadPlanar2Cloud(const std::string& path) {
   pcl::PointCloud<WorkspacePoint> cloud;
   EXPECT_EQ(pcl::io::loadPCDFile(path, cloud), 0) << path;
   return cloud;
@@ -131,7 +132,7 @@ class RefineCollisionApp : public ::testing::Test {
         EXPECT_LE(std::abs(refined[i].q[j] - parent.q[j]), 0.1 * kRange[j] + kJointTol)
             << "sample " << i << ", q" << j + 1;
       }
-      const double gap = clearance(refined[i].q[0], refined[i].q[1]);
+      const double gap = planar2Clearance(refined[i].q[0], refined[i].q[1]);
       if (std::abs(gap) > kClearanceTie) {
         EXPECT_EQ(refined[i].label, gap < 0.0 ? kLabelEnvironment : kLabelFree)
             << "sample " << i << ", clearance " << gap << " cm";
@@ -146,8 +147,8 @@ class RefineCollisionApp : public ::testing::Test {
 };
 
 /// The points of `cloud` labelled `label`, in order.
-pcl::PointCloud<WorkspacePoint> labelled(const pcl::PointCloud<WorkspacePoint>& cloud,
-                                         std::uint32_t label) {
+pcl::PointCloud<WorkspacePoint> pointsLabelled(const pcl::PointCloud<WorkspacePoint>& cloud,
+                                               std::uint32_t label) {
   pcl::PointCloud<WorkspacePoint> out;
   for (const auto& p : cloud) {
     if (p.label == label) out.push_back(p);
@@ -157,10 +158,10 @@ pcl::PointCloud<WorkspacePoint> labelled(const pcl::PointCloud<WorkspacePoint>& 
 
 TEST_F(RefineCollisionApp, TheSamplerLabelsAsTheClosedFormDoes) {
   // The oracle itself, on the cloud mcws_sample labelled: both labels occur and agree.
-  const auto cloud = loadCloud(cloud_);
+  const auto cloud = loadPlanar2Cloud(cloud_);
   int environment = 0;
   for (const auto& p : cloud) {
-    const double gap = clearance(p.q[0], p.q[1]);
+    const double gap = planar2Clearance(p.q[0], p.q[1]);
     if (std::abs(gap) > kClearanceTie) {
       ASSERT_EQ(p.label, gap < 0.0 ? kLabelEnvironment : kLabelFree) << gap;
     }
@@ -174,12 +175,12 @@ TEST_F(RefineCollisionApp, RefinesOnlyTheFreePointsAndLabelsTheNewSamples) {
   // The whole labelled cloud as --input: without --collision every point would be a parent.
   const test::RunResult r = refine(cloud_, "--collision");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto free = labelled(loadCloud(cloud_), kLabelFree);
+  const auto free = pointsLabelled(loadPlanar2Cloud(cloud_), kLabelFree);
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["boundary_points"], free.size());
   EXPECT_EQ(json["label"], "free");
   EXPECT_EQ(json["collision"], true);
-  const std::vector<int> counts = checkNewSamples(loadCloud(out_), free);
+  const std::vector<int> counts = checkNewSamples(loadPlanar2Cloud(out_), free);
   // Free parents next to the posts give colliding children too: the edge is refined both ways.
   EXPECT_GT(counts[kLabelFree], 0);
   EXPECT_GT(counts[kLabelEnvironment], 0);
@@ -196,10 +197,10 @@ TEST_F(RefineCollisionApp, RefinesTheFreeRegionsBoundaryThroughThePipeline) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["points"], 3400);
   // The copied cloud first, then the new samples.
-  auto refined = loadCloud(out_);
+  auto refined = loadPlanar2Cloud(out_);
   ASSERT_EQ(refined.size(), 3400u);
   refined.erase(refined.begin(), refined.begin() + 3000);
-  const std::vector<int> counts = checkNewSamples(refined, loadCloud(edge));
+  const std::vector<int> counts = checkNewSamples(refined, loadPlanar2Cloud(edge));
   // The free region's edge runs along the posts: some children cross it.
   EXPECT_GT(counts[kLabelEnvironment], 0);
   EXPECT_GT(counts[kLabelFree], counts[kLabelEnvironment]);
@@ -209,10 +210,10 @@ TEST_F(RefineCollisionApp, RefinesTheRegionOfTheLabelNamed) {
   for (const std::string label : {"environment", "3"}) {
     const test::RunResult r = refine(cloud_, "--collision --label " + label);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto parents = labelled(loadCloud(cloud_), kLabelEnvironment);
+    const auto parents = pointsLabelled(loadPlanar2Cloud(cloud_), kLabelEnvironment);
     EXPECT_EQ(nlohmann::json::parse(r.out)["boundary_points"], parents.size());
     EXPECT_EQ(nlohmann::json::parse(r.out)["label"], "environment");
-    checkNewSamples(loadCloud(out_), parents);
+    checkNewSamples(loadPlanar2Cloud(out_), parents);
   }
 }
 
