@@ -25,6 +25,7 @@
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/boundary_record.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 using namespace mcws;
@@ -281,6 +282,7 @@ void saveOutputs(const app::CommandLine& cli, const io::WorkspaceCloud& cloud,
 void report(const app::CommandLine& cli, nlohmann::json summary, const ResultUnits& units,
             const app::Progress& clock) {
   summary["length_unit"] = units.lengthName();
+  addRecordedRobotNames(summary, io::readProvenance(cli.required("input")));
   summary["units"]["seconds"] = "s";
   if (cli.has("json")) {
     std::cout << summary.dump() << "\n";

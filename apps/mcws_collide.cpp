@@ -12,6 +12,7 @@
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_report.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -111,8 +112,10 @@ int main(int argc, char** argv) {
     const std::uint32_t label = reportedLabel(pairs);
     const std::vector<PairReport> shown = pairsToShow(pairs, cli.has("all"));
     if (cli.has("json")) {
-      std::cout << collisionReportJson(robot, label, pairs.size(), shown, model.link_bodies).dump()
-                << "\n";
+      nlohmann::json out =
+          collisionReportJson(robot, label, pairs.size(), shown, model.link_bodies);
+      addRobotNames(out, robot);
+      std::cout << out.dump() << "\n";
     } else {
       printReport(robot, label, pairs.size(), shown);
     }

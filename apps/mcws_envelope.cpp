@@ -12,6 +12,7 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
 #include "mcws/workspace/envelope_report.h"
@@ -48,8 +49,11 @@ section of the envelope by the vertical plane through the first joint's axis (th
 at --azimuth, with the reach in front of and behind the axis and the highest and lowest point;
 the top view is the projection of the samples on the horizontal plane (the mesh would bridge
 narrow joint-limit gaps) with the maximum and minimum reach and the angle swept at full reach
-(where the outline is within 10 % of the maximum reach). The
-numbers go into the JSON under "drawing". --json: "volume"
+(where the outline is within 10 % of the maximum reach). The drawing's title (and --plot's) names
+the robot and the frame whose origin the samples are (a URDF's tip link, or a D-H robot's tool or
+flange) as the cloud records them, else the cloud's file name; so does the mesh's comment. The
+numbers go into the JSON under "drawing", the robot and the frame under "robot" and "tip" (null
+when the cloud does not record them). --json: "volume"
 (enclosed by the mesh), "measure_volume" (mcws_measure's), "uncorrected" (the kept tetrahedra's),
 "filled_volume", "area", "offset", the counts, "euler_characteristic" (V - E + F: 2 for a surface
 like a sphere's, 0 for a torus's) and "closed_and_oriented" (every edge in two triangles, once
@@ -70,11 +74,16 @@ void declareFlags(app::CommandLine& cli) {
 struct Files {
   std::string input, output, plot, drawing;
   DrawingFormat drawing_format{};
+  std::optional<io::CloudProvenance> recorded;  ///< the input's robot, for titles and comments
 };
 
 Files readFiles(const app::CommandLine& cli) {
-  Files files{cli.required("input"), cli.text("output", ""), cli.text("plot", ""),
-              cli.text("drawing", "")};
+  Files files{cli.required("input"),
+              cli.text("output", ""),
+              cli.text("plot", ""),
+              cli.text("drawing", ""),
+              {},
+              {}};
   if (files.output.empty() && files.drawing.empty() && files.plot.empty())
     throw app::UsageError("give at least one of --output, --plot and --drawing");
   if (!files.output.empty())
@@ -94,17 +103,22 @@ pcl::PointCloud<pcl::PointXYZ> loadPoints(const std::string& input) {
   return projectedToPlane(*cloud, BoundaryPlane::k3D);
 }
 
-/// Every file complete under a temporary name before any gets its own.
+/// Every file complete under a temporary name before any gets its own. The pictures' titles
+/// name the robot and the frame measured as the cloud records them, else the cloud's file name.
 void saveOutputs(const Files& files, const TriangleSurface& shown,
                  const std::optional<EnvelopeDrawing>& drawing, const ResultUnits& units) {
-  const std::string name = std::filesystem::path(files.input).filename().string();
+  const std::string name = files.recorded ? files.recorded->robot
+                                          : std::filesystem::path(files.input).filename().string();
+  const std::string tip = files.recorded ? io::recordedTip(*files.recorded).value_or("") : "";
+  const std::string unit = units.lengthName();
   io::OutputSet outputs;
-  if (!files.output.empty()) saveSurface(shown, files.output, files.input, units.lengthName());
+  if (!files.output.empty())
+    saveSurface(shown, files.output, io::describeCloud(files.input, files.recorded), unit);
   if (!files.plot.empty())
-    io::writeWholeFile(files.plot, renderEnvelopePng(shown, name, units.lengthName()));
+    io::writeWholeFile(files.plot, renderEnvelopePng(shown, name, unit, tip));
   if (drawing) {
-    io::writeWholeFile(files.drawing, renderEnvelopeDrawing(*drawing, files.drawing_format, name,
-                                                            units.lengthName()));
+    io::writeWholeFile(files.drawing,
+                       renderEnvelopeDrawing(*drawing, files.drawing_format, name, unit, tip));
   }
   outputs.commit();
 }
@@ -115,6 +129,7 @@ nlohmann::json summary(const Files& files, const Envelope& envelope, const Measu
                        double seconds) {
   nlohmann::json out = envelopeSummary(envelope, options, drawing, units);
   out["input"] = files.input;
+  addRecordedRobotNames(out, files.recorded);
   out["output"] = files.output.empty() ? nlohmann::json() : nlohmann::json(files.output);
   out["seconds"] = seconds;
   out["units"]["seconds"] = "s";
@@ -150,12 +165,13 @@ int main(int argc, char** argv) {
     app::CommandLine cli(kUsage, kSummary);
     declareFlags(cli);
     if (!cli.parse(argc, argv)) return app::kExitOk;
-    const Files files = readFiles(cli);
+    Files files = readFiles(cli);
     const double azimuth = app::parseNumber(cli.text("azimuth", "0"), "azimuth") * kDegree;
     MeasureOptions options = app::readRegionOptions(cli);
     app::checkOutputs({{"output", files.output}, {"plot", files.plot}, {"drawing", files.drawing}},
                       {{"input", files.input}});
     const ResultUnits units = app::readResultUnits(cli, io::recordedUnit(files.input), files.input);
+    files.recorded = io::readProvenance(files.input);
 
     app::Progress clock("mcws_envelope", "points");
     const pcl::PointCloud<pcl::PointXYZ> points = loadPoints(files.input);

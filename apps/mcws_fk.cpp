@@ -7,6 +7,7 @@
 #include "common/flags.h"
 #include "common/units.h"
 #include "mcws/kinematics/forward_kinematics.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -17,7 +18,8 @@ constexpr char kSummary[] =
 joint vector. Joint values are in rad (revolute) and in the robot file's length unit (prismatic);
 the pose's translation is in that length unit, or in --unit's (m for ROS conventions). The plain
 output is the matrix under a '#' line naming the frame and the unit (numpy.loadtxt and gnuplot
-skip it); --json gives "pose", "position" and "q" with "length_unit" and "units".)";
+skip it); --json gives "pose", "position" and "q" with "length_unit" and "units", and "robot"
+and "tip" (the URDF tip link, or tool or flange), as every tool's --json names them.)";
 
 void declareFlags(mcws::app::CommandLine& cli) {
   mcws::app::declareRobotFlags(cli, "robot description (.yaml or .urdf)");
@@ -52,7 +54,7 @@ int main(int argc, char** argv) {
     const std::string length = units.lengthName();
     if (cli.has("json")) {
       nlohmann::json out;
-      out["robot"] = robot.name;
+      addRobotNames(out, robot, frame == "tool" ? SamplePoint::kTool : SamplePoint::kFlange);
       out["length_unit"] = length;
       out["frame"] = frame;
       out["q"] = std::vector<double>(q.data(), q.data() + q.size());

@@ -8,6 +8,7 @@
 #include "common/pose_args.h"
 #include "common/units.h"
 #include "mcws/kinematics/inverse_kinematics.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -114,7 +115,7 @@ int main(int argc, char** argv) {
     if (!result.converged()) throw noSolution(robot, result, options);
     if (cli.has("json")) {
       nlohmann::json out;
-      out["robot"] = robot.name;
+      addRobotNames(out, robot);
       out["length_unit"] = unitName(robot.length_unit);
       out["status"] = ikStatusName(result.status);
       out["q"] = std::vector<double>(result.q.data(), result.q.data() + result.q.size());

@@ -10,6 +10,7 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/io/boundary_record.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/workspace/measure.h"
 #include "mcws/workspace/measure_report.h"
 
@@ -213,6 +214,7 @@ int main(int argc, char** argv) {
     out["method"] = settings.method;
     out["seconds"] = clock.seconds();
     out["length_unit"] = units.lengthName();
+    addRecordedRobotNames(out, io::readProvenance(settings.input));
     out["units"]["seconds"] = "s";
     if (cli.has("json")) {
       std::cout << out.dump() << "\n";

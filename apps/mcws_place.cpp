@@ -15,6 +15,7 @@
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/placement_map.h"
 #include "mcws/reach/reach_report.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -186,6 +187,7 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       nlohmann::json json = placementSummary(robot, targets.size(), map, map_about, options,
                                              checker != nullptr, candidates, best);
+      addRobotNames(json, robot);
       json["seconds"] = clock.seconds();
       json["output"] = output;
       std::cout << json.dump() << "\n";

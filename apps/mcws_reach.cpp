@@ -23,6 +23,7 @@
 #include "mcws/reach/reach_plot.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/reach/reach_study.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -212,6 +213,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   summary["resumed_samples"] = resumed_all[0];
   saveMapOutputs(cli, robot, map, provenance, summary);
   removeCheckpoint();
+  addRobotNames(summary, robot);  // after the map file, whose header names the chain's links
   summary["seconds"] = progress.seconds();
   if (cli.has("json")) {
     std::cout << summary.dump() << "\n";
@@ -252,6 +254,7 @@ void runStudy(const app::CommandLine& cli, const Robot& robot,
   cloud.commit();
 
   nlohmann::json json = studySummary(robot, options, results, checker != nullptr);
+  addRobotNames(json, robot);
   json["seconds"] = progress.seconds();
   json["output"] = output;
   const ReachSummary summary = summarize(results);

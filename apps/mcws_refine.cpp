@@ -37,6 +37,12 @@ followed by the new samples: the refined cloud to pass to mcws_boundary and mcws
 --seed, same output, for any --threads. A cloud whose header records the robot it was made from
 (name and SHA-256 of the robot file, as mcws_sample writes it) must come from the --robot file;
 the output records that robot.
+With --collision (a cloud of mcws_sample --collision), only the --input points labelled free
+are parents (--label: those of another label), so that the edge of the collision-free region,
+where free samples meet colliding ones, fills in: pass the boundary of the free points
+(mcws_select --label 0, then mcws_boundary), and repeat on the refined cloud's. The new samples
+are labelled as the cloud's were, whatever their parents'. A cloud with no label field, or
+sampled without --collision, is refused.
 
 Under mpirun (-np K, MPI builds) each process computes a contiguous block of the new samples and
 writes it at its place in one PCD file (MPI-IO; rank 0 alone reads --cloud and writes it), which
@@ -57,7 +63,25 @@ void declareFlags(mcws::app::CommandLine& cli) {
   cli.addValue("point", "tool | flange: must be the point the cloud records (default: that one)");
   cli.addValue("seed", "random seed, a whole number >= 0 (default 1)");
   cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
+  cli.addSwitch("collision",
+                "refine only the boundary of the collision-free region: the --input points "
+                "labelled free (a cloud of mcws_sample --collision)");
+  cli.addValue("label",
+               "with --collision, the region refined instead: link-link, tool-link or "
+               "environment (or the label's code; default free)");
   cli.addSwitch("json", "print a JSON summary on stdout");
+}
+
+/// --label (with --collision): a collision label by its name (labelName()) or its code.
+std::uint32_t readLabel(const mcws::app::CommandLine& cli) {
+  if (cli.has("label") && !cli.has("collision"))
+    throw mcws::app::UsageError("--label needs --collision");
+  const std::string text = cli.text("label", "free");
+  for (std::uint32_t code = mcws::kLabelFree; code <= mcws::kLabelEnvironment; ++code) {
+    if (text == mcws::labelName(code) || text == std::to_string(code)) return code;
+  }
+  throw mcws::app::UsageError("--label: '" + text +
+                              "' is not free, link-link, tool-link or environment (or 0 to 3)");
 }
 
 mcws::RefineOptions readOptions(const mcws::app::CommandLine& cli) {
@@ -86,6 +110,17 @@ void drawAsRecorded(const mcws::app::CommandLine& cli, const mcws::io::SamplingR
   options.fixed = sampling.fixed;
 }
 
+/// The parents: the --input points, with --collision only those of the label refined.
+mcws::io::WorkspaceCloud::Ptr parentsOf(const mcws::app::CommandLine& cli,
+                                        mcws::io::WorkspaceCloud::Ptr input,
+                                        const mcws::io::SamplingRecord& sampling,
+                                        std::uint32_t label) {
+  if (!cli.has("collision")) return input;
+  return mcws::labelledParents({"input", cli.required("input")}, *input, sampling, label,
+                               mcws::labelName(label))
+      .makeShared();
+}
+
 void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
                   std::size_t boundary_points, std::size_t samples, std::size_t kept,
                   const mcws::RefineOptions& options, const std::vector<std::string>& pinned,
@@ -94,6 +129,7 @@ void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
   if (cli.has("json")) {
     nlohmann::json summary =
         mcws::refineSummary(robot, boundary_points, samples, kept, options, pinned, sampling);
+    if (cli.has("collision")) summary["label"] = mcws::labelName(readLabel(cli));
     summary["output"] = output;
     summary["processes"] = processes;
     summary["seconds"] = seconds;
@@ -101,8 +137,10 @@ void printSummary(const mcws::app::CommandLine& cli, const mcws::Robot& robot,
     std::cout << summary.dump() << "\n";
   } else {
     std::cerr << "[done, " << static_cast<int>(seconds * 1000) << " ms : " << samples
-              << " new samples near " << boundary_points << " boundary points, " << kept + samples
-              << " points] -> " << output << "\n";
+              << " new samples near " << boundary_points << " boundary points"
+              << (cli.has("collision") ? std::string(" labelled ") + mcws::labelName(readLabel(cli))
+                                       : "")
+              << ", " << kept + samples << " points] -> " << output << "\n";
   }
 }
 
@@ -120,6 +158,7 @@ int main(int argc, char** argv) {
         app::parseInteger(cli.required("samples"), "samples", 1, std::numeric_limits<int>::max()));
     RefineOptions options = readOptions(cli);
     const SamplePoint asked_point = app::readPoint(cli);  // checked now; compared below
+    const std::uint32_t label = readLabel(cli);
     const int threads = distributed::threadsPerProcess(app::readThreads(cli), processes);
     const std::string output = cli.required("output");
     app::checkOutputs({{"output", output}}, {{"robot", cli.required("robot")},
@@ -128,13 +167,14 @@ int main(int argc, char** argv) {
 
     const Robot robot = app::readRobot(cli);
     io::CloudProvenance provenance = robotProvenance(robot);
-    const auto boundary = io::readCloud(cli.required("input"));
+    const auto input = io::readCloud(cli.required("input"));
     std::vector<RefineCloud> clouds{{"input", cli.required("input")}};
     if (cli.has("cloud")) clouds.emplace_back("cloud", cli.required("cloud"));
     recordRefineSampling(clouds, robot.dof(), provenance);
     // New samples are drawn as the cloud's were: the same point, pinned joints and labels.
     const io::SamplingRecord& sampling = *provenance.sampling;
     drawAsRecorded(cli, sampling, asked_point, options);
+    const io::WorkspaceCloud::Ptr boundary = parentsOf(cli, input, sampling, label);
     const RefineSampler refine(robot, *boundary, options);
     std::unique_ptr<CollisionChecker> checker;
     std::unique_ptr<LabelledSampler<RefineSampler>> labelled;

@@ -102,9 +102,9 @@ Source robotSource(const app::CommandLine& cli, std::uint64_t seed, SamplePoint 
       return std::make_unique<LabelledRobotSampler>(robot, options, *source.checker);
     return std::make_unique<RobotSampler>(robot, options);
   });
-  source.summary = {{"robot", robot.name},
-                    {"length_unit", unitName(robot.length_unit)},
+  source.summary = {{"length_unit", unitName(robot.length_unit)},
                     {"point", point == SamplePoint::kTool ? "tool" : "flange"}};
+  addRobotNames(source.summary, robot, point);
   if (cli.has("quality")) {
     const QualityOptions quality = app::readQualityOptions(cli, robot);
     source.quality = std::make_unique<QualitySampler>(robot, options, *source.generator, quality);
@@ -119,6 +119,7 @@ Source shapeSource(const app::CommandLine& cli, std::uint64_t seed) {
   Source source;
   source.generator = std::make_unique<ShapeSampler>(shape, seed);
   source.summary = shapeSummary(name, shape);
+  addRecordedRobotNames(source.summary, std::nullopt);  // no robot: null
   return source;
 }
 

@@ -10,6 +10,7 @@
 #include "common/app.h"
 #include "common/units.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace {
 
@@ -61,19 +62,20 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < cloud->size(); ++i) {
       if (labels.count((*cloud)[i].label)) kept.push_back(static_cast<pcl::index_t>(i));
     }
-    io::writeCloud(*cloud, kept, output, io::readProvenance(input));  // the input's robot
+    const std::optional<io::CloudProvenance> recorded = io::readProvenance(input);
+    io::writeCloud(*cloud, kept, output, recorded);  // the input's robot
     if (cli.has("json")) {
-      std::cout << nlohmann::json{{"input", input},
-                                  {"output", output},
-                                  {"points_in", cloud->size()},
-                                  {"points_out", kept.size()},
-                                  {"labels", labels},
-                                  {"length_unit",
-                                   ResultUnits(io::recordedUnit(input), std::nullopt).lengthName()},
-                                  {"seconds", clock.seconds()},
-                                  {"units", {{"seconds", "s"}}}}
-                       .dump()
-                << "\n";
+      nlohmann::json out{
+          {"input", input},
+          {"output", output},
+          {"points_in", cloud->size()},
+          {"points_out", kept.size()},
+          {"labels", labels},
+          {"length_unit", ResultUnits(io::recordedUnit(input), std::nullopt).lengthName()},
+          {"seconds", clock.seconds()},
+          {"units", {{"seconds", "s"}}}};
+      addRecordedRobotNames(out, recorded);
+      std::cout << out.dump() << "\n";
     } else {
       std::cerr << "[done, " << static_cast<int>(clock.seconds() * 1000) << " ms : " << kept.size()
                 << " of " << cloud->size() << " points] -> " << output << "\n";

@@ -10,6 +10,7 @@
 #include "common/pose_args.h"
 #include "common/units.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/trajectory/cartesian_line.h"
 #include "mcws/trajectory/joint_trajectory.h"
 #include "mcws/trajectory/tool_path.h"
@@ -156,6 +157,7 @@ void saveMove(const Robot& robot, const Move& move, const SampledTrajectory& sam
 nlohmann::json summaryJson(const Robot& robot, const Move& move, const SampledTrajectory& samples,
                            const Eigen::MatrixXd& xyz) {
   nlohmann::json out = trajectorySummary(robot, samples, xyz);
+  addRobotNames(out, robot);
   out["profile"] = move.line           ? "line, " + move.profile
                    : move.vias.empty() ? move.profile
                                        : "cubic spline";

@@ -71,6 +71,10 @@ py::object provenanceDict(const std::optional<io::CloudProvenance>& provenance) 
   out["file"] = provenance->file;
   out["sha256"] = provenance->sha256;
   out["length_unit"] = provenance->length_unit;
+  if (!provenance->tip_link.empty()) {  // a URDF robot's chain
+    out["base_link"] = provenance->base_link;
+    out["tip_link"] = provenance->tip_link;
+  }
   if (provenance->sampling) out["sampling"] = samplingDict(*provenance->sampling);
   if (provenance->input) {
     py::dict input;
@@ -89,6 +93,9 @@ io::CloudProvenance provenanceFromDict(const py::dict& dict) {
       io::CloudProvenance provenance(
           py::cast<std::string>(dict["robot"]), py::cast<std::string>(dict["file"]),
           py::cast<std::string>(dict["sha256"]), py::cast<std::string>(dict["length_unit"]));
+      if (dict.contains("base_link"))
+        provenance.base_link = py::cast<std::string>(dict["base_link"]);
+      if (dict.contains("tip_link")) provenance.tip_link = py::cast<std::string>(dict["tip_link"]);
       if (dict.contains("sampling") && !dict["sampling"].is_none()) {
         const auto sampling = dict["sampling"].cast<py::dict>();
         io::SamplingRecord record;
@@ -178,7 +185,9 @@ constexpr char kReadProvenanceDoc[] =
     R"(The robot a cloud file records in its header (its "# mcws" line), or None.
 
 Returns a dict: robot (name), file (the robot file's base name), sha256 (of the robot file),
-length_unit (of the cloud's coordinates: "m", "cm", "mm"), and when recorded sampling
+length_unit (of the cloud's coordinates: "m", "cm", "mm"), and when recorded base_link and
+tip_link (a URDF robot's chain: the points are the tip link's origin in the base link's frame),
+sampling
 ({"point": "tool"|"flange", "collision": bool, "fix": {joint: value [rad | length unit]}}) and
 input ({"points", "sha256", "boundary_points"} of a boundary's input cloud). None for clouds of
 other tools and of sample_shape().

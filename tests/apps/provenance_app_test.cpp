@@ -72,15 +72,16 @@ TEST_F(ProvenanceApp, SampleRecordsTheRobotNameFileHashAndUnitAfterPclsFirstLine
   EXPECT_EQ(line(cloud_, 1), "# .PCD v0.7 - Point Cloud Data file format");
   EXPECT_EQ(line(cloud_, 2), expectedLine(robot_));
   EXPECT_EQ(line(cloud_, 3), "VERSION 0.7");
-  // A URDF robot's lengths are in metres.
+  // A URDF robot's lengths are in metres; its chain is recorded.
   const std::string urdf = std::string(MCWS_ROBOTS_DIR) + "/inspection6.urdf";
   ASSERT_EQ(
       test::run(kSample + " --robot " + urdf + " --samples 10 --output " + dir_.file("urdf.pcd"))
           .exit_code,
       0);
-  EXPECT_EQ(line(dir_.file("urdf.pcd"), 2),
-            "# mcws robot=inspection6 file=inspection6.urdf sha256=" + sha256sum(urdf) +
-                " length_unit=m point=tool collision=0 fix=none");
+  EXPECT_EQ(
+      line(dir_.file("urdf.pcd"), 2),
+      "# mcws robot=inspection6 file=inspection6.urdf sha256=" + sha256sum(urdf) +
+          " length_unit=m base_link=base_link tip_link=flange point=tool collision=0 fix=none");
   // A --shape has no robot: no line.
   ASSERT_EQ(
       test::run(kSample + " --shape disk --samples 10 --output " + dir_.file("disk.pcd")).exit_code,

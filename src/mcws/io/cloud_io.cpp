@@ -142,7 +142,16 @@ std::optional<CloudProvenance> readProvenance(const std::string& path) {
 void requireSameRobot(const std::string& flag, const std::string& path,
                       const std::optional<CloudProvenance>& recorded,
                       const CloudProvenance& robot) {
-  if (!recorded || recorded->sha256 == robot.sha256) return;
+  if (!recorded) return;
+  // One URDF holds several chains (--base, --tip); a cloud that records none predates the record.
+  if (recorded->sha256 == robot.sha256 && !recorded->tip_link.empty() &&
+      (recorded->base_link != robot.base_link || recorded->tip_link != robot.tip_link)) {
+    throw Error("--" + flag + " '" + path + "' was made for the chain from link '" +
+                recorded->base_link + "' to link '" + recorded->tip_link +
+                "', not for the chain from '" + robot.base_link + "' to '" + robot.tip_link +
+                "' (--base, --tip)");
+  }
+  if (recorded->sha256 == robot.sha256) return;
   const bool edited = recorded->robot == robot.robot && recorded->file == robot.file;
   throw Error("--" + flag + " '" + path + "' was made from robot " + describeRobot(*recorded) +
               " but --robot is " + describeRobot(robot) +

@@ -42,9 +42,11 @@ std::optional<CloudProvenance> readProvenance(const std::string& path);
 
 /// \brief Checks that a cloud given with --`flag` comes from the --robot file: a cloud that
 /// records another SHA-256 (another robot, or the same one whose file was edited since) is an
-/// error; a cloud that records none passes.
+/// error, and so is one of the same file that records another chain (base_link, tip_link); a
+/// cloud that records none passes.
 /// \throws mcws::Error "--input 'a.pcd' was made from robot 'x' (x.yaml, sha256 0123456789ab...)
-///   but --robot is 'y' (y.yaml, sha256 ...)".
+///   but --robot is 'y' (y.yaml, sha256 ...)", or "--input 'a.pcd' was made for the chain from
+///   link 'world' to link 'tool0', not for the chain from 'world' to 'ee_link' (--base, --tip)".
 void requireSameRobot(const std::string& flag, const std::string& path,
                       const std::optional<CloudProvenance>& recorded, const CloudProvenance& robot);
 

@@ -172,6 +172,13 @@ std::string provenanceComment(const CloudProvenance& p) {
   std::string line = std::string("# ") + kWord + " robot=" + encode(p.robot) +
                      " file=" + encode(p.file) + " sha256=" + p.sha256 +
                      " length_unit=" + p.length_unit;
+  if (p.base_link.empty() != p.tip_link.empty()) {
+    throw Error("cannot record the chain of a cloud: base link '" + p.base_link +
+                "' and tip link '" + p.tip_link + "' come both or neither");
+  }
+  if (!p.tip_link.empty()) {
+    line += " base_link=" + encode(p.base_link) + " tip_link=" + encode(p.tip_link);
+  }
   if (p.sampling) {
     if (p.sampling->point != "tool" && p.sampling->point != "flange") {
       throw Error("cannot record how a cloud was sampled: point '" + p.sampling->point +
@@ -198,6 +205,18 @@ std::string provenanceComment(const CloudProvenance& p) {
   return line;
 }
 
+std::optional<std::string> recordedTip(const CloudProvenance& provenance) {
+  if (!provenance.tip_link.empty()) return provenance.tip_link;
+  if (provenance.sampling) return provenance.sampling->point;
+  return std::nullopt;
+}
+
+std::string describeCloud(const std::string& path, const std::optional<CloudProvenance>& recorded) {
+  if (!recorded) return path;
+  const std::optional<std::string> tip = recordedTip(*recorded);
+  return "robot '" + recorded->robot + "'" + (tip ? ", tip " + *tip : "") + ", from " + path;
+}
+
 std::string describeSampling(const SamplingRecord& sampling) {
   return "point=" + sampling.point + " collision=" + (sampling.collision ? "1" : "0") +
          " fix=" + encodeFixed(sampling.fixed);
@@ -216,9 +235,9 @@ bool isProvenanceComment(const std::string& line) {
 
 CloudProvenance parseProvenanceComment(const std::string& line) {
   // Raw (still encoded) values of the keys this version knows; others are ignored.
-  const char* const known[] = {"robot",        "file",           "sha256", "length_unit",
-                               "point",        "collision",      "fix",    "input_points",
-                               "input_sha256", "boundary_points"};
+  const char* const known[] = {
+      "robot", "file",         "sha256",       "length_unit",     "point",     "collision",
+      "fix",   "input_points", "input_sha256", "boundary_points", "base_link", "tip_link"};
   std::map<std::string, std::string> raw;
   for (const std::string& word : words(line)) {
     const std::size_t equals = word.find('=');
@@ -244,6 +263,16 @@ CloudProvenance parseProvenanceComment(const std::string& line) {
   }
   if (!isUnit(p.length_unit)) {
     throw Error("length_unit=" + shortText(p.length_unit) + " is not m, cm or mm");
+  }
+  if (raw.count("base_link") != raw.count("tip_link")) {
+    throw Error("base_link= and tip_link= come together: the line has one of them");
+  }
+  if (raw.count("tip_link")) {
+    p.base_link = decode("base_link", raw["base_link"]);
+    p.tip_link = decode("tip_link", raw["tip_link"]);
+    if (p.base_link.empty() || p.tip_link.empty()) {
+      throw Error("base_link= and tip_link= name a link each: one is empty");
+    }
   }
   const int sampling_keys =
       static_cast<int>(raw.count("point") + raw.count("collision") + raw.count("fix"));

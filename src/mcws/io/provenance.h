@@ -49,19 +49,25 @@ struct InputCloud {
 /// Recorded in the PCD header, right after PCL's own first comment line, as
 ///
 ///     # mcws robot=deicing file=deicing.yaml sha256=<64 hex digits> length_unit=cm
-///       point=tool collision=0 fix=theta3:0
+///       [base_link=LINK tip_link=LINK] point=tool collision=0 fix=theta3:0
 ///       [input_points=N input_sha256=<64 hex digits> boundary_points=K]
 ///
 /// (one line). PCL's reader (and so pcl_viewer, pcl_pcd2ply & co.) skips every header line that
 /// starts with '#'. Values are percent-encoded (bytes other than A-Z a-z 0-9 - . _ ~ as %XX), so a
 /// name with spaces stays one word. Readers ignore keys they do not know, so later versions may
 /// add some. Clouds written before the sampling keys existed have no `sampling`; the keys come
-/// all three or none.
+/// all three or none. `base_link` and `tip_link` (a URDF robot's chain, Robot::base_link and
+/// Robot::tip_link) come both or neither: a D-H robot has none, and clouds written before the
+/// chain could be chosen have none.
 struct CloudProvenance {
   std::string robot;        ///< the robot's name from its description
   std::string file;         ///< base name of the robot file, for messages
   std::string sha256;       ///< SHA-256 of the robot file's bytes, 64 lowercase hex digits
   std::string length_unit;  ///< the unit of the cloud's coordinates: "m", "cm" or "mm"
+  /// A URDF robot's chain: the link whose frame the coordinates are in and the link whose
+  /// frame's origin the points are (--base, --tip); both empty for a D-H robot or when not
+  /// recorded.
+  std::string base_link, tip_link;
   std::optional<SamplingRecord> sampling;  ///< how the samples were drawn, if recorded
   std::optional<InputCloud> input;         ///< a boundary's input cloud (mcws_boundary only)
 
@@ -75,10 +81,20 @@ struct CloudProvenance {
 
   bool operator==(const CloudProvenance& other) const {
     return robot == other.robot && file == other.file && sha256 == other.sha256 &&
-           length_unit == other.length_unit && sampling == other.sampling && input == other.input;
+           length_unit == other.length_unit && base_link == other.base_link &&
+           tip_link == other.tip_link && sampling == other.sampling && input == other.input;
   }
   bool operator!=(const CloudProvenance& other) const { return !(*this == other); }
 };
+
+/// \brief The frame whose origin a cloud's points are, as `provenance` records it: its URDF
+/// chain's tip link, else the point of its sampling record ("tool" or "flange" of a D-H robot);
+/// none when it records neither.
+std::optional<std::string> recordedTip(const CloudProvenance& provenance);
+
+/// \brief What a cloud is of, for titles and file comments: "robot 'arm', tip tool0, from
+/// a.pcd" (", tip ..." when recordedTip() knows it), or just `path` when `recorded` is none.
+std::string describeCloud(const std::string& path, const std::optional<CloudProvenance>& recorded);
 
 /// \brief `point=... collision=... fix=...` as recorded, for messages.
 std::string describeSampling(const SamplingRecord& sampling);
@@ -93,12 +109,12 @@ bool isProvenanceComment(const std::string& line);
 
 /// \brief Reads a provenance line (one for which isProvenanceComment() holds).
 /// \throws mcws::Error saying what is wrong (a word without '=', a key given twice, a missing or
-///   empty robot, file, sha256 or length_unit, a hash that is not 64 lowercase hex digits, a
-///   unit other than m, cm, mm, a bad %XX escape, a point other than tool or flange, a collision
-///   other than 0 or 1, a fix that is not none or NAME:VALUE,..., some but not all of point,
-///   collision and fix, some but not all of input_points, input_sha256 and boundary_points, or
-///   one of them malformed);
-///   the caller adds the file and line.
+///   empty robot, file, sha256 or length_unit, one of base_link and tip_link without the other, a
+///   hash that is not 64 lowercase hex digits, a unit other than m, cm, mm, a bad %XX escape, a
+///   point other than tool or flange, a collision other than 0 or 1, a fix that is not none or
+///   NAME:VALUE,..., some but not all of point, collision and fix, some but not all of
+///   input_points, input_sha256 and boundary_points, or one of them malformed); the caller adds the
+///   file and line.
 CloudProvenance parseProvenanceComment(const std::string& line);
 
 /// \brief SHA-256 of a file's bytes (OpenSSL's EVP interface), as 64 lowercase hex digits.

@@ -9,6 +9,7 @@
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/io/gnuplot.h"
+#include "mcws/sampling/sample_report.h"
 
 namespace mcws {
 
@@ -344,7 +345,9 @@ void reportValidation(const Scenario& scenario, const SwayPlanningResult& result
 nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& result) {
   const SwayPlanningProblem& problem = scenario.problem;
   nlohmann::json out{{"scenario", scenario.name},
-                     {"robot", scenario.robot_path},
+                     {"robot", problem.robot.name},
+                     {"robot_file", scenario.robot_path},
+                     {"tip", tipName(problem.robot)},
                      {"length_unit", unitName(problem.robot.length_unit)},
                      {"units", unitsJson(scenario)},
                      {"status", overallStatus(problem, result)},

@@ -16,7 +16,8 @@ namespace mcws {
 /// the start; units rad and the robot's length unit), then one configuration per row.
 std::string pathCsv(const Scenario& scenario, const PathSafety& path);
 
-/// \brief The report as one JSON object (every number's unit in its key or a `units` entry).
+/// \brief The report as one JSON object (every number's unit in its key or a `units` entry):
+/// "robot" (its name), "robot_file" (the scenario's robot file), "tip" (tipName()) among them.
 nlohmann::json planJson(const Scenario& scenario, const SwayPlanningResult& result);
 
 /// \brief The report as text: every candidate, every shared node, the base adjustments, the

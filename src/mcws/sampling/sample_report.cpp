@@ -21,4 +21,21 @@ void addBoundingBox(nlohmann::json& summary, const SampleSummary& result,
   summary["units"]["bbox.max"] = length_unit;
 }
 
+std::string tipName(const Robot& robot, SamplePoint point) {
+  if (!robot.tip_link.empty()) return robot.tip_link;
+  return point == SamplePoint::kFlange ? "flange" : "tool";
+}
+
+void addRobotNames(nlohmann::json& out, const Robot& robot, SamplePoint point) {
+  out["robot"] = robot.name;
+  out["tip"] = tipName(robot, point);
+}
+
+void addRecordedRobotNames(nlohmann::json& out,
+                           const std::optional<io::CloudProvenance>& recorded) {
+  out["robot"] = recorded ? nlohmann::json(recorded->robot) : nlohmann::json();
+  const std::optional<std::string> tip = recorded ? io::recordedTip(*recorded) : std::nullopt;
+  out["tip"] = tip ? nlohmann::json(*tip) : nlohmann::json();
+}
+
 }  // namespace mcws

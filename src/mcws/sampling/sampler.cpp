@@ -14,8 +14,12 @@
 namespace mcws {
 
 io::CloudProvenance robotProvenance(const Robot& robot) {
-  return {robot.name, std::filesystem::path(robot.source).filename().string(),
-          io::sha256OfFile(robot.source), unitName(robot.length_unit)};
+  io::CloudProvenance provenance(robot.name,
+                                 std::filesystem::path(robot.source).filename().string(),
+                                 io::sha256OfFile(robot.source), unitName(robot.length_unit));
+  provenance.base_link = robot.base_link;
+  provenance.tip_link = robot.tip_link;
+  return provenance;
 }
 
 namespace {

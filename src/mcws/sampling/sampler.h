@@ -47,7 +47,8 @@ enum class SamplePoint { kTool, kFlange };
 PointKinematics samplePointKinematics(const Robot& robot, SamplePoint point);
 
 /// \brief The provenance of clouds made from `robot`: its name, the base name and SHA-256 of the
-/// file it was read from (Robot::source), its length unit.
+/// file it was read from (Robot::source), its length unit and, for a URDF robot, its chain
+/// (Robot::base_link, Robot::tip_link).
 /// \throws mcws::Error naming the file when it cannot be read any more.
 io::CloudProvenance robotProvenance(const Robot& robot);
 

@@ -316,7 +316,8 @@ DrawingFormat drawingFormatOf(const std::string& path) {
 }
 
 std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat format,
-                                  const std::string& title, const std::string& unit) {
+                                  const std::string& title, const std::string& unit,
+                                  const std::string& tip) {
   io::ScratchDir dir;
   const DrawingFiles files{dir.file("section.dat"), dir.file("top.dat"), dir.file("outline.dat"),
                            dir.file(format == DrawingFormat::kPng ? "d.png" : "d.svg")};
@@ -327,7 +328,9 @@ std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat 
              : "set terminal svg noenhanced size 1600,800 font 'Sans,11'\n")
      << "set output " << io::gnuplotQuoted(files.picture) << "\n"
      << "set multiplot layout 1,2 title "
-     << io::gnuplotQuoted(title + ": working range (lengths in " + unit + ")") << "\n"
+     << io::gnuplotQuoted(title + ": working range" + (tip.empty() ? "" : " of " + tip) +
+                          " (lengths in " + unit + ")")
+     << "\n"
      << "set size ratio -1\nset grid lc rgb '#dddddd'\nunset key\n"
      << "set style fill transparent solid 0.35 noborder\n";
   writeSideView(gp, drawing.side, unit, files);

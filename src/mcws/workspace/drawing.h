@@ -82,8 +82,13 @@ DrawingFormat drawingFormatOf(const std::string& path);
 
 /// \brief The two views side by side with dimension lines (reach in front and behind the axis,
 /// highest and lowest point, maximum and minimum reach, the swept angle), drawn by gnuplot;
-/// lengths in `unit`. \return the file's bytes. \throws mcws::Error when gnuplot fails.
+/// lengths in `unit`, under the title "<title>: working range of <tip> (lengths in <unit>)"
+/// (without " of <tip>" when `tip` is empty).
+/// \param title the robot's name (or, when it is not known, the cloud's file name).
+/// \param tip the frame whose origin the samples are (a URDF tip link, "tool", "flange").
+/// \return the file's bytes. \throws mcws::Error when gnuplot fails.
 std::string renderEnvelopeDrawing(const EnvelopeDrawing& drawing, DrawingFormat format,
-                                  const std::string& title, const std::string& unit);
+                                  const std::string& title, const std::string& unit,
+                                  const std::string& tip = "");
 
 }  // namespace mcws

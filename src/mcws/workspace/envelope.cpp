@@ -248,7 +248,7 @@ void saveSurface(const TriangleSurface& surface, const std::string& path, const 
 }
 
 std::string renderEnvelopePng(const TriangleSurface& surface, const std::string& title,
-                              const std::string& unit) {
+                              const std::string& unit, const std::string& tip) {
   if (surface.triangles.empty()) throw Error("envelope picture: the surface has no triangles");
   io::ScratchDir dir;
   const std::string data = dir.file("triangles.dat"), png = dir.file("envelope.png");
@@ -270,8 +270,8 @@ std::string renderEnvelopePng(const TriangleSurface& surface, const std::string&
   gp << "set terminal pngcairo noenhanced size 1400,700 font 'Sans,11'\n"
      << "set output " << io::gnuplotQuoted(png) << "\n"
      << "set multiplot layout 1,2 title "
-     << io::gnuplotQuoted(title + ": workspace envelope, " +
-                          std::to_string(surface.triangles.size()) + " triangles")
+     << io::gnuplotQuoted(title + ": workspace envelope" + (tip.empty() ? "" : " of " + tip) +
+                          ", " + std::to_string(surface.triangles.size()) + " triangles")
      << "\nset view equal xyz\nset xyplane 0\nunset colorbox\n"
      << "set pm3d depthorder lighting primary 0.55 specular 0.25\n"
      << "set xlabel " << io::gnuplotQuoted("x [" + unit + "]") << "\nset ylabel "

@@ -82,14 +82,18 @@ void writeSurface(const TriangleSurface& surface, SurfaceFormat format, const st
 /// \brief Writes the surface to `path` in the format its extension names (surfaceFormatOf()),
 /// appearing whole on success (io::AtomicFile, committed into the io::OutputSet alive on the
 /// thread, if any), its comment "mcws_envelope of <source>, lengths in <length_unit>".
+/// \param source what the cloud is: io::describeCloud(), "robot 'arm', tip tool0, from a.pcd"
+///   (robot first: an STL header keeps 80 bytes), or the cloud's path.
 /// \throws mcws::Error naming the file for another extension, or when it cannot be written.
 void saveSurface(const TriangleSurface& surface, const std::string& path, const std::string& source,
                  const std::string& length_unit);
 
 /// \brief A shaded picture of the surface from two views (front-left from above, and from the
-/// side along -y), drawn by gnuplot (pm3d lighting on the triangles), axes in `unit`.
+/// side along -y), drawn by gnuplot (pm3d lighting on the triangles), axes in `unit`, under the
+/// title "<title>: workspace envelope of <tip>, N triangles" (without " of <tip>" when `tip` is
+/// empty): `title` the robot's name (or the cloud's file name), `tip` the frame measured.
 /// \return the PNG's bytes. \throws mcws::Error when gnuplot fails or the surface is empty.
 std::string renderEnvelopePng(const TriangleSurface& surface, const std::string& title,
-                              const std::string& unit);
+                              const std::string& unit, const std::string& tip = "");
 
 }  // namespace mcws

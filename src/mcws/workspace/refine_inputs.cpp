@@ -12,17 +12,26 @@ namespace mcws {
 
 namespace {
 
-/// Checks that the cloud of --`flag` has the joint fields q1..qn of an n-joint robot.
-void requireJointFields(const std::string& flag, const std::string& path, int dof) {
+/// The header of the cloud of --`flag`.
+pcl::PCLPointCloud2 readHeader(const std::string& flag, const std::string& path) {
   pcl::PCLPointCloud2 header;
   if (pcl::PCDReader().readHeader(path, header) < 0) {
     throw Error("--" + flag + " '" + path + "': cannot read the PCD header");
   }
+  return header;
+}
+
+bool hasField(const pcl::PCLPointCloud2& header, const std::string& name) {
+  return std::any_of(header.fields.begin(), header.fields.end(),
+                     [&](const pcl::PCLPointField& f) { return f.name == name; });
+}
+
+/// Checks that the cloud of --`flag` has the joint fields q1..qn of an n-joint robot.
+void requireJointFields(const std::string& flag, const std::string& path, int dof) {
+  const pcl::PCLPointCloud2 header = readHeader(flag, path);
   for (int j = 1; j <= dof; ++j) {
     const std::string name = "q" + std::to_string(j);
-    const bool found = std::any_of(header.fields.begin(), header.fields.end(),
-                                   [&](const pcl::PCLPointField& f) { return f.name == name; });
-    if (!found) {
+    if (!hasField(header, name)) {
       throw Error("--" + flag + " '" + path + "' has no field " + name +
                   ": refinement needs the joint values of each point (fields q1..q" +
                   std::to_string(dof) +
@@ -67,6 +76,34 @@ void recordRefineSampling(const std::vector<RefineCloud>& clouds, int dof,
     }
     provenance.sampling = sampling;
   }
+}
+
+pcl::PointCloud<WorkspacePoint> labelledParents(const RefineCloud& cloud,
+                                                const pcl::PointCloud<WorkspacePoint>& points,
+                                                const io::SamplingRecord& sampling,
+                                                std::uint32_t label,
+                                                const std::string& label_name) {
+  const auto& [flag, path] = cloud;
+  if (!hasField(readHeader(flag, path), "label")) {
+    throw Error("--collision: --" + flag + " '" + path +
+                "' has no field 'label': it refines the points labelled " + label_name +
+                ", which needs a cloud of mcws_sample --collision (then mcws_boundary)");
+  }
+  if (!sampling.collision) {
+    throw Error("--collision: --" + flag + " '" + path +
+                "' was sampled without collision labels (its header records collision=0, so "
+                "every label reads 0): sample it with mcws_sample --collision");
+  }
+  pcl::PointCloud<WorkspacePoint> parents;
+  for (const WorkspacePoint& p : points) {
+    if (p.label == label) parents.push_back(p);
+  }
+  if (parents.empty()) {
+    throw Error("--collision: none of the " + std::to_string(points.size()) + " points of --" +
+                flag + " '" + path + "' is labelled " + label_name + " (label " +
+                std::to_string(label) + "): nothing to refine");
+  }
+  return parents;
 }
 
 }  // namespace mcws

@@ -3,11 +3,15 @@
 /// \brief The clouds a boundary refinement reads: their joint fields and how their samples were
 /// drawn, so that the new samples are drawn the same way.
 
+#include <pcl/point_cloud.h>
+
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "mcws/io/provenance.h"
+#include "mcws/points/point_types.h"
 
 namespace mcws {
 
@@ -24,5 +28,20 @@ using RefineCloud = std::pair<std::string, std::string>;
 ///   sampled differently.
 void recordRefineSampling(const std::vector<RefineCloud>& clouds, int dof,
                           io::CloudProvenance& provenance);
+
+/// \brief The points of `points` (the cloud of `cloud`) labelled `label`: the parents of a
+/// refinement of the boundary of the region of that collision label only (mcws_refine
+/// --collision), so that the collision-free region's edge, where free samples meet colliding
+/// ones, fills in rather than the whole cloud's.
+/// \param sampling how the cloud was sampled (recordRefineSampling()): it must record collision
+///   labels (mcws_sample --collision), or every label reads 0.
+/// \param label_name the label's name, for messages ("free").
+/// \throws mcws::Error naming the flag and the file: a cloud with no field `label` (PCL would
+///   read every label as 0), one sampled without collision labels, or one with no point labelled
+///   `label`.
+pcl::PointCloud<WorkspacePoint> labelledParents(const RefineCloud& cloud,
+                                                const pcl::PointCloud<WorkspacePoint>& points,
+                                                const io::SamplingRecord& sampling,
+                                                std::uint32_t label, const std::string& label_name);
 
 }  // namespace mcws

@@ -1,5 +1,7 @@
 #include "mcws/workspace/refine_report.h"
 
+#include "mcws/sampling/sample_report.h"
+
 namespace mcws {
 
 nlohmann::json refineSummary(const Robot& robot, std::size_t boundary_points, std::size_t samples,
@@ -7,6 +9,7 @@ nlohmann::json refineSummary(const Robot& robot, std::size_t boundary_points, st
                              const std::vector<std::string>& pinned,
                              const io::SamplingRecord& sampling) {
   return {{"robot", robot.name},
+          {"tip", tipName(robot, options.point)},
           {"boundary_points", boundary_points},
           {"samples", samples},
           {"copied", copied},

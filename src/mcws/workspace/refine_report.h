@@ -13,7 +13,8 @@
 
 namespace mcws {
 
-/// \brief What a refinement did, as JSON: "robot", "length_unit", "boundary_points" (the parents),
+/// \brief What a refinement did, as JSON: "robot", "tip" (tipName() of the point refined),
+/// "length_unit", "boundary_points" (the parents),
 /// "samples" (new), "copied" (points of the copied cloud), "points" (copied + new), "spread"
 /// [joint ranges], "seed", "pinned" (the pinned joints' names, RefineSampler::pinnedJoints()),
 /// and the sampling the cloud records, "point" and "collision"; with "units".
