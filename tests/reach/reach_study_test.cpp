@@ -706,19 +706,23 @@ TEST(ReachStudySummary, TargetPointCarriesTheResult) {
 // ---- base placement
 // -------------------------------------------------------------------------------
 
-/// planar2's map: 2 cm voxels, 16 direction regions (the polar cap holds every direction within
-/// acos(1 - 2/16) = 28.96 deg of +z), position manipulability.
+/// planar2's map of `resolution` [cm] voxels from `samples` samples, 16 direction regions (the
+/// polar cap holds every direction within acos(1 - 2/16) = 28.96 deg of +z), position
+/// manipulability.
+ReachMap buildPlanarMap(double resolution, std::uint64_t samples) {
+  ReachGrid grid;
+  grid.resolution = resolution;
+  grid.directions = 16;
+  grid.rolls = 1;
+  ReachSampling sampling;
+  sampling.samples = samples;
+  sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
+  return buildReachMap(planar2(), grid, sampling);
+}
+
+/// planar2's map at 2 cm from 2e6 samples.
 const ReachMap& planarMap() {
-  static const ReachMap map = [] {
-    ReachGrid grid;
-    grid.resolution = 2.0;
-    grid.directions = 16;
-    grid.rolls = 1;
-    ReachSampling sampling;
-    sampling.samples = 2000000;
-    sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
-    return buildReachMap(planar2(), grid, sampling);
-  }();
+  static const ReachMap map = buildPlanarMap(2.0, 2000000);
   return map;
 }
 
@@ -896,14 +900,7 @@ TEST(BasePlacement, ConfirmsTheMapsBestOnly) {
 // 10 cm map: the map ranks d = 20 below its fifth, so the five best by the map miss it; every
 // position within a map share of 0.1 of the best is confirmed and IK finds it.
 TEST(BasePlacement, ConfirmsEveryPositionWithinTheMarginOfTheMapsBest) {
-  ReachGrid grid;
-  grid.resolution = 10.0;
-  grid.directions = 16;
-  grid.rolls = 1;
-  ReachSampling sampling;
-  sampling.samples = 200000;
-  sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
-  const ReachMap map = buildReachMap(planar2(), grid, sampling);
+  const ReachMap map = buildPlanarMap(10.0, 200000);
   ReachStudyOptions options = planarOptions();
   options.starts = 2;
   options.ik.restarts = 5;

@@ -117,15 +117,7 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
-  OrderFreeSum kept(boundingMeasure(points, D));
-  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
-  for (const auto s : finiteSimplices<D>(dt)) {
-    if (withinAlpha<D>(s, spacing, alpha_factor)) {
-      s->info() = 1;
-      kept.add(simplexMeasure<D>(s));
-    }
-  }
-  result.uncorrected = kept.value();
+  result.uncorrected = keepWithinAlpha<D>(dt, points, spacing, alpha_factor);
   const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();

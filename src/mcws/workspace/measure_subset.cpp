@@ -30,15 +30,7 @@ RegionMeasure measureWhole(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& p
   triangulate<D, CGAL::Sequential_tag>(dt, points, {});
   if (options.phase) options.phase("alpha test");
   RegionMeasure all;
-  OrderFreeSum kept(boundingMeasure(points, D));
-  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
-  for (const auto s : finiteSimplices<D>(dt)) {
-    if (withinAlpha<D>(s, spacing, options.alpha_factor)) {
-      s->info() = 1;
-      kept.add(simplexMeasure<D>(s));
-    }
-  }
-  all.uncorrected = kept.value();
+  all.uncorrected = keepWithinAlpha<D>(dt, points, spacing, options.alpha_factor);
   const auto boundary = boundaryVertices<D>(dt, points.size());
   all.points = all.triangulated = dt.number_of_vertices();
   all.boundary_vertices = boundary.size();

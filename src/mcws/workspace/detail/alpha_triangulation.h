@@ -199,6 +199,23 @@ void insertPoints(Delaunay& dt, const Input& input) {
   }
 }
 
+/// Flags every simplex of `dt` kept (info 1: finite and within the alpha limit) or dropped
+/// (info 0) and returns the kept simplices' total area or volume, summed order-free within the
+/// points' bounding box.
+template <int D, typename Delaunay>
+double keepWithinAlpha(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                       const std::vector<double>& spacing, double alpha_factor) {
+  OrderFreeSum kept(boundingMeasure(points, D));
+  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
+  for (const auto s : finiteSimplices<D>(dt)) {
+    if (withinAlpha<D>(s, spacing, alpha_factor)) {
+      s->info() = 1;
+      kept.add(simplexMeasure<D>(s));
+    }
+  }
+  return kept.value();
+}
+
 /// The vertices between kept and dropped simplices (info 1 and 0; the infinite ones are dropped),
 /// in the triangulation's vertex order. A vertex has both kinds around it exactly when some facet
 /// through it separates a kept simplex from a dropped one (its star is connected through such
