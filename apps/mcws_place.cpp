@@ -145,15 +145,21 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
             << " samples" << (self ? ", each checked for self-collision" : "")
             << " (mcws_reach --map MAP.bin builds one to pass as --map)\n";
   app::Progress progress("mcws_place", "map samples");
-  bool estimated = false;
+  // The time estimate from the second chunk's rate (the first chunk, a few hundred samples a
+  // thread, is timed mostly for its start-up: threads, tables, first touches).
+  int chunks = 0;
+  double first_seconds = 0.0;
+  std::uint64_t first_done = 0;
   ReachMap map = buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
-    if (!estimated && done < all) {  // the first samples' rate, for the whole map
-      estimated = true;
+    if (++chunks == 1) {
+      first_seconds = progress.seconds();
+      first_done = done;
+    } else if (chunks == 2) {
+      const double rate = static_cast<double>(done - first_done) /
+                          std::max(progress.seconds() - first_seconds, 1e-9);
       std::cerr << "mcws_place: the map will take about "
-                << app::shortNumber(progress.seconds() * static_cast<double>(all) /
-                                    static_cast<double>(done))
-                << " s (" << app::shortNumber(progress.seconds()) << " s for the first " << done
-                << " samples)\n";
+                << app::shortNumber(progress.seconds() + static_cast<double>(all - done) / rate)
+                << " s in all (" << app::shortNumber(rate) << " samples a second)\n";
     }
     progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
   });
