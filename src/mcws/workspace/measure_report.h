@@ -20,8 +20,8 @@ nlohmann::json regionMeasureJson(const RegionMeasure& measured, const MeasureOpt
 
 /// \brief delaunayMeasureSubset()'s result as JSON for the points labelled `label`: the subset's
 /// "area" or "volume", "uncorrected", "points" and "outside" (its weighted share of the whole
-/// cloud's Efron count), "label", "correction", "alpha", "triangulated" and "boundary_vertices" (of the
-/// whole cloud's triangulation), and "all": the whole cloud's area or volume, "uncorrected",
+/// cloud's Efron count), "label", "correction", "alpha", "triangulated" and "boundary_vertices" (of
+/// the whole cloud's triangulation), and "all": the whole cloud's area or volume, "uncorrected",
 /// "points" and "outside", measured the same way; with their "units".
 nlohmann::json subsetMeasureJson(const SubsetMeasure& measured, std::uint32_t label,
                                  const MeasureOptions& options, int dimensions,
