@@ -35,7 +35,7 @@ left to IK): the share of the targets whose voxel and approach-direction bin the
 reached, and their mean best manipulability. The map is an estimate (a voxel partly inside the
 reach counts; too few samples miss bins; its manipulability is the best of a voxel's samples),
 so every position whose map share is within --confirm-margin of the best (default 0.1, a
-fraction of the targets: with 20 targets, every position the map says reaches at least 2 fewer
+fraction of the targets: with 20 targets, every position the map says reaches at most 2 fewer
 than the best), and the --confirm best by the map (default 0; all: every position), are solved
 by inverse kinematics with the collision model, as mcws_reach --targets does; the best position
 is the confirmed one with the most targets reached, then the best mean score. A map built here
