@@ -1,8 +1,12 @@
 // mcws_measure: area (2-D, --plane) or volume (3-D) of the region a workspace cloud samples.
+#include <pcl/io/pcd_io.h>
+
+#include <cstdint>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "common/app.h"
 #include "common/flags.h"
@@ -57,6 +61,14 @@ triangulation of the shell gives the same measure, in a fraction of the time and
 and dropped simplices: the region's edge), "outside" (of those, the ones outside the region of
 all other points: Efron's count V; the correction divides by 1 - V / points), "length_unit" and
 "units" (the unit of each dimensioned number).
+With --label L, the region of the points labelled L (0: collision-free, mcws_sample
+--collision) within the triangulation of every point, with the whole cloud's local spacing and
+alpha limit: a kept simplex counts whole when its points are all labelled L or its centre lies in
+the labelled points' own region, else the share of its points labelled L; the edge correction
+counts the whole cloud's outside points labelled L. So the label's measure never exceeds the
+whole cloud's, which is given too ("all"). Measured on its own (mcws_select, then mcws_measure)
+a sparser subset can come out larger than the whole: its wider local spacing widens the alpha
+limit and its edge correction. Every point is triangulated (no --triangulate, --leave-one-out).
 The cloud must have at least 3 distinct finite points in the plane (4 in 3-D), or it has no
 area or volume (exit 1, for 2-D and 3-D alike; so must the boundary); with --plane it must extend
 along both of the plane's axes (a cloud flat in one of them is a --plane error, exit 2, naming
@@ -77,6 +89,10 @@ void declareFlags(app::CommandLine& cli) {
       "triangulate",
       R"(delaunay: shell (only the points an empty ball of --alpha radius may touch; default) | all (every point: the same measure, slower; always with --leave-one-out reinsert))");
   cli.addValue("column-width", "column: L [length unit] (default automatic)");
+  cli.addValue("label",
+               "delaunay: measure only the points with this label (0: collision-free, from "
+               "mcws_sample --collision) within the triangulation of every point, which is "
+               "measured too (\"all\"): the label's measure never exceeds it");
   app::declareUnitFlag(cli);
   cli.addSwitch("json", "print a JSON summary on stdout");
 }
@@ -86,7 +102,8 @@ struct Settings {
   std::string input, method;
   BoundaryPlane plane{BoundaryPlane::k3D};
   MeasureOptions delaunay;
-  double column_width{0.0};  ///< 0: automatic
+  double column_width{0.0};            ///< 0: automatic
+  std::optional<std::uint32_t> label;  ///< --label: measure the points with it
 };
 
 Settings readSettings(const app::CommandLine& cli) {
@@ -114,6 +131,16 @@ Settings readSettings(const app::CommandLine& cli) {
   s.delaunay.shell = app::parseChoice(cli.text("triangulate", "shell"), "triangulate",
                                       {"shell", "all"}) == "shell";
   s.column_width = app::parseNonNegative(cli.text("column-width", "0"), "column-width");
+  if (cli.has("label")) {
+    for (const char* flag : {"boundary", "triangulate", "leave-one-out"}) {
+      if (cli.has(flag))
+        throw app::UsageError("--" + std::string(flag) +
+                              " does not apply to --label (every point is triangulated)");
+    }
+    if (s.method != "delaunay") throw app::UsageError("--label measures by --method delaunay");
+    s.label = static_cast<std::uint32_t>(
+        app::parseInteger(cli.required("label"), "label", 0, 4294967295LL));
+  }
   return s;
 }
 
@@ -156,7 +183,37 @@ void checkColumnWidth(const app::CommandLine& cli, double width, const CloudSumm
                         app::shortNumber(*cloud.spacing) + " to its extent)");
 }
 
-/// The finite points of `cloud` projected onto the plane (3-D: as they are).
+/// Which points of `cloud` (read from `path`) have `label`.
+/// \throws mcws::Error when the file has no label field or no point has it.
+std::vector<char> labelled(const io::WorkspaceCloud& cloud, const std::string& path,
+                           std::uint32_t label) {
+  pcl::PCLPointCloud2 header;
+  pcl::PCDReader().readHeader(path, header);
+  if (pcl::getFieldIndex(header, "label") < 0) {
+    throw Error(path + ": has no field 'label' for --label");
+  }
+  std::vector<char> flags(cloud.size(), 0);
+  for (std::size_t i = 0; i < cloud.size(); ++i) flags[i] = cloud[i].label == label;
+  return flags;
+}
+
+/// The plain output: the measure with its unit; with --label the whole cloud's after it; with
+/// --boundary (delaunay) the column method's cross-check.
+void printMeasure(const nlohmann::json& out, const std::string& key, const Settings& settings) {
+  std::cout.precision(10);
+  const std::string unit = out["units"][key];
+  std::cout << key << " " << out[key].get<double>() << " " << unit << "\n";
+  if (settings.label) {
+    std::cout << "all_" << key << " " << out["all"][key].get<double>() << " " << unit
+              << " (every point, measured the same way; the above is label " << *settings.label
+              << "'s)\n";
+  }
+  if (out.contains("cross_check")) {
+    std::cout << "cross_check " << out["cross_check"][key].get<double>() << " " << unit << " ("
+              << kColumnCrossCheckNote << ")\n";
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -183,6 +240,8 @@ int main(int argc, char** argv) {
     const ResultUnits units =
         app::readResultUnits(cli, io::recordedUnit(settings.input), settings.input);
     const pcl::PointCloud<pcl::PointXYZ> region = projectedToPlane(*cloud, settings.plane);
+    const std::vector<char> subset =
+        settings.label ? labelled(*cloud, settings.input, *settings.label) : std::vector<char>();
     cloud.reset();  // the triangulation's memory is the peak
     const int dimensions = boundaryDimensions(settings.plane);
     nlohmann::json out;
@@ -195,16 +254,18 @@ int main(int argc, char** argv) {
       }
       // The measure's own failures (the points lie in a plane, too few for the edge correction)
       // name the cloud they are about.
-      const RegionMeasure measured = [&] {
-        try {
-          return delaunayMeasure(region, dimensions, settings.delaunay);
-        } catch (const UsageError&) {
-          throw;
-        } catch (const Error& e) {
-          throw Error(settings.input + ": " + e.what());
-        }
-      }();
-      out = regionMeasureJson(measured, settings.delaunay, dimensions, units);
+      try {
+        out = settings.label
+                  ? subsetMeasureJson(
+                        delaunayMeasureSubset(region, subset, dimensions, settings.delaunay),
+                        *settings.label, settings.delaunay, dimensions, units)
+                  : regionMeasureJson(delaunayMeasure(region, dimensions, settings.delaunay),
+                                      settings.delaunay, dimensions, units);
+      } catch (const UsageError&) {
+        throw;
+      } catch (const Error& e) {
+        throw Error(settings.input + ": " + e.what());
+      }
       if (column) addColumnCrossCheck(out, *column, units);
     } else {
       out = columnAreaJson(*column, units);
@@ -219,13 +280,7 @@ int main(int argc, char** argv) {
     if (cli.has("json")) {
       std::cout << out.dump() << "\n";
     } else {
-      std::cout.precision(10);
-      const std::string unit = out["units"][key];
-      std::cout << key << " " << out[key].get<double>() << " " << unit << "\n";
-      if (column && settings.method == "delaunay") {
-        std::cout << "cross_check " << out["cross_check"][key].get<double>() << " " << unit << " ("
-                  << kColumnCrossCheckNote << ")\n";
-      }
+      printMeasure(out, key, settings);
     }
     return app::kExitOk;
   });

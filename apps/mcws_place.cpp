@@ -1,5 +1,6 @@
 // mcws_place: where to put the robot's base (stop the line robot) so its arm reaches a set of
 // targets: candidate base positions scored from the reachability map, the best confirmed by IK.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -33,9 +34,15 @@ scored from the reachability map (--map from mcws_reach, or one built here from 
 and --samples; the map built here counts samples free of self-collision, the environment being
 left to IK): the share of the targets whose voxel and approach-direction bin the map marks
 reached, and their mean best manipulability. The map is an estimate (a voxel partly inside the
-reach counts), so the best --confirm positions by the map (default 5; all: every position) are
-solved by inverse kinematics with the collision model, as mcws_reach --targets does; the best
-position is the confirmed one with the most targets reached, then the best mean score.
+reach counts; too few samples miss bins; its manipulability is the best of a voxel's samples),
+so every position whose map share is within --confirm-margin of the best (default 0.1, a
+fraction of the targets: with 20 targets, every position the map says reaches at most 2 fewer
+than the best), and the --confirm best by the map (default 0; all: every position), are solved
+by inverse kinematics with the collision model, as mcws_reach --targets does; the best position
+is the confirmed one with the most targets reached, then the best mean score. A map built here
+(no --map) takes as long as mcws_reach takes for it, much longer with a mesh collision model;
+the tool says so with an estimate after its first samples, and shows progress. Nothing caches
+it: build it once with mcws_reach --map MAP.bin (without --collision) and pass --map.
 --output writes the candidate bases (where the base frame lands) with fields map_share,
 map_score, ik_share and ik_score (-1: not confirmed); --plot the share reached against the
 offset along x.)";
@@ -53,7 +60,12 @@ void declareFlags(app::CommandLine& cli) {
                        "(2cm, 0.02m, 20mm) or a number in the robot's unit");
   app::declareSharedFlags(cli);
   app::declareStudyFlags(cli);
-  cli.addValue("confirm", "positions confirmed by IK: a number (default 5) or all");
+  cli.addValue("confirm-margin",
+               "confirm by IK every position whose map share is at least the best less this "
+               "[fraction of the targets, 0..1] (default 0.1)");
+  cli.addValue("confirm",
+               "also confirm the best N by the map, whatever their share: a number "
+               "(default 0) or all");
   cli.addValue("output", "candidate bases with map_share, map_score, ik_share, ik_score (PCD)");
   cli.addValue("plot", "PNG: targets reached against the offset along x");
   cli.addSwitch("json", "print a JSON summary on stdout");
@@ -93,6 +105,21 @@ std::vector<Eigen::Vector3d> offsets(const app::CommandLine& cli) {
   return offsetGrid(xs, ys, zs);
 }
 
+/// --confirm and --confirm-margin.
+PlacementOptions readPlacementOptions(const app::CommandLine& cli) {
+  PlacementOptions placement;
+  const std::string confirm = cli.text("confirm", "0");
+  placement.confirm =
+      confirm == "all" ? -1 : static_cast<int>(app::parseInteger(confirm, "confirm", 0, 1000000));
+  placement.confirm_margin =
+      app::parseNonNegative(cli.text("confirm-margin", "0.1"), "confirm-margin");
+  if (placement.confirm_margin > 1.0) {
+    throw app::UsageError("--confirm-margin: " + cli.required("confirm-margin") +
+                          " is above 1 (a fraction of the targets)");
+  }
+  return placement;
+}
+
 /// The map from --map (checked against the robot) or built from the map flags.
 ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about) {
   if (cli.has("map")) {
@@ -115,8 +142,26 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
   ReachSampling sampling = app::readReachSampling(cli, robot);
   const std::unique_ptr<CollisionChecker> self = app::studyChecker(cli, robot, false);
   sampling.collision = self.get();
+  std::cerr << "mcws_place: no --map: building a reachability map here from " << sampling.samples
+            << " samples" << (self ? ", each checked for self-collision" : "")
+            << " (mcws_reach --map MAP.bin builds one to pass as --map)\n";
   app::Progress progress("mcws_place", "map samples");
+  // The time estimate from the second chunk's rate (the first chunk, a few hundred samples a
+  // thread, is timed mostly for its start-up: threads, tables, first touches).
+  int chunks = 0;
+  double first_seconds = 0.0;
+  std::uint64_t first_done = 0;
   ReachMap map = buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
+    if (++chunks == 1) {
+      first_seconds = progress.seconds();
+      first_done = done;
+    } else if (chunks == 2) {
+      const double rate = static_cast<double>(done - first_done) /
+                          std::max(progress.seconds() - first_seconds, 1e-9);
+      std::cerr << "mcws_place: the map will take about "
+                << app::shortNumber(progress.seconds() + static_cast<double>(all - done) / rate)
+                << " s in all (" << app::shortNumber(rate) << " samples a second)\n";
+    }
     progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
   });
   about = {{"source", "built"}, {"samples", sampling.samples}, {"self_collision", self != nullptr}};
@@ -124,7 +169,7 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
 }
 
 void printTable(const std::vector<BaseCandidate>& candidates, int best, std::size_t targets,
-                const std::string& unit) {
+                const std::string& unit, const PlacementOptions& placement) {
   std::cerr << "offset x y z [" << unit << "]   map share   IK share   (fractions of the "
             << targets << " targets)\n";
   for (const BaseCandidate& c : candidates) {
@@ -132,6 +177,17 @@ void printTable(const std::vector<BaseCandidate>& candidates, int best, std::siz
               << std::setw(8) << c.offset.z() << "   " << std::setw(9) << c.map_share << "   "
               << (c.confirmed ? std::to_string(c.ik.share_reached) : std::string("-")) << "\n";
   }
+  const auto confirmed = std::count_if(candidates.begin(), candidates.end(),
+                                       [](const BaseCandidate& c) { return c.confirmed; });
+  std::cerr << confirmed << " of " << candidates.size()
+            << " positions confirmed by IK: those within a map share of "
+            << placement.confirm_margin << " (fraction of the targets) of the best";
+  if (placement.confirm != 0) {
+    std::cerr << ", and the "
+              << (placement.confirm < 0 ? std::string("all") : std::to_string(placement.confirm))
+              << " best by the map";
+  }
+  std::cerr << "\n";
   if (best >= 0) {
     const BaseCandidate& b = candidates[static_cast<std::size_t>(best)];
     std::cerr << "best: move the base by (" << b.offset.transpose() << ") " << unit << ": "
@@ -154,10 +210,7 @@ int main(int argc, char** argv) {
                        {"map", cli.text("map", "")}});
     if (!cli.has("along")) throw app::UsageError("missing --along");
     const std::vector<Eigen::Vector3d> moves = offsets(cli);
-    PlacementOptions placement;
-    const std::string confirm = cli.text("confirm", "5");
-    placement.confirm =
-        confirm == "all" ? -1 : static_cast<int>(app::parseInteger(confirm, "confirm", 0, 1000000));
+    PlacementOptions placement = readPlacementOptions(cli);
     const Robot robot = app::readRobot(cli);
     const ReachStudyOptions options = app::readReachStudyOptions(cli, robot);
     placement.approach_tolerance = options.approach_tolerance;
@@ -188,11 +241,12 @@ int main(int argc, char** argv) {
       nlohmann::json json = placementSummary(robot, targets.size(), map, map_about, options,
                                              checker != nullptr, candidates, best);
       addRobotNames(json, robot);
+      json["confirmation"] = confirmationJson(placement, candidates);
       json["seconds"] = clock.seconds();
       json["output"] = output;
       std::cout << json.dump() << "\n";
     } else {
-      printTable(candidates, best, targets.size(), unit);
+      printTable(candidates, best, targets.size(), unit, placement);
     }
     return app::kExitOk;
   });

@@ -232,6 +232,52 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
   EXPECT_EQ(nlohmann::json::parse(from_file.out)["candidates"], candidates);
 }
 
+// Without --map the tool says it builds a map and how long that will take (from the first
+// samples' rate), and confirms by IK every position whose map share is within --confirm-margin
+// of the best, saying how many (JSON "confirmation", and the text after the table).
+TEST_F(StudyApp, PlacementBuildingItsOwnMapSaysSoAndConfirmsTheMargin) {
+  const std::string targets = planarTargets({{0, 50}, {40, 50}});
+  const std::string common = kPlace + " --robot " + test::robotPath("planar2") + " --targets " +
+                             targets +
+                             " --along \"-30 70 5\" --resolution 10cm --orientations 16 "
+                             "--samples 100000 --threads 2 --confirm-margin 0.5 --output " +
+                             file("bases.pcd");
+  const test::RunResult r = test::run(common + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("mcws_place: no --map: building a reachability map here from "
+                               "100000 samples, each checked for self-collision"));
+  EXPECT_THAT(r.err, HasSubstr("mcws_place: the map will take about "));
+  EXPECT_THAT(r.err, HasSubstr(" s in all ("));
+  EXPECT_THAT(r.err, HasSubstr(" samples a second)\n"));
+  const auto summary = nlohmann::json::parse(r.out);
+  const auto& confirmation = summary["confirmation"];
+  EXPECT_EQ(confirmation["margin_share"].get<double>(), 0.5);
+  EXPECT_EQ(confirmation["best_by_map"].get<int>(), 0);
+  double best = 0.0;
+  for (const auto& c : summary["candidates"]) best = std::max(best, c["map_share"].get<double>());
+  std::size_t within = 0;
+  for (const auto& c : summary["candidates"]) {
+    const bool in = c["map_share"].get<double>() >= best - 0.5;
+    within += in;
+    EXPECT_EQ(!c["ik_share"].is_null(), in) << c.dump();
+  }
+  EXPECT_EQ(confirmation["confirmed"].get<std::size_t>(), within);
+  EXPECT_GT(within, 5u);  // more than the old fixed five
+
+  const test::RunResult text = test::run(common + " --no-collision");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.err,
+              HasSubstr("building a reachability map here from 100000 samples (mcws_reach"));
+  EXPECT_THAT(text.err, HasSubstr(" of 21 positions confirmed by IK: those within a map share of "
+                                  "0.5 (fraction of the targets) of the best\n"));
+  const std::string flags = " --robot " + test::robotPath("planar2") + " --targets " + targets +
+                            " --along \"0 10 5\" --resolution 10cm --output " + output("b.pcd");
+  test::expectToolFailure(kPlace, flags + " --confirm-margin 1.5", 2,
+                          "--confirm-margin: 1.5 is above 1 (a fraction of the targets)", out_);
+  test::expectToolFailure(kPlace, flags + " --confirm-margin -0.1", 2, "--confirm-margin: -0.1",
+                          out_);
+}
+
 TEST_F(StudyApp, PlacementRefusesTheMapOfAnEditedRobotFileOrOneThatPredatesItsRecord) {
   // The robot file, copied so that it can be edited.
   const std::string robot = file("planar2.yaml"), map = file("m.bin");
@@ -274,7 +320,7 @@ TEST_F(StudyApp, PlacementHelpDescribesTheFlags) {
   EXPECT_EQ(r.exit_code, 0);
   for (const char* flag :
        {"--robot", "--targets", "--along", "--across", "--up", "--map", "--resolution", "--confirm",
-        "--standoff", "--approach-tolerance", "--output", "--plot", "--json"}) {
+        "--confirm-margin", "--standoff", "--approach-tolerance", "--output", "--plot", "--json"}) {
     EXPECT_THAT(r.out, HasSubstr(flag));
   }
 }

@@ -706,19 +706,23 @@ TEST(ReachStudySummary, TargetPointCarriesTheResult) {
 // ---- base placement
 // -------------------------------------------------------------------------------
 
-/// planar2's map: 2 cm voxels, 16 direction regions (the polar cap holds every direction within
-/// acos(1 - 2/16) = 28.96 deg of +z), position manipulability.
+/// planar2's map of `resolution` [cm] voxels from `samples` samples, 16 direction regions (the
+/// polar cap holds every direction within acos(1 - 2/16) = 28.96 deg of +z), position
+/// manipulability.
+ReachMap buildPlanarMap(double resolution, std::uint64_t samples) {
+  ReachGrid grid;
+  grid.resolution = resolution;
+  grid.directions = 16;
+  grid.rolls = 1;
+  ReachSampling sampling;
+  sampling.samples = samples;
+  sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
+  return buildReachMap(planar2(), grid, sampling);
+}
+
+/// planar2's map at 2 cm from 2e6 samples.
 const ReachMap& planarMap() {
-  static const ReachMap map = [] {
-    ReachGrid grid;
-    grid.resolution = 2.0;
-    grid.directions = 16;
-    grid.rolls = 1;
-    ReachSampling sampling;
-    sampling.samples = 2000000;
-    sampling.quality = QualityOptions{QualityTask::kPosition, 1.0};
-    return buildReachMap(planar2(), grid, sampling);
-  }();
+  static const ReachMap map = buildPlanarMap(2.0, 2000000);
   return map;
 }
 
@@ -888,6 +892,87 @@ TEST(BasePlacement, ConfirmsTheMapsBestOnly) {
   EXPECT_EQ(bestCandidate({}), -1);
   EXPECT_THROW(placeBase(map, study, {}, offsets, placement), Error);
   EXPECT_THROW(placeBase(map, study, targets, {}, placement), Error);
+}
+
+// The map's manipulability score is the best of a voxel's samples: with coarse voxels it is flat
+// over many positions and does not rank them as IK does. Two targets 40 cm apart (IK's best
+// position d = 20, the symmetric middle, in closed form: TwoTargetsIntervalInClosedForm) and a
+// 10 cm map: the map ranks d = 20 below its fifth, so the five best by the map miss it; every
+// position within a map share of 0.1 of the best is confirmed and IK finds it.
+TEST(BasePlacement, ConfirmsEveryPositionWithinTheMarginOfTheMapsBest) {
+  const ReachMap map = buildPlanarMap(10.0, 200000);
+  ReachStudyOptions options = planarOptions();
+  options.starts = 2;
+  options.ik.restarts = 5;
+  options.threads = 1;
+  const ReachStudy study(planar2(), nullptr, options);
+  const std::vector<ReachTarget> targets = {targetFromNormal({0, 50, 0}, {0, 0, -1}),
+                                            targetFromNormal({40, 50, 0}, {0, 0, -1})};
+  std::vector<Eigen::Vector3d> offsets;
+  for (int d = -30; d <= 70; ++d) offsets.emplace_back(d, 0.0, 0.0);
+  constexpr std::size_t kMiddle = 50;  // d = 20
+  constexpr double kMargin = 0.1;
+
+  PlacementOptions five;  // the old rule: the five best by the map
+  five.confirm = 5;
+  const std::vector<BaseCandidate> by_five = placeBase(map, study, targets, offsets, five);
+  // Positions the map ranks above d = 20 (share, then score): five or more.
+  std::size_t above = 0;
+  for (const BaseCandidate& c : by_five) {
+    const BaseCandidate& m = by_five[kMiddle];
+    above += c.map_share > m.map_share || (c.map_share == m.map_share && c.map_score > m.map_score);
+  }
+  EXPECT_GE(above, 5u);
+  EXPECT_FALSE(by_five[kMiddle].confirmed);
+  const int five_best = bestCandidate(by_five);
+  ASSERT_GE(five_best, 0);
+  EXPECT_NE(by_five[static_cast<std::size_t>(five_best)].offset.x(), 20.0);
+
+  PlacementOptions margin;
+  margin.confirm = 0;
+  margin.confirm_margin = kMargin;
+  const std::vector<BaseCandidate> by_margin = placeBase(map, study, targets, offsets, margin);
+  double best_share = 0.0;
+  for (const BaseCandidate& c : by_margin) best_share = std::max(best_share, c.map_share);
+  EXPECT_EQ(best_share, 1.0);
+  for (const BaseCandidate& c : by_margin) {
+    EXPECT_EQ(c.confirmed, c.map_share >= best_share - kMargin) << c.offset.x();
+  }
+  const int best = bestCandidate(by_margin);
+  ASSERT_GE(best, 0);
+  EXPECT_EQ(by_margin[static_cast<std::size_t>(best)].offset.x(), 20.0);
+  EXPECT_EQ(by_margin[static_cast<std::size_t>(best)].ik.share_reached, 1.0);
+}
+
+// candidatesToConfirm: the best `confirm` by the map, united with every candidate whose share is
+// at least the best less the margin (a share exactly at the edge included), in the map's order.
+TEST(BasePlacement, CandidatesToConfirmUniteTheBestByMapAndTheMargin) {
+  std::vector<BaseCandidate> c(6);
+  const double share[] = {0.5, 1.0, 0.9, 0.8, 1.0, 0.0};
+  const double score[] = {900.0, 10.0, 30.0, 50.0, 20.0, 0.0};
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c[i].map_share = share[i];
+    c[i].map_score = score[i];
+  }
+  PlacementOptions o;
+  o.confirm = 0;
+  o.confirm_margin = 0.1;  // 1.0 - 0.1: 0.9 is in (to rounding)
+  EXPECT_EQ(candidatesToConfirm(c, o), (std::vector<std::size_t>{4, 1, 2}));
+  o.confirm_margin = 0.0;
+  EXPECT_EQ(candidatesToConfirm(c, o), (std::vector<std::size_t>{4, 1}));
+  o.confirm = 4;  // the four best by the map, more than the margin holds
+  EXPECT_EQ(candidatesToConfirm(c, o), (std::vector<std::size_t>{4, 1, 2, 3}));
+  o.confirm = 1;  // fewer: the margin's
+  o.confirm_margin = 0.5;
+  EXPECT_EQ(candidatesToConfirm(c, o), (std::vector<std::size_t>{4, 1, 2, 3, 0}));
+  o.confirm_margin = -1.0;  // none by margin
+  EXPECT_EQ(candidatesToConfirm(c, o), (std::vector<std::size_t>{4}));
+  o.confirm = -1;
+  EXPECT_EQ(candidatesToConfirm(c, o).size(), c.size());
+  o.confirm = 0;
+  o.confirm_margin = 1.0;
+  EXPECT_EQ(candidatesToConfirm(c, o).size(), c.size());
+  EXPECT_TRUE(candidatesToConfirm({}, o).empty());
 }
 
 TEST(BasePlacement, BestCandidateOrdersByShareThenScoreThenFirst) {

@@ -50,6 +50,27 @@ bool mapReaches(const ReachMap& map, const ReachTarget& target, const Eigen::Vec
   return reached;
 }
 
+std::vector<std::size_t> candidatesToConfirm(const std::vector<BaseCandidate>& candidates,
+                                             const PlacementOptions& options) {
+  std::vector<std::size_t> order(candidates.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const BaseCandidate &x = candidates[a], &y = candidates[b];
+    if (x.map_share != y.map_share) return x.map_share > y.map_share;
+    return x.map_score > y.map_score;
+  });
+  std::size_t confirm = options.confirm < 0
+                            ? order.size()
+                            : std::min(order.size(), static_cast<std::size_t>(options.confirm));
+  if (options.confirm_margin >= 0.0 && !order.empty()) {
+    // A hair below, so a share equal to the best less the margin is in despite rounding.
+    const double floor = candidates[order.front()].map_share - options.confirm_margin - 1e-12;
+    while (confirm < order.size() && candidates[order[confirm]].map_share >= floor) ++confirm;
+  }
+  order.resize(confirm);
+  return order;
+}
+
 std::vector<BaseCandidate> placeBase(
     const ReachMap& map, const ReachStudy& study, const std::vector<ReachTarget>& targets,
     const std::vector<Eigen::Vector3d>& offsets, const PlacementOptions& options,
@@ -73,17 +94,8 @@ std::vector<BaseCandidate> placeBase(
     candidate.map_share = static_cast<double>(reached) / n;
     candidate.map_score = score / n;
   }
-  // The best by the map first (share, then score, then order) are confirmed by IK.
-  std::vector<std::size_t> order(candidates.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const BaseCandidate &x = candidates[a], &y = candidates[b];
-    if (x.map_share != y.map_share) return x.map_share > y.map_share;
-    return x.map_score > y.map_score;
-  });
-  const std::size_t confirm =
-      options.confirm < 0 ? order.size()
-                          : std::min(order.size(), static_cast<std::size_t>(options.confirm));
+  const std::vector<std::size_t> order = candidatesToConfirm(candidates, options);
+  const std::size_t confirm = order.size();
   // Parallel over (candidate, target) pairs, a block of candidates at a time (a region per
   // candidate would wait at its barrier after a handful of targets; all pairs at once would hold
   // every result in memory).

@@ -42,11 +42,20 @@ struct BaseCandidate {
 
 /// \brief Settings of placeBase().
 struct PlacementOptions {
-  /// Candidates confirmed by inverse kinematics: the best `confirm` by map (share, then score,
-  /// then order); a negative value confirms all.
+  /// Candidates confirmed by inverse kinematics whatever their map share: the best `confirm` by
+  /// the map (share, then score, then order); a negative value confirms all.
   int confirm{5};
+  /// Also confirmed: every candidate whose map share is at least the best map share less this
+  /// margin [share of the targets, 0..1]; negative: none by margin. The map's manipulability
+  /// score is not trusted to rank them (it is the best of a voxel's samples, luck of the draw).
+  double confirm_margin{-1.0};
   double approach_tolerance{0.0};  ///< as ReachStudyOptions::approach_tolerance [rad]
 };
+
+/// \brief The candidates placeBase() confirms, by index, in the map's order (share, then score,
+/// then index): the best `confirm` and every one within `confirm_margin` of the best share.
+std::vector<std::size_t> candidatesToConfirm(const std::vector<BaseCandidate>& candidates,
+                                             const PlacementOptions& options);
 
 /// \brief The offsets of a grid of base positions [length unit]: every (x, y, z) of `xs` x `ys`
 /// x `zs`, z fastest, then y, then x.
@@ -54,8 +63,8 @@ std::vector<Eigen::Vector3d> offsetGrid(const std::vector<double>& xs,
                                         const std::vector<double>& ys,
                                         const std::vector<double>& zs);
 
-/// \brief Scores every offset from the map, confirms the best by the study (the robot and
-/// collision model it holds, the environment staying in place).
+/// \brief Scores every offset from the map, confirms those candidatesToConfirm() names by the
+/// study (the robot and collision model it holds, the environment staying in place).
 /// \param progress called with (steps done, all steps) now and then.
 std::vector<BaseCandidate> placeBase(
     const ReachMap& map, const ReachStudy& study, const std::vector<ReachTarget>& targets,

@@ -11,6 +11,7 @@
 
 #include "mcws/collision/collision_checker.h"
 #include "mcws/core/first_error.h"
+#include "mcws/core/stopwatch.h"
 #include "mcws/reach/pose_batch.h"
 #include "mcws/sampling/sampler.h"
 
@@ -234,23 +235,37 @@ class ReachMapBuilder {
     outgoing_.assign(threads_, std::vector<std::vector<PendingSample>>(threads_));
   }
 
-  /// Records every sample in the tables, a chunk at a time (progress after each).
+  /// Records every sample in the tables, a chunk at a time (progress after each). The first chunk
+  /// is a few hundred samples per thread, so its time gives an early estimate of the whole run;
+  /// each next chunk is sized from the rate so far to last about kChunkSeconds, so progress comes
+  /// every second or so even when a sample is slow (a mesh robot's self-collision check). The map
+  /// does not depend on the chunks: each sample's values depend on its index only, and what a
+  /// voxel records (count, best, bits) does not depend on the order samples arrive in.
   void fill(const Progress& progress) {
-    for (std::uint64_t begin = 0; begin < sampling_.samples; begin += kChunk) {
-      const std::uint64_t end = std::min(sampling_.samples, begin + kChunk);
-      const auto blocks = static_cast<std::int64_t>((end - begin + kBlock - 1) / kBlock);
+    std::uint64_t chunk = kFirstChunkPerThread * static_cast<std::uint64_t>(threads_);
+    for (std::uint64_t begin = 0; begin < sampling_.samples;) {
+      const std::uint64_t end = std::min(sampling_.samples, begin + chunk);
+      const std::uint64_t block =
+          std::clamp<std::uint64_t>((end - begin) / static_cast<std::uint64_t>(threads_),
+                                    static_cast<std::uint64_t>(kLanes), kBlock);
+      const auto blocks = static_cast<std::int64_t>((end - begin + block - 1) / block);
+      const Stopwatch watch;
       FirstError error;
 #pragma omp parallel for schedule(dynamic) num_threads(threads_)
       for (std::int64_t b = 0; b < blocks; ++b) {
         error.run(static_cast<std::size_t>(b), [&] {
-          const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * kBlock;
-          sampleBlock(first, std::min(end, first + kBlock), omp_get_thread_num());
+          const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * block;
+          sampleBlock(first, std::min(end, first + block), omp_get_thread_num());
           for (SlotTable& table : tables_) {
             if (table.due()) table.tryRecord();
           }
         });
       }
       error.rethrow();
+      const double rate = static_cast<double>(end - begin) / std::max(watch.seconds(), 1e-6);
+      chunk = static_cast<std::uint64_t>(std::clamp(
+          rate * kChunkSeconds, static_cast<double>(kBlock), static_cast<double>(kChunk)));
+      begin = end;
       if (progress) progress(end, sampling_.samples);
     }
   }
@@ -307,7 +322,9 @@ class ReachMapBuilder {
  private:
   static constexpr int kLanes = PoseBatch::kLanes;
   static constexpr std::size_t kPost = std::size_t{1} << 16;  ///< samples handed to a part at once
-  static constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22;
+  /// Samples a thread draws at once; the largest chunk; the first chunk's samples per thread.
+  static constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22, kFirstChunkPerThread = 256;
+  static constexpr double kChunkSeconds = 1.0;  ///< a chunk's time after the first [s]
 
   static RobotSamplerOptions samplerOptions(const ReachSampling& sampling) {
     RobotSamplerOptions options;

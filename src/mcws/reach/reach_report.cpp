@@ -90,6 +90,19 @@ nlohmann::json candidateJson(const BaseCandidate& c) {
   return j;
 }
 
+nlohmann::json confirmationJson(const PlacementOptions& options,
+                                const std::vector<BaseCandidate>& candidates) {
+  const auto confirmed = std::count_if(candidates.begin(), candidates.end(),
+                                       [](const BaseCandidate& c) { return c.confirmed; });
+  return {{"margin_share",
+           options.confirm_margin >= 0.0 ? nlohmann::json(options.confirm_margin) : nullptr},
+          {"best_by_map", options.confirm},
+          {"confirmed", confirmed},
+          {"rule",
+           "confirmed by IK: every position whose map share is at least the best map share less "
+           "margin_share (a fraction of the targets), and the best_by_map best by the map"}};
+}
+
 nlohmann::json placementSummary(const Robot& robot, std::size_t targets, const ReachMap& map,
                                 const nlohmann::json& map_about, const ReachStudyOptions& options,
                                 bool collision, const std::vector<BaseCandidate>& candidates,

@@ -39,6 +39,13 @@ nlohmann::json studySummary(const Robot& robot, const ReachStudyOptions& options
 /// where IK confirmed it, IK's (else null).
 nlohmann::json candidateJson(const BaseCandidate& candidate);
 
+/// \brief How a placement chose the positions it confirmed by IK: "margin_share" (every position
+/// whose map share is at least the best less it, a fraction of the targets; null: none by
+/// margin), "best_by_map" (that many best by the map in any case; -1: all), "confirmed" (how many
+/// were) and "rule" (the rule in words).
+nlohmann::json confirmationJson(const PlacementOptions& options,
+                                const std::vector<BaseCandidate>& candidates);
+
 /// \brief The summary of a base placement (mcws_place) over `targets` targets: the map's grid
 /// and `map_about` (where it came from), every candidate and the best (index `best`, -1: none)
 /// with its base position in the world [length unit].

@@ -15,20 +15,18 @@
 #include "mcws/points/unique_positions.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
 #include "mcws/workspace/detail/measure_shell.h"
+#include "mcws/workspace/detail/measure_steps.h"
 #include "mcws/workspace/detail/surface_repair.h"
 #include "mcws/workspace/nearest_neighbours.h"
 
 namespace mcws {
 namespace detail {
-namespace {
 
 constexpr int kNeighbour = 8;
 /// More points outside the others' region than this share: the cloud is too small to estimate
 /// the band it misses (a uniform cloud of 100 points in a disk has about 15 %).
 constexpr double kLargestMissingShare = 0.5;
 
-/// Local spacing at every point: distance to the k-th nearest neighbour over its mean for a
-/// uniform cloud of mean spacing 1, sqrt(k / pi) in 2-D and (3k / (4 pi))^(1/3) in 3-D.
 std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
                                  int threads) {
   const double scale =
@@ -40,6 +38,50 @@ std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud, in
   }
   return spacing;
 }
+
+pcl::PointCloud<pcl::PointXYZ> checkedPositions(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                                int dimensions, double alpha_factor,
+                                                std::vector<pcl::index_t>& position_of) {
+  if (dimensions != 2 && dimensions != 3) throw Error("dimensions must be 2 or 3");
+  if (!(alpha_factor > 0.0 && std::isfinite(alpha_factor))) {
+    std::ostringstream msg;
+    msg << "alpha factor " << alpha_factor << " must be a positive number";
+    throw Error(msg.str());
+  }
+  if (points.size() < static_cast<std::size_t>(dimensions + 1)) {
+    throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
+                std::to_string(points.size()));
+  }
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& p = points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || (dimensions == 3 && !std::isfinite(p.z))) {
+      throw Error("point " + std::to_string(i) + " has a non-finite coordinate");
+    }
+  }
+  // One position per set of copies (CGAL would merge them anyway), so copies neither shrink the
+  // local spacing nor count as points.
+  if (dimensions == 3) return uniquePositions(points, position_of);
+  pcl::PointCloud<pcl::PointXYZ> projected = points;
+  for (auto& p : projected) p.z = 0.0f;
+  return uniquePositions(projected, position_of);
+}
+
+void checkKeptAndMissing(const RegionMeasure& result, int dimensions,
+                         const MeasureOptions& options) {
+  if (!(result.uncorrected > 0.0)) {
+    throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +
+                " passes the alpha limit: the points are (nearly) " +
+                (dimensions == 2 ? "collinear" : "coplanar") + " or too sparse for alpha " +
+                formatNumber(options.alpha_factor));
+  }
+  if (!options.edge_correction) return;
+  if (static_cast<double>(result.outside) / result.points > kLargestMissingShare) {
+    throw Error("too few points for the edge correction: " + std::to_string(result.outside) +
+                " of " + std::to_string(result.points) + " lie outside the region of the others");
+  }
+}
+
+namespace {
 
 /// Leave one out by removal (LeaveOneOut::kRemoveAndReinsert): each boundary vertex is removed
 /// from the triangulation, its point located among the others, and put back (one thread).
@@ -75,15 +117,7 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
-  OrderFreeSum kept(boundingMeasure(points, D));
-  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
-  for (const auto s : finiteSimplices<D>(dt)) {
-    if (withinAlpha<D>(s, spacing, alpha_factor)) {
-      s->info() = 1;
-      kept.add(simplexMeasure<D>(s));
-    }
-  }
-  result.uncorrected = kept.value();
+  result.uncorrected = keepWithinAlpha<D>(dt, points, spacing, alpha_factor);
   const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
@@ -116,34 +150,9 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
 
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               const MeasureOptions& options) {
-  const double alpha_factor = options.alpha_factor;
-  if (dimensions != 2 && dimensions != 3) throw Error("dimensions must be 2 or 3");
-  if (!(alpha_factor > 0.0 && std::isfinite(alpha_factor))) {
-    std::ostringstream msg;
-    msg << "alpha factor " << alpha_factor << " must be a positive number";
-    throw Error(msg.str());
-  }
-  if (points.size() < static_cast<std::size_t>(dimensions + 1)) {
-    throw Error("a region needs at least " + std::to_string(dimensions + 1) + " points, got " +
-                std::to_string(points.size()));
-  }
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto& p = points[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || (dimensions == 3 && !std::isfinite(p.z))) {
-      throw Error("point " + std::to_string(i) + " has a non-finite coordinate");
-    }
-  }
-  // One position per set of copies (CGAL would merge them anyway), so copies neither shrink the
-  // local spacing nor count as points.
   std::vector<pcl::index_t> position_of;
-  auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  if (dimensions == 2) {
-    pcl::PointCloud<pcl::PointXYZ> projected = points;
-    for (auto& p : projected) p.z = 0.0f;
-    *flat = uniquePositions(projected, position_of);
-  } else {
-    *flat = uniquePositions(points, position_of);
-  }
+  auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(
+      detail::checkedPositions(points, dimensions, options.alpha_factor, position_of));
   position_of = {};
   if (options.phase) options.phase("local spacing");
   MeasureOptions resolved = options;
@@ -170,22 +179,13 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   } else {
     result = detail::measureRegion<3, CGAL::Sequential_tag>(*flat, spacing, resolved);
   }
-  result.alpha_factor = alpha_factor;
-  if (!(result.uncorrected > 0.0)) {
-    throw Error(std::string("no ") + (dimensions == 2 ? "triangle" : "tetrahedron") +
-                " passes the alpha limit: the points are (nearly) " +
-                (dimensions == 2 ? "collinear" : "coplanar") + " or too sparse for alpha " +
-                formatNumber(alpha_factor));
-  }
+  result.alpha_factor = options.alpha_factor;
+  detail::checkKeptAndMissing(result, dimensions, options);
   if (!options.edge_correction) {
     result.measure = result.uncorrected;
     return result;
   }
   const double missing = static_cast<double>(result.outside) / result.points;
-  if (missing > detail::kLargestMissingShare) {
-    throw Error("too few points for the edge correction: " + std::to_string(result.outside) +
-                " of " + std::to_string(result.points) + " lie outside the region of the others");
-  }
   result.measure = result.uncorrected / (1.0 - missing);
   return result;
 }

@@ -111,6 +111,55 @@ struct MeasureOptions {
 RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
                               const MeasureOptions& options);
 
+/// \brief Result of delaunayMeasureSubset(): the whole cloud's region and a subset's, measured
+/// the same way.
+struct SubsetMeasure {
+  /// The whole cloud's: as delaunayMeasure() with every point triangulated, its `measure` written
+  /// as `uncorrected + outside * unit_share` (the same value, to rounding).
+  RegionMeasure all;
+  double measure{0.0};      ///< the subset's area [unit^2] or volume [unit^3]; <= all.measure
+  double uncorrected{0.0};  ///< the subset's part of the whole cloud's kept simplices
+  std::size_t points{0};    ///< distinct positions holding a subset point
+  /// The whole cloud's outside points counted for the subset, each weighted by the subset's
+  /// share of the kept simplices around it (0..1): at most all.outside.
+  double outside{0.0};
+  /// The share of the region one point stands for in the edge correction: all.measure /
+  /// all.points [unit^2 or unit^3].
+  double unit_share{0.0};
+};
+
+/// \brief Area or volume of the region a subset of a cloud samples (the collision-free points of
+/// a cloud sampled with collision checking), measured within the whole cloud's triangulation so
+/// that it can never exceed the whole cloud's measure.
+///
+/// Measured on its own, a subset's region can come out larger than the whole cloud's (by 0.1 %
+/// for an arm whose collisions thin its interior): the subset is sparser, so its local spacing and
+/// with it the alpha limit are wider (bridging more of the concave parts), and its edge
+/// correction, V / N from its own sparser edge, is larger; the two estimates carry independent
+/// errors of that size. Here both come from one triangulation, the whole cloud's, with its local
+/// spacing and alpha limit. A kept simplex counts for the subset whole when all its vertices are
+/// subset points or its centroid lies in the subset's region, else the share of its vertices that
+/// are subset points (it straddles the subset's edge). The subset's region, for that test: the
+/// Delaunay simplices of the subset's points and the whole cloud's boundary vertices next to one
+/// (in a kept simplex with a subset point) that pass the alpha test at those points' own local
+/// spacing (with the boundary vertices, a subset thinner
+/// than the whole, as where colliding samples are mixed among free ones, reaches the whole's edge
+/// rather than stopping a spacing of its own short of it). The edge correction counts each of the
+/// whole cloud's outside points (its leave-one-out count V) weighted by the subset's share of the
+/// kept simplices around it, each standing for all.measure / all.points. Every term is at most the
+/// whole cloud's, so measure <= all.measure by construction. Where the subset's edge runs inside
+/// the whole cloud (a region reached only in collision), the band along it is counted by the
+/// straddling simplices' shares only.
+/// \param in_subset one flag per point of `points`; a position with copies is in the subset when
+///   any copy is.
+/// \param options as delaunayMeasure()'s; `shell`, `surface` and `leave_one_out` are ignored
+///   (every point is triangulated, leave-one-out from the star).
+/// \throws mcws::Error as delaunayMeasure() for the whole cloud, for a flag count that is not the
+///   point count, and for a subset of fewer than 9 distinct positions or all in a plane (a line).
+SubsetMeasure delaunayMeasureSubset(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                    const std::vector<char>& in_subset, int dimensions,
+                                    const MeasureOptions& options);
+
 /// \brief Result of columnArea().
 struct ColumnArea {
   double area{0.0};            ///< [unit^2]

@@ -3,6 +3,7 @@
 /// \brief The area or volume of a region as a report (mcws_measure --json) gives it: each number
 /// with its unit.
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
 #include "mcws/core/length_unit.h"
@@ -16,6 +17,15 @@ namespace mcws {
 /// "outside", with their "units".
 nlohmann::json regionMeasureJson(const RegionMeasure& measured, const MeasureOptions& options,
                                  int dimensions, const ResultUnits& units);
+
+/// \brief delaunayMeasureSubset()'s result as JSON for the points labelled `label`: the subset's
+/// "area" or "volume", "uncorrected", "points" and "outside" (its weighted share of the whole
+/// cloud's Efron count), "label", "correction", "alpha", "triangulated" and "boundary_vertices" (of
+/// the whole cloud's triangulation), and "all": the whole cloud's area or volume, "uncorrected",
+/// "points" and "outside", measured the same way; with their "units".
+nlohmann::json subsetMeasureJson(const SubsetMeasure& measured, std::uint32_t label,
+                                 const MeasureOptions& options, int dimensions,
+                                 const ResultUnits& units);
 
 /// \brief columnArea()'s result as JSON, converted to `units`: "area", "column_width",
 /// "crossing_gap", "columns", "odd_columns", with their "units".

@@ -199,6 +199,23 @@ void insertPoints(Delaunay& dt, const Input& input) {
   }
 }
 
+/// Flags every simplex of `dt` kept (info 1: finite and within the alpha limit) or dropped
+/// (info 0) and returns the kept simplices' total area or volume, summed order-free within the
+/// points' bounding box.
+template <int D, typename Delaunay>
+double keepWithinAlpha(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                       const std::vector<double>& spacing, double alpha_factor) {
+  OrderFreeSum kept(boundingMeasure(points, D));
+  for (const auto s : allSimplices<D>(dt)) s->info() = 0;
+  for (const auto s : finiteSimplices<D>(dt)) {
+    if (withinAlpha<D>(s, spacing, alpha_factor)) {
+      s->info() = 1;
+      kept.add(simplexMeasure<D>(s));
+    }
+  }
+  return kept.value();
+}
+
 /// The vertices between kept and dropped simplices (info 1 and 0; the infinite ones are dropped),
 /// in the triangulation's vertex order. A vertex has both kinds around it exactly when some facet
 /// through it separates a kept simplex from a dropped one (its star is connected through such
@@ -244,10 +261,12 @@ bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
 // triangulation lists them in an order that depends on the thread count, and where v's point
 // lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
 // returns depends on how that triangulation was built.
+/// With `flags` (one per point, by vertex info), also flags each vertex counted.
 template <int D, typename Delaunay>
 std::size_t outsideByStar(const Delaunay& dt,
                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                          const std::vector<double>& spacing, double alpha_factor, int threads) {
+                          const std::vector<double>& spacing, double alpha_factor, int threads,
+                          std::vector<char>* flags = nullptr) {
   using Local = typename Simplices<D>::Local;
   std::size_t outside = 0;
   FirstError error;  // running out of memory leaves the parallel region through it
@@ -264,6 +283,7 @@ std::size_t outsideByStar(const Delaunay& dt,
         if (std::any_of(neighbours.begin(), neighbours.end(),
                         [&](const auto& u) { return dt.is_infinite(u); })) {
           ++outside;  // on the convex hull
+          if (flags) (*flags)[v->info()] = 1;
           return;
         }
         star.clear();
@@ -271,7 +291,9 @@ std::size_t outsideByStar(const Delaunay& dt,
         std::sort(star.begin(), star.end(),
                   [](const auto& a, const auto& b) { return a.second < b.second; });
         const Local local(star.begin(), star.end());
-        outside += !inRegion<D>(local, v->point(), spacing, alpha_factor);
+        const bool out = !inRegion<D>(local, v->point(), spacing, alpha_factor);
+        outside += out;
+        if (flags && out) (*flags)[v->info()] = 1;
       });
     }
   }
