@@ -17,7 +17,9 @@
 
 namespace mcws {
 
-namespace {
+// Named rather than anonymous: ReachMapBuilder (a friend of ReachMap, so not file-local) holds
+// these, and GCC warns (-Wsubobject-linkage) when a unity build compiles the file in a batch.
+namespace reach_map_build {
 
 /// A sample waiting to be recorded: its voxel's key (ReachMap's packing), orientation bin and
 /// manipulability.
@@ -211,7 +213,10 @@ class SlotTable {
   std::vector<PendingSample> sorted_, fresh_;
 };
 
-}  // namespace
+}  // namespace reach_map_build
+
+using reach_map_build::PendingSample;
+using reach_map_build::SlotTable;
 
 /// buildReachMap's steps: blocks of samples drawn and mapped to voxel keys and orientation bins
 /// in parallel, posted to the SlotTable of each voxel's part; then each table's voxels sorted by
