@@ -22,7 +22,13 @@ while (($#)); do
     shift
   fi
 done
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" \
+# Ninja, when installed, for a new build directory: it compiles a target's sources while the
+# libraries it links are still being built, where make waits for them, so both cores stay busy.
+generator=()
+if [[ ! -e $build/CMakeCache.txt && -z ${CMAKE_GENERATOR:-} ]] && command -v ninja >/dev/null; then
+  generator=(-G Ninja)
+fi
+cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" \
   >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 1; }
 if ((${#targets[@]})); then
   cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"

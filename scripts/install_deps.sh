@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   cmake g++ make pkg-config
+  ninja-build lld               # faster builds: Ninja keeps both cores busy, LLVM's linker
   libpcl-dev pcl-tools          # point clouds, PCD I/O, KdTreeFLANN, pcl_viewer & co.
   libeigen3-dev                 # linear algebra, poses
   libflann-dev                  # nearest-neighbour search behind pcl::KdTreeFLANN

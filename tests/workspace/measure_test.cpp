@@ -12,6 +12,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
+#include "test_support.h"
 #include "workspace/shape_cloud.h"
 
 namespace mcws {
@@ -61,7 +62,7 @@ TEST(DelaunayMeasure, StarLeaveOneOutCountsWhatRemovingEachVertexCounts) {
   star_options.shell = false;  // the same triangulation as the brute force, so the same sum
   for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
     for (const std::uint64_t seed : {1, 2}) {
-      const auto cloud = shapeCloud(shape, 20000, seed);
+      const auto cloud = shapeCloud(shape, 20000 / test::kSanitizerShrink, seed);
       const int dims = shapeIsPlanar(shape) ? 2 : 3;
       const RegionMeasure star = delaunayMeasure(cloud, dims, star_options);
       const RegionMeasure removed = delaunayMeasure(cloud, dims, brute);
@@ -381,7 +382,7 @@ TEST(DelaunayMeasure, TheShellMeasuresWhatTriangulatingEveryPointMeasures) {
   // Convex rims, a hole, corners, a ball with a spherical cavity inside, and alpha factors that
   // leave from most to few points out of the shell.
   for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
-    const auto cloud = shapeCloud(shape, 30000, 7);
+    const auto cloud = shapeCloud(shape, 30000 / test::kSanitizerShrink, 7);
     for (const double alpha : {1.5, 3.0, 5.0}) {
       expectShellMeasuresAsTheWhole(
           cloud, shapeIsPlanar(shape) ? 2 : 3, alpha,
