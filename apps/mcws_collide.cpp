@@ -69,12 +69,14 @@ int findAllowed(const app::CommandLine& cli) {
   return app::kExitOk;
 }
 
-void printReport(const Robot& robot, std::uint32_t label, std::size_t checked,
-                 const std::vector<PairReport>& shown) {
+/// Each pair's bodies are named by their URDF links (bodyLabel()), by the body for a YAML robot.
+void printReport(const Robot& robot, const CollisionModel& model, std::uint32_t label,
+                 std::size_t checked, const std::vector<PairReport>& shown) {
   std::cout << "label " << label << " (" << labelName(label) << "), " << checked
             << " pairs checked\n";
   for (const PairReport& pair : shown) {
-    std::cout << std::setw(12) << pair.body_a << " - " << std::setw(12) << std::left << pair.body_b
+    std::cout << std::setw(12) << bodyLabel(pair.body_a, model.link_bodies) << " - "
+              << std::setw(12) << std::left << bodyLabel(pair.body_b, model.link_bodies)
               << std::right << " " << std::setw(11) << labelName(pair.label);
     if (!pair.depth_known) {
       std::cout << "  colliding (mesh contact: no depth)\n";
@@ -117,7 +119,7 @@ int main(int argc, char** argv) {
       addRobotNames(out, robot);
       std::cout << out.dump() << "\n";
     } else {
-      printReport(robot, label, pairs.size(), shown);
+      printReport(robot, model, label, pairs.size(), shown);
     }
     return app::kExitOk;
   });

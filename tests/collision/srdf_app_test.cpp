@@ -32,6 +32,11 @@ TEST(SrdfApps, DisabledPairIsNoLongerReported) {
   // The bodies named by their URDF links too.
   EXPECT_EQ(out["pairs"][0]["links_a"], nlohmann::json::array({"link1"}));
   EXPECT_EQ(out["pairs"][0]["links_b"], nlohmann::json::array({"link3"}));
+  // ... and only by them in the text report (the bodies' joint names mean nothing to a reader).
+  const test::RunResult text = test::run(run.substr(0, run.size() - std::string(" --json").size()));
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("link1 - link3 "));
+  EXPECT_THAT(text.out, ::testing::Not(HasSubstr("j1")));
 
   test::writeFile(dir.file("column.srdf"),
                   srdfText("column", {{"link3", "link1", "Default"}, {"marker", "post", "User"}}));

@@ -2,15 +2,31 @@
 
 namespace mcws {
 
+std::vector<std::string> bodyLinks(
+    const std::string& body, const std::vector<std::pair<std::string, std::string>>& link_bodies) {
+  std::vector<std::string> links;
+  for (const auto& [link, carrier] : link_bodies) {
+    if (carrier == body) links.push_back(link);
+  }
+  return links;
+}
+
+std::string bodyLabel(const std::string& body,
+                      const std::vector<std::pair<std::string, std::string>>& link_bodies) {
+  std::string label;
+  for (const std::string& link : bodyLinks(body, link_bodies)) {
+    label += (label.empty() ? "" : "+") + link;
+  }
+  return label.empty() ? body : label;
+}
+
 nlohmann::json collisionReportJson(
     const Robot& robot, std::uint32_t label, std::size_t checked,
     const std::vector<PairReport>& shown,
     const std::vector<std::pair<std::string, std::string>>& link_bodies) {
   const auto links = [&](const std::string& body) {
     nlohmann::json names = nlohmann::json::array();
-    for (const auto& [link, carrier] : link_bodies) {
-      if (carrier == body) names.push_back(link);
-    }
+    for (const std::string& link : bodyLinks(body, link_bodies)) names.push_back(link);
     return names;
   };
   nlohmann::json out;

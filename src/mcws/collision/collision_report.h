@@ -16,6 +16,16 @@
 
 namespace mcws {
 
+/// \brief The URDF links with geometry that `body` carries (CollisionModel::link_bodies, pairs of
+/// link and body), in the model's order; empty for a body no link names (a YAML model's tool).
+std::vector<std::string> bodyLinks(
+    const std::string& body, const std::vector<std::pair<std::string, std::string>>& link_bodies);
+
+/// \brief What a report names a body by: its links joined by '+' (bodyLinks()), or the body's
+/// own name when no link names it or `link_bodies` is empty (a YAML model).
+std::string bodyLabel(const std::string& body,
+                      const std::vector<std::pair<std::string, std::string>>& link_bodies);
+
 /// \brief The check of one joint vector as JSON: "robot", "length_unit", "label" and its
 /// "label_name", "pairs_checked", and "pairs" (`shown`, pairsToShow()), each with its bodies "a"
 /// and "b", its "kind" (the label a collision of the pair gives), "colliding" and, where known,
