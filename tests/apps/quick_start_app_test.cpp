@@ -6,11 +6,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Core>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "collision/collada_box.h"
 #include "test_support.h"
@@ -87,10 +91,26 @@ test::ColladaBox quickStartBox(Eigen::Vector3d lo, Eigen::Vector3d hi, const std
   return box;
 }
 
+/// Two fingers for the quick start's wrist: finger_joint (0 to 0.04 m, its default 0) and
+/// finger_mimic, which follows it at 1 x its value + 0.01 m, in the opposite direction.
+constexpr char kGripper[] =
+    R"(  <link name="finger_left"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <link name="finger_right"><collision><geometry><box size="0.01 0.01 0.04"/></geometry></collision></link>
+  <joint name="finger_joint" type="prismatic"><parent link="wrist"/><child link="finger_left"/>
+    <origin xyz="0 0.02 0.1" rpy="0 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="0" upper="0.04" effort="10" velocity="0.1"/></joint>
+  <joint name="finger_mimic" type="prismatic"><parent link="wrist"/><child link="finger_right"/>
+    <origin xyz="0 -0.02 0.1" rpy="0 0 0"/><axis xyz="0 -1 0"/>
+    <limit lower="0" upper="0.05" effort="10" velocity="0.1"/>
+    <mimic joint="finger_joint" multiplier="1" offset="0.01"/></joint>
+)";
+
 /// A four-joint arm (about 1.1 m) as a ROS package under `ws`: base (a .dae in millimetres),
 /// shoulder (STL), upper arm (OBJ), forearm (the .dae again, stretched by the URDF's scale), a
-/// wrist box, then two fixed frames below the wrist: tool0 and ee_link.
-void writeQuickStartRobot(const fs::path& ws) {
+/// wrist box, then two fixed frames below the wrist: tool0 and ee_link. With `gripper`, two
+/// finger boxes on prismatic joints below the wrist as well, the second a mimic of the first
+/// (multiplier 1, offset 0.01 m): two more leaves, neither on the chain.
+void writeQuickStartRobot(const fs::path& ws, bool gripper = false) {
   const fs::path package = ws / "src" / "my_arm_description";
   fs::create_directories(package / "urdf");
   fs::create_directories(package / "meshes");
@@ -138,7 +158,8 @@ void writeQuickStartRobot(const fs::path& ws) {
           joint("elbow", "revolute", "upper_arm", "forearm", "0 0 0.4", "0 1 0", 2.5) +
           joint("wrist_1", "revolute", "forearm", "wrist", "0 0 0.35", "0 0 1", 3.0) +
           joint("tool0_fixed", "fixed", "wrist", "tool0", "0 0 0.1", "", 0) +
-          joint("ee_fixed", "fixed", "wrist", "ee_link", "0 0 0.05", "", 0) + "</robot>\n");
+          joint("ee_fixed", "fixed", "wrist", "ee_link", "0 0 0.05", "", 0) +
+          (gripper ? kGripper : "") + "</robot>\n");
 }
 
 TEST(QuickStart, TheBlockIsReadUnderItsHeading) {
@@ -204,6 +225,121 @@ TEST(QuickStart, MyOwnUrdfInFiveCommands) {
   EXPECT_THAT(no_tip.err,
               ::testing::AllOf(::testing::HasSubstr("ee_link"), ::testing::HasSubstr("tool0"),
                                ::testing::HasSubstr("--tip")));
+}
+
+/// Where the quick start's tool0 is for the joint values q [rad]: the arm moves in the plane that
+/// shoulder_pan turns about z; shoulder_lift and elbow turn about y (0.15 m above the pan, the
+/// upper arm 0.4 m), wrist_1 turns about the forearm, which tool0 continues (0.35 + 0.1 m).
+Eigen::Vector3d quickStartTool0(const double* q) {
+  const double r = 0.4 * std::sin(q[1]) + 0.45 * std::sin(q[1] + q[2]);
+  return {r * std::cos(q[0]), r * std::sin(q[0]),
+          0.25 + 0.4 * std::cos(q[1]) + 0.45 * std::cos(q[1] + q[2])};
+}
+
+/// Whether the planar two-link arm (0.4 m, then 0.45 m to tool0; lift within +-2, elbow within
+/// +-2.5 rad, both measured from straight up) puts tool0 at (x, z) from the lift axis.
+bool quickStartPlanarReach(double x, double z) {
+  const double d2 = x * x + z * z;
+  const double c = (d2 - 0.4 * 0.4 - 0.45 * 0.45) / (2 * 0.4 * 0.45);
+  if (c < -1 || c > 1) return false;
+  for (const double elbow : {std::acos(c), -std::acos(c)}) {
+    const double lift =
+        std::atan2(x, z) - std::atan2(0.45 * std::sin(elbow), 0.4 + 0.45 * std::cos(elbow));
+    const double wrapped = std::remainder(lift, 2 * M_PI);
+    if (std::abs(elbow) <= 2.5 && std::abs(wrapped) <= 2.0) return true;
+  }
+  return false;
+}
+
+/// The volume tool0 sweeps [m^3], by Pappus: the pan turns the planar arm's reach about z, and a
+/// point at -r is reached through the pan and a lift of the other sign, so the workspace is the
+/// solid of revolution of the half-plane points (r >= 0) reached at r or at -r; midpoint sums on
+/// a 1 mm grid.
+double quickStartVolume() {
+  const double h = 0.001;
+  double sum = 0;
+  for (double r = h / 2; r < 0.86; r += h) {
+    for (double z = -0.86 + h / 2; z < 0.86; z += h) {
+      if (quickStartPlanarReach(r, z) || quickStartPlanarReach(-r, z)) sum += r;
+    }
+  }
+  return 2 * M_PI * sum * h * h;
+}
+
+TEST(QuickStart, AnUneditedUrdfGoesThroughEveryStage) {
+  // Issue 33's acceptance: package:// meshes in .dae, .stl and .obj, several leaves, a gripper
+  // with a mimic finger; only --tip, --package-path and --srdf.
+  test::TempDir dir;
+  const fs::path ws = fs::path(dir.file("")) / "ws";
+  writeQuickStartRobot(ws, true);
+  const std::string tools = std::string(MCWS_TOOLS_DIR) + "/";
+  const std::string robot = "--robot " + (ws / "src/my_arm_description/urdf/my_arm.urdf").string() +
+                            " --tip tool0 --package-path " + (ws / "src").string();
+  const auto json = [&](const std::string& tool, const std::string& args) {
+    const test::RunResult r = test::run(tools + tool + " " + args + " --json");
+    EXPECT_EQ(r.exit_code, 0) << tool << " " << args << "\n" << r.err;
+    return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+  };
+  const test::RunResult srdf = test::run(
+      tools + "mcws_collide " + robot + " --find-allowed-pairs 300 --output " + dir.file("a.srdf"));
+  ASSERT_EQ(srdf.exit_code, 0) << srdf.err;
+  const std::string args = robot + " --srdf " + dir.file("a.srdf");
+
+  // FK: four free joints (the fingers are off the chain, the mimic finger no degree of freedom),
+  // tool0 where the closed form puts it.
+  const double q[4] = {0.3, -0.5, 0.7, 1.0};
+  const nlohmann::json fk = json("mcws_fk", args + " --q '0.3 -0.5 0.7 1.0'");
+  ASSERT_EQ(fk["q"].size(), 4u);
+  EXPECT_EQ(fk["tip"], "tool0");
+  const Eigen::Vector3d p = quickStartTool0(q);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(fk["position"][i].get<double>(), p[i], 1e-12) << i;
+
+  // IK back to that point: the solution's tool0, by the closed form, is on it.
+  const nlohmann::json ik =
+      json("mcws_ik", args + " --position-only --pose '" + std::to_string(p.x()) + " " +
+                          std::to_string(p.y()) + " " + std::to_string(p.z()) + " 0 0 0'");
+  ASSERT_EQ(ik["q"].size(), 4u);
+  const std::vector<double> solved = ik["q"].get<std::vector<double>>();
+  EXPECT_LT((quickStartTool0(solved.data()) - p).norm(), 1e-5);
+
+  // The fingers are in the collision model, carried by the wrist's body.
+  const nlohmann::json collide = json("mcws_collide", args + " --q '0 0 0 0' --all");
+  std::string links = collide.dump();
+  EXPECT_NE(links.find("finger_left"), std::string::npos) << links;
+  EXPECT_NE(links.find("finger_right"), std::string::npos) << links;
+
+  // Sampling, boundary and volume without collision: the solid of revolution's volume.
+  const std::string cloud = dir.file("ws.pcd");
+  json("mcws_sample", args + " --samples 100000 --output " + cloud);
+  json("mcws_sample", args + " --collision --samples 20000 --output " + dir.file("labelled.pcd"));
+  const nlohmann::json boundary =
+      json("mcws_boundary", "--input " + cloud + " --output " + dir.file("rim.pcd"));
+  EXPECT_GT(boundary["boundary"].get<double>(), 1000) << boundary.dump();
+  const nlohmann::json volume = json("mcws_measure", "--input " + cloud);
+  EXPECT_EQ(volume["tip"], "tool0");
+  EXPECT_NEAR(volume["volume"].get<double>() / quickStartVolume(), 1.0, 0.03) << volume.dump();
+
+  // The envelope and the drawing: tool0 stretched out level, 0.85 m from the pan axis at most.
+  const nlohmann::json envelope =
+      json("mcws_envelope", "--input " + cloud + " --output " + dir.file("env.ply") +
+                                " --drawing " + dir.file("range.png"));
+  EXPECT_LE(envelope["drawing"]["max_reach"].get<double>(), 0.85 + 1e-9) << envelope.dump();
+  EXPECT_GE(envelope["drawing"]["max_reach"].get<double>(), 0.83);
+
+  // Where to stop the base along x so that tool0 reaches a point on the lift axis' height: the
+  // distance from the lift axis must lie between the folded arm's (elbow at 2.5 rad: 0.272 m) and
+  // the stretched arm's 0.85 m, so the offsets 0.3 to 0.8 (either side) and no other.
+  test::writeFile(dir.file("targets.csv"), "x,y,z,normal_x,normal_y,normal_z\n0,0,0.25,0,0,1\n");
+  const nlohmann::json place =
+      json("mcws_place", args + " --targets " + dir.file("targets.csv") +
+                             " --along '-1 1 0.1' --resolution 5cm --samples 200000 --confirm all"
+                             " --approach-tolerance 180deg --ik-starts 16 --output " +
+                             dir.file("bases.pcd"));
+  ASSERT_EQ(place["candidates"].size(), 21u) << place.dump();
+  for (const auto& c : place["candidates"]) {
+    const double d = std::abs(c["offset"][0].get<double>());
+    EXPECT_EQ(c["ik_share"].get<double>(), d > 0.25 && d < 0.85 ? 1.0 : 0.0) << c.dump();
+  }
 }
 
 }  // namespace
