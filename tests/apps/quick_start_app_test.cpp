@@ -315,9 +315,12 @@ TEST(QuickStart, AnUneditedUrdfGoesThroughEveryStage) {
   const nlohmann::json boundary =
       json("mcws_boundary", "--input " + cloud + " --output " + dir.file("rim.pcd"));
   EXPECT_GT(boundary["boundary"].get<double>(), 1000) << boundary.dump();
-  const nlohmann::json volume = json("mcws_measure", "--input " + cloud);
+  // Without the edge correction: Efron's assumes samples of uniform density, while samples
+  // uniform in the joints crowd on the outer sphere (the stretched arm is a singular pose), so
+  // there it adds the outside points' share again (4 % too much with these 1e5 samples).
+  const nlohmann::json volume = json("mcws_measure", "--input " + cloud + " --correction none");
   EXPECT_EQ(volume["tip"], "tool0");
-  EXPECT_NEAR(volume["volume"].get<double>() / quickStartVolume(), 1.0, 0.03) << volume.dump();
+  EXPECT_NEAR(volume["volume"].get<double>() / quickStartVolume(), 1.0, 0.02) << volume.dump();
 
   // The envelope and the drawing: tool0 stretched out level, 0.85 m from the pan axis at most.
   const nlohmann::json envelope =
