@@ -71,13 +71,15 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   const double alpha_factor = options.alpha_factor;
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
-  triangulate<D, Concurrency>(dt, points, {});
+  triangulate<D, Concurrency>(dt, points, {}, options.cancel_check);
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
   OrderFreeSum kept(boundingMeasure(points, D));
   for (const auto s : allSimplices<D>(dt)) s->info() = 0;
+  CancelPacer pacer(options.cancel_check, kCancelStride);
   for (const auto s : finiteSimplices<D>(dt)) {
+    pacer.step();
     if (withinAlpha<D>(s, spacing, alpha_factor)) {
       s->info() = 1;
       kept.add(simplexMeasure<D>(s));
@@ -97,8 +99,9 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   if constexpr (D == 3) {
     if (options.surface) {
       if (options.phase) options.phase("surface");
-      result.surface_is_manifold = fillForSurface(dt);  // last: it changes the kept flags
-      result.surface = keptSurface(dt, points);
+      // last: it changes the kept flags
+      result.surface_is_manifold = fillForSurface(dt, options.cancel_check);
+      result.surface = keptSurface(dt, points, options.cancel_check);
     }
   }
   return result;
