@@ -42,7 +42,9 @@ def plan(scenario, seed=None, validation_poses=None, threads=0, progress=None):
     validation_poses: fresh base poses of the validation (None: the scenario's; 0 skips it).
     threads: worker threads, 0 = all cores.
     progress: True for progress lines on stderr, or a callable called with (done, total) of
-        each stage (roadmap, validation) on the calling thread; Ctrl-C interrupts there.
+        each stage (roadmap, validation) on the calling thread. Ctrl-C interrupts within a
+        fraction of a second (within the roadmap's growth, the segments' checks and the
+        validation too).
 
     Returns a Plan (the report as a dict, .path, .save(path)): the report of mcws_plan --json
     and the file of --output for the same scenario, seed and validation poses. When no path is

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
 #include "mcws/core/error.h"
 #include "mcws/io/progress.h"
 
@@ -49,6 +50,11 @@ void bindBehave(py::module_& m);
 /// with the GIL released, on the thread that released it (a library's progress or phase
 /// callback, between pieces of a long computation), it takes the GIL for the look.
 void checkSignals();
+
+/// \brief A library CancelCheck for a call made with the GIL released: checkSignals() at most
+/// every 50 ms (the library calls it every few milliseconds of work), so Ctrl-C ends the call
+/// with KeyboardInterrupt and nothing is returned. Only on the thread that released the GIL.
+CancelCheck signalCheck();
 
 /// \brief What a long call does between its pieces of work (chunks of samples, targets,
 /// positions): raises KeyboardInterrupt on Ctrl-C (checkSignals()) and reports its progress as

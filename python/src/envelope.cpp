@@ -35,8 +35,10 @@ std::unique_ptr<EnvelopeResult> makeEnvelope(const FloatRows& xyz,
   checkedRegion(*cloud, BoundaryPlane::k3D, false);
   pcl::PointCloud<pcl::PointXYZ> points = projectedToPlane(*cloud, BoundaryPlane::k3D);
   options.phase = [](const std::string&) { checkSignals(); };  // between the envelope's phases
+  options.cancel_check = signalCheck();  // and within its triangulation and surface steps
   Envelope envelope = namingPoints([&] { return workspaceEnvelope(points, options); });
   options.phase = nullptr;
+  options.cancel_check = nullptr;
   return std::make_unique<EnvelopeResult>(
       EnvelopeResult{std::move(envelope), options, units, std::move(points)});
 }

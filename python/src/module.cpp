@@ -1,6 +1,7 @@
 // The mcws extension module (_mcws): errors and the helpers every binding file shares; the
 // bindings themselves are one file per job (robot.cpp, sampling.cpp, cloud.cpp, workspace.cpp,
 // refine.cpp, envelope.cpp, reach.cpp, reach_query.cpp, reach_study.cpp).
+#include <chrono>
 #include <limits>
 
 #include "bindings.h"
@@ -38,6 +39,16 @@ DoubleArray doubleArray(const py::handle& value, const std::string& argument) {
 void checkSignals() {
   py::gil_scoped_acquire acquire;
   if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+}
+
+CancelCheck signalCheck() {
+  using Clock = std::chrono::steady_clock;
+  return [last = Clock::now()]() mutable {
+    const Clock::time_point now = Clock::now();
+    if (now - last < std::chrono::milliseconds(50)) return;
+    last = now;
+    checkSignals();
+  };
 }
 
 Checkpoint::Checkpoint(const py::object& progress, const std::string& program,

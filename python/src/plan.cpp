@@ -60,12 +60,13 @@ std::unique_ptr<PlanResult> plan(const py::object& scenario_path,
   const PlanThreads set(threads);
   const SwayPlanner planner(problem);
   // The stages report on the calling thread between their steps; the segments' checks report
-  // from inside a parallel loop, where Python is not called (Ctrl-C waits for the next stage).
+  // from inside a parallel loop, where Python is not called. Ctrl-C is looked for within the
+  // roadmap's growth, the segments' checks and the validation too (the library's CancelCheck).
   const PlanningProgress report = [&](const std::string&, std::size_t done, std::size_t total) {
     if (!omp_in_parallel()) checkpoint(done, total);
   };
   const SwayPlanningResult planned =
-      planner.plan(!validation_poses || *validation_poses > 0, report);
+      planner.plan(!validation_poses || *validation_poses > 0, report, signalCheck());
   result->report = planJson(scenario, planned).dump();
   result->dof = problem.robot.dof();
   if (!planned.accepted) {

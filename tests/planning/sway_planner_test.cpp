@@ -326,6 +326,44 @@ TEST(SwayPlanner, SameResultForAnyThreadCount) {
     EXPECT_EQ(one.validation[v].colliding, two.validation[v].colliding);
 }
 
+TEST(SwayPlanner, ACancelCheckChangesNothingAndWhatItThrowsEndsThePlanning) {
+  Scenario scenario = loadScenario(std::string(MCWS_ROBOTS_DIR) + "/../scenarios/planar2.yaml");
+  scenario.problem.validation_poses = 100;
+  const SwayPlanner planner(scenario.problem);
+  const SwayPlanningResult plain = planner.plan(true);
+  std::size_t checks = 0;
+  const SwayPlanningResult checked = planner.plan(true, {}, [&] { ++checks; });
+  EXPECT_GT(checks, scenario.problem.roadmap.nodes);  // one before each milestone at least
+  ASSERT_EQ(plain.rounds.size(), checked.rounds.size());
+  for (std::size_t r = 0; r < plain.rounds.size(); ++r) {
+    EXPECT_EQ(plain.rounds[r].roadmap_vertices, checked.rounds[r].roadmap_vertices);
+    ASSERT_TRUE(plain.rounds[r].best && checked.rounds[r].best);
+    EXPECT_EQ(plain.rounds[r].best->waypoints, checked.rounds[r].best->waypoints);
+  }
+  ASSERT_EQ(plain.validation.size(), checked.validation.size());
+  for (std::size_t v = 0; v < plain.validation.size(); ++v)
+    EXPECT_EQ(plain.validation[v].colliding, checked.validation[v].colliding);
+  // Thrown from within the roadmap's growth (the 100th check), then from the validation.
+  struct Stop {};
+  std::size_t calls = 0;
+  EXPECT_THROW(planner.plan(true, {},
+                            [&] {
+                              if (++calls == 100) throw Stop{};
+                            }),
+               Stop);
+  EXPECT_EQ(calls, 100u);
+  std::size_t validated = 0;
+  const PlanningProgress progress = [&](const std::string& stage, std::size_t done, std::size_t) {
+    if (stage == "validation") validated = done;
+  };
+  EXPECT_THROW(planner.plan(true, progress,
+                            [&] {
+                              if (validated == 1) throw Stop{};  // the chosen path's is done
+                            }),
+               Stop);
+  EXPECT_EQ(validated, 1u);
+}
+
 TEST(SwayPlanner, ChosenPathCollidesAtMostHalfAsOftenAsTheShortestOnTheMaintenanceScenario) {
   // The headline result on the shipped scenario, with fewer fresh poses than the tool's 10000 to
   // keep the test lean: the chosen path's 95 % Wilson interval must lie wholly below half the

@@ -109,6 +109,23 @@ TEST(WorkspaceEnvelope, WithoutTheCorrectionItIsTheKeptTetrahedraAndTheSameForAn
   EXPECT_EQ(one.mesh.triangles, two.mesh.triangles);
 }
 
+TEST(WorkspaceEnvelope, ACancelCheckSplitsTheInsertionNotTheMeshAndWhatItThrowsEndsTheCall) {
+  // 40000 points: two pieces of the insertion (32768 and 7232), so at least two checks.
+  const pcl::PointCloud<pcl::PointXYZ> cloud = ball(40000, 6);
+  const Envelope whole = workspaceEnvelope(cloud, MeasureOptions{});
+  MeasureOptions options;
+  int checks = 0;
+  options.cancel_check = [&] { ++checks; };
+  const Envelope pieces = workspaceEnvelope(cloud, options);
+  EXPECT_GE(checks, 2);
+  EXPECT_EQ(pieces.mesh.vertices, whole.mesh.vertices);
+  EXPECT_EQ(pieces.mesh.triangles, whole.mesh.triangles);
+  EXPECT_EQ(pieces.measure.measure, whole.measure.measure);
+  struct Stop {};
+  options.cancel_check = [] { throw Stop{}; };
+  EXPECT_THROW(workspaceEnvelope(cloud, options), Stop);
+}
+
 TEST(WorkspaceEnvelope, FilesReadBackWithTheirVerticesAndTriangles) {
   const TriangleSurface s = octahedron(1.5);
   test::TempDir dir;

@@ -9,6 +9,7 @@
 #include <ompl/util/Console.h>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <unordered_map>
 
@@ -246,7 +247,7 @@ bool copyRoadmap(const og::PRM::Graph& g, std::size_t start, std::size_t goal,
 
 Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
                      const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                     const RoadmapOptions& options) {
+                     const RoadmapOptions& options, const CancelCheck& cancel_check) {
   checkArguments(certifier.robot(), start, goal, options);
   Roadmap roadmap;
   CollisionChecker::Scratch scratch;
@@ -274,9 +275,19 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   prm.setMaxNearestNeighbors(options.neighbours);
   prm.setup();
 
+  std::exception_ptr cancelled;  // what cancel_check threw: the growth stops, then it is rethrown
   auto grow_to = [&](std::size_t count) {
-    prm.growRoadmap(
-        ob::PlannerTerminationCondition([&prm, count] { return prm.milestoneCount() >= count; }));
+    prm.growRoadmap(ob::PlannerTerminationCondition([&] {
+      if (cancel_check && !cancelled) {
+        try {
+          cancel_check();
+        } catch (...) {
+          cancelled = std::current_exception();
+        }
+      }
+      return cancelled || prm.milestoneCount() >= count;
+    }));
+    if (cancelled) std::rethrow_exception(cancelled);
   };
   grow_to(options.nodes);
   const auto start_vertex = prm.add(start_state.get());

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
 #include "mcws/planning/k_shortest_paths.h"
 #include "mcws/planning/motion_certifier.h"
 
@@ -55,12 +56,13 @@ struct Roadmap {
 /// T_world_base; every edge is checked exactly by `certifier` (MotionCertifier: nothing between
 /// two milestones is missed). Growth is single-threaded and uses exact nearest neighbours, so
 /// the roadmap depends only on the seed. Start and goal are added last, each joined to its k
-/// nearest milestones.
+/// nearest milestones. `cancel_check` (when set) is called as the growth's termination
+/// condition is (before each milestone): what it throws stops the growth and is rethrown.
 /// \throws mcws::Error for a start or goal of the wrong size or outside the limits, or a bad
 ///   option (no nodes, a scale that is not positive).
 Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
                      const Eigen::VectorXd& start, const Eigen::VectorXd& goal,
-                     const RoadmapOptions& options);
+                     const RoadmapOptions& options, const CancelCheck& cancel_check = {});
 
 /// \brief Scaled joint-space distance sqrt(sum (scale_i (b_i - a_i))^2).
 double scaledDistance(const Eigen::VectorXd& a, const Eigen::VectorXd& b,

@@ -20,6 +20,13 @@ const char* acceptanceName(Acceptance acceptance) {
 
 namespace {
 
+/// Calls `cancel_check` (when set) on the thread that called the library, thread 0 of an OpenMP
+/// team (the Python bindings look for Ctrl-C there only); inside a FirstError::run, so what it
+/// throws skips the loop's items not yet started and is rethrown after the loop.
+void checkOnCallingThread(const CancelCheck& cancel_check) {
+  if (cancel_check && omp_get_thread_num() == 0) cancel_check();
+}
+
 /// Base poses of a run and what bounds their effect on a clearance.
 struct PoseSet {
   std::vector<Eigen::Isometry3d> T_world_base;  ///< the displaced base poses
@@ -316,7 +323,7 @@ EdgeStates edgeStates(const MotionCertifier& certifier, const SwayPlanningProble
 EdgeMap evaluateEdges(const MotionCertifier& certifier, const SwayPlanningProblem& p,
                       const Roadmap& roadmap, const std::vector<VertexPath>& candidates,
                       const Eigen::Isometry3d& T_nominal, const PoseSet& poses,
-                      const PlanningProgress& progress) {
+                      const PlanningProgress& progress, const CancelCheck& cancel_check) {
   EdgeMap edges;
   for (const VertexPath& path : candidates)
     for (std::size_t k = 0; k + 1 < path.size(); ++k) edges[edgeKey(path[k], path[k + 1])];
@@ -333,6 +340,7 @@ EdgeMap evaluateEdges(const MotionCertifier& certifier, const SwayPlanningProble
         const auto [u, v] = work[w]->first;
         work[w]->second = edgeStates(certifier, p, T_nominal, poses, roadmap.configurations[u],
                                      roadmap.configurations[v], scratch);
+        checkOnCallingThread(cancel_check);
       });
       // Nothing may leave a critical region: the guard stays inside it.
 #pragma omp critical(mcws_plan_progress)
@@ -389,7 +397,8 @@ std::optional<std::size_t> closestRound(const std::vector<PlanningRound>& rounds
 
 }  // namespace
 
-PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& progress) const {
+PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& progress,
+                                     const CancelCheck& cancel_check) const {
   const auto started = std::chrono::steady_clock::now();
   const SwayPlanningProblem& p = problem_;
   PlanningRound round;
@@ -407,7 +416,8 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // 构型的m条非碰撞路径" (with the first static pose as the arm's base pose, plan m collision-free
   // paths from the initial to the target configuration): one PRM roadmap, m diverse paths.
   if (progress) progress("roadmap", 0, 1);
-  const Roadmap roadmap = buildRoadmap(*certifier_, T_nominal, p.start, p.goal, p.roadmap);
+  const Roadmap roadmap =
+      buildRoadmap(*certifier_, T_nominal, p.start, p.goal, p.roadmap, cancel_check);
   round.status = roadmap.status;
   round.roadmap_vertices = boost::num_vertices(roadmap.graph);
   round.roadmap_edges = boost::num_edges(roadmap.graph);
@@ -437,7 +447,7 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
   // 将n组自由状态累加除以n获得路径段 的第二自由状态概率" (each segment's free state for the n base
   // poses, summed and divided by n): free states for every pose, checked exactly.
   const EdgeMap edges =
-      evaluateEdges(*certifier_, p, roadmap, candidates, T_nominal, poses, progress);
+      evaluateEdges(*certifier_, p, roadmap, candidates, T_nominal, poses, progress, cancel_check);
   round.evaluation_seconds = elapsed() - round.roadmap_seconds;
 
   // s43 - s47: "判断节点构型是否有2条或2条以上非碰撞路径经过 ...
@@ -455,8 +465,8 @@ PlanningRound SwayPlanner::planRound(double offset, const PlanningProgress& prog
 }
 
 ValidationRow SwayPlanner::validate(const std::string& name,
-                                    const std::vector<Eigen::VectorXd>& waypoints,
-                                    double offset) const {
+                                    const std::vector<Eigen::VectorXd>& waypoints, double offset,
+                                    const CancelCheck& cancel_check) const {
   const auto started = std::chrono::steady_clock::now();
   const SwayPlanningProblem& p = problem_;
   ValidationRow row;
@@ -487,7 +497,10 @@ ValidationRow SwayPlanner::validate(const std::string& name,
     CollisionChecker::Scratch local;
 #pragma omp for schedule(dynamic, 64)
     for (std::size_t j = 0; j < p.validation_poses; ++j)
-      error.run(j, [&] { colliding += !check.pathFree(j, local); });
+      error.run(j, [&] {
+        colliding += !check.pathFree(j, local);
+        checkOnCallingThread(cancel_check);
+      });
   }
   error.rethrow();
   row.colliding = colliding;
@@ -523,7 +536,8 @@ std::vector<double> SwayPlanner::baseOffsets() const {
   return offsets;
 }
 
-SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress) const {
+SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress& progress,
+                                     const CancelCheck& cancel_check) const {
   const SwayPlanningProblem& p = problem_;
   SwayPlanningResult result;
   // s50: "判断全局最优路径的自由状态概率是否大于等于预设自由状态概率阈值" (is the best path's
@@ -531,7 +545,7 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   // 则调整所述机器人的所述第一静态位姿，然后重新进行所述操作臂的运动路径规划" (if not, adjust the
   // robot's first static pose and plan again): the base moves along the line, both ways.
   for (double offset : baseOffsets()) {
-    result.rounds.push_back(planRound(offset, progress));
+    result.rounds.push_back(planRound(offset, progress, cancel_check));
     const PlanningRound& round = result.rounds.back();
     if (round.accepted) {
       result.accepted = result.rounds.size() - 1;
@@ -548,34 +562,36 @@ SwayPlanningResult SwayPlanner::plan(bool validate_paths, const PlanningProgress
   }
   // The round to validate: the accepted one, or else the one closest to the criterion.
   result.validated = result.accepted ? result.accepted : closestRound(result.rounds, p.acceptance);
-  if (validate_paths && result.validated) validateRound(result, progress);
+  if (validate_paths && result.validated) validateRound(result, progress, cancel_check);
   return result;
 }
 
-void SwayPlanner::validateRound(SwayPlanningResult& result,
-                                const PlanningProgress& progress) const {
+void SwayPlanner::validateRound(SwayPlanningResult& result, const PlanningProgress& progress,
+                                const CancelCheck& cancel_check) const {
   const auto started = std::chrono::steady_clock::now();
   const PlanningRound& round = result.rounds[*result.validated];
   if (progress) progress("validation", 0, 3);
-  result.validation.push_back(validate("chosen", round.best->waypoints, round.base_offset));
+  result.validation.push_back(
+      validate("chosen", round.best->waypoints, round.base_offset, cancel_check));
   if (progress) progress("validation", 1, 3);
   result.validation.push_back(
-      validate("shortest", round.candidates.front().waypoints, round.base_offset));
+      validate("shortest", round.candidates.front().waypoints, round.base_offset, cancel_check));
   if (progress) progress("validation", 2, 3);
-  result.validation.push_back(validatePadded(round.base_offset));
+  result.validation.push_back(validatePadded(round.base_offset, cancel_check));
   if (progress) progress("validation", 3, 3);
   result.validation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
 
-ValidationRow SwayPlanner::validatePadded(double offset) const {
+ValidationRow SwayPlanner::validatePadded(double offset, const CancelCheck& cancel_check) const {
   // The usual answer: the shortest path for obstacles padded by the 2-sigma displacement.
   const SwayPlanningProblem& p = problem_;
   const auto started = std::chrono::steady_clock::now();
   MotionCertifierOptions padded_options;
   padded_options.environment_margin = padding();
   const MotionCertifier padded(p.robot, *checker_, padded_options);
-  const Roadmap roadmap = buildRoadmap(padded, measuredBase(offset), p.start, p.goal, p.roadmap);
+  const Roadmap roadmap =
+      buildRoadmap(padded, measuredBase(offset), p.start, p.goal, p.roadmap, cancel_check);
   ValidationRow row;
   const double planning_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -583,7 +599,7 @@ ValidationRow SwayPlanner::validatePadded(double offset) const {
     const VertexPath path = kShortestPaths(roadmap.graph, roadmap.start, roadmap.goal, 1).front();
     std::vector<Eigen::VectorXd> waypoints;
     for (std::size_t v : path) waypoints.push_back(roadmap.configurations[v]);
-    row = validate("padded", waypoints, offset);
+    row = validate("padded", waypoints, offset, cancel_check);
   } else {
     row.name = "padded";
     row.status = roadmapStatusName(roadmap.status);

@@ -137,7 +137,10 @@ class SwayPlanner {
   ~SwayPlanner();
 
   /// \brief Steps s20 to s47 with the base shifted by `offset` along the line [length unit].
-  PlanningRound planRound(double offset, const PlanningProgress& progress = {}) const;
+  /// `cancel_check` (when set) is called on the calling thread every few milliseconds of the
+  /// roadmap's growth and the segments' checks: what it throws ends the call (no result).
+  PlanningRound planRound(double offset, const PlanningProgress& progress = {},
+                          const CancelCheck& cancel_check = {}) const;
 
   /// \brief Whether a path meets the problem's acceptance criterion (step s50): for kWholePath,
   /// the upper end of the 95 % Wilson interval of its whole-path collision rate over the n
@@ -148,13 +151,15 @@ class SwayPlanner {
   /// the best path is accepted; a start in collision at the measured pose, or a goal in
   /// collision there without allow_goal_shift, ends the planning after the first round. Then
   /// validates the accepted (or, when none is, the closest to acceptance) round's best path
-  /// against the shortest and the padded shortest path (when `validate`).
-  SwayPlanningResult plan(bool validate, const PlanningProgress& progress = {}) const;
+  /// against the shortest and the padded shortest path (when `validate`). `cancel_check` as
+  /// planRound(), and also within the validation.
+  SwayPlanningResult plan(bool validate, const PlanningProgress& progress = {},
+                          const CancelCheck& cancel_check = {}) const;
 
   /// \brief Collision probability of a path over `poses` fresh base poses (a seed distinct
-  /// from the planning one) at a base offset.
+  /// from the planning one) at a base offset; `cancel_check` as planRound().
   ValidationRow validate(const std::string& name, const std::vector<Eigen::VectorXd>& waypoints,
-                         double offset) const;
+                         double offset, const CancelCheck& cancel_check = {}) const;
 
   /// \brief How far the tool point of the goal configuration moves when the base is shifted by
   /// `offset` along the line [length unit]: the tool then ends this far from the target it
@@ -186,9 +191,10 @@ class SwayPlanner {
   /// Base offsets in the order step s70 tries them: 0, +step, -step, +2 step, ... [length unit].
   std::vector<double> baseOffsets() const;
   /// Validates the best path of result.validated against the shortest and the padded path.
-  void validateRound(SwayPlanningResult& result, const PlanningProgress& progress) const;
+  void validateRound(SwayPlanningResult& result, const PlanningProgress& progress,
+                     const CancelCheck& cancel_check) const;
   /// The padded comparison planner's path at a base offset, validated.
-  ValidationRow validatePadded(double offset) const;
+  ValidationRow validatePadded(double offset, const CancelCheck& cancel_check) const;
   /// The n planning displacements about the sway frame moved by `offset`.
   std::vector<Eigen::Isometry3d> movedDisplacements(const std::vector<Eigen::Isometry3d>& base,
                                                     double offset) const;

@@ -113,11 +113,11 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   const double alpha_factor = options.alpha_factor;
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
-  triangulate<D, Concurrency>(dt, points, {});
+  triangulate<D, Concurrency>(dt, points, {}, options.cancel_check);
 
   if (options.phase) options.phase("alpha test");
   RegionMeasure result;
-  result.uncorrected = keepWithinAlpha<D>(dt, points, spacing, alpha_factor);
+  result.uncorrected = keepWithinAlpha<D>(dt, points, spacing, alpha_factor, options.cancel_check);
   const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
@@ -131,8 +131,9 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   if constexpr (D == 3) {
     if (options.surface) {
       if (options.phase) options.phase("surface");
-      result.surface_is_manifold = fillForSurface(dt);  // last: it changes the kept flags
-      result.surface = keptSurface(dt, points);
+      // last: it changes the kept flags
+      result.surface_is_manifold = fillForSurface(dt, options.cancel_check);
+      result.surface = keptSurface(dt, points, options.cancel_check);
     }
   }
   return result;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
+
 namespace mcws {
 
 /// \brief A triangle surface: vertices [length unit] and triangles as vertex indices, each
@@ -105,6 +107,10 @@ struct MeasureOptions {
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
   /// correction").
   std::function<void(const std::string&)> phase;
+  /// Called between pieces of the long steps of a full triangulation (options.surface,
+  /// LeaveOneOut::kRemoveAndReinsert): the insertion, then done in pieces of 32768 points (the
+  /// same triangulation), the alpha test and the surface repair (CancelCheck).
+  CancelCheck cancel_check;
 };
 
 /// \brief delaunayMeasure() with options.

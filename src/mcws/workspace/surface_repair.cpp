@@ -84,17 +84,19 @@ std::size_t lighterGroups(const Delaunay& dt,
 
 /// Keeps (info 2) the dropped cells no path of dropped cells connects to the infinite ones.
 template <typename Delaunay>
-void fillCavities(Delaunay& dt) {
+void fillCavities(Delaunay& dt, CancelPacer& pacer) {
   using Cell = typename Delaunay::Cell_handle;
   constexpr char kOutside = 3;  // a dropped cell reached from the infinite ones
   std::vector<Cell> stack;
   for (const Cell c : dt.all_cell_handles()) {
+    pacer.step();
     if (dt.is_infinite(c)) {
       c->info() = kOutside;
       stack.push_back(c);
     }
   }
   while (!stack.empty()) {
+    pacer.step();
     const Cell c = stack.back();
     stack.pop_back();
     for (int i = 0; i < 4; ++i) {
@@ -106,6 +108,7 @@ void fillCavities(Delaunay& dt) {
     }
   }
   for (const Cell c : dt.all_cell_handles()) {
+    pacer.step();
     c->info() = c->info() == 0 ? 2 : (c->info() == kOutside ? 0 : c->info());
   }
 }
@@ -113,16 +116,18 @@ void fillCavities(Delaunay& dt) {
 }  // namespace
 
 template <typename Delaunay>
-bool fillForSurface(Delaunay& dt) {
+bool fillForSurface(Delaunay& dt, const CancelCheck& cancel_check) {
   using Cell = typename Delaunay::Cell_handle;
   std::vector<Cell> around, fill, drop;
   std::vector<std::size_t> group;
+  CancelPacer pacer(cancel_check, kCancelStride);
   for (int round = 0; round < kFillRounds; ++round) {
-    fillCavities(dt);
+    fillCavities(dt, pacer);
     fill.clear();
     drop.clear();
     std::vector<typename Delaunay::Vertex_handle> singular;
     for (const Cell c : dt.finite_cell_handles()) {
+      pacer.step();
       if (!c->info()) continue;
       for (int i = 0; i < 4; ++i) {
         if (c->neighbor(i)->info()) continue;  // not a boundary facet
@@ -180,9 +185,12 @@ bool fillForSurface(Delaunay& dt) {
 }
 
 template <typename Delaunay>
-TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points) {
+TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                            const CancelCheck& cancel_check) {
   std::vector<std::array<std::uint32_t, 3>> facets;
+  CancelPacer pacer(cancel_check, kCancelStride);
   for (const auto c : dt.finite_cell_handles()) {
+    pacer.step();
     if (!c->info()) continue;
     for (int i = 0; i < 4; ++i) {
       if (c->neighbor(i)->info()) continue;
@@ -217,11 +225,11 @@ TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::Point
   return surface;
 }
 
-template bool fillForSurface(Simplices<3, CGAL::Sequential_tag>::Delaunay&);
-template bool fillForSurface(Simplices<3, CGAL::Parallel_tag>::Delaunay&);
+template bool fillForSurface(Simplices<3, CGAL::Sequential_tag>::Delaunay&, const CancelCheck&);
+template bool fillForSurface(Simplices<3, CGAL::Parallel_tag>::Delaunay&, const CancelCheck&);
 template TriangleSurface keptSurface(const Simplices<3, CGAL::Sequential_tag>::Delaunay&,
-                                     const pcl::PointCloud<pcl::PointXYZ>&);
+                                     const pcl::PointCloud<pcl::PointXYZ>&, const CancelCheck&);
 template TriangleSurface keptSurface(const Simplices<3, CGAL::Parallel_tag>::Delaunay&,
-                                     const pcl::PointCloud<pcl::PointXYZ>&);
+                                     const pcl::PointCloud<pcl::PointXYZ>&, const CancelCheck&);
 
 }  // namespace mcws::detail

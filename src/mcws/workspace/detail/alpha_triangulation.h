@@ -8,10 +8,14 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/property_map.h>
+#include <CGAL/spatial_sort.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -27,6 +31,7 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
@@ -37,6 +42,10 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 /// Cells per side of the lock grid of the parallel 3-D triangulation (CGAL's examples use 50).
 constexpr int kLockGridCells = 50;
+/// Points per piece of an insertion that checks for cancelling between its pieces.
+constexpr std::size_t kInsertPiece = 32768;
+/// Simplices between two checks for cancelling in a loop over the triangulation.
+constexpr unsigned kCancelStride = 65536;
 
 /// A simplex's vertex points in the order of their indices (the vertex info), so that what is
 /// computed from them does not depend on how the triangulation happens to store the simplex
@@ -177,37 +186,63 @@ void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
   }
 }
 
-/// Inserts the points, each with its index, into `dt`. A parallel triangulation
-/// (`Concurrency` = CGAL::Parallel_tag) inserts spatially sorted points on TBB's threads, each
-/// locking the cells of a grid over the points' bounding box.
+/// Inserts the points, each with its index, into `dt`: in one call, or with `cancel_check` set,
+/// sorted along a Hilbert curve (CGAL::spatial_sort, as CGAL sorts the points of one call) and
+/// then in pieces of kInsertPiece points with a check before each (the Delaunay triangulation
+/// does not depend on the order its points come in). A parallel triangulation (`Concurrency` =
+/// CGAL::Parallel_tag) inserts spatially sorted points on TBB's threads, each locking the cells
+/// of a grid over the points' bounding box.
 template <typename Concurrency, typename Delaunay, typename Input>
-void insertPoints(Delaunay& dt, const Input& input) {
+void insertPoints(Delaunay& dt, Input& input, const CancelCheck& cancel_check) {
+  const auto insert = [&] {
+    if (!cancel_check) {
+      dt.insert(input.begin(), input.end());
+      return;
+    }
+    using Pair = typename Input::value_type;
+    using Position = CGAL::First_of_pair_property_map<Pair>;
+    if constexpr (Delaunay::Point::Ambient_dimension::value == 2) {
+      CGAL::spatial_sort(input.begin(), input.end(),
+                         CGAL::Spatial_sort_traits_adapter_2<Kernel, Position>());
+    } else {
+      CGAL::spatial_sort(input.begin(), input.end(),
+                         CGAL::Spatial_sort_traits_adapter_3<Kernel, Position>());
+    }
+    for (std::size_t begin = 0; begin < input.size(); begin += kInsertPiece) {
+      cancel_check();
+      const std::size_t end = std::min(input.size(), begin + kInsertPiece);
+      dt.insert(input.begin() + begin, input.begin() + end);
+    }
+  };
   if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
     CGAL::Bbox_3 box;
     for (const auto& item : input) box += item.first.bbox();
     typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
     dt.set_lock_data_structure(&locks);
     try {
-      dt.insert(input.begin(), input.end());
+      insert();
     } catch (...) {
       dt.set_lock_data_structure(nullptr);  // the locks end with this scope
       throw;
     }
     dt.set_lock_data_structure(nullptr);  // what follows only reads
   } else {
-    dt.insert(input.begin(), input.end());
+    insert();
   }
 }
 
 /// Flags every simplex of `dt` kept (info 1: finite and within the alpha limit) or dropped
 /// (info 0) and returns the kept simplices' total area or volume, summed order-free within the
-/// points' bounding box.
+/// points' bounding box. `cancel_check` (when set) is called every kCancelStride simplices.
 template <int D, typename Delaunay>
 double keepWithinAlpha(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
-                       const std::vector<double>& spacing, double alpha_factor) {
+                       const std::vector<double>& spacing, double alpha_factor,
+                       const CancelCheck& cancel_check = {}) {
   OrderFreeSum kept(boundingMeasure(points, D));
   for (const auto s : allSimplices<D>(dt)) s->info() = 0;
+  CancelPacer pacer(cancel_check, kCancelStride);
   for (const auto s : finiteSimplices<D>(dt)) {
+    pacer.step();
     if (withinAlpha<D>(s, spacing, alpha_factor)) {
       s->info() = 1;
       kept.add(simplexMeasure<D>(s));
@@ -302,10 +337,10 @@ std::size_t outsideByStar(const Delaunay& dt,
 }
 
 /// Triangulates the points whose flag in `take` is set (all of them when `take` is empty), each
-/// vertex carrying its point's index in `points`.
+/// vertex carrying its point's index in `points`; `cancel_check` as insertPoints().
 template <int D, typename Concurrency, typename Delaunay>
 void triangulate(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
-                 const std::vector<char>& take) {
+                 const std::vector<char>& take, const CancelCheck& cancel_check = {}) {
   std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> input;
   input.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -317,7 +352,7 @@ void triangulate(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
       input.emplace_back(typename Delaunay::Point(p.x, p.y, p.z), static_cast<std::uint32_t>(i));
     }
   }
-  insertPoints<Concurrency>(dt, input);
+  insertPoints<Concurrency>(dt, input, cancel_check);
   if (dt.dimension() < D) {
     throw Error(D == 2 ? "the points lie on a line: no area"
                        : "the points lie in a plane: no volume");

@@ -21,16 +21,17 @@ namespace mcws::detail {
 /// ones, every kept group but the largest is dropped. Each round decides from the flags as they
 /// were at its start, so the result does not depend on the order the cells are listed in; a cell
 /// one round fills is not dropped again. \return false when singularities remain after
-/// kFillRounds rounds.
+/// kFillRounds rounds. `cancel_check` (when set) is called between pieces of the rounds.
 template <typename Delaunay>
-bool fillForSurface(Delaunay& dt);
+bool fillForSurface(Delaunay& dt, const CancelCheck& cancel_check);
 
 /// The facets between kept and dropped tetrahedra (info 1 and 0; infinite cells are dropped),
 /// each oriented away from its kept tetrahedron (exact orientation test), over the points of
 /// `points` they use. Canonical order, whatever order the triangulation lists its cells in:
 /// vertices by point index, each triangle rotated to start at its smallest vertex, triangles
-/// sorted.
+/// sorted. `cancel_check` (when set) is called between pieces of the pass over the cells.
 template <typename Delaunay>
-TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points);
+TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                            const CancelCheck& cancel_check);
 
 }  // namespace mcws::detail

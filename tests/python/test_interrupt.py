@@ -1,0 +1,95 @@
+"""Ctrl-C within a second in the calls that run long between their stages (mcws.envelope,
+mcws.plan): SIGINT sent from a timer thread while the call runs on the main thread ends it with
+KeyboardInterrupt within about a second; after an interrupted envelope the next one in the same
+interpreter gives what a fresh one gives (nothing half-done is left behind). The envelope, whose Python call inserts the
+points in pieces so it can stop between them, is the tool's mesh byte for byte on a cloud of
+several pieces."""
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import mcws
+from conftest import run_tool
+
+SCENARIOS = Path(os.environ.get("MCWS_SCENARIOS_DIR",
+                                Path(__file__).resolve().parents[2] / "scenarios"))
+
+# From the signal to KeyboardInterrupt [s]: the library checks every few milliseconds of work,
+# the bindings look at most every 50 ms, and an uninterruptible step (the envelope's local
+# spacing, a piece of 32768 points of its triangulation) lasts well under a second on two cores;
+# the rest is headroom for a loaded machine. A functional bound, not a speed benchmark.
+LATENCY_BOUND = 1.5
+SIGNAL_AFTER = 0.5  # [s] into the call
+
+# A child interpreter: `setup`, then `call` on the main thread with SIGINT sent by a timer
+# thread SIGNAL_AFTER s after it starts; prints the seconds from the signal to KeyboardInterrupt
+# (or "finished"), then runs `after` (which prints its result on the next line).
+CHILD = """\
+import json, signal, threading, time
+import mcws
+{setup}
+main = threading.get_ident()
+sent = []
+def interrupt():
+    sent.append(time.monotonic())
+    signal.pthread_kill(main, signal.SIGINT)
+timer = threading.Timer({delay}, interrupt)
+timer.start()
+try:
+    {call}
+    print("finished", flush=True)
+except KeyboardInterrupt:
+    print(time.monotonic() - sent[0], flush=True)
+timer.join()
+{after}
+"""
+
+
+def interrupted(setup, call, after):
+    """(seconds from SIGINT to KeyboardInterrupt, the line `after` printed) in a child
+    interpreter (see CHILD)."""
+    script = CHILD.format(setup=setup, call=call, after=after, delay=SIGNAL_AFTER)
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            timeout=300)
+    assert result.returncode == 0, result.stderr
+    latency, after_line = result.stdout.splitlines()
+    assert latency != "finished"
+    return float(latency), after_line
+
+
+def test_ctrl_c_interrupts_an_envelope():
+    # 6 x 10^5 points of the ball: about 8 s of CPU, 6 s on two cores, uninterrupted; SIGINT at
+    # 0.5 s lands in the local spacing (which cannot stop; longer with more points) or the
+    # triangulation's first pieces.
+    latency, after = interrupted(
+        "points = mcws.sample_shape('ball', 600_000, seed=1)\n"
+        "small = mcws.sample_shape('ball', 2000, seed=5)",
+        "mcws.envelope(points)",
+        "print(json.dumps(dict(mcws.envelope(small))))")
+    assert latency < LATENCY_BOUND
+    fresh = dict(mcws.envelope(mcws.sample_shape("ball", 2000, seed=5)))
+    assert json.loads(after) == fresh
+
+
+def test_ctrl_c_interrupts_a_plan():
+    # The maintenance arm's scenario: about 25 s uninterrupted (a roadmap of 1200 milestones
+    # grown for 3.6 s, then 3 validations of 10^4 base poses, 6 to 8 s each); SIGINT at 0.5 s
+    # lands in the roadmap's growth.
+    latency, _ = interrupted("", f"mcws.plan({str(SCENARIOS / 'maintenance4.yaml')!r})",
+                             "print('done')")
+    assert latency < LATENCY_BOUND
+
+
+def test_envelope_in_pieces_is_the_tools(tmp_path):
+    # 50000 points: the Python call inserts them in 2 pieces of at most 32768 (the tool in one
+    # call); the Delaunay triangulation does not depend on the order, so the mesh is the same.
+    path = tmp_path / "ball.pcd"
+    mcws.write_pcd(path, mcws.sample_shape("ball", 50000, seed=7))
+    tool_mesh = tmp_path / "tool.ply"
+    run_tool("envelope", "--input", path, "--output", tool_mesh)
+    own = tmp_path / "own.ply"
+    mcws.envelope(mcws.read_pcd(path)).save(own, source=str(path))
+    assert own.read_bytes() == tool_mesh.read_bytes()
