@@ -2,7 +2,7 @@
 rad or that length unit; see the docstrings, help(mcws.Robot) & co.)."""
 
 import os
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -14,7 +14,15 @@ class Error(RuntimeError): ...
 class UsageError(Error, ValueError): ...
 
 class Robot:
-    def __init__(self, path: _Path, *, base: Optional[str] = None, tip: Optional[str] = None) -> None: ...
+    def __init__(
+        self,
+        path: _Path,
+        *,
+        base: Optional[str] = None,
+        tip: Optional[str] = None,
+        package_path: Union[_Path, Sequence[_Path], None] = None,
+        srdf: Optional[_Path] = None,
+    ) -> None: ...
     @property
     def name(self) -> str: ...
     @property

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "mcws/kinematics/robot.h"
 #include "mcws/kinematics/robot_urdf.h"
@@ -22,10 +23,15 @@ struct LoadedRobot {
   UrdfChainOptions chain;  ///< the URDF chain asked for (base, tip); empty: the whole tree's
 };
 
-/// \brief The robot of a `.yaml` or `.urdf` file; `base` and `tip` (links, URDF only) pick a chain.
-/// \throws mcws::Error naming the file (the library's message); UsageError for base or tip with
-///   a robot that is not a `.urdf`.
-LoadedRobot loadRobotFile(const std::string& path, const std::string& base, const std::string& tip);
+/// \brief The robot of a `.yaml` or `.urdf` file; `base` and `tip` (links, URDF only) pick a chain,
+/// `package_path` (folders, URDF only) and `srdf` (a file, or "") are kept on the robot for its
+/// collision model, as the tools' --package-path and --srdf.
+/// \throws mcws::Error naming the file (the library's message); UsageError for base, tip or
+///   package_path with a robot that is not a `.urdf`, a package_path that is not a folder, an srdf
+///   that is not a file.
+LoadedRobot loadRobotFile(const std::string& path, const std::string& base, const std::string& tip,
+                          const std::vector<std::string>& package_path = {},
+                          const std::string& srdf = "");
 
 /// \brief The collision checker of the robot's collision model, as mcws_sample --collision
 /// builds it. \throws mcws::Error "<path>: has no collision geometry ..." when the file has none.

@@ -187,17 +187,22 @@ std::vector<std::string> jointTypes(const Robot& robot) {
 
 constexpr char kRobotDoc[] = R"(A serial robot arm read from a robot file.
 
-Robot(path, *, base=None, tip=None)
+Robot(path, *, base=None, tip=None, package_path=None, srdf=None)
 
 path: a robot description, .yaml (docs/robot-files.md) or .urdf (str or os.PathLike).
 base, tip: URDF only: the first and last link of the chain to read (default: the tree's root to
     its one leaf), as the tools' --base and --tip.
+package_path: URDF only: a folder, or a list of folders, holding ROS packages for the
+    package:// mesh URIs, searched before ROS_PACKAGE_PATH and the folders above the URDF, as
+    the tools' --package-path.
+srdf: an SRDF file whose <disable_collisions> link pairs the collision checks skip, as --srdf.
 
 Lengths are in the robot file's length unit (.length_unit: "m", "cm" or "mm"; URDF: "m"), joint
 values in rad (revolute joints) or in that length unit (prismatic joints): see .joint_units.
 
 Raises mcws.Error naming the file, line, joint or field (missing or unreadable file, a mistake in
-it), mcws.UsageError for base or tip with a file that is not a .urdf.)";
+it), mcws.UsageError for base, tip or package_path with a file that is not a .urdf, a
+package_path that is not a folder or an srdf that is not a file.)";
 
 constexpr char kFkDoc[] =
     R"(Forward kinematics: the pose of the tool (or flange) frame in the world frame.
@@ -244,15 +249,26 @@ orthonormal rotation, or a bad q0, tolerance or seed.)";
 
 }  // namespace
 
-LoadedRobot loadRobotFile(const std::string& path, const std::string& base,
-                          const std::string& tip) {
+LoadedRobot loadRobotFile(const std::string& path, const std::string& base, const std::string& tip,
+                          const std::vector<std::string>& package_path, const std::string& srdf) {
   const bool chain = !base.empty() || !tip.empty();
   if (chain && !isUrdf(path))
     throw UsageError("base and tip need a .urdf robot, not '" + path + "'");
+  if (!package_path.empty() && !isUrdf(path))
+    throw UsageError("package_path needs a .urdf robot, not '" + path + "'");
+  std::error_code ec;
+  for (const std::string& folder : package_path) {
+    if (!std::filesystem::is_directory(folder, ec))
+      throw UsageError("package_path: '" + folder + "' is not a folder");
+  }
+  if (!srdf.empty() && !std::filesystem::is_regular_file(srdf, ec))
+    throw UsageError("srdf: '" + srdf + "' is not a file");
   LoadedRobot loaded;
   loaded.path = path;
   loaded.chain = {base, tip};
   loaded.robot = chain ? loadRobotUrdf(path, loaded.chain) : loadRobot(path);
+  loaded.robot.package_path = package_path;
+  loaded.robot.srdf = srdf;
   return loaded;
 }
 
@@ -277,11 +293,22 @@ std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded) {
 void bindRobot(py::module_& m) {
   py::class_<LoadedRobot>(m, "Robot", kRobotDoc)
       .def(py::init([](const py::object& path, const std::optional<std::string>& base,
-                       const std::optional<std::string>& tip) {
-             return loadRobotFile(pathArgument(path), base.value_or(""), tip.value_or(""));
+                       const std::optional<std::string>& tip, const py::object& package_path,
+                       const py::object& srdf) {
+             std::vector<std::string> folders;
+             if (py::isinstance<py::str>(package_path) || py::hasattr(package_path, "__fspath__")) {
+               folders.push_back(pathArgument(package_path));
+             } else if (!package_path.is_none()) {
+               for (const py::handle folder : package_path) {
+                 folders.push_back(pathArgument(py::reinterpret_borrow<py::object>(folder)));
+               }
+             }
+             return loadRobotFile(pathArgument(path), base.value_or(""), tip.value_or(""), folders,
+                                  srdf.is_none() ? "" : pathArgument(srdf));
            }),
            py::arg("path"), py::kw_only(), py::arg("base") = py::none(),
-           py::arg("tip") = py::none())
+           py::arg("tip") = py::none(), py::arg("package_path") = py::none(),
+           py::arg("srdf") = py::none())
       .def_property_readonly(
           "name", [](const LoadedRobot& r) { return r.robot.name; }, "The robot's name (str).")
       .def_property_readonly(

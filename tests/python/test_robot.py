@@ -205,3 +205,71 @@ def test_same_message_as_mcws_fk_for_out_of_limits(ta1400):
     with pytest.raises(mcws.UsageError) as error:
         ta1400.fk([0, 1, 0, 0, 0, 0])
     assert err == f"mcws_fk: --{error.value} (see --help)\n"
+
+
+BOX_STL = """solid box
+facet normal 0 0 -1
+outer loop
+vertex -0.05 -0.05 0
+vertex 0.05 0.05 0
+vertex 0.05 -0.05 0
+endloop
+endfacet
+facet normal 0 0 1
+outer loop
+vertex -0.05 -0.05 0.1
+vertex 0.05 -0.05 0.1
+vertex 0.05 0.05 0.1
+endloop
+endfacet
+endsolid box
+"""
+
+PACKAGED_URDF = """<robot name="packaged">
+  <link name="base"/>
+  <link name="arm"><collision><geometry>
+    <mesh filename="package://my_meshes/meshes/box.stl"/></geometry></collision></link>
+  <link name="hand"><collision><geometry><box size="0.05 0.05 0.05"/></geometry></collision></link>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="revolute"><parent link="arm"/><child link="hand"/>
+    <origin xyz="0 0 0.5"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/></joint>
+</robot>
+"""
+
+
+def test_package_path_and_srdf_as_the_tools_flags(tmp_path):
+    # The package lies beside the robot's folder, not above it: only package_path finds it.
+    package = tmp_path / "packages" / "my_meshes"
+    (package / "meshes").mkdir(parents=True)
+    (package / "package.xml").write_text("<package><name>my_meshes</name></package>\n")
+    (package / "meshes" / "box.stl").write_text(BOX_STL)
+    (tmp_path / "robot").mkdir()
+    urdf = tmp_path / "robot" / "packaged.urdf"
+    urdf.write_text(PACKAGED_URDF)
+
+    with pytest.raises(mcws.Error, match="package://my_meshes/meshes/box.stl"):
+        mcws.Robot(urdf).has_collision_model
+    for folders in (tmp_path / "packages", [str(tmp_path / "packages")]):
+        robot = mcws.Robot(urdf, package_path=folders)
+        assert robot.has_collision_model
+        assert robot.dof == 2
+
+    # An SRDF is read with the collision model, and a pair naming no link is refused.
+    srdf = tmp_path / "packaged.srdf"
+    srdf.write_text('<robot name="packaged"><disable_collisions link1="arm" link2="hand" '
+                    'reason="Adjacent"/></robot>\n')
+    robot = mcws.Robot(urdf, package_path=tmp_path / "packages", srdf=srdf)
+    assert robot.has_collision_model
+    bad = tmp_path / "bad.srdf"
+    bad.write_text('<robot name="packaged"><disable_collisions link1="arm" link2="nowhere" '
+                   'reason="Never"/></robot>\n')
+    with pytest.raises(mcws.Error, match="nowhere"):
+        mcws.Robot(urdf, package_path=tmp_path / "packages", srdf=bad).has_collision_model
+
+    with pytest.raises(mcws.UsageError, match="package_path: '.*' is not a folder"):
+        mcws.Robot(urdf, package_path=tmp_path / "none")
+    with pytest.raises(mcws.UsageError, match="srdf: '.*' is not a file"):
+        mcws.Robot(urdf, srdf=tmp_path / "none.srdf")
+    with pytest.raises(mcws.UsageError, match="package_path needs a .urdf robot"):
+        mcws.Robot(robot_path("ta1400.yaml"), package_path=tmp_path)
