@@ -48,7 +48,8 @@ class ScenarioRobot : public ::testing::Test {
 };
 
 TEST_F(ScenarioRobot, TheMapFormChoosesTheChainAndItsCollisionModel) {
-  const Eigen::VectorXd q = (Eigen::VectorXd(6) << 0.2, -1.0, 1.3, -0.5, 0.7, 0.4).finished();
+  Eigen::VectorXd q(6);  // not a comma-initialised temporary: GCC 12 -O1 warns of it
+  q << 0.2, -1.0, 1.3, -0.5, 0.7, 0.4;
   const mcws::Scenario tool0 = load("robot: {file: ur5.urdf, tip: tool0}");
   EXPECT_EQ(tool0.robot_path, urdf_);
   const Robot& robot = tool0.problem.robot;
