@@ -191,6 +191,7 @@ def _place(
     across: List[float],
     up: List[float],
     confirm: int,
+    confirm_margin: Optional[float],
     map: Optional[_ReachMap],
     resolution: Optional[float],
     samples: int,

@@ -243,13 +243,14 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
 
 def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=None,
           resolution=None, samples=None, orientations=200, rolls=1, manipulability=True,
-          confirm=5, standoff=0.0, approach_tolerance=0.0, ik_starts=4, seed=0, threads=0,
+          confirm=0, confirm_margin=0.1, standoff=0.0, approach_tolerance=0.0, ik_starts=4, seed=0, threads=0,
           collision=True, quality_task=None, length=None, progress=None):
     """Where to put the robot's base so its arm reaches the targets, as mcws_place: the whole
     robot moved by every offset of line (x) x across (y) x up (z), the environment of its
     collision model staying in place; each position scored from a reachability map (the share
     of targets whose voxel and approach bin the map marks reached, their mean best
-    manipulability), the best `confirm` by the map solved by inverse kinematics as reach_study.
+    manipulability); every position whose map share is within confirm_margin of the best, and
+    the best `confirm` by the map, solved by inverse kinematics as reach_study.
 
     robot, targets, normals, standoff, approach_tolerance, ik_starts, seed, threads, collision,
         quality_task, length: as reach_study() (seed also draws a map built here).
@@ -262,7 +263,11 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
         samples to build one here, counting the samples free of self-collision (when
         collision and the robot file has a collision model), with orientations, rolls and
         manipulability as reach_map().
-    confirm: positions confirmed by IK: a number >= 0 (default 5) or None for all.
+    confirm_margin: a share of the targets in 0..1 (default 0.1, as mcws_place's
+        --confirm-margin): every position whose map share is at least the best map share less
+        it is confirmed by IK; None: no margin.
+    confirm: the best positions by the map confirmed besides: a number >= 0 (default 0, as
+        --confirm) or None for all.
     The summary's map.about names where the map came from: the file ReachMap.load read,
     "reach_map()", or "built" (here).
 
@@ -284,7 +289,8 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
                   [float(v) for v in _np.atleast_1d(line)],
                   [float(v) for v in _np.atleast_1d(across)],
                   [float(v) for v in _np.atleast_1d(up)],
-                  -1 if confirm is None else confirm, None if map is None else map._map,
+                  -1 if confirm is None else confirm, confirm_margin,
+                  None if map is None else map._map,
                   resolution, 0 if samples is None else samples, orientations, rolls,
                   manipulability, standoff, approach_tolerance, ik_starts, seed, threads,
                   collision, quality_task, length, progress)

@@ -12,6 +12,7 @@
 #include "bindings.h"
 #include "loaded_robot.h"
 #include "mcws/collision/collision_checker.h"
+#include "mcws/core/decimal.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/placement_map.h"
@@ -205,7 +206,8 @@ std::vector<Eigen::Vector3d> offsetsOf(const std::vector<double>& xs, const std:
 std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& targets_value,
                                    const py::handle& normals, const std::vector<double>& xs,
                                    const std::vector<double>& ys, const std::vector<double>& zs,
-                                   int confirm, const PlaceMap& source, const StudyArguments& a) {
+                                   int confirm, double confirm_margin, const PlaceMap& source,
+                                   const StudyArguments& a) {
   const Robot& robot = loaded.robot;
   const ReachStudyOptions options = studyOptions(robot, a);
   const std::vector<ReachTarget> targets = targetsOf(targets_value, normals, a.standoff);
@@ -213,8 +215,13 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
   if (confirm < -1 || confirm > 1000000) {
     throw UsageError("confirm: " + std::to_string(confirm) + " is not in 0 .. 1000000 (-1: all)");
   }
+  if (!(confirm_margin == -1.0 || (confirm_margin >= 0.0 && confirm_margin <= 1.0))) {
+    throw UsageError("confirm_margin: " + formatNumber(confirm_margin) +
+                     " is not a share of the targets in 0 .. 1 (None: no margin)");
+  }
   PlacementOptions placement;
   placement.confirm = confirm;
+  placement.confirm_margin = confirm_margin;
   placement.approach_tolerance = options.approach_tolerance;
   nlohmann::json about;
   std::unique_ptr<MapResult> built;
@@ -230,9 +237,11 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
   }
   auto result = std::make_unique<PlaceResult>();
   for (const BasePoint& p : basePoints(candidates, robot.T_world_base)) result->points.push_back(p);
-  result->summary = placementSummary(robot, targets.size(), map, about, options, checker != nullptr,
-                                     candidates, bestCandidate(candidates))
-                        .dump();
+  nlohmann::json summary =
+      placementSummary(robot, targets.size(), map, about, options, checker != nullptr, candidates,
+                       bestCandidate(candidates));
+  summary["confirmation"] = confirmationJson(placement, candidates);
+  result->summary = summary.dump();
   return result;
 }
 
@@ -279,10 +288,10 @@ void bindReachStudy(py::module_& m) {
       "_place",
       [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
          const std::vector<double>& line, const std::vector<double>& across,
-         const std::vector<double>& up, int confirm, const py::object& map,
-         std::optional<double> resolution, std::int64_t samples, int orientations, int rolls,
-         bool manipulability, double standoff, double approach_tolerance, int ik_starts,
-         std::int64_t seed, int threads, bool collision,
+         const std::vector<double>& up, int confirm, std::optional<double> confirm_margin,
+         const py::object& map, std::optional<double> resolution, std::int64_t samples,
+         int orientations, int rolls, bool manipulability, double standoff,
+         double approach_tolerance, int ik_starts, std::int64_t seed, int threads, bool collision,
          const std::optional<std::string>& quality_task, const std::optional<double>& length,
          const py::object& progress) {
         PlaceMap source{map, std::nullopt};
@@ -291,14 +300,16 @@ void bindReachStudy(py::module_& m) {
               MapArguments{*resolution, samples,        seed,         threads, orientations,
                            rolls,       manipulability, quality_task, length};
         }
-        return place(robot, targets, normals, line, across, up, confirm, source,
+        return place(robot, targets, normals, line, across, up, confirm,
+                     confirm_margin.value_or(-1.0), source,
                      {standoff, approach_tolerance, ik_starts, seed, threads, collision,
                       quality_task, length, progress});
       },
       "mcws.place's C++ part.", py::arg("robot"), py::arg("targets"), py::arg("normals").none(true),
       py::arg("line"), py::arg("across"), py::arg("up"), py::arg("confirm"),
-      py::arg("map").none(true), py::arg("resolution").none(true), py::arg("samples"),
-      py::arg("orientations"), py::arg("rolls"), py::arg("manipulability"), py::arg("standoff"),
+      py::arg("confirm_margin").none(true), py::arg("map").none(true),
+      py::arg("resolution").none(true), py::arg("samples"), py::arg("orientations"),
+      py::arg("rolls"), py::arg("manipulability"), py::arg("standoff"),
       py::arg("approach_tolerance"), py::arg("ik_starts"), py::arg("seed"), py::arg("threads"),
       py::arg("collision"), py::arg("quality_task").none(true), py::arg("length").none(true),
       py::arg("progress"));

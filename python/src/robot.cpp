@@ -24,8 +24,8 @@ namespace {
 bool isUrdf(const std::string& path) { return std::filesystem::path(path).extension() == ".urdf"; }
 
 /// The collision model of the robot's file, for the chain it was read with.
+/// The robot's collision model as the tools load it: its chain, package path and SRDF.
 CollisionModel collisionModel(const LoadedRobot& loaded) {
-  if (isUrdf(loaded.path)) return loadCollisionUrdf(loaded.robot, loaded.path, loaded.chain);
   return loadCollisionModel(loaded.robot, loaded.path);
 }
 

@@ -119,6 +119,9 @@ def test_reach_study_and_place_errors(planar2, ta1400, targets, tmp_path):
         mcws.place(planar2, points, [0.0], normals=normals)
     with pytest.raises(mcws.UsageError, match=r"line: no offsets given"):
         mcws.place(planar2, points, [], normals=normals, resolution=5, samples=100)
+    with pytest.raises(mcws.UsageError, match=r"confirm_margin: 1.5 is not a share"):
+        mcws.place(planar2, points, [0.0], normals=normals, resolution=5, samples=100,
+                   confirm_margin=1.5)
     other = mcws.reach_map(ta1400, 200.0, 1000)
     with pytest.raises(mcws.Error, match=r"reach_map\(\): the map is of robot 'ta1400'"):
         mcws.place(planar2, points, [0.0], normals=normals, map=other)
