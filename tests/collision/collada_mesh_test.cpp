@@ -197,6 +197,36 @@ TEST(ColladaMeshBadInput, FilesThatAreNotColladaOrThatAssimpCannotRead) {
             "primitive specification");
 }
 
+TEST(ColladaMeshBadInput, SizesNoFileCouldHoldAreRefusedBeforeAssimpAllocatesThem) {
+  // The mesh fuzzer's input: one byte of <p> turned to 0xA9 made assimp allocate 3 GB.
+  test::ColladaBox box = millimetreBox();
+  box.quads = true;
+  const std::string quads = test::colladaBoxText(box);
+  std::string text = quads;
+  text.replace(text.find(" 6 7 0 1 "), 9, " 6\xA97 0 1 ");
+  EXPECT_THAT(colladaError(text), ::testing::HasSubstr("'bad.dae': <p> holds '6"));
+  EXPECT_THAT(colladaError(text),
+              ::testing::HasSubstr("not a whole number of at most " + std::to_string(text.size()) +
+                                   " (the file's bytes)"));
+  text = quads;
+  const std::string half = std::to_string(quads.size() / 2);  // each could be, six cannot
+  text.replace(
+      text.find("<vcount>4 4 4 4 4 4<"), 20,
+      "<vcount>" + half + " " + half + " " + half + " " + half + " " + half + " " + half + "<");
+  EXPECT_THAT(colladaError(text), ::testing::HasSubstr("'bad.dae': <vcount>: its polygons have "));
+  text = quads;
+  text.replace(text.find("count=\"8\""), 9, "count=\"4000000000\"");
+  EXPECT_THAT(colladaError(text),
+              ::testing::HasSubstr("'bad.dae': <accessor> count holds '4000000000'"));
+  text = quads;
+  text.replace(text.find("stride=\"3\""), 10, "stride=\"3000\"");
+  EXPECT_THAT(colladaError(text), ::testing::HasSubstr("'bad.dae': <accessor>: count x stride "
+                                                       "24000 is more than the file's"));
+  text = quads;
+  text.replace(text.find("count=\"24\">") + 12, 1, "x");
+  EXPECT_THAT(colladaError(text), ::testing::HasSubstr("'bad.dae': <float_array> holds 'x"));
+}
+
 TEST(ColladaMeshBadInput, UnitThatIsNotALength) {
   test::ColladaBox box = millimetreBox();
   for (const char* unit : {"abc", "0", "-0.001", "nan", "1e10", "0.001m"}) {

@@ -8,6 +8,8 @@
 #include <array>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "mcws/collision/detail/mesh_checks.h"
@@ -36,6 +38,7 @@ double colladaUnitLength(const std::string& bytes, const std::string& source) {
                 (root ? "<" + escapedControlBytes(root->Value()) + ">" : std::string("missing")) +
                 ", not <COLLADA>");
   }
+  checkColladaSizes(*root, bytes.size(), source);
   const TiXmlElement* asset = root->FirstChildElement("asset");
   const TiXmlElement* unit = asset ? asset->FirstChildElement("unit") : nullptr;
   const char* meter = unit ? unit->Attribute("meter") : nullptr;
@@ -47,6 +50,75 @@ double colladaUnitLength(const std::string& bytes, const std::string& source) {
                 ">: the length of the file's unit must be a number > 0 [m] (at most 1e9)");
   }
   return length;
+}
+
+/// The whitespace-separated words of an element's text.
+std::vector<std::string> words(const TiXmlElement& e) {
+  std::vector<std::string> out;
+  const char* text = e.GetText();
+  std::string word;
+  for (const char* c = text ? text : ""; *c; ++c) {
+    if (*c == ' ' || *c == '\t' || *c == '\n' || *c == '\r') {
+      if (!word.empty()) out.push_back(std::move(word));
+      word.clear();
+    } else {
+      word += *c;
+    }
+  }
+  if (!word.empty()) out.push_back(word);
+  return out;
+}
+
+/// A size the file could hold: a whole number of at most `bytes`, the file's length (every value
+/// counted takes a byte at least). \throws mcws::Error naming the element and the word.
+std::uint64_t checkedSize(const std::string& word, std::size_t bytes, const std::string& where) {
+  const bool digits = !word.empty() && word.size() <= 19 &&
+                      word.find_first_not_of("0123456789") == std::string::npos;
+  const std::uint64_t value = digits ? std::stoull(word) : 0;
+  if (!digits || value > bytes) {
+    throw Error(where + " holds " + detail::quotedMeshWord(word) +
+                ": not a whole number of at most " + std::to_string(bytes) + " (the file's bytes)");
+  }
+  return value;
+}
+
+/// Checks what assimp sizes its arrays by before it reads them, so that a damaged file is refused
+/// in one line rather than by a multi-gigabyte allocation: every count and stride attribute and
+/// every index (<p>, <v>, <h>, <int_array>) a whole number no larger than the file, the sum of a
+/// <vcount> too, and a count times its stride; the words of a <float_array> made of number
+/// characters.
+void checkColladaSizes(const TiXmlElement& root, std::size_t bytes, const std::string& source) {
+  std::vector<const TiXmlElement*> open{&root};
+  while (!open.empty()) {
+    const TiXmlElement& e = *open.back();
+    open.pop_back();
+    const std::string name = e.Value();
+    const std::string where = "'" + source + "': <" + escapedControlBytes(name) + ">";
+    std::uint64_t count = 1, stride = 1;
+    if (const char* a = e.Attribute("count")) count = checkedSize(a, bytes, where + " count");
+    if (const char* a = e.Attribute("stride")) stride = checkedSize(a, bytes, where + " stride");
+    if (count * stride > bytes) {
+      throw Error(where + ": count x stride " + std::to_string(count * stride) +
+                  " is more than the file's " + std::to_string(bytes) + " bytes hold");
+    }
+    if (name == "p" || name == "v" || name == "h" || name == "int_array" || name == "vcount") {
+      std::uint64_t sum = 0;
+      for (const std::string& word : words(e)) sum += checkedSize(word, bytes, where);
+      if (name == "vcount" && sum > bytes) {
+        throw Error(where + ": its polygons have " + std::to_string(sum) +
+                    " corners, more than the file's " + std::to_string(bytes) + " bytes hold");
+      }
+    } else if (name == "float_array") {
+      for (const std::string& word : words(e)) {
+        if (word.find_first_not_of("0123456789+-.eEnNaAiIfFtTyY") != std::string::npos) {
+          throw Error(where + " holds " + detail::quotedMeshWord(word) + ": not a number");
+        }
+      }
+    }
+    for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
+      open.push_back(c);
+    }
+  }
 }
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
