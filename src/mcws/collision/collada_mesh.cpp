@@ -20,38 +20,6 @@
 namespace mcws {
 namespace {
 
-/// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
-/// absent. \throws mcws::Error when the bytes are not XML, the root element is not `<COLLADA>`,
-/// or the unit is not a number > 0 of at most kLargestMeshCoordinate.
-double colladaUnitLength(const std::string& bytes, const std::string& source) {
-  TiXmlDocument document;
-  document.Parse(bytes.c_str());
-  if (document.Error()) {
-    const std::string line =
-        document.ErrorRow() > 0 ? " at line " + std::to_string(document.ErrorRow()) : "";
-    throw Error("'" + source + "': not a COLLADA file: malformed XML" + line + ": " +
-                escapedControlBytes(document.ErrorDesc()));
-  }
-  const TiXmlElement* root = document.RootElement();
-  if (root == nullptr || std::string(root->Value()) != "COLLADA") {
-    throw Error("'" + source + "': not a COLLADA file: its root element is " +
-                (root ? "<" + escapedControlBytes(root->Value()) + ">" : std::string("missing")) +
-                ", not <COLLADA>");
-  }
-  checkColladaSizes(*root, bytes.size(), source);
-  const TiXmlElement* asset = root->FirstChildElement("asset");
-  const TiXmlElement* unit = asset ? asset->FirstChildElement("unit") : nullptr;
-  const char* meter = unit ? unit->Attribute("meter") : nullptr;
-  if (meter == nullptr) return 1.0;
-  double length = 0.0;
-  if (!detail::parseMeshNumber(meter, length) || !(length > 0.0) ||
-      !(length <= kLargestMeshCoordinate)) {
-    throw Error("'" + source + "': <unit meter=" + detail::quotedMeshWord(meter) +
-                ">: the length of the file's unit must be a number > 0 [m] (at most 1e9)");
-  }
-  return length;
-}
-
 /// The whitespace-separated words of an element's text.
 std::vector<std::string> words(const TiXmlElement& e) {
   std::vector<std::string> out;
@@ -119,6 +87,38 @@ void checkColladaSizes(const TiXmlElement& root, std::size_t bytes, const std::s
       open.push_back(c);
     }
   }
+}
+
+/// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
+/// absent. \throws mcws::Error when the bytes are not XML, the root element is not `<COLLADA>`,
+/// or the unit is not a number > 0 of at most kLargestMeshCoordinate.
+double colladaUnitLength(const std::string& bytes, const std::string& source) {
+  TiXmlDocument document;
+  document.Parse(bytes.c_str());
+  if (document.Error()) {
+    const std::string line =
+        document.ErrorRow() > 0 ? " at line " + std::to_string(document.ErrorRow()) : "";
+    throw Error("'" + source + "': not a COLLADA file: malformed XML" + line + ": " +
+                escapedControlBytes(document.ErrorDesc()));
+  }
+  const TiXmlElement* root = document.RootElement();
+  if (root == nullptr || std::string(root->Value()) != "COLLADA") {
+    throw Error("'" + source + "': not a COLLADA file: its root element is " +
+                (root ? "<" + escapedControlBytes(root->Value()) + ">" : std::string("missing")) +
+                ", not <COLLADA>");
+  }
+  checkColladaSizes(*root, bytes.size(), source);
+  const TiXmlElement* asset = root->FirstChildElement("asset");
+  const TiXmlElement* unit = asset ? asset->FirstChildElement("unit") : nullptr;
+  const char* meter = unit ? unit->Attribute("meter") : nullptr;
+  if (meter == nullptr) return 1.0;
+  double length = 0.0;
+  if (!detail::parseMeshNumber(meter, length) || !(length > 0.0) ||
+      !(length <= kLargestMeshCoordinate)) {
+    throw Error("'" + source + "': <unit meter=" + detail::quotedMeshWord(meter) +
+                ">: the length of the file's unit must be a number > 0 [m] (at most 1e9)");
+  }
+  return length;
 }
 
 Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
