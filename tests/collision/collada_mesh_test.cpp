@@ -203,7 +203,7 @@ TEST(ColladaMeshBadInput, SizesNoFileCouldHoldAreRefusedBeforeAssimpAllocatesThe
   box.quads = true;
   const std::string quads = test::colladaBoxText(box);
   std::string text = quads;
-  text.replace(text.find(" 6 7 0 1 "), 9, " 6\xA97 0 1 ");
+  text.replace(text.find(" 6 7 0 1 "), 9, " 6\xA9" "7 0 1 ");
   EXPECT_THAT(colladaError(text), ::testing::HasSubstr("'bad.dae': <p> holds '6"));
   EXPECT_THAT(colladaError(text),
               ::testing::HasSubstr("not a whole number of at most " + std::to_string(text.size()) +
