@@ -230,6 +230,18 @@ TEST(ColladaMeshBadInput, SizesNoFileCouldHoldAreRefusedBeforeAssimpAllocatesThe
               ::testing::HasSubstr("'bad.dae': <float_array> holds '1x.000000': not a number"));
 }
 
+TEST(ColladaMeshBadInput, AnAttributeColladaRequiresIsThere) {
+  // The mesh fuzzer's input: <float_array counO="24"> crashed assimp (a null pointer).
+  std::string text = test::colladaBoxText(millimetreBox());
+  text.replace(text.find("count=\"24\""), 5, "counO");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': <float_array> has no count attribute (COLLADA requires it)");
+  text = test::colladaBoxText(millimetreBox());
+  text.replace(text.find("semantic=\"VERTEX\""), 8, "semantiX");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': <input> has no semantic attribute (COLLADA requires it)");
+}
+
 TEST(ColladaMeshBadInput, UnitThatIsNotALength) {
   test::ColladaBox box = millimetreBox();
   for (const char* unit : {"abc", "0", "-0.001", "nan", "1e10", "0.001m"}) {

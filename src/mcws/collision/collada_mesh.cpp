@@ -5,6 +5,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <assimp/Importer.hpp>
 #include <cmath>
@@ -50,6 +51,22 @@ std::uint64_t checkedSize(const std::string& word, std::size_t bytes, const std:
   return value;
 }
 
+/// The attributes COLLADA requires of an element that assimp reads without checking that they are
+/// there (a missing one is a null pointer inside assimp).
+std::vector<const char*> requiredAttributes(const std::string& element) {
+  static const std::vector<std::pair<std::vector<std::string>, std::vector<const char*>>> rules{
+      {{"float_array", "int_array", "bool_array", "Name_array", "IDREF_array"}, {"count"}},
+      {{"accessor"}, {"count", "source"}},
+      {{"triangles", "polylist", "polygons", "tristrips", "trifans", "lines", "linestrips"},
+       {"count"}},
+      {{"input"}, {"semantic", "source"}},
+      {{"instance_geometry", "instance_node", "instance_visual_scene"}, {"url"}}};
+  for (const auto& [elements, attributes] : rules) {
+    if (std::find(elements.begin(), elements.end(), element) != elements.end()) return attributes;
+  }
+  return {};
+}
+
 /// Checks what assimp sizes its arrays by before it reads them, so that a damaged file is refused
 /// in one line rather than by a multi-gigabyte allocation: every count and stride attribute and
 /// every index (<p>, <v>, <h>, <int_array>) a whole number no larger than the file, the sum of a
@@ -62,6 +79,11 @@ void checkColladaSizes(const TiXmlElement& root, std::size_t bytes, const std::s
     open.pop_back();
     const std::string name = e.Value();
     const std::string where = "'" + source + "': <" + escapedControlBytes(name) + ">";
+    for (const char* required : requiredAttributes(name)) {
+      if (e.Attribute(required) == nullptr) {
+        throw Error(where + " has no " + required + " attribute (COLLADA requires it)");
+      }
+    }
     std::uint64_t count = 1, stride = 1;
     if (const char* a = e.Attribute("count")) count = checkedSize(a, bytes, where + " count");
     if (const char* a = e.Attribute("stride")) stride = checkedSize(a, bytes, where + " stride");
