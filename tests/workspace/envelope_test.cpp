@@ -9,7 +9,6 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <pcl/PolygonMesh.h>
-#include <pcl/io/ply_io.h>
 #include <pcl/io/vtk_lib_io.h>
 
 #include <cmath>
