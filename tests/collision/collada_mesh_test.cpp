@@ -6,6 +6,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
@@ -240,6 +241,23 @@ TEST(ColladaMeshBadInput, AnAttributeColladaRequiresIsThere) {
   text.replace(text.find("semantic=\"VERTEX\""), 8, "semantiX");
   EXPECT_EQ(colladaError(text),
             "'bad.dae': <input> has no semantic attribute (COLLADA requires it)");
+}
+
+TEST(ColladaMeshBadInput, AnAmpersandThatStartsNoEntityIsMalformedXml) {
+  // The mesh fuzzer's input: "4&7" in <p> is 47 to TinyXML and 4 then garbage to assimp, which
+  // allocated 2.4 GB.
+  std::string text = test::colladaBoxText(millimetreBox());
+  text.replace(text.find(" 3 4 7</p>"), 10, " 3 4&7</p>");
+  const auto line = 1 + std::count(text.begin(), text.begin() + text.find("4&7"), '\n');
+  EXPECT_EQ(colladaError(text), "'bad.dae': not a COLLADA file: malformed XML at line " +
+                                    std::to_string(line) +
+                                    ": a '&' that starts no entity (write &amp;)");
+  // Entities, and a '&' in a comment or CDATA, are XML: the box reads as before.
+  for (const char* fine : {"<!-- a & b -->", "<![CDATA[a & b]]>", "&amp;&#38;&#x26;&lt;"}) {
+    text = test::colladaBoxText(millimetreBox());
+    text.replace(text.find("<library_geometries>"), 0, std::string("<extra>") + fine + "</extra>");
+    EXPECT_EQ(parseColladaMesh(text, "ok.dae").triangles.size(), 12u) << fine;
+  }
 }
 
 TEST(ColladaMeshBadInput, UnitThatIsNotALength) {

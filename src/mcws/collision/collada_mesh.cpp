@@ -10,6 +10,7 @@
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -21,17 +22,22 @@
 namespace mcws {
 namespace {
 
-/// The whitespace-separated words of an element's text.
+/// The whitespace-separated words of all of an element's text. TinyXML splits a text at a
+/// character such as a stray '&' that other parsers (assimp's) keep: `GetText()` would give only
+/// the part before it.
 std::vector<std::string> words(const TiXmlElement& e) {
+  std::string text;
+  for (const TiXmlNode* n = e.FirstChild(); n; n = n->NextSibling()) {
+    if (n->ToText() != nullptr) text += n->Value();
+  }
   std::vector<std::string> out;
-  const char* text = e.GetText();
   std::string word;
-  for (const char* c = text ? text : ""; *c; ++c) {
-    if (*c == ' ' || *c == '\t' || *c == '\n' || *c == '\r') {
+  for (const char c : text) {
+    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
       if (!word.empty()) out.push_back(std::move(word));
       word.clear();
     } else {
-      word += *c;
+      word += c;
     }
   }
   if (!word.empty()) out.push_back(word);
@@ -111,10 +117,44 @@ void checkColladaSizes(const TiXmlElement& root, std::size_t bytes, const std::s
   }
 }
 
+/// Refuses a '&' that starts no XML entity (`&amp;` `&lt;` `&gt;` `&quot;` `&apos;` `&#N;`
+/// `&#xH;`), outside comments and CDATA. XML forbids it, and the two parsers read it differently:
+/// TinyXML drops it ("4&7" is 47), assimp's parser stops a number at it, so the sizes checked here
+/// would not be the sizes assimp allocates.
+void checkEntities(const std::string& bytes, const std::string& source) {
+  const auto skip = [&](std::size_t at, const char* open, const char* close) {
+    if (bytes.compare(at, std::strlen(open), open) != 0) return at;
+    const std::size_t end = bytes.find(close, at + std::strlen(open));
+    return end == std::string::npos ? bytes.size() : end + std::strlen(close);
+  };
+  for (std::size_t at = 0; at < bytes.size();) {
+    const std::size_t next = skip(skip(at, "<!--", "-->"), "<![CDATA[", "]]>");
+    if (next != at) {
+      at = next;
+      continue;
+    }
+    if (bytes[at++] != '&') continue;
+    const std::size_t semicolon = bytes.find(';', at);
+    const std::string name = bytes.substr(at, semicolon == std::string::npos ? 0 : semicolon - at);
+    const bool decimal = name.size() > 1 && name[0] == '#' &&
+                         name.find_first_not_of("0123456789", 1) == std::string::npos;
+    const bool hex = name.size() > 2 && name.compare(0, 2, "#x") == 0 &&
+                     name.find_first_not_of("0123456789abcdefABCDEF", 2) == std::string::npos;
+    if (name == "amp" || name == "lt" || name == "gt" || name == "quot" || name == "apos" ||
+        decimal || hex) {
+      continue;
+    }
+    const auto line = 1 + std::count(bytes.begin(), bytes.begin() + std::ptrdiff_t(at), '\n');
+    throw Error("'" + source + "': not a COLLADA file: malformed XML at line " +
+                std::to_string(line) + ": a '&' that starts no entity (write &amp;)");
+  }
+}
+
 /// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
 /// absent. \throws mcws::Error when the bytes are not XML, the root element is not `<COLLADA>`,
 /// or the unit is not a number > 0 of at most kLargestMeshCoordinate.
 double colladaUnitLength(const std::string& bytes, const std::string& source) {
+  checkEntities(bytes, source);
   TiXmlDocument document;
   document.Parse(bytes.c_str());
   if (document.Error()) {
