@@ -1,10 +1,10 @@
 /// \file
 /// \brief libFuzzer target: a collision mesh file (binary or ASCII STL, OBJ, COLLADA) through
 /// mcws::loadMesh(), as the mesh shapes of a robot file are read. The first byte picks the format
-/// ('o': OBJ, 'd': COLLADA, read by assimp, anything else: STL), the rest is the file, written to
-/// a file of this process (the reader takes a path). A mesh that loads must keep the reader's
-/// promises: every triangle's corners are vertices, every coordinate finite and at most 1e9 in
-/// size.
+/// ('o': OBJ, 'd': COLLADA, anything else: STL; all three read by mcws's own readers, COLLADA's
+/// on TinyXML), the rest is the file, written to a file of this process (the reader takes a
+/// path). A mesh that loads must keep the reader's promises: every triangle's corners are
+/// vertices, every coordinate finite and at most 1e9 in size.
 
 #include <cmath>
 #include <cstddef>

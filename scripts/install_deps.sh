@@ -22,7 +22,7 @@ packages=(
   libtbb-dev                    # CGAL's parallel 3-D Delaunay triangulation (mcws_measure)
   libnanoflann-dev              # k-nearest-neighbour kd-tree for the local spacing (mcws_measure)
   libfcl-dev                    # collision checking (FCL: OBBRSS mesh trees, primitives)
-  libassimp-dev                 # COLLADA (.dae) collision meshes of URDF robots (assimp)
+  libassimp-dev                 # the tests' oracle for mcws's COLLADA (.dae) reader (assimp)
   libompl-dev                   # motion planning roadmaps (OMPL's PRM) for mcws_plan
   graphviz                      # renders the behaviour state machines (mcws_behave --dot) to PNG
   time                          # /usr/bin/time -v in the benchmark scripts

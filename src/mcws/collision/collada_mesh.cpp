@@ -2,18 +2,17 @@
 
 #include <tinyxml.h>
 
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
-#include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
+#include "mcws/collision/detail/collada_geometry.h"
 #include "mcws/collision/detail/mesh_checks.h"
 #include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
@@ -22,100 +21,7 @@
 namespace mcws {
 namespace {
 
-/// The whitespace-separated words of all of an element's text. TinyXML splits a text at a
-/// character such as a stray '&' that other parsers (assimp's) keep: `GetText()` would give only
-/// the part before it.
-std::vector<std::string> words(const TiXmlElement& e) {
-  std::string text;
-  for (const TiXmlNode* n = e.FirstChild(); n; n = n->NextSibling()) {
-    if (n->ToText() != nullptr) text += n->Value();
-  }
-  std::vector<std::string> out;
-  std::string word;
-  for (const char c : text) {
-    if (c == ' ' || c == '\t' || c == '\n' || c == '\r') {
-      if (!word.empty()) out.push_back(std::move(word));
-      word.clear();
-    } else {
-      word += c;
-    }
-  }
-  if (!word.empty()) out.push_back(word);
-  return out;
-}
-
-/// A size the file could hold: a whole number of at most `bytes`, the file's length (every value
-/// counted takes a byte at least). \throws mcws::Error naming the element and the word.
-std::uint64_t checkedSize(const std::string& word, std::size_t bytes, const std::string& where) {
-  const bool digits = !word.empty() && word.size() <= 19 &&
-                      word.find_first_not_of("0123456789") == std::string::npos;
-  const std::uint64_t value = digits ? std::stoull(word) : 0;
-  if (!digits || value > bytes) {
-    throw Error(where + " holds " + detail::quotedMeshWord(word) +
-                ": not a whole number of at most " + std::to_string(bytes) + " (the file's bytes)");
-  }
-  return value;
-}
-
-/// The attributes COLLADA requires of an element that assimp reads without checking that they are
-/// there (a missing one is a null pointer inside assimp).
-std::vector<const char*> requiredAttributes(const std::string& element) {
-  static const std::vector<std::pair<std::vector<std::string>, std::vector<const char*>>> rules{
-      {{"float_array", "int_array", "bool_array", "Name_array", "IDREF_array"}, {"count"}},
-      {{"accessor"}, {"count", "source"}},
-      {{"triangles", "polylist", "polygons", "tristrips", "trifans", "lines", "linestrips"},
-       {"count"}},
-      {{"input"}, {"semantic", "source"}},
-      {{"instance_geometry", "instance_node", "instance_visual_scene"}, {"url"}}};
-  for (const auto& [elements, attributes] : rules) {
-    if (std::find(elements.begin(), elements.end(), element) != elements.end()) return attributes;
-  }
-  return {};
-}
-
-/// Checks what assimp sizes its arrays by before it reads them, so that a damaged file is refused
-/// in one line rather than by a multi-gigabyte allocation: every count and stride attribute and
-/// every index (<p>, <v>, <h>, <int_array>) a whole number no larger than the file, the sum of a
-/// <vcount> too, and a count times its stride; the words of a <float_array> made of number
-/// characters.
-void checkColladaSizes(const TiXmlElement& root, std::size_t bytes, const std::string& source) {
-  std::vector<const TiXmlElement*> open{&root};
-  while (!open.empty()) {
-    const TiXmlElement& e = *open.back();
-    open.pop_back();
-    const std::string name = e.Value();
-    const std::string where = "'" + source + "': <" + escapedControlBytes(name) + ">";
-    for (const char* required : requiredAttributes(name)) {
-      if (e.Attribute(required) == nullptr) {
-        throw Error(where + " has no " + required + " attribute (COLLADA requires it)");
-      }
-    }
-    std::uint64_t count = 1, stride = 1;
-    if (const char* a = e.Attribute("count")) count = checkedSize(a, bytes, where + " count");
-    if (const char* a = e.Attribute("stride")) stride = checkedSize(a, bytes, where + " stride");
-    if (count * stride > bytes) {
-      throw Error(where + ": count x stride " + std::to_string(count * stride) +
-                  " is more than the file's " + std::to_string(bytes) + " bytes hold");
-    }
-    if (name == "p" || name == "v" || name == "h" || name == "int_array" || name == "vcount") {
-      std::uint64_t sum = 0;
-      for (const std::string& word : words(e)) sum += checkedSize(word, bytes, where);
-      if (name == "vcount" && sum > bytes) {
-        throw Error(where + ": its polygons have " + std::to_string(sum) +
-                    " corners, more than the file's " + std::to_string(bytes) + " bytes hold");
-      }
-    } else if (name == "float_array") {
-      for (const std::string& word : words(e)) {
-        if (word.find_first_not_of("0123456789+-.eEnNaAiIfFtTyY") != std::string::npos) {
-          throw Error(where + " holds " + detail::quotedMeshWord(word) + ": not a number");
-        }
-      }
-    }
-    for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
-      open.push_back(c);
-    }
-  }
-}
+using detail::colladaElement;
 
 /// Refuses a '&' that starts no XML entity (`&amp;` `&lt;` `&gt;` `&quot;` `&apos;` `&#N;`
 /// `&#xH;`), outside comments and CDATA. XML forbids it, and the two parsers read it differently:
@@ -150,12 +56,12 @@ void checkEntities(const std::string& bytes, const std::string& source) {
   }
 }
 
-/// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
-/// absent. \throws mcws::Error when the bytes are not XML, the root element is not `<COLLADA>`,
-/// or the unit is not a number > 0 of at most kLargestMeshCoordinate.
-double colladaUnitLength(const std::string& bytes, const std::string& source) {
+/// The root element of a COLLADA document parsed into `document`. \throws mcws::Error when the
+/// bytes are not XML (a '&' that starts no entity included) or the root element is not
+/// `<COLLADA>`.
+const TiXmlElement& colladaRoot(const std::string& bytes, const std::string& source,
+                                TiXmlDocument& document) {
   checkEntities(bytes, source);
-  TiXmlDocument document;
   document.Parse(bytes.c_str());
   if (document.Error()) {
     const std::string line =
@@ -169,8 +75,14 @@ double colladaUnitLength(const std::string& bytes, const std::string& source) {
                 (root ? "<" + escapedControlBytes(root->Value()) + ">" : std::string("missing")) +
                 ", not <COLLADA>");
   }
-  checkColladaSizes(*root, bytes.size(), source);
-  const TiXmlElement* asset = root->FirstChildElement("asset");
+  return *root;
+}
+
+/// The length of the unit of a COLLADA document [m]: `<COLLADA><asset><unit meter>`, 1 when
+/// absent. \throws mcws::Error when the unit is not a number > 0 of at most
+/// kLargestMeshCoordinate.
+double colladaUnitLength(const TiXmlElement& root, const std::string& source) {
+  const TiXmlElement* asset = root.FirstChildElement("asset");
   const TiXmlElement* unit = asset ? asset->FirstChildElement("unit") : nullptr;
   const char* meter = unit ? unit->Attribute("meter") : nullptr;
   if (meter == nullptr) return 1.0;
@@ -183,86 +95,207 @@ double colladaUnitLength(const std::string& bytes, const std::string& source) {
   return length;
 }
 
-Eigen::Matrix4d toEigen(const aiMatrix4x4& m) {
-  Eigen::Matrix4d out;
-  for (unsigned r = 0; r < 4; ++r) {
-    for (unsigned c = 0; c < 4; ++c) out(r, c) = m[r][c];
+/// The `<visual_scene>` the file's `<scene><instance_visual_scene url>` names, else the first
+/// one; null when the file has none.
+const TiXmlElement* colladaVisualScene(const TiXmlElement& root, const detail::ColladaIds& ids,
+                                       const std::string& source) {
+  const TiXmlElement* scene = root.FirstChildElement("scene");
+  const TiXmlElement* instance = scene ? scene->FirstChildElement("instance_visual_scene") : nullptr;
+  if (instance != nullptr) {
+    return &detail::referencedColladaElement(*instance, "url", "visual_scene", ids, source);
   }
-  return out;
+  const TiXmlElement* library = root.FirstChildElement("library_visual_scenes");
+  return library ? library->FirstChildElement("visual_scene") : nullptr;
 }
 
-/// Adds one instance of `in`, placed by `T_file_node` [m per file unit], to `mesh`.
-void addInstance(const aiMesh& in, const Eigen::Matrix4d& T_file_node, const std::string& source,
-                 TriangleMesh& mesh) {
-  const std::string name = "'" + source + "': mesh " + detail::quotedMeshWord(in.mName.C_Str());
-  const int offset = int(mesh.vertices.size());
-  // The message is made only for a bad coordinate (9 digits read back as the same float).
-  const auto check = [&](double value, unsigned v, int k, const char* what) {
-    if (std::isfinite(value) && std::abs(value) <= kLargestMeshCoordinate) return;
-    detail::checkMeshCoordinate(value,
-                                name + " vertex " + std::to_string(v + 1) + ": " + "xyz"[k] + what,
-                                formatNumber(value, 9));
-  };
-  for (unsigned v = 0; v < in.mNumVertices; ++v) {
-    const aiVector3D& written = in.mVertices[v];
-    for (int k = 0; k < 3; ++k) check(written[k], v, k, "");
-    const Eigen::Vector3d p =
-        (T_file_node * Eigen::Vector4d(written.x, written.y, written.z, 1.0)).head<3>();
-    for (int k = 0; k < 3; ++k) check(p[k], v, k, " (placed, in metres)");
-    mesh.vertices.push_back(p);
+/// The numbers of a transform element, exactly `n` finite ones.
+std::vector<double> transformNumbers(const TiXmlElement& e, std::size_t n,
+                                     const std::string& where) {
+  const std::string text = detail::colladaText(e);
+  const std::vector<std::string_view> words = detail::colladaWords(text);
+  const std::string element = where + " <" + e.Value() + ">";
+  if (words.size() != n) {
+    throw Error(element + " holds " + std::to_string(words.size()) + " numbers, not " +
+                std::to_string(n));
   }
-  for (unsigned f = 0; f < in.mNumFaces; ++f) {
-    const aiFace& face = in.mFaces[f];
-    if (face.mNumIndices != 3) continue;  // a point or a line
-    std::array<int, 3> corners{};
-    for (int c = 0; c < 3; ++c) {
-      if (face.mIndices[c] >= in.mNumVertices) {
-        throw Error(name + " face " + std::to_string(f + 1) + ": refers to a missing vertex");
-      }
-      corners[c] = offset + int(face.mIndices[c]);
+  std::vector<double> numbers(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!detail::parseMeshNumber(words[k], numbers[k]) || !std::isfinite(numbers[k])) {
+      throw Error(element + " number " + std::to_string(k + 1) + " " +
+                  detail::quotedMeshWord(words[k]) + " is not a finite number");
     }
-    mesh.triangles.push_back(corners);
+  }
+  return numbers;
+}
+
+/// The transform of a `<node>` relative to its parent: the product of its `<matrix>` (row by
+/// row), `<translate>`, `<rotate>` (axis, angle [deg]) and `<scale>` elements in document order
+/// (COLLADA's p_parent = T1 T2 ... p_node). \throws mcws::Error for a `<lookat>` or `<skew>`
+/// (not read) or a transform that is not its numbers.
+Eigen::Matrix4d nodeTransform(const TiXmlElement& node, const std::string& source) {
+  const std::string where = "'" + source + "': " + colladaElement(node);
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  for (const TiXmlElement* e = node.FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string kind = e->Value();
+    Eigen::Matrix4d step = Eigen::Matrix4d::Identity();
+    if (kind == "matrix") {
+      const std::vector<double> m = transformNumbers(*e, 16, where);
+      for (int k = 0; k < 16; ++k) step(k / 4, k % 4) = m[std::size_t(k)];
+    } else if (kind == "translate") {
+      const std::vector<double> t = transformNumbers(*e, 3, where);
+      step.topRightCorner<3, 1>() = Eigen::Vector3d(t[0], t[1], t[2]);
+    } else if (kind == "rotate") {
+      const std::vector<double> r = transformNumbers(*e, 4, where);
+      const Eigen::Vector3d axis(r[0], r[1], r[2]);
+      if (!(axis.norm() > 0.0)) {
+        throw Error(where + " <rotate>: the axis 0 0 0 is no direction");
+      }
+      step.topLeftCorner<3, 3>() =
+          Eigen::AngleAxisd(r[3] * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+    } else if (kind == "scale") {
+      const std::vector<double> s = transformNumbers(*e, 3, where);
+      step.diagonal().head<3>() = Eigen::Vector3d(s[0], s[1], s[2]);
+    } else if (kind == "lookat" || kind == "skew") {
+      throw Error(where + " <" + kind + ">: not read by mcws (write the node's transform as "
+                  "<matrix>, <translate>, <rotate> and <scale>)");
+    } else {
+      continue;
+    }
+    T = T * step;
+  }
+  return T;
+}
+
+/// At most this many triangles are placed, and nodes visited, for a file of `bytes` bytes: ten
+/// per byte, at least a million and at most 50 million, so that instances of instances cannot
+/// grow without bound (a collision mesh needs far fewer).
+std::uint64_t colladaPlacementLimit(std::size_t bytes) {
+  return std::clamp<std::uint64_t>(10 * std::uint64_t(bytes), 1'000'000, 50'000'000);
+}
+
+/// Places the geometries a visual scene's node tree instantiates (depth first, with an explicit
+/// stack, so that no nesting depth can overflow the call stack).
+class ColladaPlacer {
+ public:
+  ColladaPlacer(const detail::ColladaIds& ids, const std::string& source, std::size_t bytes)
+      : ids_(ids), source_(source), limit_(colladaPlacementLimit(bytes)) {}
+
+  TriangleMesh place(const TiXmlElement& visual_scene, double unit);
+
+ private:
+  /// What is left to do: place a node (a <node>, the <visual_scene>, or the target of an
+  /// <instance_node>), or leave the target of an <instance_node> when its subtree is placed.
+  enum class Step { kNode, kInstance, kLeave };
+  struct Open {
+    const TiXmlElement* node;
+    Eigen::Matrix4d T_metre_parent;  ///< where its parent is [m per file unit]
+    Step step;
+  };
+  void visit(const Open& open);
+  void addInstance(const TiXmlElement& instance, const Eigen::Matrix4d& T_metre_node);
+
+  const detail::ColladaIds& ids_;
+  const std::string& source_;
+  const std::uint64_t limit_;
+  std::vector<Open> open_;
+  std::unordered_set<const TiXmlElement*> instancing_;  ///< <instance_node> targets being placed
+  std::unordered_map<const TiXmlElement*, detail::ColladaGeometry> geometries_;
+  std::uint64_t visits_{0};
+  TriangleMesh mesh_;
+};
+
+TriangleMesh ColladaPlacer::place(const TiXmlElement& visual_scene, double unit) {
+  Eigen::Matrix4d T_metre_file = Eigen::Matrix4d::Identity();
+  T_metre_file.topLeftCorner<3, 3>() *= unit;
+  open_.push_back({&visual_scene, T_metre_file, Step::kNode});
+  while (!open_.empty()) {
+    const Open open = open_.back();
+    open_.pop_back();
+    if (open.step == Step::kLeave) {
+      instancing_.erase(open.node);
+    } else {
+      visit(open);
+    }
+  }
+  return std::move(mesh_);
+}
+
+void ColladaPlacer::visit(const Open& open) {
+  if (++visits_ > limit_) {
+    throw Error("'" + source_ + "': its scene places more than " + std::to_string(limit_) +
+                " nodes (instances of instances?): not read");
+  }
+  const TiXmlElement& node = *open.node;
+  if (open.step == Step::kInstance) instancing_.insert(&node);
+  const Eigen::Matrix4d T_metre_node = open.T_metre_parent * nodeTransform(node, source_);
+  std::vector<Open> children;
+  for (const TiXmlElement* e = node.FirstChildElement(); e; e = e->NextSiblingElement()) {
+    const std::string kind = e->Value();
+    if (kind == "instance_geometry") {
+      addInstance(*e, T_metre_node);
+    } else if (kind == "node") {
+      children.push_back({e, T_metre_node, Step::kNode});
+    } else if (kind == "instance_node") {
+      const TiXmlElement& target =
+          detail::referencedColladaElement(*e, "url", "node", ids_, source_);
+      if (instancing_.count(&target) != 0) {
+        throw Error("'" + source_ + "': " + colladaElement(*e) +
+                    ": instantiates a node it is part of (a cycle)");
+      }
+      children.push_back({&target, T_metre_node, Step::kInstance});
+    }
+  }
+  // Reversed onto the stack, so that the children are placed in document order; an
+  // <instance_node>'s target is marked as being placed from its visit until the kLeave step under
+  // it is reached, after its whole subtree.
+  for (auto c = children.rbegin(); c != children.rend(); ++c) {
+    if (c->step == Step::kInstance) open_.push_back({c->node, c->T_metre_parent, Step::kLeave});
+    open_.push_back(*c);
+  }
+}
+
+void ColladaPlacer::addInstance(const TiXmlElement& instance,
+                                const Eigen::Matrix4d& T_metre_node) {
+  const TiXmlElement& element =
+      detail::referencedColladaElement(instance, "url", "geometry", ids_, source_);
+  auto found = geometries_.find(&element);
+  if (found == geometries_.end()) {
+    found = geometries_.emplace(&element, detail::readColladaGeometry(element, ids_, source_)).first;
+  }
+  const detail::ColladaGeometry& geometry = found->second;
+  if (mesh_.triangles.size() + geometry.triangles.size() > limit_) {
+    throw Error("'" + source_ + "': its scene places more than " + std::to_string(limit_) +
+                " triangles (instances of instances?): not read");
+  }
+  const int offset = int(mesh_.vertices.size());
+  for (std::size_t v = 0; v < geometry.vertices.size(); ++v) {
+    const Eigen::Vector3d p = (T_metre_node * geometry.vertices[v].homogeneous()).head<3>();
+    for (int k = 0; k < 3; ++k) {
+      if (std::isfinite(p[k]) && std::abs(p[k]) <= kLargestMeshCoordinate) continue;
+      // The message is made only for a bad coordinate (9 digits).
+      detail::checkMeshCoordinate(p[k],
+                                  "'" + source_ + "': mesh " + geometry.name + " vertex " +
+                                      std::to_string(geometry.numbers[v]) + ": " + "xyz"[k] +
+                                      " (placed, in metres)",
+                                  formatNumber(p[k], 9));
+    }
+    mesh_.vertices.push_back(p);
+  }
+  for (const auto& t : geometry.triangles) {
+    mesh_.triangles.push_back({offset + t[0], offset + t[1], offset + t[2]});
   }
 }
 
 }  // namespace
 
 TriangleMesh parseColladaMesh(const std::string& bytes, const std::string& source) {
-  const double unit = colladaUnitLength(bytes, source);
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFileFromMemory(
-      bytes.data(), bytes.size(), aiProcess_Triangulate | aiProcess_ValidateDataStructure, "dae");
-  if (scene == nullptr) {
-    throw Error("'" + source + "': assimp cannot read this COLLADA file: " +
-                escapedControlBytes(importer.GetErrorString()));
-  }
-  TriangleMesh mesh;
-  // An incomplete scene (no geometry) holds a dummy mesh of assimp's: no triangle of the file.
-  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr) return mesh;
-
-  // Depth first from the root, whose transform (assimp's unit scaling and turn to Y up) is
-  // replaced by the file's unit alone: <up_axis> is ignored, as in RViz and MoveIt.
-  struct Placed {
-    const aiNode* node;
-    Eigen::Matrix4d T_file_node;
-  };
-  Eigen::Matrix4d T_root = Eigen::Matrix4d::Identity();
-  T_root.topLeftCorner<3, 3>() *= unit;
-  std::vector<Placed> open{{scene->mRootNode, T_root}};
-  while (!open.empty()) {
-    const Placed placed = open.back();
-    open.pop_back();
-    const aiNode& node = *placed.node;
-    for (unsigned k = 0; k < node.mNumMeshes; ++k) {
-      if (node.mMeshes[k] >= scene->mNumMeshes) continue;  // ValidateDataStructure refuses it
-      addInstance(*scene->mMeshes[node.mMeshes[k]], placed.T_file_node, source, mesh);
-    }
-    for (unsigned c = node.mNumChildren; c-- > 0;) {
-      const aiNode* child = node.mChildren[c];
-      open.push_back({child, placed.T_file_node * toEigen(child->mTransformation)});
-    }
-  }
-  return mesh;
+  TiXmlDocument document;
+  const TiXmlElement& root = colladaRoot(bytes, source, document);
+  const double unit = colladaUnitLength(root, source);
+  const detail::ColladaIds ids = detail::colladaIds(root);
+  const TiXmlElement* scene = colladaVisualScene(root, ids, source);
+  if (scene == nullptr) return TriangleMesh();
+  return ColladaPlacer(ids, source, bytes.size()).place(*scene, unit);
 }
 
 }  // namespace mcws
