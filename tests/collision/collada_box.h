@@ -33,8 +33,8 @@ inline std::vector<Eigen::Vector3d> colladaBoxCorners(const ColladaBox& box) {
           {b.x(), b.y(), b.z()}, {a.x(), b.y(), b.z()}};
 }
 
-/// The COLLADA 1.4.1 text of `box`; faces wound counter-clockwise seen from outside.
-inline std::string colladaBoxText(const ColladaBox& box) {
+/// The `<geometry id="box" name="box">` element of `box` (its mesh named by `id`'s prefix).
+inline std::string colladaBoxGeometry(const ColladaBox& box, const std::string& id = "box") {
   std::string positions;
   const std::vector<Eigen::Vector3d> corners = colladaBoxCorners(box);
   for (std::size_t v = 0; v < corners.size(); ++v) {
@@ -44,33 +44,34 @@ inline std::string colladaBoxText(const ColladaBox& box) {
       positions += (positions.empty() ? "" : " ") + number;
     }
   }
-  const std::string triangles =
-      "<triangles count=\"12\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/>"
-      "<p>0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7</p></triangles>";
-  const std::string quads =
-      "<polylist count=\"6\"><input semantic=\"VERTEX\" source=\"#box-vertices\" offset=\"0\"/>"
-      "<vcount>4 4 4 4 4 4</vcount>"
-      "<p>0 3 2 1 4 5 6 7 0 1 5 4 1 2 6 5 2 3 7 6 3 0 4 7</p></polylist>";
+  const std::string triangles = "<triangles count=\"12\"><input semantic=\"VERTEX\" source=\"#" + id +
+                                "-vertices\" offset=\"0\"/><p>0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 "
+                                "1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7</p></triangles>";
+  const std::string quads = "<polylist count=\"6\"><input semantic=\"VERTEX\" source=\"#" + id +
+                            "-vertices\" offset=\"0\"/><vcount>4 4 4 4 4 4</vcount>"
+                            "<p>0 3 2 1 4 5 6 7 0 1 5 4 1 2 6 5 2 3 7 6 3 0 4 7</p></polylist>";
+  return "<geometry id=\"" + id + "\" name=\"" + id + "\"><mesh>\n    <source id=\"" + id +
+         "-positions\"><float_array id=\"" + id + "-array\" count=\"24\">" + positions +
+         "</float_array><technique_common><accessor source=\"#" + id +
+         "-array\" count=\"8\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" "
+         "type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common>"
+         "</source>\n    <vertices id=\"" + id + "-vertices\"><input semantic=\"POSITION\" "
+         "source=\"#" + id + "-positions\"/></vertices>\n    " +
+         (box.no_faces ? std::string() : box.quads ? quads : triangles) +
+         "\n  </mesh></geometry>";
+}
+
+/// The COLLADA 1.4.1 text of `box`; faces wound counter-clockwise seen from outside.
+inline std::string colladaBoxText(const ColladaBox& box) {
   std::string text =
       "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
       "<COLLADA xmlns=\"http://www.collada.org/2005/11/COLLADASchema\" version=\"1.4.1\">\n"
       "  <asset>";
   if (!box.unit_meter.empty()) text += "<unit name=\"unit\" meter=\"" + box.unit_meter + "\"/>";
   if (!box.up_axis.empty()) text += "<up_axis>" + box.up_axis + "</up_axis>";
-  text +=
-      "</asset>\n  <library_geometries><geometry id=\"box\" name=\"box\"><mesh>\n"
-      "    <source id=\"box-positions\"><float_array id=\"box-array\" count=\"24\">" +
-      positions +
-      "</float_array><technique_common><accessor source=\"#box-array\" count=\"8\" "
-      "stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" type=\"float\"/>"
-      "<param name=\"Z\" type=\"float\"/></accessor></technique_common></source>\n"
-      "    <vertices id=\"box-vertices\"><input semantic=\"POSITION\" "
-      "source=\"#box-positions\"/></vertices>\n    " +
-      (box.no_faces ? std::string()
-       : box.quads  ? quads
-                    : triangles) +
-      "\n  </mesh></geometry></library_geometries>\n"
-      "  <library_visual_scenes><visual_scene id=\"scene\">";
+  text += "</asset>\n  <library_geometries>" + colladaBoxGeometry(box) +
+          "</library_geometries>\n"
+          "  <library_visual_scenes><visual_scene id=\"scene\">";
   for (std::size_t n = 0; n < box.nodes.size(); ++n) {
     text += "<node id=\"node" + std::to_string(n) + "\">" + box.nodes[n] +
             "<instance_geometry url=\"#box\"/></node>";
