@@ -44,7 +44,8 @@ inline std::string colladaBoxGeometry(const ColladaBox& box, const std::string& 
       positions += (positions.empty() ? "" : " ") + number;
     }
   }
-  const std::string triangles = "<triangles count=\"12\"><input semantic=\"VERTEX\" source=\"#" + id +
+  const std::string triangles = "<triangles count=\"12\"><input semantic=\"VERTEX\" source=\"#" +
+                                id +
                                 "-vertices\" offset=\"0\"/><p>0 2 1 0 3 2 4 5 6 4 6 7 0 1 5 0 5 4 "
                                 "1 2 6 1 6 5 2 3 7 2 7 6 3 0 4 3 4 7</p></triangles>";
   const std::string quads = "<polylist count=\"6\"><input semantic=\"VERTEX\" source=\"#" + id +
@@ -55,9 +56,14 @@ inline std::string colladaBoxGeometry(const ColladaBox& box, const std::string& 
          "</float_array><technique_common><accessor source=\"#" + id +
          "-array\" count=\"8\" stride=\"3\"><param name=\"X\" type=\"float\"/><param name=\"Y\" "
          "type=\"float\"/><param name=\"Z\" type=\"float\"/></accessor></technique_common>"
-         "</source>\n    <vertices id=\"" + id + "-vertices\"><input semantic=\"POSITION\" "
-         "source=\"#" + id + "-positions\"/></vertices>\n    " +
-         (box.no_faces ? std::string() : box.quads ? quads : triangles) +
+         "</source>\n    <vertices id=\"" +
+         id +
+         "-vertices\"><input semantic=\"POSITION\" "
+         "source=\"#" +
+         id + "-positions\"/></vertices>\n    " +
+         (box.no_faces ? std::string()
+          : box.quads  ? quads
+                       : triangles) +
          "\n  </mesh></geometry>";
 }
 

@@ -1,8 +1,8 @@
-// COLLADA (.dae) collision meshes through mcws's reader (issue 33, item 4): the triangles of every node
-// in metres (the file's <unit> applied), the vertices in the axes they are written in (the file's
-// <up_axis> ignored, as RViz and MoveIt do), the URDF's scale on top, and each bad file one line
-// naming it. The box files come from collada_box.h; every expected number is worked out from the
-// box's corners.
+// COLLADA (.dae) collision meshes through mcws's reader (issue 33, item 4): the triangles of every
+// node in metres (the file's <unit> applied), the vertices in the axes they are written in (the
+// file's <up_axis> ignored, as RViz and MoveIt do), the URDF's scale on top, and each bad file one
+// line naming it. The box files come from collada_box.h; every expected number is worked out from
+// the box's corners.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -186,7 +186,8 @@ TEST(ColladaMeshBadInput, AMeshWithoutTrianglesIsEmpty) {
   EXPECT_EQ(colladaError(test::colladaBoxText(box)), "'bad.dae': holds no triangles");
   // No scene at all.
   std::string text = test::colladaBoxText(millimetreBox());
-  text.erase(text.find("<library_visual_scenes>"), text.find("</COLLADA>") - text.find("<library_visual_scenes>"));
+  text.erase(text.find("<library_visual_scenes>"),
+             text.find("</COLLADA>") - text.find("<library_visual_scenes>"));
   EXPECT_EQ(colladaError(text), "'bad.dae': holds no triangles");
 }
 
@@ -222,7 +223,8 @@ TEST(ColladaMeshBadInput, SizesTheFileDoesNotHoldAreRefusedBeforeAnythingIsAlloc
       text.find("<vcount>4 4 4 4 4 4<"), 20,
       "<vcount>" + half + " " + half + " " + half + " " + half + " " + half + " " + half + "<");
   EXPECT_EQ(colladaError(text), "'bad.dae': geometry 'box' <polylist> 1 <vcount> number 1 '" +
-                                    half + "': not a whole number of at most the 24 corners <p> "
+                                    half +
+                                    "': not a whole number of at most the 24 corners <p> "
                                     "has left");
   text = quads;
   text.replace(text.find("count=\"8\""), 9, "count=\"4000000000\"");
@@ -248,8 +250,9 @@ TEST(ColladaMeshBadInput, AnAttributeColladaRequiresIsThere) {
             "'bad.dae': <float_array id='box-array'> has no count attribute (COLLADA requires it)");
   text = test::colladaBoxText(millimetreBox());
   text.replace(text.find("semantic=\"VERTEX\""), 8, "semantiX");
-  EXPECT_EQ(colladaError(text), "'bad.dae': <input source='#box-vertices'> has no semantic "
-                                "attribute (COLLADA requires it)");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': <input source='#box-vertices'> has no semantic "
+            "attribute (COLLADA requires it)");
 }
 
 TEST(ColladaMeshBadInput, AnAmpersandThatStartsNoEntityIsMalformedXml) {
@@ -285,8 +288,9 @@ TEST(ColladaMeshBadInput, TheFourFuzzerFindsOfAssimpsDaysAreOneLine) {
   // count="00" with 24 numbers and a <param> without a name: assimp's SEGV.
   std::string text = boxTextWith("count=\"24\"", "count=\"00\"");
   text.replace(text.find("<param name=\"Y\""), 15, "<param naee=\"Y\"");
-  EXPECT_EQ(colladaError(text), "'bad.dae': <float_array id='box-array'>: count='0' but it holds "
-                                "24 numbers");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': <float_array id='box-array'>: count='0' but it holds "
+            "24 numbers");
   // The other three (a 0xA9 byte in <p>, counO, a stray '&') are the tests above; the files are
   // in fuzz/corpus/mesh/ too.
   text = boxTextWith("<param name=\"Y\"", "<param naee=\"Y\"");
@@ -359,14 +363,17 @@ TEST(ColladaMeshBadInput, ScenesThatNameWhatIsNotThereOrNeverEnd) {
     }
     nodes += "</node>";
   }
-  std::string text = boxTextWith("<instance_geometry url=\"#box\"/>", "<instance_node url=\"#n6\"/>");
+  std::string text =
+      boxTextWith("<instance_geometry url=\"#box\"/>", "<instance_node url=\"#n6\"/>");
   text.insert(text.find("<library_visual_scenes>"), "<library_nodes>" + nodes + "</library_nodes>");
-  EXPECT_EQ(colladaError(text), "'bad.dae': its scene places more than 1000000 triangles "
-                                "(instances of instances?): not read");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': its scene places more than 1000000 triangles "
+            "(instances of instances?): not read");
   // The same without geometry: a million nodes visited.
   text.replace(text.find("<instance_geometry url=\"#box\"/></node>"), 32, "</node>");
-  EXPECT_EQ(colladaError(text), "'bad.dae': its scene places more than 1000000 nodes (instances "
-                                "of instances?): not read");
+  EXPECT_EQ(colladaError(text),
+            "'bad.dae': its scene places more than 1000000 nodes (instances "
+            "of instances?): not read");
 }
 
 TEST(ColladaMeshBadInput, TransformsThatAreNotTheirNumbers) {

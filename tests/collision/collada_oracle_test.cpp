@@ -236,7 +236,8 @@ TEST(ColladaOracle, PolygonsStripsAndFansWithOtherInputs) {
   for (const std::string& faces : {polygons, fans_and_strip}) {
     std::string geometry = boxWithFaces(faces);
     geometry.insert(geometry.find("<vertices"), normals);
-    const std::string text = colladaFile(geometry, "<node><instance_geometry url=\"#box\"/></node>");
+    const std::string text =
+        colladaFile(geometry, "<node><instance_geometry url=\"#box\"/></node>");
     expectAsAssimpReads(text, 1.0);
     // Hand-worked: the box of 100 x 200 x 300, every face outward.
     const TriangleMesh mesh = parseColladaMesh(text, "p.dae");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include "mcws/collision/detail/mesh_checks.h"
@@ -50,15 +51,17 @@ std::string requiredColladaAttribute(const TiXmlElement& e, const char* attribut
 const TiXmlElement& referencedColladaElement(const TiXmlElement& e, const char* attribute,
                                              const char* wanted, const ColladaIds& ids,
                                              const std::string& source) {
-  const std::string reference = requiredColladaAttribute(e, attribute, source);
-  const std::string where = "'" + source + "': " + colladaElement(e) + ": ";
-  if (reference.empty() || reference[0] != '#') {
-    throw Error(where + attribute + "=" + quotedMeshWord(reference) +
+  const char* reference = e.Attribute(attribute);
+  if (reference == nullptr) requiredColladaAttribute(e, attribute, source);  // throws
+  // Messages made only for an error: a scene of many instances resolves many references.
+  const auto where = [&] { return "'" + source + "': " + colladaElement(e) + ": "; };
+  if (reference[0] != '#') {
+    throw Error(where() + attribute + "=" + quotedMeshWord(reference) +
                 " is not a reference '#id' into this file (another file's elements are not read)");
   }
-  const auto found = ids.find(reference.substr(1));
-  if (found == ids.end() || std::string(found->second->Value()) != wanted) {
-    throw Error(where + "no " + wanted + " with id " + quotedMeshWord(reference.substr(1)));
+  const auto found = ids.find(reference + 1);
+  if (found == ids.end() || std::strcmp(found->second->Value(), wanted) != 0) {
+    throw Error(where() + "no " + wanted + " with id " + quotedMeshWord(reference + 1));
   }
   return *found->second;
 }
@@ -252,8 +255,8 @@ class GeometryBuilder {
     for (std::size_t k = 0; k < words.size(); ++k) {
       std::uint64_t index = 0;
       if (!detail::parseColladaWholeNumber(words[k], index)) {
-        throw Error(where + " <p> word " + std::to_string(k + 1) + " " +
-                    quotedMeshWord(words[k]) + " is not a whole number (an index)");
+        throw Error(where + " <p> word " + std::to_string(k + 1) + " " + quotedMeshWord(words[k]) +
+                    " is not a whole number (an index)");
       }
       if (k % layout.stride != layout.vertex_offset) continue;
       if (index >= positions_.count) {
@@ -347,20 +350,22 @@ void readPolylist(const TiXmlElement& e, std::uint64_t count,
     first += std::size_t(n);
   }
   if (first != corners.size()) {
-    throw Error(where + ": <vcount> adds up to " + std::to_string(first) + " corners but <p> holds " +
-                std::to_string(corners.size()));
+    throw Error(where + ": <vcount> adds up to " + std::to_string(first) +
+                " corners but <p> holds " + std::to_string(corners.size()));
   }
 }
 
 /// One primitive element of a `<mesh>` into `builder`; lines and other elements are skipped.
-void readPrimitive(const TiXmlElement& e, const std::string& where, const ColladaPositions& positions,
-                   const ColladaIds& ids, const std::string& source, GeometryBuilder& builder) {
+void readPrimitive(const TiXmlElement& e, const std::string& where,
+                   const ColladaPositions& positions, const ColladaIds& ids,
+                   const std::string& source, GeometryBuilder& builder) {
   const std::string kind = e.Value();
   const CornerLayout layout = readCornerLayout(e, positions, where, ids, source);
   const std::uint64_t count = wholeAttribute(e, "count", -1, source);
   if (kind == "triangles" || kind == "polylist") {
     std::vector<std::uint64_t> corners;
-    if (const TiXmlElement* p = e.FirstChildElement("p")) corners = builder.corners(*p, layout, where);
+    if (const TiXmlElement* p = e.FirstChildElement("p"))
+      corners = builder.corners(*p, layout, where);
     if (kind == "polylist") return readPolylist(e, count, corners, where, builder);
     if (corners.size() != 3 * count) {
       throw Error(where + ": count='" + std::to_string(count) + "' but <p> holds " +
@@ -404,8 +409,8 @@ ColladaGeometry readColladaGeometry(const TiXmlElement& geometry, const ColladaI
   if (mesh == nullptr) return out;  // a <convex_mesh> or a <spline>: no triangles
   const std::string where = "'" + source + "': geometry " + out.name;
   const auto isPrimitive = [](const std::string& kind) {
-    return kind == "triangles" || kind == "polylist" || kind == "polygons" ||
-           kind == "trifans" || kind == "tristrips";
+    return kind == "triangles" || kind == "polylist" || kind == "polygons" || kind == "trifans" ||
+           kind == "tristrips";
   };
   std::size_t number = 0;
   for (const TiXmlElement* e = mesh->FirstChildElement(); e; e = e->NextSiblingElement()) {

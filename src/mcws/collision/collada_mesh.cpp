@@ -100,7 +100,8 @@ double colladaUnitLength(const TiXmlElement& root, const std::string& source) {
 const TiXmlElement* colladaVisualScene(const TiXmlElement& root, const detail::ColladaIds& ids,
                                        const std::string& source) {
   const TiXmlElement* scene = root.FirstChildElement("scene");
-  const TiXmlElement* instance = scene ? scene->FirstChildElement("instance_visual_scene") : nullptr;
+  const TiXmlElement* instance =
+      scene ? scene->FirstChildElement("instance_visual_scene") : nullptr;
   if (instance != nullptr) {
     return &detail::referencedColladaElement(*instance, "url", "visual_scene", ids, source);
   }
@@ -108,12 +109,12 @@ const TiXmlElement* colladaVisualScene(const TiXmlElement& root, const detail::C
   return library ? library->FirstChildElement("visual_scene") : nullptr;
 }
 
-/// The numbers of a transform element, exactly `n` finite ones.
-std::vector<double> transformNumbers(const TiXmlElement& e, std::size_t n,
-                                     const std::string& where) {
+/// The numbers of a transform element of `node`, exactly `n` finite ones.
+std::vector<double> transformNumbers(const TiXmlElement& e, std::size_t n, const TiXmlElement& node,
+                                     const std::string& source) {
   const std::string text = detail::colladaText(e);
   const std::vector<std::string_view> words = detail::colladaWords(text);
-  const std::string element = where + " <" + e.Value() + ">";
+  const std::string element = "'" + source + "': " + colladaElement(node) + " <" + e.Value() + ">";
   if (words.size() != n) {
     throw Error(element + " holds " + std::to_string(words.size()) + " numbers, not " +
                 std::to_string(n));
@@ -133,30 +134,31 @@ std::vector<double> transformNumbers(const TiXmlElement& e, std::size_t n,
 /// (COLLADA's p_parent = T1 T2 ... p_node). \throws mcws::Error for a `<lookat>` or `<skew>`
 /// (not read) or a transform that is not its numbers.
 Eigen::Matrix4d nodeTransform(const TiXmlElement& node, const std::string& source) {
-  const std::string where = "'" + source + "': " + colladaElement(node);
+  const auto where = [&] { return "'" + source + "': " + colladaElement(node); };
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   for (const TiXmlElement* e = node.FirstChildElement(); e; e = e->NextSiblingElement()) {
-    const std::string kind = e->Value();
+    const std::string_view kind = e->Value();
     Eigen::Matrix4d step = Eigen::Matrix4d::Identity();
     if (kind == "matrix") {
-      const std::vector<double> m = transformNumbers(*e, 16, where);
+      const std::vector<double> m = transformNumbers(*e, 16, node, source);
       for (int k = 0; k < 16; ++k) step(k / 4, k % 4) = m[std::size_t(k)];
     } else if (kind == "translate") {
-      const std::vector<double> t = transformNumbers(*e, 3, where);
+      const std::vector<double> t = transformNumbers(*e, 3, node, source);
       step.topRightCorner<3, 1>() = Eigen::Vector3d(t[0], t[1], t[2]);
     } else if (kind == "rotate") {
-      const std::vector<double> r = transformNumbers(*e, 4, where);
+      const std::vector<double> r = transformNumbers(*e, 4, node, source);
       const Eigen::Vector3d axis(r[0], r[1], r[2]);
       if (!(axis.norm() > 0.0)) {
-        throw Error(where + " <rotate>: the axis 0 0 0 is no direction");
+        throw Error(where() + " <rotate>: the axis 0 0 0 is no direction");
       }
       step.topLeftCorner<3, 3>() =
           Eigen::AngleAxisd(r[3] * M_PI / 180.0, axis.normalized()).toRotationMatrix();
     } else if (kind == "scale") {
-      const std::vector<double> s = transformNumbers(*e, 3, where);
+      const std::vector<double> s = transformNumbers(*e, 3, node, source);
       step.diagonal().head<3>() = Eigen::Vector3d(s[0], s[1], s[2]);
     } else if (kind == "lookat" || kind == "skew") {
-      throw Error(where + " <" + kind + ">: not read by mcws (write the node's transform as "
+      throw Error(where() + " <" + std::string(kind) +
+                  ">: not read by mcws (write the node's transform as "
                   "<matrix>, <translate>, <rotate> and <scale>)");
     } else {
       continue;
@@ -230,7 +232,7 @@ void ColladaPlacer::visit(const Open& open) {
   const Eigen::Matrix4d T_metre_node = open.T_metre_parent * nodeTransform(node, source_);
   std::vector<Open> children;
   for (const TiXmlElement* e = node.FirstChildElement(); e; e = e->NextSiblingElement()) {
-    const std::string kind = e->Value();
+    const std::string_view kind = e->Value();
     if (kind == "instance_geometry") {
       addInstance(*e, T_metre_node);
     } else if (kind == "node") {
@@ -254,13 +256,13 @@ void ColladaPlacer::visit(const Open& open) {
   }
 }
 
-void ColladaPlacer::addInstance(const TiXmlElement& instance,
-                                const Eigen::Matrix4d& T_metre_node) {
+void ColladaPlacer::addInstance(const TiXmlElement& instance, const Eigen::Matrix4d& T_metre_node) {
   const TiXmlElement& element =
       detail::referencedColladaElement(instance, "url", "geometry", ids_, source_);
   auto found = geometries_.find(&element);
   if (found == geometries_.end()) {
-    found = geometries_.emplace(&element, detail::readColladaGeometry(element, ids_, source_)).first;
+    found =
+        geometries_.emplace(&element, detail::readColladaGeometry(element, ids_, source_)).first;
   }
   const detail::ColladaGeometry& geometry = found->second;
   if (mesh_.triangles.size() + geometry.triangles.size() > limit_) {

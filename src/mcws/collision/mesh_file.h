@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// \brief Triangle meshes from STL (binary or ASCII) and Wavefront OBJ files, read by a small
-/// strict reader of mcws's own, and from COLLADA (.dae) files, read by assimp
+/// strict reader of mcws's own, and from COLLADA (.dae) files, read by mcws's COLLADA reader
 /// (mcws/collision/collada_mesh.h): every mistake is one mcws::Error naming the file, the line (or
 /// triangle, or vertex) and the bad value, nothing is printed, and no vertex that is not a finite
 /// number of sensible size reaches the collision library.
