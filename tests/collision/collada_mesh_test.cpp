@@ -393,7 +393,7 @@ TEST(ColladaMeshBadInput, TransformsThatAreNotTheirNumbers) {
   }
 }
 
-TEST(ColladaMesh, PolygonHolesAreNotCutAndInstanceNodesNameNodesAnywhere) {
+TEST(ColladaMesh, PolygonHolesAreNotCutInstanceNodesNameNodesAnywhereTheFirstIdCounts) {
   // A 4 x 4 square with a 2 x 2 hole (<ph>): the outer square is read whole (2 triangles, 16 m^2),
   // as a collision shape should (a hole in a face does not let anything through a closed body).
   const std::string geometry =
@@ -403,10 +403,12 @@ TEST(ColladaMesh, PolygonHolesAreNotCutAndInstanceNodesNameNodesAnywhere) {
       "<vertices id=\"sq-v\"><input semantic=\"POSITION\" source=\"#sq-p\"/></vertices>"
       "<polygons count=\"1\"><input semantic=\"VERTEX\" source=\"#sq-v\" offset=\"0\"/>"
       "<ph><p>0 1 2 3</p><h>4 7 6 5</h></ph></polygons></mesh></geometry>";
-  // A node of the visual scene, instantiated again by another with a translation of 10 along z.
+  // A node of the visual scene, instantiated again by another with a translation of 10 along z;
+  // a second element with the geometry's id (the first of an id counts).
   const std::string text =
       "<COLLADA><library_geometries>" + geometry +
-      "</library_geometries><library_visual_scenes><visual_scene id=\"s\"><node id=\"a\">"
+      "<geometry id=\"sq\"/></library_geometries><library_visual_scenes><visual_scene "
+      "id=\"s\"><node id=\"a\">"
       "<instance_geometry url=\"#sq\"/></node><node><translate>0 0 10</translate>"
       "<instance_node url=\"#a\"/></node></visual_scene></library_visual_scenes></COLLADA>";
   const TriangleMesh mesh = parseColladaMesh(text, "sq.dae");

@@ -20,8 +20,9 @@ ColladaIds colladaIds(const TiXmlElement& root) {
     const TiXmlElement& e = *open.back();
     open.pop_back();
     if (const char* id = e.Attribute("id")) ids.emplace(id, &e);
-    for (const TiXmlElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
-      open.push_back(c);
+    // Reversed onto the stack: the elements are met in document order, the first of an id kept.
+    for (const TiXmlNode* c = e.LastChild(); c; c = c->PreviousSibling()) {
+      if (const TiXmlElement* child = c->ToElement()) open.push_back(child);
     }
   }
   return ids;
