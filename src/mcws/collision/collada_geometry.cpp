@@ -365,8 +365,9 @@ void readPrimitive(const TiXmlElement& e, const std::string& where,
   const std::uint64_t count = wholeAttribute(e, "count", -1, source);
   if (kind == "triangles" || kind == "polylist") {
     std::vector<std::uint64_t> corners;
-    if (const TiXmlElement* p = e.FirstChildElement("p"))
+    if (const TiXmlElement* p = e.FirstChildElement("p")) {
       corners = builder.corners(*p, layout, where);
+    }
     if (kind == "polylist") return readPolylist(e, count, corners, where, builder);
     if (corners.size() != 3 * count) {
       throw Error(where + ": count='" + std::to_string(count) + "' but <p> holds " +
