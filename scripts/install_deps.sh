@@ -34,7 +34,8 @@ packages=(
   python3-dev python3-numpy     # the Python module mcws (python/): the interpreter's headers, NumPy
   pybind11-dev python3-pybind11 # its C++ bindings (pybind11's headers and CMake package)
   python3-pytest                # tests/python, run by CTest (python_api)
-  clang-14 libclang-rt-14-dev   # libFuzzer targets of fuzz/ (scripts/run_fuzzers.sh)
+  clang-14 libclang-rt-14-dev   # the sanitizer tree and the libFuzzer targets of fuzz/
+  libomp-14-dev                 # clang's OpenMP runtime (the sanitizer tree)
 )
 
 missing=()

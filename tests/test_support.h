@@ -24,7 +24,14 @@ namespace mcws::test {
 // size serves an exhaustive or statistical claim divide it by this there: the sanitizers look for
 // memory errors and undefined behaviour, which a smaller case through the same code shows as well,
 // while the release suite runs the full size (docs/testing.md).
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__)  // GCC
+#define MCWS_TEST_ASAN 1
+#elif defined(__has_feature)  // clang
+#if __has_feature(address_sanitizer)
+#define MCWS_TEST_ASAN 1
+#endif
+#endif
+#if defined(MCWS_TEST_ASAN)
 inline constexpr int kSanitizerShrink = 8;
 #else
 inline constexpr int kSanitizerShrink = 1;

@@ -1,6 +1,7 @@
 # CTest: installs the build BUILD into a temporary prefix WORK/prefix, configures and builds the
 # consumer project (tests/install/consumer) against it with find_package(mcws), and runs it.
-# cmake -DBUILD=... -DWORK=... -DCONSUMER=... [-DSANITIZE=ON] -P install_and_build.cmake
+# cmake -DBUILD=... -DWORK=... -DCONSUMER=... -DCXX=... -DCC=... [-DSANITIZE=ON]
+#   -P install_and_build.cmake
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix
                 OUTPUT_QUIET RESULT_VARIABLE status)
@@ -26,7 +27,10 @@ if(SANITIZE)
             "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG"
             -DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined)
 endif()
+# The tree's own compiler: a library built by clang calls clang's OpenMP runtime, which a GCC
+# consumer would not link.
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER} -B ${WORK}/consumer
+                        -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_C_COMPILER=${CC}
                         -DCMAKE_PREFIX_PATH=${WORK}/prefix -DCMAKE_BUILD_TYPE=Release ${flags}
                 RESULT_VARIABLE status)
 if(NOT status EQUAL 0)

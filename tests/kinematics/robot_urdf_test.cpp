@@ -2,9 +2,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/lsan_interface.h>
-#endif
 
 #include <cmath>
 #include <filesystem>
@@ -18,6 +15,9 @@
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/robot_yaml.h"
 #include "test_support.h"
+#if defined(MCWS_TEST_ASAN)
+#include <sanitizer/lsan_interface.h>
+#endif
 
 namespace mcws {
 namespace {
@@ -351,7 +351,7 @@ TEST(RobotUrdf, NamesTheJointThatClosesALoop) {
   // Every link has a parent, so urdfdom finds no root: the walk up from a meets a again first,
   // and the search from a returns to it by j2. urdfdom, rejecting this text itself, leaks the
   // links of the loop (they own each other by shared_ptr) where the loader cannot free them.
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(MCWS_TEST_ASAN)
   const __lsan::ScopedDisabler urdfdom_leaks_the_loop_it_rejects;
 #endif
   EXPECT_EQ(urdfError(R"(<robot name="r"><link name="a"/><link name="b"/>
