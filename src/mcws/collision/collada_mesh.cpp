@@ -24,9 +24,8 @@ namespace {
 using detail::colladaElement;
 
 /// Refuses a '&' that starts no XML entity (`&amp;` `&lt;` `&gt;` `&quot;` `&apos;` `&#N;`
-/// `&#xH;`), outside comments and CDATA. XML forbids it, and the two parsers read it differently:
-/// TinyXML drops it ("4&7" is 47), assimp's parser stops a number at it, so the sizes checked here
-/// would not be the sizes assimp allocates.
+/// `&#xH;`), outside comments and CDATA. XML forbids it, and parsers read it differently: TinyXML
+/// drops it ("4&7" would be read as 47), assimp's parser stops a number at it.
 void checkEntities(const std::string& bytes, const std::string& source) {
   const auto skip = [&](std::size_t at, const char* open, const char* close) {
     if (bytes.compare(at, std::strlen(open), open) != 0) return at;
