@@ -42,12 +42,15 @@ def boundary(
     points: npt.ArrayLike,
     plane: Optional[str] = None,
     *,
+    method: str = "orthant",
     radius: Optional[float] = None,
     auto_radius: Optional[float] = None,
     adaptive: Optional[int] = None,
     outer_radius: Optional[float] = None,
     min_gap: Optional[float] = None,
     hull_depth: Optional[float] = None,
+    cell: Optional[float] = None,
+    gap: Optional[float] = None,
     threads: int = 0,
 ) -> npt.NDArray[np.bool_]: ...
 def measure(
@@ -58,6 +61,8 @@ def measure(
     correction: str = "efron",
     threads: int = 0,
     length_unit: Optional[str] = None,
+    robot: Optional[Robot] = None,
+    provenance: Optional[Dict[str, Any]] = None,
 ) -> Measure: ...
 
 class Envelope(Dict[str, Any]):
@@ -74,6 +79,8 @@ def envelope(
     correction: str = "efron",
     threads: int = 0,
     length_unit: Optional[str] = None,
+    robot: Optional[Robot] = None,
+    provenance: Optional[Dict[str, Any]] = None,
 ) -> Envelope: ...
 
 class ReachMap:
