@@ -303,8 +303,10 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
 
     Returns a Measure with .area or .volume, .units, .robot, .tip and the rest of mcws_measure
     --json but for its input and seconds: the same numbers for the same points. The GIL is
-    released; Ctrl-C interrupts within about a second (checks between the phases and within
-    the exposed points, the triangulation and the alpha test).
+    released; Ctrl-C interrupts within about a second (KeyboardInterrupt): the library checks
+    between its phases and every few milliseconds within them (the local spacing, the exposed
+    points, the shell's triangulation, inserted in pieces of 32768 points, the alpha test, the
+    edge correction), the same numbers as without the checks.
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit (or one that
     is not robot's or provenance's unit), both robot and provenance, a malformed provenance, or a

@@ -105,6 +105,7 @@ std::string measureJson(const FloatRows& xyz, const std::optional<std::string>& 
   const BoundaryPlane plane = planeOf(plane_name);
   MeasureOptions options = regionOptions(alpha, correction, threads);
   options.phase = [](const std::string&) { checkSignals(); };  // Ctrl-C between phases
+  options.cancel_check = signalCheck();  // and within them (the library's loops and insertion)
   const std::optional<io::CloudProvenance> recorded = pointsRecord(robot, provenance);
   const ResultUnits units = resultUnits(length_unit, recorded);
   const io::WorkspaceCloud::Ptr cloud = cloudOf(xyz);
