@@ -162,14 +162,34 @@ def _positions(points):
     return _np.ascontiguousarray(array, dtype=_np.float32)
 
 
-def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None,
-             outer_radius=None, min_gap=None, hull_depth=None, threads=0):
-    """The boundary points of a workspace cloud: the orthant test of mcws_boundary (Yin, Wang & Yu
-    2010, section 4.3), with its settings and their defaults.
+def _record_arguments(robot, provenance):
+    """measure()'s and envelope()'s robot and provenance, checked as write_pcd() checks them."""
+    if robot is not None and provenance is not None:
+        raise UsageError("give robot or provenance, not both")
+    if robot is not None and not isinstance(robot, Robot):
+        raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    if provenance is not None and not isinstance(provenance, dict):
+        raise UsageError("provenance: give a dict as read_provenance() returns, or None")
+    return robot, provenance
+
+
+def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=None,
+             adaptive=None, outer_radius=None, min_gap=None, hull_depth=None, cell=None,
+             gap=None, threads=0):
+    """The boundary points of a workspace cloud, as mcws_boundary finds them, with its settings
+    and their defaults.
 
     points: a structured array with fields x, y, z (such as sample() or read_pcd() return) or an
         (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them.
-    plane: None (3-D, octants) or "xy", "xz", "yz" (quadrants in that plane).
+    plane: None (3-D) or "xy", "xz", "yz" (the cloud projected onto that plane).
+    method: "orthant" (default; Yin, Wang & Yu 2010, section 4.3: a point some quadrant (in a
+        plane) or octant (3-D) of whose neighbourhood is empty), "grid" (section 4.1: cells of
+        side cell; an occupied cell with an empty neighbour, 8 in 2-D, 26 in 3-D, is a boundary
+        cell, represented by its point nearest to the cell's mean) or "extremum" (4.2, needs a
+        plane: in columns of width cell along the plane's first axis, the lowest and highest
+        point along the second, and both points around any gap wider than gap), as
+        mcws_boundary --method.
+    Orthant only:
     radius: a fixed search radius [length unit] (mcws_boundary --radius).
     auto_radius: c of a radius c x the cloud's mean spacing (--auto-radius).
     adaptive: k of a per-point radius 2 x the distance to the k-th neighbour (--adaptive; the
@@ -179,17 +199,26 @@ def boundary(points, plane=None, *, radius=None, auto_radius=None, adaptive=None
     min_gap: 2-D: the empty sector that makes a boundary point [deg], in [90, 180) (default 92).
     hull_depth: 2-D: keep points less than t local spacings inside the convex hull of their
         neighbourhood, 0 = off, else in [0.1, 10] (default 1).
-    threads: worker threads, 0 = all cores (the result does not depend on it).
+    threads: worker threads, 0 = all cores (the result does not depend on it); the grid and
+        extremum methods run on one thread and take only 0 (as the tool refuses --threads).
+    Grid and extremum only:
+    cell: grid: the cell side, extremum: the column width dL [length unit] (--cell; default:
+        from the number of points and the mean spacing).
+    gap: extremum: a gap along the column wider than this is an inner boundary [length unit]
+        (--gap; default: from the density).
 
     Returns a boolean array of N entries, True for the points mcws_boundary writes with the same
-    settings (points[mask] is its output); non-finite points are False.
+    settings (points[mask] holds its output's points, in the input's order); non-finite points
+    are False.
 
-    Raises mcws.UsageError for settings out of their range for this cloud (the ranges of
-    mcws_boundary: lengths between a tenth of the mean spacing and the cloud's extent, ...) or a
-    cloud flat in one of the plane's axes; mcws.Error for a cloud with too few distinct points.
+    Raises mcws.UsageError with mcws_boundary's messages (the flag named as the argument) for an
+    unknown method, a setting of another method, a length that is not positive, settings out of
+    their range for this cloud (lengths between a tenth of the mean spacing and the cloud's
+    extent, ...), method "extremum" without a plane, or a cloud flat in one of the plane's axes;
+    mcws.Error for a cloud with too few distinct points.
     """
-    return _boundary(_positions(points), plane, radius, auto_radius, adaptive, outer_radius,
-                     min_gap, hull_depth, threads)
+    return _boundary(_positions(points), plane, method, radius, auto_radius, adaptive,
+                     outer_radius, min_gap, hull_depth, cell, gap, threads)
 
 
 def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="tool", fix=None,
@@ -243,12 +272,15 @@ class Measure(_Record):
     the edge correction; uncorrected: the kept simplices' total before the correction;
     correction: "efron" or "none"; alpha: the simplex size limit [local spacings]; points:
     distinct points; triangulated; boundary_vertices; outside (Efron's count); plane; method;
-    length_unit; units: the unit of each dimensioned number.
+    length_unit; robot and tip: the robot's name and the frame whose origin the points are (a
+    URDF's tip link, a D-H robot's "tool" or "flange"), None when not known; units: the unit of
+    each dimensioned number.
     """
 
 
 
-def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None):
+def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None,
+            robot=None, provenance=None):
     """The area (in a plane) or volume (3-D) of the region a cloud samples, as mcws_measure.
 
     points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
@@ -259,17 +291,31 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         (for refined clouds whose samples lie on the edge).
     threads: worker threads, 0 = all cores (the result does not depend on it).
     length_unit: "m", "cm" or "mm": the unit of the positions, named in the result's units
-        (default: "unrecorded", as mcws_measure for a cloud that records none).
+        (default: the unit of robot or provenance, else "unrecorded", as mcws_measure for a
+        cloud that records none).
+    robot, provenance: what the points are of, which an array does not record (give one or
+        neither): provenance, a dict as read_provenance() returns (read_provenance(path) of the
+        file read_pcd(path) read gives mcws_measure's robot and tip for that file); robot, the
+        mcws.Robot sample() drew them from at its tool point (names as mcws_sample records them:
+        the robot's name and, as tip, its URDF tip link or "tool"; for points sampled at the
+        flange give provenance). Neither: the result's robot and tip are None, as mcws_measure's
+        for a cloud that records no robot.
 
-    Returns a Measure with .area or .volume, .units and the rest of mcws_measure --json but for
-    its input and seconds: the same numbers for the same points. The GIL is released; Ctrl-C
-    interrupts between the phases (local spacing, triangulation, alpha test, edge correction).
+    Returns a Measure with .area or .volume, .units, .robot, .tip and the rest of mcws_measure
+    --json but for its input and seconds: the same numbers for the same points. The GIL is
+    released; Ctrl-C interrupts within about a second (KeyboardInterrupt): the library checks
+    between its phases and every few milliseconds within them (the local spacing, the exposed
+    points, the shell's triangulation, inserted in pieces of 32768 points, the alpha test, the
+    edge correction), the same numbers as without the checks.
 
-    Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit, or a cloud
-    flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D cloud.
+    Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit (or one that
+    is not robot's or provenance's unit), both robot and provenance, a malformed provenance, or a
+    cloud flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D
+    cloud.
     """
-    return Measure(_json.loads(
-        _measure(_positions(points), plane, alpha, correction, threads, length_unit)))
+    robot, provenance = _record_arguments(robot, provenance)
+    return Measure(_json.loads(_measure(_positions(points), plane, alpha, correction, threads,
+                                        length_unit, robot, provenance)))
 
 
 class Envelope(_Record):
@@ -281,7 +327,8 @@ class Envelope(_Record):
     measure_volume (mcws_measure's), uncorrected, filled_volume [length unit^3], area
     [length unit^2], offset [length unit], alpha [local spacings], correction, points, vertices
     and triangles (the counts), edges, euler_characteristic, closed_and_oriented,
-    non_manifold_edges, length_unit and units (the unit of each number).
+    non_manifold_edges, length_unit, robot and tip (as Measure's: None when not known) and units
+    (the unit of each number).
 
     vertices: the mesh's vertices, a float64 (V, 3) array [length unit] (the attribute; the count
         is result["vertices"]).
@@ -298,8 +345,8 @@ class Envelope(_Record):
         """Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by
         the extension of path (.ply, .stl, .vtk), lengths in the positions' unit; the file
         appears whole or not at all. source names the cloud in the file's comment
-        ("mcws_envelope of <source>, lengths in <unit>"): mcws_envelope's --input path gives
-        its bytes.
+        ("mcws_envelope of <source>, lengths in <unit>"; with a robot known, "of robot '<name>',
+        tip <tip>, from <source>"): mcws_envelope's --input path gives its bytes.
 
         Raises mcws.Error naming the file for another extension or when it cannot be written.
         """
@@ -319,7 +366,8 @@ class Envelope(_Record):
         return Measure(_json.loads(self._mesh.drawing(float(azimuth))))
 
 
-def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None):
+def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None, robot=None,
+             provenance=None):
     """The workspace envelope of a 3-D cloud as a closed, outward-oriented triangle mesh, as
     mcws_envelope makes it: the surface of the tetrahedra measure() keeps (the alpha shape at the
     same alpha), moved outward so that it encloses measure()'s volume (with correction "none",
@@ -331,15 +379,22 @@ def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=N
     correction: "efron" (uniform samples; default) or "none" (refined clouds).
     threads: worker threads, 0 = all cores (the result does not depend on it).
     length_unit: "m", "cm" or "mm": the unit of the positions, named in the result's units and
-        the files (default: "unrecorded", as mcws_envelope for a cloud that records none).
+        the files (default: the unit of robot or provenance, else "unrecorded", as mcws_envelope
+        for a cloud that records none).
+    robot, provenance: what the points are of, as measure()'s: the result's robot and tip, and
+        the robot and tip the saved mesh's comment names (None and none without them).
 
-    Returns an Envelope: .vertices (V, 3), .triangles (T, 3), .volume, .units, .save(path),
+    Returns an Envelope: .vertices (V, 3), .triangles (T, 3), .volume, .units, .robot, .tip,
+    .save(path),
     .drawing(azimuth) and the rest of mcws_envelope --json: the same numbers and, saved, the same
     file as the tool for the same points. The GIL is released; Ctrl-C interrupts within about a
     second (the points are triangulated in pieces of 32768 so it can: the same mesh as the tool's,
     for somewhat more CPU).
 
-    Raises mcws.UsageError for a bad alpha, correction, threads or length_unit; mcws.Error for too
-    few distinct points, a flat cloud, or an offset that does not converge.
+    Raises mcws.UsageError for a bad alpha, correction, threads or length_unit, robot or
+    provenance (as measure()); mcws.Error for too few distinct points, a flat cloud, or an offset
+    that does not converge.
     """
-    return Envelope(_envelope(_positions(points), alpha, correction, threads, length_unit))
+    robot, provenance = _record_arguments(robot, provenance)
+    return Envelope(_envelope(_positions(points), alpha, correction, threads, length_unit, robot,
+                              provenance))

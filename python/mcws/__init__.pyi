@@ -36,18 +36,26 @@ def refine(
 ) -> npt.NDArray[np.void]: ...
 
 class Measure(Dict[str, Any]):
+    # The robot's name and the frame whose origin the points are (a URDF tip link, "tool",
+    # "flange"), from measure()'s robot= or provenance=; None when neither was given (an array
+    # records no robot), as the tools' null for a cloud that records none.
+    robot: Optional[str]
+    tip: Optional[str]
     def __getattr__(self, name: str) -> Any: ...
 
 def boundary(
     points: npt.ArrayLike,
     plane: Optional[str] = None,
     *,
+    method: str = "orthant",
     radius: Optional[float] = None,
     auto_radius: Optional[float] = None,
     adaptive: Optional[int] = None,
     outer_radius: Optional[float] = None,
     min_gap: Optional[float] = None,
     hull_depth: Optional[float] = None,
+    cell: Optional[float] = None,
+    gap: Optional[float] = None,
     threads: int = 0,
 ) -> npt.NDArray[np.bool_]: ...
 def measure(
@@ -58,11 +66,15 @@ def measure(
     correction: str = "efron",
     threads: int = 0,
     length_unit: Optional[str] = None,
+    robot: Optional[Robot] = None,
+    provenance: Optional[Dict[str, Any]] = None,
 ) -> Measure: ...
 
 class Envelope(Dict[str, Any]):
     vertices: npt.NDArray[np.float64]
     triangles: npt.NDArray[np.uint32]
+    robot: Optional[str]  # as Measure's: None without robot= or provenance=
+    tip: Optional[str]
     def __getattr__(self, name: str) -> Any: ...
     def save(self, path: Union[str, "os.PathLike[str]"], source: str = "points") -> None: ...
     def drawing(self, azimuth: float = 0.0) -> Measure: ...
@@ -74,6 +86,8 @@ def envelope(
     correction: str = "efron",
     threads: int = 0,
     length_unit: Optional[str] = None,
+    robot: Optional[Robot] = None,
+    provenance: Optional[Dict[str, Any]] = None,
 ) -> Envelope: ...
 
 class ReachMap:
@@ -120,6 +134,8 @@ _Targets = Union[str, "os.PathLike[str]", npt.ArrayLike]
 
 class _PointsResult(Dict[str, Any]):
     points: npt.NDArray[np.void]
+    robot: str  # the robot's name
+    tip: str  # its URDF tip link, or "tool" for a D-H robot
     def __getattr__(self, name: str) -> Any: ...
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
 

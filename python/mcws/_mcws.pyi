@@ -85,12 +85,15 @@ def _write_points(
 def _boundary(
     xyz: npt.NDArray[np.float32],
     plane: Optional[str],
+    method: str,
     radius: Optional[float],
     auto_radius: Optional[float],
     adaptive: Optional[int],
     outer_radius: Optional[float],
     min_gap: Optional[float],
     hull_depth: Optional[float],
+    cell: Optional[float],
+    gap: Optional[float],
     threads: int,
 ) -> npt.NDArray[np.bool_]: ...
 def _measure(
@@ -100,6 +103,8 @@ def _measure(
     correction: str,
     threads: int,
     length_unit: Optional[str],
+    robot: Optional[Robot],
+    provenance: Optional[Dict[str, Any]],
 ) -> str: ...
 def _refine(
     robot: Robot,
@@ -128,6 +133,8 @@ def _envelope(
     correction: str,
     threads: int,
     length_unit: Optional[str],
+    robot: Optional[Robot],
+    provenance: Optional[Dict[str, Any]],
 ) -> _Envelope: ...
 
 class _ReachMap:

@@ -26,8 +26,9 @@ class ReachMap:
 
     header: the map file's header as a dict (robot, robot_file, robot_sha256, length_unit,
         samples, seed, collision, manipulability); length_unit: its length unit.
-    summary: mcws_reach --json's summary but for files, processes and seconds (a dict), or None
-        for a map read with ReachMap.load.
+    summary: mcws_reach --json's summary but for files, processes and seconds (a dict, with
+        "robot", the robot's name, and "tip", the frame mapped: a URDF robot's tip link, a D-H
+        robot's "tool"), or None for a map read with ReachMap.load.
     """
 
     def __init__(self, core):
@@ -165,7 +166,9 @@ class _PointsResult(_Record):
 
 class ReachStudy(_PointsResult):
     """A reach study's result, as mcws_reach --targets gives it: a dict of its --json summary but
-    for output and seconds (keys also attributes): targets, reached, solved, share_reached [1],
+    for output and seconds (keys also attributes): robot (the robot's name), tip (the frame
+    placed on the targets: a URDF robot's tip link, a D-H robot's "tool"), length_unit, targets,
+    reached, solved, share_reached [1],
     mean_score, mean_manipulability_reached, manipulability (how it is measured),
     min_clearance_reached [length unit] (None when not measured), collision,
     approach_tolerance_deg [deg], ik_starts, seed and unreached (per target not reached: solved,
@@ -182,7 +185,8 @@ class ReachStudy(_PointsResult):
 
 class Placement(_PointsResult):
     """A base placement, as mcws_place gives it: a dict of its --json summary but for output and
-    seconds (keys also attributes): targets, positions, map (its grid and where it came from),
+    seconds (keys also attributes): robot and tip (as ReachStudy's), length_unit, targets,
+    positions, map (its grid and where it came from),
     manipulability, collision, approach_tolerance_deg [deg], candidates (per position: offset
     [length unit], map_share and ik_share [1], map_score and ik_score; ik_* None where IK did not
     confirm it) and best (the best confirmed candidate with reached and base_position [length

@@ -31,7 +31,9 @@ void bindRobot(py::module_& m);
 void bindSampling(py::module_& m);
 /// \brief mcws.read_pcd, mcws.read_provenance and the writer behind mcws.write_pcd.
 void bindCloud(py::module_& m);
-/// \brief The C++ parts of mcws.boundary and mcws.measure.
+/// \brief The C++ part of mcws.boundary.
+void bindBoundary(py::module_& m);
+/// \brief The C++ part of mcws.measure.
 void bindWorkspace(py::module_& m);
 /// \brief The C++ part of mcws.refine.
 void bindRefine(py::module_& m);

@@ -13,6 +13,7 @@
 #include "mcws/io/provenance.h"
 #include "mcws/sampling/sampler.h"
 #include "point_layout.h"
+#include "positions.h"
 
 namespace mcws::python {
 
@@ -84,42 +85,6 @@ py::object provenanceDict(const std::optional<io::CloudProvenance>& provenance) 
     out["input"] = input;
   }
   return out;
-}
-
-/// The provenance a dict of provenanceDict()'s keys records, checked as a header line is.
-io::CloudProvenance provenanceFromDict(const py::dict& dict) {
-  return asUsageError("provenance", [&] {
-    try {
-      io::CloudProvenance provenance(
-          py::cast<std::string>(dict["robot"]), py::cast<std::string>(dict["file"]),
-          py::cast<std::string>(dict["sha256"]), py::cast<std::string>(dict["length_unit"]));
-      if (dict.contains("base_link"))
-        provenance.base_link = py::cast<std::string>(dict["base_link"]);
-      if (dict.contains("tip_link")) provenance.tip_link = py::cast<std::string>(dict["tip_link"]);
-      if (dict.contains("sampling") && !dict["sampling"].is_none()) {
-        const auto sampling = dict["sampling"].cast<py::dict>();
-        io::SamplingRecord record;
-        record.point = py::cast<std::string>(sampling["point"]);
-        record.collision = py::cast<bool>(sampling["collision"]);
-        for (const auto& [name, value] : sampling["fix"].cast<py::dict>()) {
-          record.fixed.emplace_back(py::cast<std::string>(name), py::cast<double>(value));
-        }
-        provenance.sampling = record;
-      }
-      if (dict.contains("input") && !dict["input"].is_none()) {
-        const auto input = dict["input"].cast<py::dict>();
-        provenance.input = io::InputCloud{py::cast<std::uint64_t>(input["points"]),
-                                          py::cast<std::string>(input["sha256"]),
-                                          py::cast<std::uint64_t>(input["boundary_points"])};
-      }
-      // What a header records must read back: the same checks as a file's line.
-      return io::parseProvenanceComment(io::provenanceComment(provenance));
-    } catch (const py::error_already_set& e) {  // a missing key
-      throw Error(std::string("a key is missing or of the wrong type: ") + e.what());
-    } catch (const py::cast_error& e) {
-      throw Error(std::string("a value is of the wrong type: ") + e.what());
-    }
-  });
 }
 
 /// Writes `points` (records of pointDtype<PointT>(joints)) as binary PCD, q beyond the first
@@ -195,6 +160,41 @@ other tools and of sample_shape().
 Raises mcws.Error naming the file as read_pcd() does for a bad header.)";
 
 }  // namespace
+
+io::CloudProvenance provenanceFromDict(const py::dict& dict) {
+  return asUsageError("provenance", [&] {
+    try {
+      io::CloudProvenance provenance(
+          py::cast<std::string>(dict["robot"]), py::cast<std::string>(dict["file"]),
+          py::cast<std::string>(dict["sha256"]), py::cast<std::string>(dict["length_unit"]));
+      if (dict.contains("base_link"))
+        provenance.base_link = py::cast<std::string>(dict["base_link"]);
+      if (dict.contains("tip_link")) provenance.tip_link = py::cast<std::string>(dict["tip_link"]);
+      if (dict.contains("sampling") && !dict["sampling"].is_none()) {
+        const auto sampling = dict["sampling"].cast<py::dict>();
+        io::SamplingRecord record;
+        record.point = py::cast<std::string>(sampling["point"]);
+        record.collision = py::cast<bool>(sampling["collision"]);
+        for (const auto& [name, value] : sampling["fix"].cast<py::dict>()) {
+          record.fixed.emplace_back(py::cast<std::string>(name), py::cast<double>(value));
+        }
+        provenance.sampling = record;
+      }
+      if (dict.contains("input") && !dict["input"].is_none()) {
+        const auto input = dict["input"].cast<py::dict>();
+        provenance.input = io::InputCloud{py::cast<std::uint64_t>(input["points"]),
+                                          py::cast<std::string>(input["sha256"]),
+                                          py::cast<std::uint64_t>(input["boundary_points"])};
+      }
+      // What a header records must read back: the same checks as a file's line.
+      return io::parseProvenanceComment(io::provenanceComment(provenance));
+    } catch (const py::error_already_set& e) {  // a missing key
+      throw Error(std::string("a key is missing or of the wrong type: ") + e.what());
+    } catch (const py::cast_error& e) {
+      throw Error(std::string("a value is of the wrong type: ") + e.what());
+    }
+  });
+}
 
 void bindCloud(py::module_& m) {
   m.def("read_pcd", &readPcdArray, kReadPcdDoc, py::arg("path"));

@@ -6,6 +6,8 @@
 #include <optional>
 
 #include "bindings.h"
+#include "loaded_robot.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
 #include "mcws/workspace/envelope_report.h"
@@ -22,14 +24,18 @@ struct EnvelopeResult {
   MeasureOptions options;
   ResultUnits units;
   pcl::PointCloud<pcl::PointXYZ> points;
+  std::optional<io::CloudProvenance> recorded;  ///< the robot of the points (pointsRecord())
 };
 
 std::unique_ptr<EnvelopeResult> makeEnvelope(const FloatRows& xyz,
                                              const std::optional<double>& alpha,
                                              const std::string& correction, int threads,
-                                             const std::optional<std::string>& length_unit) {
+                                             const std::optional<std::string>& length_unit,
+                                             const LoadedRobot* robot,
+                                             const py::object& provenance) {
   MeasureOptions options = regionOptions(alpha, correction, threads);
-  const ResultUnits units = resultUnits(length_unit);
+  std::optional<io::CloudProvenance> recorded = pointsRecord(robot, provenance);
+  const ResultUnits units = resultUnits(length_unit, recorded);
   const io::WorkspaceCloud::Ptr cloud = cloudOf(xyz);
   py::gil_scoped_release release;
   checkedRegion(*cloud, BoundaryPlane::k3D, false);
@@ -40,7 +46,7 @@ std::unique_ptr<EnvelopeResult> makeEnvelope(const FloatRows& xyz,
   options.phase = nullptr;
   options.cancel_check = nullptr;
   return std::make_unique<EnvelopeResult>(
-      EnvelopeResult{std::move(envelope), options, units, std::move(points)});
+      EnvelopeResult{std::move(envelope), options, units, std::move(points), std::move(recorded)});
 }
 
 py::array vertexArray(const EnvelopeResult& result) {
@@ -78,7 +84,8 @@ constexpr char kSaveDoc[] =
     R"(Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by the
 extension of path (.ply, .stl, .vtk), lengths in the positions' unit; the file appears whole or
 not at all. source names the cloud in the file's comment ("mcws_envelope of <source>, lengths in
-<unit>"): the tool's --input path gives the tool's bytes.
+<unit>", or of "robot '<robot>', tip <tip>, from <source>" when robot or provenance was given):
+the tool's --input path gives the tool's bytes.
 
 Raises mcws.Error naming the file for another extension or when it cannot be written.)";
 
@@ -88,7 +95,9 @@ void bindEnvelope(py::module_& m) {
   py::class_<EnvelopeResult>(m, "_Envelope", "mcws.envelope's C++ part (see mcws.Envelope).")
       .def("summary",
            [](const EnvelopeResult& r) {
-             return envelopeSummary(r.envelope, r.options, std::nullopt, r.units).dump();
+             nlohmann::json out = envelopeSummary(r.envelope, r.options, std::nullopt, r.units);
+             addRecordedRobotNames(out, r.recorded);
+             return out.dump();
            })
       .def("vertices", &vertexArray)
       .def("triangles", &triangleArray)
@@ -97,14 +106,16 @@ void bindEnvelope(py::module_& m) {
           [](const EnvelopeResult& r, const py::object& path, const std::string& source) {
             const std::string file = pathArgument(path);
             py::gil_scoped_release release;
-            saveSurface(r.envelope.mesh, file, source, r.units.lengthName());
+            saveSurface(r.envelope.mesh, file, io::describeCloud(source, r.recorded),
+                        r.units.lengthName());
           },
           kSaveDoc, py::arg("path"), py::arg("source"))
       .def("drawing", &drawingJson, py::arg("azimuth"));
   m.def("_envelope", &makeEnvelope,
         "mcws.envelope's C++ part: the envelope of float32 (N, 3) positions.", py::arg("xyz"),
         py::arg("alpha").none(true), py::arg("correction"), py::arg("threads"),
-        py::arg("length_unit").none(true));
+        py::arg("length_unit").none(true), py::arg("robot").none(true),
+        py::arg("provenance").none(true));
 }
 
 }  // namespace mcws::python

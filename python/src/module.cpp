@@ -1,6 +1,6 @@
 // The mcws extension module (_mcws): errors and the helpers every binding file shares; the
-// bindings themselves are one file per job (robot.cpp, sampling.cpp, cloud.cpp, workspace.cpp,
-// refine.cpp, envelope.cpp, reach.cpp, reach_query.cpp, reach_study.cpp).
+// bindings themselves are one file per job (robot.cpp, sampling.cpp, cloud.cpp, boundary.cpp,
+// workspace.cpp, refine.cpp, envelope.cpp, reach.cpp, reach_query.cpp, reach_study.cpp).
 #include <chrono>
 #include <limits>
 
@@ -15,6 +15,7 @@ PYBIND11_MODULE(_mcws, m) {
   bindRobot(m);
   bindSampling(m);
   bindCloud(m);
+  bindBoundary(m);
   bindWorkspace(m);
   bindRefine(m);
   bindEnvelope(m);

@@ -11,6 +11,7 @@
 #include "mcws/core/length_unit.h"
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/io/provenance.h"
 #include "mcws/workspace/measure.h"
 
 namespace mcws::python {
@@ -33,9 +34,26 @@ CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane,
 /// "none") and threads, checked as the tools' --alpha, --correction and --threads.
 MeasureOptions regionOptions(const std::optional<double>& alpha, const std::string& correction,
                              int threads);
-/// \brief The units of a result whose positions are in `length_unit` ("m", "cm", "mm"; none:
-/// "unrecorded"). \throws UsageError for another name.
-ResultUnits resultUnits(const std::optional<std::string>& length_unit);
+/// \brief The units of a result whose positions are in `length_unit` ("m", "cm", "mm"), else in the
+/// unit `recorded` names, else "unrecorded". \throws UsageError for another name, or one that is
+/// not the recorded unit.
+ResultUnits resultUnits(const std::optional<std::string>& length_unit,
+                        const std::optional<io::CloudProvenance>& recorded = std::nullopt);
+
+struct LoadedRobot;
+
+/// \brief What a cloud file's header would record of the points of mcws.measure and mcws.envelope
+/// (an array records nothing): `provenance`, a dict as read_provenance() returns, checked as
+/// write_pcd() checks it; or for `robot` (an mcws.Robot) the record mcws_sample writes of a cloud
+/// sampled at its tool point (robot name, file, chain, point "tool"); none without either. The
+/// results name "robot" and "tip" from it, as the tools name them from their input's header.
+/// \throws UsageError for a malformed provenance.
+std::optional<io::CloudProvenance> pointsRecord(const LoadedRobot* robot,
+                                                const py::object& provenance);
+
+/// \brief The provenance a dict of read_provenance()'s keys records, checked as a header line is.
+/// \throws UsageError "provenance: ..." naming what is wrong.
+io::CloudProvenance provenanceFromDict(const py::dict& dict);
 
 /// \brief `call()`, a library mcws::Error it throws prefixed with "points: " (as a tool names its
 /// input file); usage errors pass unchanged.

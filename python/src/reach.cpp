@@ -17,6 +17,7 @@
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/reach_map.h"
 #include "mcws/reach/reach_report.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
 #include "reach_map_result.h"
 #include "reach_query.h"
@@ -70,9 +71,10 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
     result->map = buildReachMap(robot, grid, sampling, std::ref(checkpoint));
   }
   if (result->map.size() == 0) throw Error("no sample counted: every sample collides");
-  const nlohmann::json summary =
+  nlohmann::json summary =
       mapSummary(robot, grid, sampling, sampling.samples, result->map, checker != nullptr);
   result->header = mapFileHeader(robot, provenance.file, provenance.sha256, summary);
+  addRobotNames(summary, robot);  // after the header, as mcws_reach --json
   result->summary = summary.dump();
   result->source = "reach_map()";
   return result;

@@ -19,6 +19,7 @@
 #include "mcws/reach/reach_report.h"
 #include "mcws/reach/reach_study.h"
 #include "mcws/reach/targets_file.h"
+#include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
 #include "point_layout.h"
 #include "reach_map_result.h"
@@ -149,7 +150,9 @@ std::unique_ptr<StudyResult> reachStudy(const LoadedRobot& loaded, const py::han
   for (std::size_t i = 0; i < targets.size(); ++i) {
     result->points.push_back(reachTargetPoint(targets[i], reaches[i]));
   }
-  result->summary = studySummary(robot, options, reaches, checker != nullptr).dump();
+  nlohmann::json summary = studySummary(robot, options, reaches, checker != nullptr);
+  addRobotNames(summary, robot);  // "robot" and "tip", as mcws_reach --targets --json
+  result->summary = summary.dump();
   return result;
 }
 
@@ -241,6 +244,7 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
       placementSummary(robot, targets.size(), map, about, options, checker != nullptr, candidates,
                        bestCandidate(candidates));
   summary["confirmation"] = confirmationJson(placement, candidates);
+  addRobotNames(summary, robot);  // "robot" and "tip", as mcws_place --json
   result->summary = summary.dump();
   return result;
 }

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import mcws
-from conftest import run_tool, tool_json
+from conftest import robot_path, run_tool, tool_json
 
 
 @pytest.fixture(scope="module")
@@ -28,8 +28,7 @@ def test_envelope_is_mcws_envelope(ball):
     result = mcws.envelope(points)
     drawing = expected.pop("drawing")
     del drawing["file"]
-    # The tool names the file and what it records (robot, tip); the arrays carry neither.
-    for name in ("input", "output", "seconds", "robot", "tip"):
+    for name in ("input", "output", "seconds"):
         del expected[name]
     units = {k: v for k, v in expected.pop("units").items() if "." not in k and k != "seconds"}
     assert result.units == units
@@ -49,6 +48,29 @@ def test_envelope_file_is_mcws_envelope_file(ball, tmp_path, extension):
     run_tool("envelope", "--input", path, "--output", tool_file)
     mcws.envelope(points).save(own, source=path)
     assert own.read_bytes() == tool_file.read_bytes()
+
+
+def test_envelope_of_a_robot_cloud_names_it_as_mcws_envelope(tmp_path):
+    # The inspection arm's chain to link6, sampled and written with its record: the tool's JSON
+    # and mesh comment name the robot and the tip; so do the function's, given the robot or the
+    # file's record.
+    arm = mcws.Robot(robot_path("inspection6.urdf"), tip="link6")
+    points = mcws.sample(arm, 4000, seed=2)
+    path = tmp_path / "arm.pcd"
+    mcws.write_pcd(path, points, robot=arm)
+    tool_mesh = tmp_path / "tool.stl"
+    expected = tool_json("envelope", "--input", path, "--output", tool_mesh, "--correction",
+                         "none")
+    assert (expected["robot"], expected["tip"], expected["length_unit"]) == (arm.name, "link6",
+                                                                            "m")
+    for result in (mcws.envelope(points, correction="none", robot=arm),
+                   mcws.envelope(mcws.read_pcd(path), correction="none",
+                                 provenance=mcws.read_provenance(path))):
+        assert (result.robot, result.tip, result.length_unit) == (arm.name, "link6", "m")
+        assert result.volume == expected["volume"]
+        own = tmp_path / "own.stl"
+        result.save(own, source=path)
+        assert own.read_bytes() == tool_mesh.read_bytes()
 
 
 def test_envelope_mesh_is_closed_and_encloses_its_volume(ball):

@@ -36,10 +36,10 @@ def test_reach_map_is_mcws_reach(tool_map, own_map, tmp_path):
     own_map.save_points(own_points)
     assert own_file.read_bytes() == map_file.read_bytes()
     assert own_points.read_bytes() == points.read_bytes()
-    # "tip": the tool names the frame it measured; the caller holds the robot.
-    for name in ("output", "processes", "resumed_samples", "seconds", "tip"):
+    for name in ("output", "processes", "resumed_samples", "seconds"):
         del summary[name]
     assert own_map.summary == summary
+    assert (own_map.summary["robot"], own_map.summary["tip"]) == ("ta1400", "tool")
     cloud = mcws.read_pcd(points)
     assert len(own_map) == len(cloud) == summary["voxels"]
     for axis, name in enumerate("xyz"):

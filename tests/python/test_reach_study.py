@@ -45,7 +45,8 @@ def test_reach_study_is_mcws_reach_targets(planar2, targets, tmp_path):
     expected = tool_json("reach", "--robot", robot_path("planar2.yaml"), "--targets", path,
                          "--quality-task", "position", "--seed", 2, "--output", heat)
     study = mcws.reach_study(planar2, path, quality_task="position", seed=2, threads=2)
-    assert dict(study) == without(expected, "output", "seconds", "tip")
+    assert dict(study) == without(expected, "output", "seconds")
+    assert (study.robot, study.tip) == ("planar2", "tool")
     own = tmp_path / "own.pcd"
     study.save(own)
     assert own.read_bytes() == heat.read_bytes()
@@ -83,7 +84,7 @@ def test_place_is_mcws_place(planar2, targets, tmp_path):
                          "--samples", 30000, "--output", bases)
     result = mcws.place(planar2, path, np.arange(-40, 41, 20), resolution=5, samples=30000,
                         quality_task="position", seed=2)
-    assert dict(result) == without(expected, "output", "seconds", "tip")
+    assert dict(result) == without(expected, "output", "seconds")
     own = tmp_path / "own.pcd"
     result.save(own)
     assert own.read_bytes() == bases.read_bytes()
@@ -97,8 +98,37 @@ def test_place_is_mcws_place(planar2, targets, tmp_path):
                          bases, "--confirm", "all")
     result = mcws.place(planar2, path, [0, 10, 20], map=mcws.ReachMap.load(map_file),
                         quality_task="position", seed=2, confirm=None)
-    assert dict(result) == without(expected, "output", "seconds", "tip")
+    assert dict(result) == without(expected, "output", "seconds")
     assert result.best is not None and result.map["about"]["source"] == str(map_file)
+
+
+def test_robot_and_tip_of_a_urdf_chain_are_the_tools(tmp_path):
+    # The inspection arm's chain to link6 (not its flange, the whole tree's leaf): both tools and
+    # both functions name that chain's tip, as --tip link6 does.
+    urdf = robot_path("inspection6.urdf")
+    arm = mcws.Robot(urdf, tip="link6")
+    pose = arm.fk([0.3, -0.4, 0.5, 0.0, 0.2, 0.0])
+    targets = tmp_path / "targets.csv"
+    x, y, z = pose[:3, 3]
+    targets.write_text(f"x,y,z,normal_x,normal_y,normal_z\n{x!r},{y!r},{z!r},0,0,-1\n")
+    chain = ["--robot", urdf, "--tip", "link6", "--targets", targets, "--seed", 2,
+             "--no-collision"]
+    expected = tool_json("reach", *chain, "--approach-tolerance", "180deg", "--output",
+                         tmp_path / "heat.pcd")
+    study = mcws.reach_study(arm, targets, seed=2, collision=False, approach_tolerance=180)
+    assert dict(study) == without(expected, "output", "seconds")
+    assert (study.robot, study.tip) == (expected["robot"], "link6")
+    expected = tool_json("place", *chain, "--along", "0 0.1 0.1", "--resolution", 0.2,
+                         "--samples", 2000, "--output", tmp_path / "bases.pcd")
+    result = mcws.place(arm, targets, [0.0, 0.1], resolution=0.2, samples=2000, seed=2,
+                        collision=False)
+    assert dict(result) == without(expected, "output", "seconds")
+    assert (result.robot, result.tip) == (expected["robot"], "link6")
+    expected = tool_json("reach", "--robot", urdf, "--tip", "link6", "--resolution", 0.2,
+                         "--samples", 2000, "--seed", 2, "--output", tmp_path / "map.pcd")
+    summary = mcws.reach_map(arm, 0.2, 2000, seed=2).summary
+    assert summary == without(expected, "output", "processes", "resumed_samples", "seconds")
+    assert summary["tip"] == "link6"
 
 
 def test_reach_study_and_place_errors(planar2, ta1400, targets, tmp_path):

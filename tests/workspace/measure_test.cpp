@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -409,6 +410,38 @@ TEST(DelaunayMeasure, TheShellGivesTheSameMeasureForAnyThreadCount) {
     EXPECT_EQ(many.measure, one.measure) << threads;
     EXPECT_EQ(many.boundary_vertices, one.boundary_vertices) << threads;
     EXPECT_EQ(many.outside, one.outside) << threads;
+  }
+}
+
+TEST(DelaunayMeasure, ACancelCheckInEveryPhaseChangesNoNumberAndWhatItThrowsEndsTheCall) {
+  // 150000 points of the ball: a shell of about 40000 points, so two pieces of the insertion.
+  const auto cloud = shapeCloud(Shape::kBall, 150000 / test::kSanitizerShrink, 10);
+  MeasureOptions options;
+  options.threads = 2;
+  const RegionMeasure whole = delaunayMeasure(cloud, 3, options);
+  std::string phase;
+  std::map<std::string, int> checks;  // by phase
+  options.phase = [&](const std::string& name) { phase = name; };
+  options.cancel_check = [&] { ++checks[phase]; };
+  const RegionMeasure checked = delaunayMeasure(cloud, 3, options);
+  EXPECT_EQ(checked.measure, whole.measure);
+  EXPECT_EQ(checked.uncorrected, whole.uncorrected);
+  EXPECT_EQ(checked.triangulated, whole.triangulated);
+  EXPECT_EQ(checked.boundary_vertices, whole.boundary_vertices);
+  EXPECT_EQ(checked.outside, whole.outside);
+  // Each phase checks within itself: what the check throws there ends the call there.
+  struct Stop {};
+  for (const char* stop_in :
+       {"local spacing", "exposed points", "triangulation", "alpha test", "edge correction"}) {
+    EXPECT_GE(checks[stop_in], 1) << stop_in;
+    std::string stopped;
+    options.cancel_check = [&] {
+      if (phase != stop_in) return;
+      stopped = phase;
+      throw Stop{};
+    };
+    EXPECT_THROW(delaunayMeasure(cloud, 3, options), Stop) << stop_in;
+    EXPECT_EQ(stopped, stop_in);
   }
 }
 

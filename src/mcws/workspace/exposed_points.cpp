@@ -334,7 +334,11 @@ void markCovered(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
 
 template <int D>
 ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                      const std::vector<double>& radius, int threads) {
+                      const std::vector<double>& radius, int threads,
+                      const CancelCheck& cancel_check) {
+  const auto check = [&] {
+    if (cancel_check) cancel_check();
+  };
   const std::size_t points = cloud.size();
   ExposedPoints result;
   result.exposed.assign(points, 1);
@@ -363,6 +367,7 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     // A grid whose points are a few scattered ones (the edge's, in a uniform cloud) is not worth
     // its pass over the cloud: they stay exposed.
     if (members[g].size() < kFewestOnAGrid * static_cast<double>(points)) continue;
+    check();
     const double low = smallest * std::pow(kClassRatio, g * kClassesPerGrid);
     const double high = low * std::pow(kClassRatio, kClassesPerGrid);
     // The grid spans the members' balls; every point in it bounds the cover radii.
@@ -370,8 +375,10 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     const std::vector<std::uint32_t> nearby = pointsInBox<D>(cloud, lo, hi);
     const double cap = std::max(kCellsPerPoint * static_cast<double>(nearby.size()), 4096.0);
     const Grid grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
+    check();
     const std::vector<float> cover = coverRadius<D>(cloud, nearby, grid, threads);
     for (int j = g * kClassesPerGrid; j < std::min(classes, (g + 1) * kClassesPerGrid); ++j) {
+      check();
       markCovered<D>(cloud, grid, cover, j, smallest * std::pow(kClassRatio, j), members[g],
                      class_of, threads, result);
     }
@@ -382,7 +389,8 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
 }  // namespace
 
 ExposedPoints exposedPoints(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
-                            const std::vector<double>& radius, int threads) {
+                            const std::vector<double>& radius, int threads,
+                            const CancelCheck& cancel_check) {
   if (dimensions != 2 && dimensions != 3) {
     throw Error("dimensions must be 2 or 3, got " + std::to_string(dimensions));
   }
@@ -391,7 +399,8 @@ ExposedPoints exposedPoints(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dim
                 std::to_string(cloud.size()) + " points");
   }
   if (threads <= 0) threads = omp_get_max_threads();
-  return dimensions == 2 ? exposed<2>(cloud, radius, threads) : exposed<3>(cloud, radius, threads);
+  return dimensions == 2 ? exposed<2>(cloud, radius, threads, cancel_check)
+                         : exposed<3>(cloud, radius, threads, cancel_check);
 }
 
 }  // namespace mcws

@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
+
 namespace mcws {
 
 /// \brief Result of exposedPoints().
@@ -46,8 +48,11 @@ struct ExposedPoints {
 /// \param radius the radius for each point [length unit]; non-positive or non-finite: exposed.
 /// \param threads worker threads for the passes; 0: OpenMP's default. The flags do not depend on
 ///   it.
+/// \param cancel_check called between the passes (when set); what it throws ends the call
+///   (CancelCheck).
 /// \throws mcws::Error for a bad `dimensions` or a `radius` of another size than the cloud.
 ExposedPoints exposedPoints(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
-                            const std::vector<double>& radius, int threads = 0);
+                            const std::vector<double>& radius, int threads = 0,
+                            const CancelCheck& cancel_check = {});
 
 }  // namespace mcws

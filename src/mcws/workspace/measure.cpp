@@ -28,10 +28,11 @@ constexpr int kNeighbour = 8;
 constexpr double kLargestMissingShare = 0.5;
 
 std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
-                                 int threads) {
+                                 int threads, const CancelCheck& cancel_check) {
   const double scale =
       dimensions == 2 ? std::sqrt(kNeighbour / M_PI) : std::cbrt(3.0 * kNeighbour / (4.0 * M_PI));
-  const std::vector<float> d2 = kthNeighbourSquaredDistance(cloud, dimensions, kNeighbour, threads);
+  const std::vector<float> d2 =
+      kthNeighbourSquaredDistance(cloud, dimensions, kNeighbour, threads, cancel_check);
   std::vector<double> spacing(d2.size());
   for (std::size_t i = 0; i < d2.size(); ++i) {
     spacing[i] = std::sqrt(static_cast<double>(d2[i])) / scale;
@@ -125,7 +126,8 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
     if (options.phase) options.phase("edge correction");
     // A boundary vertex counts when its point lies outside the region of the others.
     result.outside = options.leave_one_out == LeaveOneOut::kStar
-                         ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads)
+                         ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads,
+                                            nullptr, options.cancel_check)
                          : outsideByRemoval<D>(dt, boundary, spacing, alpha_factor);
   }
   if constexpr (D == 3) {
@@ -158,7 +160,8 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   if (options.phase) options.phase("local spacing");
   MeasureOptions resolved = options;
   resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  const std::vector<double> spacing = detail::localSpacing(*flat, dimensions, resolved.threads);
+  const std::vector<double> spacing =
+      detail::localSpacing(*flat, dimensions, resolved.threads, options.cancel_check);
   // CGAL's parallel triangulation runs on TBB's threads: at most as many as OpenMP's (TBB also
   // stops at the core count). The limit holds for the whole process while this call runs.
   const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism,

@@ -107,9 +107,12 @@ struct MeasureOptions {
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
   /// correction").
   std::function<void(const std::string&)> phase;
-  /// Called between pieces of the long steps of a full triangulation (options.surface,
-  /// LeaveOneOut::kRemoveAndReinsert): the insertion, then done in pieces of 32768 points (the
-  /// same triangulation), the alpha test and the surface repair (CancelCheck).
+  /// Called on the calling thread every few milliseconds of work within the phases
+  /// (CancelCheck): the local spacing's neighbour searches, the exposed points' passes, the
+  /// insertion (then done in pieces of 32768 points sorted along a Hilbert curve: the same
+  /// triangulation), the alpha test (and the shell's completion, round by round), the edge
+  /// correction's stars and the surface repair. What it throws ends the call. It changes no
+  /// number of the result.
   CancelCheck cancel_check;
 };
 

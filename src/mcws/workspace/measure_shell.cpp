@@ -179,28 +179,37 @@ void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
 /// The points an empty ball of alpha radius may touch (exposedPoints()): 1 for a point of the
 /// shell, 0 for a point left out.
 std::vector<char> shellPoints(const pcl::PointCloud<pcl::PointXYZ>& points, int dimensions,
-                              const std::vector<double>& spacing, double alpha_factor,
-                              int threads) {
+                              const std::vector<double>& spacing, double alpha_factor, int threads,
+                              const CancelCheck& cancel_check) {
   std::vector<double> reach(spacing.size());
   for (std::size_t i = 0; i < spacing.size(); ++i) reach[i] = alpha_factor * spacing[i];
-  return exposedPoints(points, dimensions, reach, threads).exposed;
+  return exposedPoints(points, dimensions, reach, threads, cancel_check).exposed;
 }
 
 /// Flags every simplex of `dt` kept (1) or dropped (0) as `keep` says, the infinite ones dropped.
 /// \return the finite simplices.
 template <int D, typename Delaunay, typename Keep>
-std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(Delaunay& dt, const Keep& keep,
-                                                                   int threads) {
+std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(
+    Delaunay& dt, const Keep& keep, int threads, const CancelCheck& cancel_check) {
   std::vector<typename SimplexOf<D, Delaunay>::Handle> finite;
   finite.reserve(D == 2 ? 2 * dt.number_of_vertices() : 7 * dt.number_of_vertices());
   for (const auto s : allSimplices<D>(dt)) {
     s->info() = 0;
     if (!dt.is_infinite(s)) finite.push_back(s);
   }
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 4096)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
-    finite[i]->info() = keep(finite[i]);
+  FirstError error;  // what cancel_check throws leaves the parallel region through it
+#pragma omp parallel num_threads(threads)
+  {
+    CancelPacer pacer = callingThreadPacer(cancel_check, kCancelStride);
+#pragma omp for schedule(dynamic, 4096)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
+      error.run(i, [&] {
+        pacer.step();
+        finite[i]->info() = keep(finite[i]);
+      });
+    }
   }
+  error.rethrow();
   return finite;
 }
 
@@ -298,11 +307,13 @@ template <int D, typename Delaunay, typename Keep>
 void completeStars(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
                    const std::vector<typename Delaunay::Vertex_handle>& boundary,
                    LeftOut<D>& left_out, const Keep& keep,
-                   std::vector<typename SimplexOf<D, Delaunay>::Handle>& finite, int threads) {
+                   std::vector<typename SimplexOf<D, Delaunay>::Handle>& finite, int threads,
+                   const CancelCheck& cancel_check) {
   std::vector<typename SimplexOf<D, Delaunay>::Handle> stars = keptStars<D>(dt, boundary);
   std::vector<char> on_boundary(points.size(), 0);
   for (const auto v : boundary) on_boundary[v->info()] = 1;
   for (;;) {
+    if (cancel_check) cancel_check();  // between rounds
     const std::vector<std::uint32_t> joining = leftOutInStars<D>(dt, stars, left_out, threads);
     if (joining.empty()) break;
     const auto joined = insertJoining<D>(dt, points, joining, left_out);
@@ -340,24 +351,25 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   const double alpha_factor = options.alpha_factor;
   const int threads = options.threads;
   if (options.phase) options.phase("exposed points");
-  const std::vector<char> in_shell = shellPoints(points, D, spacing, alpha_factor, threads);
+  const std::vector<char> in_shell =
+      shellPoints(points, D, spacing, alpha_factor, threads, options.cancel_check);
   LeftOut<D> left_out(points, in_shell);
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
-  triangulate<D, Concurrency>(dt, points, in_shell);
+  triangulate<D, Concurrency>(dt, points, in_shell, options.cancel_check);
 
   if (options.phase) options.phase("alpha test");
   // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).
   const auto keep = [&](const Simplex& s) -> char {
     return withinAlpha<D>(s, spacing, alpha_factor) || left_out.inside(dt, s, false, nullptr);
   };
-  std::vector<Simplex> finite = flagSimplices<D>(dt, keep, threads);
+  std::vector<Simplex> finite = flagSimplices<D>(dt, keep, threads, options.cancel_check);
   // Joins below replace only kept simplices (a dropped one has no left-out point in its
   // circumsphere, and a simplex around a covered point is within its alpha limit), so the
   // boundary vertices are final.
   const auto boundary = boundaryVertices<D>(dt, points.size());
   if (options.edge_correction) {
-    completeStars<D>(dt, points, boundary, left_out, keep, finite, threads);
+    completeStars<D>(dt, points, boundary, left_out, keep, finite, threads, options.cancel_check);
   }
   RegionMeasure result;
   result.uncorrected = keptTotal<D>(finite, boundingMeasure(points, D), threads);
@@ -366,7 +378,8 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   result.boundary_vertices = boundary.size();
   if (options.edge_correction) {
     if (options.phase) options.phase("edge correction");
-    result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads);
+    result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads, nullptr,
+                                      options.cancel_check);
   }
   return result;
 }

@@ -16,6 +16,7 @@
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
 #include "mcws/search/cell_grid.h"
+#include "mcws/workspace/detail/cancel_pacing.h"
 
 namespace mcws {
 namespace {
@@ -39,6 +40,7 @@ constexpr std::size_t kLeafSize = 20;
 /// order).
 template <int D>
 std::vector<float> kthNeighbour(const pcl::PointCloud<pcl::PointXYZ>& cloud, int k, int threads,
+                                const CancelCheck& cancel_check,
                                 const std::vector<pcl::index_t>* only = nullptr) {
   using Tree =
       nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, CloudAdaptor>,
@@ -48,22 +50,28 @@ std::vector<float> kthNeighbour(const pcl::PointCloud<pcl::PointXYZ>& cloud, int
   const std::size_t wanted = std::min<std::size_t>(static_cast<std::size_t>(k) + 1, cloud.size());
   const std::size_t queries = only ? only->size() : cloud.size();
   std::vector<float> result(queries, 0.0f);
+  FirstError error;  // what cancel_check throws leaves the parallel region through it
 #pragma omp parallel num_threads(threads)
   {
     std::vector<std::uint32_t> indices(wanted);
     std::vector<float> d2(wanted);
+    CancelPacer pacer = detail::callingThreadPacer(cancel_check, detail::kPointCancelStride);
 #pragma omp for schedule(static)
     for (std::int64_t j = 0; j < static_cast<std::int64_t>(queries); ++j) {
-      // Every point in the tree's leaf order, or the given ones in theirs.
-      const std::size_t at = only ? static_cast<std::size_t>(j) : tree.vAcc[j];
-      const std::size_t i = only ? static_cast<std::size_t>((*only)[j]) : at;
-      nanoflann::KNNResultSet<float, std::uint32_t> found(wanted);
-      found.init(indices.data(), d2.data());
-      tree.findNeighbors(found, cloud[i].data, nanoflann::SearchParams());
-      // The point itself is among the k + 1 found (at distance 0); the largest is the k-th other.
-      result[at] = found.size() == 0 ? 0.0f : d2[found.size() - 1];
+      error.run(j, [&] {
+        pacer.step();
+        // Every point in the tree's leaf order, or the given ones in theirs.
+        const std::size_t at = only ? static_cast<std::size_t>(j) : tree.vAcc[j];
+        const std::size_t i = only ? static_cast<std::size_t>((*only)[j]) : at;
+        nanoflann::KNNResultSet<float, std::uint32_t> found(wanted);
+        found.init(indices.data(), d2.data());
+        tree.findNeighbors(found, cloud[i].data, nanoflann::SearchParams());
+        // The point itself is among the k + 1 found (at distance 0); the largest is the k-th.
+        result[at] = found.size() == 0 ? 0.0f : d2[found.size() - 1];
+      });
     }
   }
+  error.rethrow();
   return result;
 }
 
@@ -79,7 +87,7 @@ constexpr double kCrowdedCells = 16.0;
 /// force. \return false (and leaves `result` alone) when the cloud is too crowded for the grid.
 template <int D>
 bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, int threads,
-             std::vector<float>& result) {
+             const CancelCheck& cancel_check, std::vector<float>& result) {
   const std::size_t n = cloud.size();
   Eigen::Array3d lo = Eigen::Array3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& p : cloud) {
@@ -102,9 +110,11 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
   {
     CellGridSearch search(grid, cloud, reach, 4.0 * grid.cellSize());
     std::vector<pcl::index_t> own;
+    CancelPacer pacer = detail::callingThreadPacer(cancel_check, detail::kPointCancelStride);
 #pragma omp for schedule(dynamic, 4096)
     for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
       error.run(k, [&] {
+        pacer.step();
         const pcl::index_t i = grid.order()[k];
         const std::optional<float> d2 = search.kthDistance2(i, static_cast<int>(wanted), nullptr);
         if (d2) {
@@ -120,7 +130,7 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
   error.rethrow();
   if (!declined.empty()) {
     const std::vector<float> tree =
-        kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, &declined);
+        kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, cancel_check, &declined);
     for (std::size_t j = 0; j < declined.size(); ++j) result[declined[j]] = tree[j];
   }
   return true;
@@ -129,7 +139,8 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
 }  // namespace
 
 std::vector<float> kthNeighbourSquaredDistance(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                                               int dimensions, int k, int threads) {
+                                               int dimensions, int k, int threads,
+                                               const CancelCheck& cancel_check) {
   if (dimensions != 2 && dimensions != 3) {
     throw Error("dimensions must be 2 or 3, got " + std::to_string(dimensions));
   }
@@ -138,11 +149,13 @@ std::vector<float> kthNeighbourSquaredDistance(const pcl::PointCloud<pcl::PointX
   if (threads <= 0) threads = omp_get_max_threads();
   const std::size_t wanted = std::min<std::size_t>(static_cast<std::size_t>(k) + 1, cloud.size());
   std::vector<float> result;
-  if (cloud.size() >= 2 && (dimensions == 2 ? gridKth<2>(cloud, wanted, threads, result)
-                                            : gridKth<3>(cloud, wanted, threads, result))) {
+  if (cloud.size() >= 2 &&
+      (dimensions == 2 ? gridKth<2>(cloud, wanted, threads, cancel_check, result)
+                       : gridKth<3>(cloud, wanted, threads, cancel_check, result))) {
     return result;
   }
-  return dimensions == 2 ? kthNeighbour<2>(cloud, k, threads) : kthNeighbour<3>(cloud, k, threads);
+  return dimensions == 2 ? kthNeighbour<2>(cloud, k, threads, cancel_check)
+                         : kthNeighbour<3>(cloud, k, threads, cancel_check);
 }
 
 }  // namespace mcws

@@ -7,6 +7,8 @@
 
 #include <vector>
 
+#include "mcws/core/cancel_check.h"
+
 namespace mcws {
 
 /// \brief Squared distance from every point to its k-th nearest other point.
@@ -23,8 +25,11 @@ namespace mcws {
 /// \param k the neighbour's rank among the other points (k >= 1); a cloud of at most k points
 ///   gives each point its farthest other point (0 for a single point).
 /// \param threads worker threads; 0: OpenMP's default.
+/// \param cancel_check called on the calling thread every few thousand of its queries (when set);
+///   what it throws ends the search and is rethrown (CancelCheck).
 /// \throws mcws::Error for a bad `dimensions` or `k`.
 std::vector<float> kthNeighbourSquaredDistance(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                                               int dimensions, int k, int threads = 0);
+                                               int dimensions, int k, int threads = 0,
+                                               const CancelCheck& cancel_check = {});
 
 }  // namespace mcws

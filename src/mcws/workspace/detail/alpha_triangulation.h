@@ -35,6 +35,7 @@
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
+#include "mcws/workspace/detail/cancel_pacing.h"
 
 namespace mcws::detail {
 
@@ -46,6 +47,9 @@ constexpr int kLockGridCells = 50;
 constexpr std::size_t kInsertPiece = 32768;
 /// Simplices between two checks for cancelling in a loop over the triangulation.
 constexpr unsigned kCancelStride = 65536;
+/// Boundary vertices between two checks for cancelling in the leave-one-out count (a small
+/// triangulation of each one's star: tens of microseconds).
+constexpr unsigned kStarCancelStride = 512;
 
 /// A simplex's vertex points in the order of their indices (the vertex info), so that what is
 /// computed from them does not depend on how the triangulation happens to store the simplex
@@ -296,22 +300,26 @@ bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
 // triangulation lists them in an order that depends on the thread count, and where v's point
 // lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
 // returns depends on how that triangulation was built.
-/// With `flags` (one per point, by vertex info), also flags each vertex counted.
+/// With `flags` (one per point, by vertex info), also flags each vertex counted. `cancel_check`
+/// (when set) is called on the calling thread every kStarCancelStride of its vertices.
 template <int D, typename Delaunay>
 std::size_t outsideByStar(const Delaunay& dt,
                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
                           const std::vector<double>& spacing, double alpha_factor, int threads,
-                          std::vector<char>* flags = nullptr) {
+                          std::vector<char>* flags = nullptr,
+                          const CancelCheck& cancel_check = {}) {
   using Local = typename Simplices<D>::Local;
   std::size_t outside = 0;
-  FirstError error;  // running out of memory leaves the parallel region through it
+  FirstError error;  // running out of memory or cancelling leaves the parallel region through it
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<typename Delaunay::Vertex_handle> neighbours;
     std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
+    CancelPacer pacer = callingThreadPacer(cancel_check, kStarCancelStride);
 #pragma omp for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(boundary.size()); ++i) {
       error.run(i, [&] {
+        pacer.step();
         const auto v = boundary[i];
         neighbours.clear();
         adjacentVertices<D>(dt, v, neighbours);

@@ -14,9 +14,9 @@ namespace mcws::detail {
 
 /// The local spacing at every point [length unit]: its distance to the k-th nearest neighbour
 /// (k = 8) over that distance's mean for a uniform cloud of mean spacing 1, sqrt(k / pi) in 2-D
-/// and (3k / (4 pi))^(1/3) in 3-D.
+/// and (3k / (4 pi))^(1/3) in 3-D. `cancel_check` as kthNeighbourSquaredDistance()'s.
 std::vector<double> localSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions,
-                                 int threads);
+                                 int threads, const CancelCheck& cancel_check = {});
 
 /// The distinct positions of `points` (projected onto z = 0 in 2-D), after checking the
 /// dimensions, the alpha factor, the point count and that every coordinate is finite.
