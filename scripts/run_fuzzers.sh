@@ -5,10 +5,17 @@
 # 2 GB of memory fails the run: the input is kept in the work directory named in the message, to
 # be added as a regression test.
 # Usage: scripts/run_fuzzers.sh [SECONDS per target (default 30)] [NAME...]
+#        scripts/run_fuzzers.sh --build-only   (builds them and stops; run_tests.sh does this at
+#        low priority while the sanitizer tests run)
 #   NAME: robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh (default all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 all=(robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh)
+build_only=0
+if [[ ${1:-} == --build-only ]]; then
+  build_only=1
+  shift
+fi
 
 seconds=30
 if (($#)) && [[ $1 != [a-z]* ]]; then
@@ -36,6 +43,7 @@ build=$root/build-fuzz
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DMCWS_BUILD_FUZZERS=ON \
   -DMCWS_BUILD_TESTS=OFF -DMCWS_BUILD_BENCHMARKS=OFF -DMCWS_BUILD_EXAMPLES=OFF \
   --target mcws_fuzzers >"$build.build.log" 2>&1 || { tail -n 40 "$build.build.log" >&2; exit 1; }
+((build_only)) && exit 0
 
 # Leaks inside libraries that mcws cannot free, each explained in the file.
 export LSAN_OPTIONS="suppressions=$root/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"

@@ -12,7 +12,11 @@ phase() {  # phase NAME COMMAND...: runs the command, notes its wall time
   "$@"
   phases+=("$(printf '%-22s %5d s' "$name" $((SECONDS - start)))")
 }
+fuzz_build=""
 report() {
+  if [[ -n $fuzz_build ]]; then  # stopped early: end the fuzzers' build (its process group)
+    kill -- "-$fuzz_build" 2>/dev/null || true
+  fi
   echo "run_tests: wall time per phase" >&2
   for line in "${phases[@]}"; do echo "  $line" >&2; done
   echo "  $(printf '%-22s %5d s' total "$SECONDS")" >&2
@@ -31,6 +35,24 @@ costs() {
 phase "dependencies" "$root/scripts/install_deps.sh"
 phase "release build" "$root/scripts/build.sh" "$root/build"
 costs "$root/build"
+# The fuzzers' clang build (fuzz/, about 180 s of CPU) runs from here on at the lowest priority,
+# on what the test phases leave of the cores (tests that wait on subprocesses, files, MPI); the
+# fuzzer phase at the end waits for it.
+fuzz_log=$(mktemp /tmp/mcws_fuzz_build.XXXXXX)
+setsid nice -n 19 "$root/scripts/run_fuzzers.sh" --build-only >"$fuzz_log" 2>&1 &
+fuzz_build=$!
+fuzz() {
+  local status=0
+  wait "$fuzz_build" || status=$?
+  fuzz_build=""
+  if ((status)); then
+    cat "$fuzz_log" >&2
+    return 1
+  fi
+  rm -f "$fuzz_log"
+  "$root/scripts/run_fuzzers.sh" 20
+}
+
 phase "release tests" ctest --test-dir "$root/build" --output-on-failure -j "$(nproc)"
 
 # clang (installed for the fuzzers anyway): it compiles the instrumented tree in about 60 % of
@@ -50,4 +72,4 @@ phase "sanitizer tests" env OMP_WAIT_POLICY=passive \
   ctest --test-dir "$root/build-asan" --output-on-failure -j "$(nproc)"
 
 # The file loaders under libFuzzer (fuzz/): 20 s each on the seed corpus, in a clang build.
-phase "fuzzers (build, run)" "$root/scripts/run_fuzzers.sh" 20
+phase "fuzzers (build's rest, run)" fuzz
