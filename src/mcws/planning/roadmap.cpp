@@ -7,14 +7,17 @@
 #include <ompl/datastructures/NearestNeighborsLinear.h>
 #include <ompl/geometric/planners/prm/PRM.h>
 #include <ompl/util/Console.h>
+#include <algorithm>
 #include <boost/graph/dijkstra_shortest_paths.hpp>
 #include <cmath>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <unordered_map>
 
 #include "mcws/core/counter_rng.h"
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 
 namespace mcws {
 
@@ -34,6 +37,16 @@ void setJoints(ob::State* state, const Eigen::VectorXd& q, const Eigen::VectorXd
   Eigen::Map<Eigen::VectorXd>(u, scale.size()) = q.cwiseProduct(scale);
 }
 
+/// Draw `index` of the uniform stream within the joint limits.
+Eigen::VectorXd counterSample(const Robot& robot, const CounterRng& rng, std::uint64_t index) {
+  Eigen::VectorXd q(robot.dof());
+  for (int j = 0; j < robot.dof(); ++j) {
+    const Joint& joint = robot.joints[j];
+    q[j] = joint.lower + (joint.upper - joint.lower) * rng.uniform(index, j);
+  }
+  return q;
+}
+
 /// Uniform milestones within the limits from a counter-based stream: draw i depends only on the
 /// seed and i, so the roadmap does not depend on OMPL's global random generator.
 class CounterSampler : public ob::ValidStateSampler {
@@ -44,13 +57,7 @@ class CounterSampler : public ob::ValidStateSampler {
     name_ = "mcws_counter";
   }
   bool sample(ob::State* state) override {
-    Eigen::VectorXd q(robot_.dof());
-    for (int j = 0; j < robot_.dof(); ++j) {
-      const Joint& joint = robot_.joints[j];
-      q[j] = joint.lower + (joint.upper - joint.lower) * rng_.uniform(index_, j);
-    }
-    ++index_;
-    setJoints(state, q, scale_);
+    setJoints(state, counterSample(robot_, rng_, index_++), scale_);
     return si_->isValid(state);
   }
   bool sampleNear(ob::State* state, const ob::State* /*near*/, double /*distance*/) override {
@@ -74,6 +81,10 @@ class CertifiedMotionValidator : public ob::MotionValidator {
         T_world_base_(T_world_base),
         scale_(scale) {}
   bool checkMotion(const ob::State* s1, const ob::State* s2) const override {
+    if (const auto ahead = checked_.find({s1, s2}); ahead != checked_.end()) {
+      (ahead->second ? valid_ : invalid_)++;
+      return ahead->second;
+    }
     const Eigen::VectorXd q1 = jointsOf(s1, scale_), q2 = jointsOf(s2, scale_);
     certifier_.motionBounds(q1, q2, PairSet::kAll, bounds_);
     double cap = certifier_.options().resolution;
@@ -85,6 +96,61 @@ class CertifiedMotionValidator : public ob::MotionValidator {
     (free ? valid_ : invalid_)++;
     return free;
   }
+  /// \brief Checks the motions `edges` (first, second) on all threads, ahead of PRM's calls of
+  /// checkMotion(), which then look them up: the answers are exact, so the roadmap is the one
+  /// the calls would have made one by one. Forgets the edges checked before.
+  void checkAhead(const std::vector<std::pair<const ob::State*, const ob::State*>>& edges) {
+    checked_.clear();
+    // The ends' clearances, each to the largest cap its motions need, computed once: their cache
+    // entries are made here, so the parallel loop below writes into entries it does not move.
+    std::vector<double> caps(edges.size());
+    std::unordered_map<const ob::State*, double> need;
+    std::vector<double> bounds;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto [s1, s2] = edges[e];
+      certifier_.motionBounds(jointsOf(s1, scale_), jointsOf(s2, scale_), PairSet::kAll, bounds);
+      double cap = certifier_.options().resolution;
+      for (double b : bounds) cap = std::max(cap, b + certifier_.options().resolution);
+      caps[e] = cap;
+      for (const ob::State* s : {s1, s2}) need[s] = std::max(need[s], cap);
+    }
+    std::vector<std::pair<const ob::State*, double>> ends(need.begin(), need.end());
+    for (const auto& [state, cap] : ends) cache_[state];
+    std::vector<char> free(edges.size(), 0);
+    FirstError error;
+#pragma omp parallel
+    {
+      CollisionChecker::Scratch scratch;
+#pragma omp for schedule(dynamic)
+      for (std::size_t k = 0; k < ends.size(); ++k) {
+        error.run(k, [&] {
+          Cached& cached = cache_.find(ends[k].first)->second;
+          if (cached.cap < ends[k].second) {
+            certifier_.clearances(jointsOf(ends[k].first, scale_), T_world_base_, PairSet::kAll,
+                                  ends[k].second, scratch, cached.values);
+            cached.cap = ends[k].second;
+          }
+        });
+      }
+#pragma omp for schedule(dynamic)
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        error.run(ends.size() + e, [&] {
+          const auto [s1, s2] = edges[e];
+          const std::vector<double>& c1 = cache_.find(s1)->second.values;
+          const std::vector<double>& c2 = cache_.find(s2)->second.values;
+          const auto clear = [](const std::vector<double>& c) {
+            return std::all_of(c.begin(), c.end(), [](double v) { return v > 0.0; });
+          };
+          free[e] = clear(c1) && clear(c2) &&
+                    certifier_.motionFree(jointsOf(s1, scale_), c1, jointsOf(s2, scale_), c2,
+                                          T_world_base_, PairSet::kAll, scratch);
+        });
+      }
+    }
+    error.rethrow();
+    for (std::size_t e = 0; e < edges.size(); ++e) checked_.emplace(edges[e], free[e] != 0);
+  }
+
   bool checkMotion(const ob::State* s1, const ob::State* s2,
                    std::pair<ob::State*, double>& last_valid) const override {
     const bool free = checkMotion(s1, s2);
@@ -121,6 +187,12 @@ class CertifiedMotionValidator : public ob::MotionValidator {
   mutable CollisionChecker::Scratch scratch_;
   mutable std::vector<double> bounds_;
   mutable std::unordered_map<const ob::State*, Cached> cache_;
+  struct PairHash {
+    std::size_t operator()(const std::pair<const ob::State*, const ob::State*>& p) const {
+      return std::hash<const void*>()(p.first) * 31u ^ std::hash<const void*>()(p.second);
+    }
+  };
+  std::unordered_map<std::pair<const ob::State*, const ob::State*>, bool, PairHash> checked_;
 };
 
 /// OMPL's PRM with its milestone insertion opened up, so that start and goal are added after
@@ -130,6 +202,40 @@ class RoadmapBuilder : public og::PRM {
  public:
   using og::PRM::PRM;
   Vertex add(const ob::State* state) { return addMilestone(si_->cloneState(state)); }
+
+  /// \brief Adds `states` (taking them over) as milestones in order, their motions to the
+  /// neighbours PRM will pick checked ahead on all threads: PRM connects a new milestone to its
+  /// k nearest among the milestones before it (OMPL's KStrategy on NearestNeighborsLinear, which
+  /// sorts the milestones in the order they were added), so those neighbours are known before
+  /// the milestones are added. A motion not foreseen is checked when PRM asks for it.
+  void addBatch(const std::vector<ob::State*>& states, unsigned k,
+                CertifiedMotionValidator& validator) {
+    std::vector<const ob::State*> before;
+    for (Vertex v = 0; v < boost::num_vertices(g_); ++v) before.push_back(stateProperty_[v]);
+    std::vector<std::pair<const ob::State*, const ob::State*>> edges;
+    std::vector<std::size_t> order;
+    std::vector<double> distance;
+    for (const ob::State* state : states) {
+      distance.resize(before.size());
+      order.resize(before.size());
+      for (std::size_t i = 0; i < before.size(); ++i) {
+        distance[i] = si_->distance(before[i], state);
+        order[i] = i;
+      }
+      const auto nearer = [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; };
+      if (order.size() > k) {
+        std::partial_sort(order.begin(), order.begin() + k, order.end(), nearer);
+        order.resize(k);
+      } else {
+        std::sort(order.begin(), order.end(), nearer);
+      }
+      for (std::size_t i : order) edges.emplace_back(before[i], state);
+      before.push_back(state);
+    }
+    validator.checkAhead(edges);
+    for (ob::State* state : states) addMilestone(state);
+    validator.checkAhead({});  // nothing looked up past the batch
+  }
   /// Exact, deterministic k nearest neighbours (OMPL's default GNAT picks pivots at random).
   void useExactNeighbours() {
     setNearestNeighbors<ompl::NearestNeighborsLinear>();
@@ -190,7 +296,8 @@ void checkArguments(const Robot& robot, const Eigen::VectorXd& start, const Eige
 ob::SpaceInformationPtr scaledSpace(const MotionCertifier& certifier,
                                     const Eigen::Isometry3d& T_world_base,
                                     const RoadmapOptions& options,
-                                    CollisionChecker::Scratch& scratch) {
+                                    CollisionChecker::Scratch& scratch,
+                                    std::shared_ptr<CertifiedMotionValidator>& validator) {
   const Robot& robot = certifier.robot();
   const Eigen::VectorXd& scale = options.joint_scale;
   auto space = std::make_shared<ob::RealVectorStateSpace>(robot.dof());
@@ -205,8 +312,8 @@ ob::SpaceInformationPtr scaledSpace(const MotionCertifier& certifier,
                                &scratch](const ob::State* state) {
     return certifier.configurationFree(jointsOf(state, options.joint_scale), T_world_base, scratch);
   });
-  si->setMotionValidator(
-      std::make_shared<CertifiedMotionValidator>(si, certifier, T_world_base, scale));
+  validator = std::make_shared<CertifiedMotionValidator>(si, certifier, T_world_base, scale);
+  si->setMotionValidator(validator);
   si->setValidStateSamplerAllocator([&certifier, &options](const ob::SpaceInformation* info) {
     return std::make_shared<CounterSampler>(info, certifier.robot(), options.joint_scale,
                                             options.seed);
@@ -243,6 +350,79 @@ bool copyRoadmap(const og::PRM::Graph& g, std::size_t start, std::size_t goal,
   return std::isfinite(roadmap.distance_from_start[roadmap.goal]);
 }
 
+/// OMPL's own growth, a milestone at a time (RoadmapOptions::batch 0): `cancel_check` is called
+/// as the growth's termination condition is, and what it throws is rethrown after the growth.
+void growOneByOne(og::PRM& prm, std::size_t count, const CancelCheck& cancel_check) {
+  std::exception_ptr cancelled;
+  prm.growRoadmap(ob::PlannerTerminationCondition([&] {
+    if (cancel_check && !cancelled) {
+      try {
+        cancel_check();
+      } catch (...) {
+        cancelled = std::current_exception();
+      }
+    }
+    return cancelled || prm.milestoneCount() >= count;
+  }));
+  if (cancelled) std::rethrow_exception(cancelled);
+}
+
+/// The valid draws of the counter-based stream in order (CounterSampler's milestones), their
+/// validity checked on all threads a chunk at a time.
+class MilestoneStream {
+ public:
+  MilestoneStream(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
+                  const RoadmapOptions& options)
+      : certifier_(certifier),
+        T_world_base_(T_world_base),
+        scale_(options.joint_scale),
+        rng_(options.seed) {}
+
+  /// The next `count` valid draws, as new states of `si` (the caller owns them).
+  std::vector<ob::State*> next(std::size_t count, const ob::SpaceInformation& si) {
+    std::vector<ob::State*> states;
+    while (states.size() < count) {
+      if (valid_.empty()) checkChunk(std::max<std::size_t>(2 * count, 64));
+      const std::uint64_t index = first_++;
+      const bool valid = valid_.front();
+      valid_.pop_front();
+      if (!valid) continue;
+      ob::State* state = si.allocState();
+      setJoints(state, counterSample(certifier_.robot(), rng_, index), scale_);
+      states.push_back(state);
+    }
+    return states;
+  }
+
+ private:
+  /// Validity of the next `size` draws after those already checked.
+  void checkChunk(std::size_t size) {
+    const std::uint64_t from = first_ + valid_.size();
+    std::vector<char> valid(size, 0);
+    FirstError error;
+#pragma omp parallel
+    {
+      CollisionChecker::Scratch scratch;
+#pragma omp for schedule(dynamic, 8)
+      for (std::size_t i = 0; i < size; ++i) {
+        error.run(i, [&] {
+          valid[i] = certifier_.configurationFree(counterSample(certifier_.robot(), rng_, from + i),
+                                                  T_world_base_, scratch);
+        });
+      }
+    }
+    error.rethrow();
+    valid_.insert(valid_.end(), valid.begin(), valid.end());
+  }
+
+  const MotionCertifier& certifier_;
+  Eigen::Isometry3d T_world_base_;
+  Eigen::VectorXd scale_;
+  CounterRng rng_;
+  std::uint64_t first_{0};  ///< the stream index of valid_.front()
+  std::deque<char> valid_;  ///< checked draws not yet taken
+};
+
 }  // namespace
 
 Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
@@ -261,7 +441,9 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   }
 
   ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
-  const ob::SpaceInformationPtr si = scaledSpace(certifier, T_world_base, options, scratch);
+  std::shared_ptr<CertifiedMotionValidator> validator;
+  const ob::SpaceInformationPtr si =
+      scaledSpace(certifier, T_world_base, options, scratch, validator);
   const Eigen::VectorXd& scale = options.joint_scale;
   ob::ScopedState<> start_state(si->getStateSpace()), goal_state(si->getStateSpace());
   setJoints(start_state.get(), start, scale);
@@ -275,19 +457,15 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   prm.setMaxNearestNeighbors(options.neighbours);
   prm.setup();
 
-  std::exception_ptr cancelled;  // what cancel_check threw: the growth stops, then it is rethrown
+  MilestoneStream stream(certifier, T_world_base, options);
   auto grow_to = [&](std::size_t count) {
-    prm.growRoadmap(ob::PlannerTerminationCondition([&] {
-      if (cancel_check && !cancelled) {
-        try {
-          cancel_check();
-        } catch (...) {
-          cancelled = std::current_exception();
-        }
-      }
-      return cancelled || prm.milestoneCount() >= count;
-    }));
-    if (cancelled) std::rethrow_exception(cancelled);
+    if (options.batch == 0) return growOneByOne(prm, count, cancel_check);
+    while (prm.milestoneCount() < count) {
+      if (cancel_check) cancel_check();
+      std::vector<ob::State*> states =
+          stream.next(std::min(options.batch, count - prm.milestoneCount()), *si);
+      prm.addBatch(states, options.neighbours, *validator);
+    }
   };
   grow_to(options.nodes);
   const auto start_vertex = prm.add(start_state.get());

@@ -21,6 +21,10 @@ struct RoadmapOptions {
   std::size_t max_nodes{3200};  ///< the roadmap grows by `nodes` until start and goal connect
   unsigned neighbours{10};      ///< k of PRM's k-nearest connection strategy
   std::uint64_t seed{1};
+  /// Milestones added at a time, their validity and their motions to the neighbours PRM will
+  /// connect them to checked on all threads first; 0: OMPL's growth one milestone at a time on
+  /// one thread. The roadmap is the same either way, for any thread count.
+  std::size_t batch{64};
   /// Joint-space distance scale of each joint [1/rad or 1/length unit]: distances and the
   /// roadmap's edge weights are sqrt(sum (scale_i dq_i)^2).
   Eigen::VectorXd joint_scale;
@@ -54,10 +58,13 @@ struct Roadmap {
 /// Milestones are drawn uniformly within the joint limits from a counter-based stream (sample i
 /// depends only on the seed and i) and kept when collision-free with the base at
 /// T_world_base; every edge is checked exactly by `certifier` (MotionCertifier: nothing between
-/// two milestones is missed). Growth is single-threaded and uses exact nearest neighbours, so
-/// the roadmap depends only on the seed. Start and goal are added last, each joined to its k
-/// nearest milestones. `cancel_check` (when set) is called as the growth's termination
-/// condition is (before each milestone): what it throws stops the growth and is rethrown.
+/// two milestones is missed). Milestones are added in order with exact nearest neighbours, so
+/// the roadmap depends only on the seed; the validity of draws and the motions of each batch of
+/// milestones are checked on all threads first (RoadmapOptions::batch), which changes nothing
+/// in the roadmap. Start and goal are added last, each joined to its k nearest milestones.
+/// `cancel_check` (when set) is called before each batch (with batch 0: as the growth's
+/// termination condition is, before each milestone): what it throws stops the growth and is
+/// rethrown.
 /// \throws mcws::Error for a start or goal of the wrong size or outside the limits, or a bad
 ///   option (no nodes, a scale that is not positive).
 Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
