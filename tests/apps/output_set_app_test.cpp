@@ -244,10 +244,11 @@ INSTANTIATE_TEST_SUITE_P(
                           " --along '0 10 5' --resolution 10cm --samples 20000 --orientations 8 "
                           "--no-collision",
                       {{"output", "p.pcd"}, {"plot", "p.png"}}},
-        OutputSetCase{"Plan",
-                      MCWS_PLAN_EXE,
-                      "--scenario " + test::kPlanar2Scenario + " --validation-poses 0",
-                      {{"output", "path.csv"}, {"plot", "c.png"}, {"plot-offsets", "o.png"}}},
+        OutputSetCase{
+            "Plan",
+            MCWS_PLAN_EXE,
+            "--scenario " + test::kPlanar2QuickScenario + " --validation-poses 0 --cells 16",
+            {{"output", "path.csv"}, {"plot", "c.png"}, {"plot-offsets", "o.png"}}},
         OutputSetCase{"Behave",
                       MCWS_BEHAVE_EXE,
                       "--model " + test::kCleanerBehaviors + " --insulators 1 --dot {dir}",

@@ -15,6 +15,9 @@ inline const std::string kAnnulusCloud = std::string(MCWS_CLOUDS_DIR) + "/annulu
 inline const std::string kCleanerBehaviors =
     std::string(MCWS_ROBOTS_DIR) + "/insulator_cleaner_behaviors.yaml";
 inline const std::string kPlanar2Scenario = std::string(MCWS_SCENARIOS_DIR) + "/planar2.yaml";
+/// planar2.yaml made light (tests/apps/data/): for tests of files, not of numbers.
+inline const std::string kPlanar2QuickScenario =
+    std::string(MCWS_SCENARIOS_DIR) + "/../tests/apps/data/planar2_quick.yaml";
 
 /// The names of the entries of folder `dir`.
 inline std::set<std::string> listing(const std::string& dir) {

@@ -167,8 +167,9 @@ TEST_F(RobotNamesApp, RefineRefusesACloudOfAnotherTipOfTheSameFile) {
 TEST(RobotNamesPlan, ThePlanNamesTheScenariosRobotAndItsFile) {
   test::TempDir dir;
   const test::RunResult r =
-      test::run(kPlan + " --scenario " + std::string(MCWS_SCENARIOS_DIR) + "/planar2.yaml" +
-                " --output " + dir.file("p.csv") + " --json");
+      test::run(kPlan + " --scenario " + std::string(MCWS_SCENARIOS_DIR) +
+                "/../tests/apps/data/planar2_quick.yaml --validation-poses 200 --output " +
+                dir.file("p.csv") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto json = nlohmann::json::parse(r.out);
   EXPECT_EQ(json["robot"], "planar2");

@@ -174,7 +174,8 @@ TEST_F(UnitsApp, IkCollideTrajAndPlanNameTheirUnits) {
   EXPECT_EQ(traj["units"]["peak_acceleration"][5], "rad/s^2");
   EXPECT_EQ(traj["units"]["tool_path_length"], "mm");
   const Json plan = runJson(kPlan + " --scenario " + std::string(MCWS_SCENARIOS_DIR) +
-                            "/planar2.yaml --json --output " + dir_->file("p.csv"));
+                            "/../tests/apps/data/planar2_quick.yaml --validation-poses 200" +
+                            " --json --output " + dir_->file("p.csv"));
   EXPECT_EQ(plan["length_unit"], "cm");
   EXPECT_EQ(plan["units"]["time"], "s");
 }
