@@ -211,6 +211,14 @@ TEST(ReportPage, ViewAnswersMustPointAtTheirNumbersInTheReport) {
   report["view"]["sections"][0]["kind"] = "tabel";
   EXPECT_EQ(errorOf(scene, report), "report view: section 0: kind \"tabel\" is none of table, "
                                     "image, chart, timeline, text");
+  report = mcws::test::syntheticReport();
+  // nlohmann's {{"a", 1}, {"b", 2}} is an object, not rows: the classic slip.
+  report["view"]["sections"][0]["rows"] = {{"spacer_1", 0.02}, {"damper_2", 0.5}};
+  EXPECT_EQ(errorOf(scene, report), "report view: section 0: rows is not an array: "
+                                    "{\"damper_2\":0.5,\"spacer_1\":0.02}");
+  report = mcws::test::syntheticReport();
+  report["view"]["sections"][2]["series"][1]["y"].erase(0);
+  EXPECT_EQ(errorOf(scene, report), "report view: section 2: series 1: 3 x values, 2 y values");
   EXPECT_EQ(errorOf(scene, json::array()), "report: a JSON object expected, not array");
 }
 

@@ -40,7 +40,7 @@ inline nlohmann::json syntheticReport() {
   sections.push_back({{"kind", "table"},
                       {"title", "Reach study"},
                       {"columns", {{{"name", "target"}, {"unit", ""}}, {{"name", "P"}, {"unit", "fraction"}}}},
-                      {"rows", {{"spacer_1", 0.02}, {"damper_2", 0.987654321}}},
+                      {"rows", json::array({json::array({"spacer_1", 0.02}), json::array({"damper_2", 0.987654321})})},
                       {"note", "P: the share of the samples that reach the target"}});
   sections.push_back({{"kind", "image"}, {"title", "Datasheet drawing"},
                       {"png_base64", kTinyPngBase64}, {"alt", "a grey pixel"}});
@@ -57,7 +57,7 @@ inline nlohmann::json syntheticReport() {
   sections.push_back({{"kind", "timeline"},
                       {"title", "Behaviour rehearsal"},
                       {"unit", "s"},
-                      {"lanes", {"arm", "brush"}},
+                      {"lanes", json::array({"arm", "brush"})},
                       {"events", {{{"lane", "arm"}, {"start", 0.0}, {"end", 2.5}, {"label", "approach"}},
                                   {{"lane", "brush"}, {"start", 2.5}, {"end", 6.0}, {"label", "clean"}},
                                   {{"lane", "arm"}, {"start", 6.0}, {"end", 7.5}, {"label", "retreat"}}}}});

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <map>
+#include <string>
 
 #include "mcws/core/error.h"
 #include "mcws/core/text_file.h"
@@ -95,6 +96,41 @@ void checkPointer(const json& report, const json& answer, std::size_t index,
                 stated + " " + answer[stated].dump());
 }
 
+/// A section's members that the page reads as arrays are arrays (a table's rows of cells, a
+/// chart's series with x and y of one length, a timeline's lanes and events).
+void checkSection(const json& section, std::size_t index) {
+  const std::string what = "report view: section " + std::to_string(index) + ": ";
+  const std::string kind = section.is_object() ? section.value("kind", "") : "";
+  auto requireArray = [&](const json& parent, const char* key, const std::string& name) {
+    if (!parent.contains(key) || !parent[key].is_array())
+      throw Error(what + name + " is not an array: " +
+                  (parent.contains(key) ? parent[key].dump() : std::string("missing")));
+  };
+  if (kind == "table") {
+    requireArray(section, "columns", "columns");
+    requireArray(section, "rows", "rows");
+    for (std::size_t r = 0; r < section["rows"].size(); ++r)
+      if (!section["rows"][r].is_array())
+        throw Error(what + "row " + std::to_string(r) + " is not an array: " + section["rows"][r].dump());
+  } else if (kind == "chart") {
+    requireArray(section, "series", "series");
+    for (std::size_t s = 0; s < section["series"].size(); ++s) {
+      const json& series = section["series"][s];
+      const std::string name = "series " + std::to_string(s);
+      requireArray(series, "x", name + " x");
+      requireArray(series, "y", name + " y");
+      if (series["x"].size() != series["y"].size())
+        throw Error(what + name + ": " + std::to_string(series["x"].size()) + " x values, " +
+                    std::to_string(series["y"].size()) + " y values");
+    }
+  } else if (kind == "timeline") {
+    requireArray(section, "lanes", "lanes");
+    requireArray(section, "events", "events");
+  } else if (kind != "image" && kind != "text") {
+    throw Error(what + "kind \"" + kind + "\" is none of table, image, chart, timeline, text");
+  }
+}
+
 /// The view's answers point into the report at the numbers they show; its sections are of the
 /// kinds the page draws.
 void checkView(const json& report) {
@@ -110,15 +146,8 @@ void checkView(const json& report) {
     checkPointer(report, answers[i], i, "source", "value");
     checkPointer(report, answers[i], i, "interval_source", "interval");
   }
-  static const std::map<std::string, int> kKinds = {
-      {"table", 0}, {"image", 0}, {"chart", 0}, {"timeline", 0}, {"text", 0}};
   const json sections = view.value("sections", json::array());
-  for (std::size_t i = 0; i < sections.size(); ++i) {
-    const std::string kind = sections[i].is_object() ? sections[i].value("kind", "") : "";
-    if (kKinds.count(kind) == 0)
-      throw Error("report view: section " + std::to_string(i) + ": kind \"" + kind +
-                  "\" is none of table, image, chart, timeline, text");
-  }
+  for (std::size_t i = 0; i < sections.size(); ++i) checkSection(sections[i], i);
 }
 
 /// The template with every <!--mcws:NAME--> replaced by parts[NAME] (inserted text is not

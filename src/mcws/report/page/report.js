@@ -40,6 +40,9 @@ mcws.View = function (data, canvas) {
 
 // Draws on `canvas` (false when the browser gives no WebGL: the view stays empty).
 mcws.View.prototype.attach = function (canvas) {
+  const probe = document.createElement("canvas");
+  if (!window.WebGLRenderingContext || !(probe.getContext("webgl") || probe.getContext("experimental-webgl")))
+    return false;  // asked first: three.js would log an error for a browser without WebGL
   try {
     this.renderer = new THREE.WebGLRenderer({canvas: canvas, antialias: true, preserveDrawingBuffer: true});
   } catch (e) {
@@ -57,7 +60,7 @@ mcws.View.prototype.attach = function (canvas) {
 
 mcws.View.prototype.fit = function () {
   const sphere = mcws.boundingSphere(this);
-  const distance = sphere.radius / Math.sin(THREE.Math.degToRad(this.camera.fov / 2)) * 1.1;
+  const distance = sphere.radius / Math.sin(THREE.Math.degToRad(this.camera.fov / 2)) * 0.9;
   const direction = new THREE.Vector3(1.0, -1.4, 0.9).normalize();
   this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
   this.camera.near = distance / 200;
@@ -195,6 +198,7 @@ mcws.hook = function (hook, view) {
       note.hidden = false;
     }
     mcws.hook(hook, scene);
+    hook.readyMs = performance.now();  // since the navigation started [ms]
     hook.ready = true;
   } catch (e) {
     hook.error = String(e && e.stack || e);
