@@ -139,7 +139,7 @@ inline report::Scene syntheticScene(std::size_t boundary_points = 2000) {
         reach.positions.insert(reach.positions.end(), {-35.0f + 10 * i, -35.0f + 10 * j, 10.0f * k});
         reach.values.push_back(static_cast<float>((i + j + k) / 17.0));
       }
-  reach.size = 8;
+  reach.size = 3;
   reach.value_label = "reachability";
   reach.value_unit = "fraction";
   report::Layer targets = namedLayer("targets", report::Layer::Kind::kPoints);

@@ -27,11 +27,14 @@ from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
 
 # A canvas showing the scene varies in brightness; a blank one (one background colour) does not.
-# Grey-level variance of the synthetic scene's canvas is in the hundreds; 20 leaves room for a
+# The grey-level variance of the synthetic scene's canvas is about 2 000; 20 leaves room for a
 # sparser scene and stays far above a blank canvas's 0.
 MIN_CANVAS_VARIANCE = 20.0
-# Share of the canvas's pixels that must change when the view turns or a layer is hidden.
+# Share of the canvas's pixels that must change when the view turns 60 degrees or a layer is
+# hidden (the synthetic scene: 12 % and 3 %), and when the bodies go from the first frame to the
+# last (1.5 %).
 MIN_CHANGED_SHARE = 0.005
+MIN_MOVED_SHARE = 0.001
 # Chromium's flags: software WebGL (SwiftShader through ANGLE) in headless mode, nothing fetched
 # from the network (no name resolves, every request goes to a closed port), a fresh profile.
 CHROMIUM_FLAGS = [
@@ -181,8 +184,10 @@ def test_page_gets_ready_without_console_errors_or_requests(browser):
         "return performance.getEntriesByType('resource').map(e => e.name)"
         ".filter(n => !n.startsWith('data:'))")
     assert fetched == []
-    print("page ready %.2f s after the request, %.0f ms after the navigation started" %
-          (browser.mcws_open_seconds, browser.execute_script("return window.mcwsReport.readyMs")))
+    print("page ready %.2f s after the request; since the navigation started: first text %.0f ms, "
+          "3-D view drawn %.0f ms" % (browser.mcws_open_seconds, browser.execute_script(
+              "return performance.getEntriesByName('first-contentful-paint')[0].startTime"),
+              browser.execute_script("return window.mcwsReport.readyMs")))
 
 
 def test_every_number_shown_equals_the_json_value_at_its_source(browser, page_json):
@@ -267,6 +272,10 @@ def test_animation_frames_move_the_bodies_where_the_poses_say(browser, page_json
             assert shown == pytest.approx(expected, rel=1e-6, abs=1e-6)
         moved = max(moved, math.dist(start, end))
     assert moved > 0, "no body moves between the first and the last frame"
+    if browser.execute_script("return window.mcwsReport.webgl"):
+        last_image = canvas_image(browser)
+        browser.execute_script("window.mcwsReport.setFrame(0)")
+        assert changed_share(canvas_image(browser), last_image) > MIN_MOVED_SHARE
     frame_text = browser.find_element(By.ID, "animation-frame").text
     assert "frame %d of %d" % (last + 1, animation["frames"]) in frame_text
     if animation["parameter_unit"]:
