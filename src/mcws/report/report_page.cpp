@@ -20,11 +20,20 @@ std::string escapeHtml(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -111,7 +120,8 @@ void checkSection(const json& section, std::size_t index) {
     requireArray(section, "rows", "rows");
     for (std::size_t r = 0; r < section["rows"].size(); ++r)
       if (!section["rows"][r].is_array())
-        throw Error(what + "row " + std::to_string(r) + " is not an array: " + section["rows"][r].dump());
+        throw Error(what + "row " + std::to_string(r) +
+                    " is not an array: " + section["rows"][r].dump());
   } else if (kind == "chart") {
     requireArray(section, "series", "series");
     for (std::size_t s = 0; s < section["series"].size(); ++s) {
@@ -138,7 +148,8 @@ void checkView(const json& report) {
     throw Error(std::string("report: a JSON object expected, not ") + report.type_name());
   if (!report.contains("view")) return;
   const json& view = report["view"];
-  if (!view.is_object()) throw Error(std::string("report view: not an object but ") + view.type_name());
+  if (!view.is_object())
+    throw Error(std::string("report view: not an object but ") + view.type_name());
   const json answers = view.value("answers", json::array());
   for (std::size_t i = 0; i < answers.size(); ++i) {
     if (!answers[i].is_object())
@@ -181,15 +192,14 @@ std::string reportHtml(const nlohmann::json& report, const Scene& scene,
   const detail::Decimation cut = detail::decimation(scene, options.max_embedded_bytes);
   const std::string three = readThreeJs("build/three.min.js");
   const std::string orbit = readThreeJs("examples/js/controls/OrbitControls.js");
-  return fill(detail::kPageReportHtml,
-              {{"title", escapeHtml(options.title)},
-               {"css", detail::kPageReportCss},
-               {"report", scriptJson(report)},
-               {"scene", scriptJson(detail::sceneJson(scene, cut))},
-               {"three", scriptText(three)},
-               {"orbit", scriptText(orbit)},
-               {"js", std::string(detail::kPageSectionsJs) + detail::kPageView3dJs +
-                          detail::kPageReportJs}});
+  return fill(detail::kPageReportHtml, {{"title", escapeHtml(options.title)},
+                                        {"css", detail::kPageReportCss},
+                                        {"report", scriptJson(report)},
+                                        {"scene", scriptJson(detail::sceneJson(scene, cut))},
+                                        {"three", scriptText(three)},
+                                        {"orbit", scriptText(orbit)},
+                                        {"js", std::string(detail::kPageSectionsJs) +
+                                                   detail::kPageView3dJs + detail::kPageReportJs}});
 }
 
 }  // namespace mcws::report
