@@ -165,8 +165,10 @@ def webgl(browser):
 
 
 def canvas_image(driver):
+    """The canvas's pixels, without its CSS border (which alone would not be blank)."""
     png = driver.find_element(By.ID, "scene-canvas").screenshot_as_png
-    return Image.open(io.BytesIO(png)).convert("RGB")
+    image = Image.open(io.BytesIO(png)).convert("RGB")
+    return image.crop((3, 3, image.width - 3, image.height - 3))
 
 
 def changed_share(before, after):
