@@ -80,13 +80,23 @@ def js_number_text(value):
     return sign + text
 
 
+# Hand-checked: what String(Number(v.toPrecision(6))) gives (ties to the larger magnitude,
+# exponent form from 1e21 up and below 1e-6).
+NUMBER_TEXTS = {-5.0: "-5", 0.0123456789: "0.0123457", 1234567.89: "1234570", 1.5e-7: "1.5e-7",
+                0.987654321: "0.987654", 20: "20", 1e21: "1e+21", 1.234565e23: "1.23457e+23",
+                0.000001: "0.000001", 2.5e-6: "0.0000025", -0.0: "0", 999999.5: "1000000",
+                1234565: "1234570", -1234565: "-1234570", 0.1 + 0.2: "0.3"}
+
+
 def test_js_number_text_follows_javascript():
-    # Values as node/Chromium print String(Number(v.toPrecision(6))).
-    cases = {-5.0: "-5", 0.0123456789: "0.0123457", 1234567.89: "1234570", 1.5e-7: "1.5e-7",
-             0.987654321: "0.987654", 20: "20", 1e21: "1e+21", 123456789012345678901234.0:
-             "1.23457e+23", 0.000001: "0.000001", 2.5e-6: "0.0000025", -0.0: "0", 999999.5: "1000000"}
-    for value, text in cases.items():
+    for value, text in NUMBER_TEXTS.items():
         assert js_number_text(value) == text, value
+
+
+def test_page_formats_numbers_as_the_test_does(browser):
+    values = list(NUMBER_TEXTS)
+    shown = browser.execute_script("return arguments[0].map(mcws.formatNumber)", values)
+    assert shown == [js_number_text(v) for v in values]
 
 
 def resolve_pointer(document, pointer):

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mcws/core/error.h"
+#include "mcws/core/markup.h"
 #include "mcws/core/text_file.h"
 #include "mcws/report/detail/page_sources.h"
 #include "mcws/report/detail/scene_data.h"
@@ -14,30 +15,6 @@ namespace mcws::report {
 namespace {
 
 using nlohmann::json;
-
-/// The text of HTML element content or of an attribute value.
-std::string escapeHtml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 /// JSON for a <script type="application/json">: every '<' written \u003c, so that no "</script"
 /// or "<!--" ends or confuses the element; JSON.parse reads the same value back.
@@ -192,7 +169,7 @@ std::string reportHtml(const nlohmann::json& report, const Scene& scene,
   const detail::Decimation cut = detail::decimation(scene, options.max_embedded_bytes);
   const std::string three = readThreeJs("build/three.min.js");
   const std::string orbit = readThreeJs("examples/js/controls/OrbitControls.js");
-  return fill(detail::kPageReportHtml, {{"title", escapeHtml(options.title)},
+  return fill(detail::kPageReportHtml, {{"title", escapeMarkup(options.title)},
                                         {"css", detail::kPageReportCss},
                                         {"report", scriptJson(report)},
                                         {"scene", scriptJson(detail::sceneJson(scene, cut))},
