@@ -226,6 +226,11 @@ TEST(ReportPage, ViewAnswersMustPointAtTheirNumbersInTheReport) {
   report = mcws::test::syntheticReport();
   report["view"]["sections"][2]["series"][1]["y"].erase(0);
   EXPECT_EQ(errorOf(scene, report), "report view: section 2: series 1: 3 x values, 2 y values");
+  report = mcws::test::syntheticReport();
+  report["view"]["answers"][0]["label"] = 3;
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: [json.exception.type_error.302] type must be "
+            "string, but is number");
   EXPECT_EQ(errorOf(scene, json::array()), "report: a JSON object expected, not array");
 }
 

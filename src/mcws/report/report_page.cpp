@@ -164,7 +164,11 @@ std::string threeJsDirectory() {
 
 std::string reportHtml(const nlohmann::json& report, const Scene& scene,
                        const PageOptions& options) {
-  checkView(report);
+  try {
+    checkView(report);
+  } catch (const json::exception& e) {  // a member of another type than the page reads
+    throw Error(std::string("report view: ") + e.what());
+  }
   detail::checkScene(scene);
   const detail::Decimation cut = detail::decimation(scene, options.max_embedded_bytes);
   const std::string three = readThreeJs("build/three.min.js");
