@@ -1,0 +1,31 @@
+# Writes the page's sources (the files named in FILES, in the directory DIR) into the C++ header
+# OUT, one raw string constant per file: report.html -> kPageReportHtml, view3d.js ->
+# kPageView3dJs. Run at build time (src/CMakeLists.txt), so the page is part of the library and
+# nothing but three.js is read when a report is written.
+set(text "#pragma once\n// Generated from ${DIR} by embed_page.cmake: do not edit.\n\n")
+string(APPEND text "namespace mcws::report::detail {\n\n")
+set(delimiter "mcws_page")
+foreach(file ${FILES})
+  file(READ ${DIR}/${file} content)
+  string(FIND "${content}" ")${delimiter}\"" clash)
+  if(NOT clash EQUAL -1)
+    message(FATAL_ERROR "${DIR}/${file} holds the raw string's end )${delimiter}\"")
+  endif()
+  string(REGEX REPLACE "[._]" ";" parts "${file}")
+  set(name "kPage")
+  foreach(part ${parts})
+    string(SUBSTRING "${part}" 0 1 first)
+    string(TOUPPER "${first}" first)
+    string(SUBSTRING "${part}" 1 -1 rest)
+    string(APPEND name "${first}${rest}")
+  endforeach()
+  string(APPEND text "inline constexpr const char* ${name} = R\"${delimiter}(${content})${delimiter}\";\n\n")
+endforeach()
+string(APPEND text "}  // namespace mcws::report::detail\n")
+# Written only when it changes, so that an unchanged page compiles nothing again.
+if(EXISTS ${OUT})
+  file(READ ${OUT} old)
+endif()
+if(NOT old STREQUAL text)
+  file(WRITE ${OUT} "${text}")
+endif()
