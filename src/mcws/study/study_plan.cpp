@@ -49,8 +49,11 @@ void runPlanning(StudyState& state) {
         planner.plan(true, [&](const std::string& what, std::size_t done, std::size_t total) {
           if (state.options.progress) state.options.progress(stage + ": " + what, done, total);
         });
+    nlohmann::json goal = nlohmann::json::array();
+    for (int j = 0; j < reach.q.size(); ++j) goal.push_back(reach.q[j]);
     nlohmann::json item = {{"target", study.targets[t].name},
                            {"stop", stop},
+                           {"goal", goal},
                            {"plan", planJson(planned.scenario, planned.result)}};
     if (planned.result.accepted) {
       const PlanningRound& round = planned.result.rounds[*planned.result.accepted];
@@ -70,7 +73,9 @@ void runPlanning(StudyState& state) {
        "each reached target at the chosen stop (up to reach: plan_targets), its IK "
        "solution (collision-free with the line) the goal, planned from start as "
        "mcws_plan plans a scenario"}};
-  state.report["planning"]["units"] = {{"stop", unitName(study.problem.robot.length_unit)}};
+  state.report["planning"]["units"] = {
+      {"stop", unitName(study.problem.robot.length_unit)},
+      {"targets.goal", "per joint as plan.units.configuration (rad, or the length unit)"}};
 }
 
 }  // namespace mcws::detail
