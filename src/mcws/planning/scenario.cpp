@@ -22,18 +22,8 @@ class ScenarioReader : ScenarioSectionReader {
     Scenario scenario;
     scenario.source = source();
     scenario.name = scalar(require(root, "name", "scenario"), "name");
-    SwayPlanningProblem& problem = scenario.problem;
-
-    readRobot(require(root, "robot", "scenario"), scenario.robot_path, problem);
-    if (const YAML::Node base = root["base"]) problem.robot.T_world_base = pose(base, "base");
-
-    problem.start = joints(require(root, "start", "scenario"), "start", problem.robot);
-    problem.goal = joints(require(root, "goal", "scenario"), "goal", problem.robot);
-    scenario.distance_unit = readJointScale(root["joint_scale"], problem);
-
-    readSway(require(root, "sway", "scenario"), problem);
-    if (const YAML::Node planner = root["planner"]) readPlanner(planner, problem);
-    if (const YAML::Node validation = root["validation"]) readValidation(validation, problem);
+    scenario.distance_unit =
+        readProblem(root, "scenario", scenario.robot_path, scenario.problem, true);
     return scenario;
   }
 };

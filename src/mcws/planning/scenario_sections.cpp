@@ -100,6 +100,20 @@ std::string ScenarioSectionReader::readJointScale(const YAML::Node& scale,
   return "sqrt(sum (s_i dq_i)^2) with s = " + unit.str();
 }
 
+std::string ScenarioSectionReader::readProblem(const YAML::Node& root, const std::string& where,
+                                               std::string& robot_path,
+                                               SwayPlanningProblem& problem, bool goal) {
+  readRobot(require(root, "robot", where), robot_path, problem);
+  if (const YAML::Node base = root["base"]) problem.robot.T_world_base = pose(base, "base");
+  problem.start = joints(require(root, "start", where), "start", problem.robot);
+  problem.goal = goal ? joints(require(root, "goal", where), "goal", problem.robot) : problem.start;
+  const std::string distance_unit = readJointScale(root["joint_scale"], problem);
+  readSway(require(root, "sway", where), problem);
+  if (const YAML::Node planner = root["planner"]) readPlanner(planner, problem);
+  if (const YAML::Node validation = root["validation"]) readValidation(validation, problem);
+  return distance_unit;
+}
+
 void ScenarioSectionReader::readValidation(const YAML::Node& validation,
                                            SwayPlanningProblem& problem) {
   checkKeys(validation, "validation", {"poses"});

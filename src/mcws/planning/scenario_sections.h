@@ -36,6 +36,11 @@ class ScenarioSectionReader : public YamlReader {
   /// `joint_scale` (absent: all 1) into problem.roadmap.joint_scale; returns the distance's
   /// unit in words ("sqrt(sum (s_i dq_i)^2) with s = 1/rad, 1/cm").
   std::string readJointScale(const YAML::Node& node, SwayPlanningProblem& problem);
+  /// The sections of a planning problem in `root` (a map; `where` names it in messages):
+  /// robot, base (optional), start, goal (when `goal`), joint_scale, sway, planner and
+  /// validation (optional); returns the distance's unit (readJointScale()).
+  std::string readProblem(const YAML::Node& root, const std::string& where, std::string& robot_path,
+                          SwayPlanningProblem& problem, bool goal);
   /// The `validation` section ({poses: N}).
   void readValidation(const YAML::Node& node, SwayPlanningProblem& problem);
   /// The length unit quantities are converted to (the robot's).

@@ -1,5 +1,6 @@
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -30,17 +31,8 @@ class StudyReader : ScenarioSectionReader {
     Study study;
     study.source = source();
     study.name = text(require(root, "name", "study"), "name");
-    SwayPlanningProblem& problem = study.problem;
-    readRobot(require(root, "robot", "study"), study.robot_path, problem);
-    if (const YAML::Node base = root["base"]) problem.robot.T_world_base = pose(base, "base");
+    study.distance_unit = readProblem(root, "study", study.robot_path, study.problem, false);
     if (const YAML::Node seed = root["seed"]) study.seed = seedOf(seed, "seed");
-    problem.start = joints(require(root, "start", "study"), "start", problem.robot);
-    problem.goal = problem.start;  // each target's goal comes from IK
-    study.distance_unit = readJointScale(root["joint_scale"], problem);
-    readSway(require(root, "sway", "study"), problem);
-    if (const YAML::Node planner = root["planner"]) readPlanner(planner, problem);
-    if (const YAML::Node validation = root["validation"]) readValidation(validation, problem);
-
     readLine(require(root, "line", "study"), study);
     readTargets(require(root, "targets", "study"), study);
     readStops(require(root, "stops", "study"), study);
@@ -74,8 +66,18 @@ class StudyReader : ScenarioSectionReader {
         study.fittings.push_back(std::move(body));
       }
     }
-    study.replaced_environment = study.problem.collision.environment.size();
-    study.problem.collision.environment = lineBodies(study);
+    // The robot file's scene goes, with the allowed pairs that name its objects.
+    CollisionModel& model = study.problem.collision;
+    std::set<std::string> replaced;
+    for (const BodySpec& object : model.environment) replaced.insert(object.name);
+    study.replaced_environment = replaced.size();
+    model.allowed.erase(std::remove_if(model.allowed.begin(), model.allowed.end(),
+                                       [&](const auto& pair) {
+                                         return replaced.count(pair.first) ||
+                                                replaced.count(pair.second);
+                                       }),
+                        model.allowed.end());
+    model.environment = lineBodies(study);
   }
 
   void checkName(const YAML::Node& node, const std::string& where, const std::string& name,
