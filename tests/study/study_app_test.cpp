@@ -11,10 +11,14 @@
 #include <sstream>
 #include <string>
 
+#include "study/study_files.h"
 #include "test_support.h"
 
 namespace mcws {
 namespace {
+
+using test::kPlanner;
+using test::StudyFiles;
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -30,65 +34,6 @@ const std::string kPlanExe = MCWS_PLAN_EXE;
 // (x * 0.01 / 0.01) may differ from the study's own by an ulp: numbers of the plan agree to this
 // relative tolerance, counts exactly.
 constexpr double kPlanTol = 1e-9;
-
-// The line of the test study, also written as the environment of a copy of the maintenance4
-// robot file, so that mcws_place and mcws_plan see the very scene the study builds.
-const char* const kRobotEnvironment = R"(  environment:
-    - {name: conductor_a, type: capsule, from: [-300, 0, 25], to: [300, 0, 25], radius: 1.5}
-    - {name: spacer, type: box, size: [6, 4, 20], xyz: [50, -35, -38]}
-)";
-
-// Three targets 4 cm off the spacer's face (normal +y) and one 3 m away that no stop reaches.
-const char* const kTargets = R"(x,y,z,normal_x,normal_y,normal_z
-48,-29,-42,0,1,0
-50,-29,-40,0,1,0
-52,-29,-38,0,1,0
-300,-29,-40,0,1,0
-)";
-
-const char* const kStudy = R"(name: test study
-robot: robot.yaml
-seed: 3
-line:
-  conductors:
-    - {name: conductor_a, radius: 1.5 cm, points: [[-300 cm, 0 cm, 25 cm], [300 cm, 0 cm, 25 cm]]}
-  fittings:
-    - {name: spacer, type: box, size: [6, 4, 20], xyz: [50, -35, -38]}
-targets:
-  - {file: targets.csv, name: t}
-stops: {from: 20 cm, to: 40 cm, step: 10 cm}
-start: [0 rad, 0 cm, 0 rad, 0 cm]
-sway: {pivot: [0 cm, 0 cm, 25 cm], line: [1, 0, 0], swing: 2 deg, slide: 1 cm, poses: 40, seed: 2}
-@PLANNER@
-validation: {poses: 200}
-workspace: {samples: 3000}
-reach: {resolution: 4 cm, samples: 40000, orientations: 50, approach_tolerance: 10 deg, plan_targets: 1}
-)";
-
-const char* const kPlanner = R"(planner:
-  candidates: 3
-  roadmap_nodes: 150
-  max_roadmap_nodes: 600
-  roadmap_seed: 4
-  weight: 0.01
-  base_step: 0 cm
-  base_range: 0 cm
-)";
-
-/// A directory with the test robot, targets and study (`study` replacing the default).
-struct StudyFiles {
-  test::TempDir dir;
-  explicit StudyFiles(const std::string& study = "") {
-    std::string robot = test::readFile(test::robotPath("maintenance4"));
-    const auto from = robot.find("  environment:"), to = robot.find("  allowed:");
-    robot.replace(from, to - from, kRobotEnvironment);
-    test::writeFile(dir.file("robot.yaml"), robot);
-    test::writeFile(dir.file("targets.csv"), kTargets);
-    test::writeFile(dir.file("study.yaml"),
-                    study.empty() ? test::replaceOnce(kStudy, "@PLANNER@", kPlanner) : study);
-  }
-  std::string file(const std::string& name) const { return dir.file(name); }
-};
 
 /// The report with every "seconds" (and "*_seconds") member removed, and the view's table of
 /// the stages' times.
@@ -253,7 +198,7 @@ std::string failure(const std::string& study, int exit_code = 1) {
   return r.err;
 }
 
-std::string defaultStudy() { return test::replaceOnce(kStudy, "@PLANNER@", kPlanner); }
+std::string defaultStudy() { return test::defaultStudyText(); }
 
 TEST(StudyApp, UnknownFittingTypeNamesFileLineAndField) {
   const std::string err = failure(test::replaceOnce(defaultStudy(), "type: box", "type: cone"));
