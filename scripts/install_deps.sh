@@ -34,6 +34,9 @@ packages=(
   python3-dev python3-numpy     # the Python module mcws (python/): the interpreter's headers, NumPy
   pybind11-dev python3-pybind11 # its C++ bindings (pybind11's headers and CMake package)
   python3-pytest                # tests/python, run by CTest (python_api)
+  libjs-three                   # three.js, inlined in the study report's 3-D view (mcws::report)
+  chromium chromium-driver      # the report page's browser test: headless Chromium, its WebDriver
+  python3-selenium python3-pil  # that test's browser driver and its screenshot decoding
   clang-14 libclang-rt-14-dev   # the sanitizer tree and the libFuzzer targets of fuzz/
   libomp-14-dev                 # clang's OpenMP runtime (the sanitizer tree)
 )

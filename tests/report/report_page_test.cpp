@@ -15,9 +15,9 @@
 
 namespace {
 
-using nlohmann::json;
 using mcws::report::Layer;
 using mcws::report::Scene;
+using nlohmann::json;
 
 /// The text of the <script type="application/json" id="ID"> element of a page.
 std::string scriptContent(const std::string& page, const std::string& id) {
@@ -138,8 +138,8 @@ TEST(ReportPage, DecimationKeepsEveryKthPointOfTheLargestLayerAndStatesTheCount)
   for (std::size_t i = 0; i < 14286; ++i)
     for (std::size_t axis = 0; axis < 3; ++axis)
       ASSERT_EQ(kept[3 * i + axis], scene.layers[2].positions[3 * (7 * i) + axis]) << i;
-  for (std::size_t i : {0u, 1u, 3u, 4u}) EXPECT_EQ(embedded["layers"][i]["points"],
-                                                   embedded["layers"][i]["total_points"]);
+  for (std::size_t i : {0u, 1u, 3u, 4u})
+    EXPECT_EQ(embedded["layers"][i]["points"], embedded["layers"][i]["total_points"]);
   std::size_t bytes = 0;  // what the page embeds, before base64
   for (const json& layer : embedded["layers"])
     for (const char* key : {"positions", "triangles", "values"})
@@ -166,7 +166,8 @@ TEST(ReportPage, MalformedScenesThrowOneLineErrorsNamingTheLayerBodyOrAnimation)
   const Scene good = mcws::test::syntheticScene(10);
   std::vector<std::pair<Scene, std::string>> cases;
   Scene s = good;
-  s.layers[0].triangles.push_back(16), s.layers[0].triangles.push_back(0), s.layers[0].triangles.push_back(1);
+  s.layers[0].triangles.push_back(16), s.layers[0].triangles.push_back(0),
+      s.layers[0].triangles.push_back(1);
   cases.emplace_back(s, "layer \"line\": triangle 24 has vertex index 16, past its 16 vertices");
   s = good, s.layers[3].values.pop_back();
   cases.emplace_back(s, "layer \"reach map\": 255 values for 256 points");
@@ -181,8 +182,9 @@ TEST(ReportPage, MalformedScenesThrowOneLineErrorsNamingTheLayerBodyOrAnimation)
   s = good, s.bodies[1].triangles.pop_back();
   cases.emplace_back(s, "body \"link2\": 35 triangle indices, not a multiple of 3");
   s = good, s.animations[0].poses.resize(16 * 39);
-  cases.emplace_back(s, "animation \"path to target spacer_1\": 624 pose numbers, not frames x "
-                        "bodies x 16 = 20 x 2 x 16");
+  cases.emplace_back(s,
+                     "animation \"path to target spacer_1\": 624 pose numbers, not frames x "
+                     "bodies x 16 = 20 x 2 x 16");
   s = good, s.animations[0].parameter.pop_back();
   cases.emplace_back(s, "animation \"path to target spacer_1\": 19 parameter values for 20 frames");
   for (const auto& [scene, message] : cases) {
@@ -196,21 +198,39 @@ TEST(ReportPage, ViewAnswersMustPointAtTheirNumbersInTheReport) {
   const Scene scene = mcws::test::syntheticScene(10);
   json report = mcws::test::syntheticReport();
   report["view"]["answers"][0]["source"] = "/placement/best/offset_across";
-  EXPECT_EQ(errorOf(scene, report), "report view: answer 0 (\"Stop the robot at\"): source "
-                                    "/placement/best/offset_across is not in the report");
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: answer 0 (\"Stop the robot at\"): source "
+            "/placement/best/offset_across is not in the report");
   report = mcws::test::syntheticReport();
   report["view"]["answers"][2]["value"] = 1234567.0;
-  EXPECT_EQ(errorOf(scene, report), "report view: answer 2 (\"Workspace volume\"): source "
-                                    "/workspace/volume holds 1234567.89, the answer states value "
-                                    "1234567.0");
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: answer 2 (\"Workspace volume\"): source "
+            "/workspace/volume holds 1234567.89, the answer states value "
+            "1234567.0");
   report = mcws::test::syntheticReport();
   report["view"]["answers"][1]["interval_source"] = "planning";
-  EXPECT_EQ(errorOf(scene, report), "report view: answer 1 (\"Collision probability\"): "
-                                    "interval_source \"planning\" is not a JSON pointer");
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: answer 1 (\"Collision probability\"): "
+            "interval_source \"planning\" is not a JSON pointer");
   report = mcws::test::syntheticReport();
   report["view"]["sections"][0]["kind"] = "tabel";
-  EXPECT_EQ(errorOf(scene, report), "report view: section 0: kind \"tabel\" is none of table, "
-                                    "image, chart, timeline, text");
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: section 0: kind \"tabel\" is none of table, "
+            "image, chart, timeline, text");
+  report = mcws::test::syntheticReport();
+  // nlohmann's {{"a", 1}, {"b", 2}} is an object, not rows: the classic slip.
+  report["view"]["sections"][0]["rows"] = {{"spacer_1", 0.02}, {"damper_2", 0.5}};
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: section 0: rows is not an array: "
+            "{\"damper_2\":0.5,\"spacer_1\":0.02}");
+  report = mcws::test::syntheticReport();
+  report["view"]["sections"][2]["series"][1]["y"].erase(0);
+  EXPECT_EQ(errorOf(scene, report), "report view: section 2: series 1: 3 x values, 2 y values");
+  report = mcws::test::syntheticReport();
+  report["view"]["answers"][0]["label"] = 3;
+  EXPECT_EQ(errorOf(scene, report),
+            "report view: [json.exception.type_error.302] type must be "
+            "string, but is number");
   EXPECT_EQ(errorOf(scene, json::array()), "report: a JSON object expected, not array");
 }
 

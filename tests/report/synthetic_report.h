@@ -13,55 +13,72 @@ namespace mcws::test {
 
 /// A 1 x 1 PNG picture (a grey pixel), base64.
 inline constexpr const char* kTinyPngBase64 =
-    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJggg==";
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+"
+    "M9QDwADhgGAWjR9awAAAABJRU5ErkJggg==";
 
 /// The report JSON: its own members and a "view" of four answers (one through an escaped "~1"
 /// pointer, one with an interval) and a table, picture, chart, timeline and text.
 inline nlohmann::json syntheticReport() {
   using nlohmann::json;
-  json report = {
-      {"placement", {{"best", {{"offset_along", -5.0}}}}},
-      {"planning", {{"p", 0.0123456789}, {"p_interval", {0.0101, 0.0152}}}},
-      {"workspace", {{"volume", 1234567.89}}},
-      {"odd/key", {{"tiny", 1.5e-7}}},
-      {"units", {{"offset_along", "cm"}, {"volume", "cm^3"}, {"p", "fraction"}}}};
+  json report = {{"placement", {{"best", {{"offset_along", -5.0}}}}},
+                 {"planning", {{"p", 0.0123456789}, {"p_interval", {0.0101, 0.0152}}}},
+                 {"workspace", {{"volume", 1234567.89}}},
+                 {"odd/key", {{"tiny", 1.5e-7}}},
+                 {"units", {{"offset_along", "cm"}, {"volume", "cm^3"}, {"p", "fraction"}}}};
   json answers = json::array();
-  answers.push_back({{"label", "Stop the robot at"}, {"value", -5.0}, {"unit", "cm"},
+  answers.push_back({{"label", "Stop the robot at"},
+                     {"value", -5.0},
+                     {"unit", "cm"},
                      {"source", "/placement/best/offset_along"},
                      {"note", "4 of 4 targets reached (IK)"}});
-  answers.push_back({{"label", "Collision probability"}, {"value", 0.0123456789},
-                     {"unit", "fraction"}, {"source", "/planning/p"},
-                     {"interval", {0.0101, 0.0152}}, {"interval_source", "/planning/p_interval"}});
-  answers.push_back({{"label", "Workspace volume"}, {"value", 1234567.89}, {"unit", "cm^3"},
+  answers.push_back({{"label", "Collision probability"},
+                     {"value", 0.0123456789},
+                     {"unit", "fraction"},
+                     {"source", "/planning/p"},
+                     {"interval", {0.0101, 0.0152}},
+                     {"interval_source", "/planning/p_interval"}});
+  answers.push_back({{"label", "Workspace volume"},
+                     {"value", 1234567.89},
+                     {"unit", "cm^3"},
                      {"source", "/workspace/volume"}});
-  answers.push_back({{"label", "A tiny number </script>"}, {"value", 1.5e-7}, {"unit", "cm"},
+  answers.push_back({{"label", "A tiny number </script>"},
+                     {"value", 1.5e-7},
+                     {"unit", "cm"},
                      {"source", "/odd~1key/tiny"}});
   json sections = json::array();
-  sections.push_back({{"kind", "table"},
-                      {"title", "Reach study"},
-                      {"columns", {{{"name", "target"}, {"unit", ""}}, {{"name", "P"}, {"unit", "fraction"}}}},
-                      {"rows", {{"spacer_1", 0.02}, {"damper_2", 0.987654321}}},
-                      {"note", "P: the share of the samples that reach the target"}});
-  sections.push_back({{"kind", "image"}, {"title", "Datasheet drawing"},
-                      {"png_base64", kTinyPngBase64}, {"alt", "a grey pixel"}});
-  sections.push_back({{"kind", "chart"},
-                      {"title", "P against the base offset"},
-                      {"x", {{"label", "base offset along the line"}, {"unit", "cm"}}},
-                      {"y", {{"label", "P"}, {"unit", "fraction"}}},
-                      {"series", {{{"name", "best path"}, {"x", {-10, -5, 0, 5, 10}},
-                                   {"y", {0.05, 0.02, 0.03, 0.06, 0.1}},
-                                   {"lo", {0.04, 0.015, 0.02, 0.05, 0.08}},
-                                   {"hi", {0.06, 0.025, 0.04, 0.07, 0.12}}},
-                                  {{"name", "shortest path"}, {"x", {-10, 0, 10}},
-                                   {"y", {0.2, 0.15, 0.25}}}}}});
+  sections.push_back(
+      {{"kind", "table"},
+       {"title", "Reach study"},
+       {"columns", {{{"name", "target"}, {"unit", ""}}, {{"name", "P"}, {"unit", "fraction"}}}},
+       {"rows",
+        json::array({json::array({"spacer_1", 0.02}), json::array({"damper_2", 0.987654321})})},
+       {"note", "P: the share of the samples that reach the target"}});
+  sections.push_back({{"kind", "image"},
+                      {"title", "Datasheet drawing"},
+                      {"png_base64", kTinyPngBase64},
+                      {"alt", "a grey pixel"}});
+  sections.push_back(
+      {{"kind", "chart"},
+       {"title", "P against the base offset"},
+       {"x", {{"label", "base offset along the line"}, {"unit", "cm"}}},
+       {"y", {{"label", "P"}, {"unit", "fraction"}}},
+       {"series",
+        {{{"name", "best path"},
+          {"x", {-10, -5, 0, 5, 10}},
+          {"y", {0.05, 0.02, 0.03, 0.06, 0.1}},
+          {"lo", {0.04, 0.015, 0.02, 0.05, 0.08}},
+          {"hi", {0.06, 0.025, 0.04, 0.07, 0.12}}},
+         {{"name", "shortest path"}, {"x", {-10, 0, 10}}, {"y", {0.2, 0.15, 0.25}}}}}});
   sections.push_back({{"kind", "timeline"},
                       {"title", "Behaviour rehearsal"},
                       {"unit", "s"},
-                      {"lanes", {"arm", "brush"}},
-                      {"events", {{{"lane", "arm"}, {"start", 0.0}, {"end", 2.5}, {"label", "approach"}},
-                                  {{"lane", "brush"}, {"start", 2.5}, {"end", 6.0}, {"label", "clean"}},
-                                  {{"lane", "arm"}, {"start", 6.0}, {"end", 7.5}, {"label", "retreat"}}}}});
-  sections.push_back({{"kind", "text"}, {"title", "Notes"}, {"text", "A synthetic report.\nTwo lines."}});
+                      {"lanes", json::array({"arm", "brush"})},
+                      {"events",
+                       {{{"lane", "arm"}, {"start", 0.0}, {"end", 2.5}, {"label", "approach"}},
+                        {{"lane", "brush"}, {"start", 2.5}, {"end", 6.0}, {"label", "clean"}},
+                        {{"lane", "arm"}, {"start", 6.0}, {"end", 7.5}, {"label", "retreat"}}}}});
+  sections.push_back(
+      {{"kind", "text"}, {"title", "Notes"}, {"text", "A synthetic report.\nTwo lines."}});
   report["view"] = {{"title", "synthetic study"}, {"answers", answers}, {"sections", sections}};
   return report;
 }
@@ -98,10 +115,11 @@ inline std::vector<float> syntheticPoses(std::size_t frames) {
   std::vector<float> poses;
   for (std::size_t k = 0; k < frames; ++k) {
     const double angle = M_PI / 2 * k / (frames - 1), c = std::cos(angle), s = std::sin(angle);
-    const float turn[16] = {float(c), float(s), 0, 0, float(-s), float(c), 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    const float turn[16] = {float(c), float(s), 0, 0, float(-s), float(c), 0, 0,
+                            0,        0,        1, 0, 0,         0,        0, 1};
     poses.insert(poses.end(), turn, turn + 16);
-    const float end[16] = {float(c), float(s), 0, 0, float(-s), float(c), 0, 0, 0, 0, 1, 0,
-                           float(30 * c), float(30 * s), 20, 1};
+    const float end[16] = {float(c), float(s), 0, 0, float(-s),     float(c),      0,  0,
+                           0,        0,        1, 0, float(30 * c), float(30 * s), 20, 1};
     poses.insert(poses.end(), end, end + 16);
   }
   return poses;
@@ -136,10 +154,11 @@ inline report::Scene syntheticScene(std::size_t boundary_points = 2000) {
   for (int i = 0; i < 8; ++i)
     for (int j = 0; j < 8; ++j)
       for (int k = 0; k < 4; ++k) {
-        reach.positions.insert(reach.positions.end(), {-35.0f + 10 * i, -35.0f + 10 * j, 10.0f * k});
+        reach.positions.insert(reach.positions.end(),
+                               {-35.0f + 10 * i, -35.0f + 10 * j, 10.0f * k});
         reach.values.push_back(static_cast<float>((i + j + k) / 17.0));
       }
-  reach.size = 8;
+  reach.size = 3;
   reach.value_label = "reachability";
   reach.value_unit = "fraction";
   report::Layer targets = namedLayer("targets", report::Layer::Kind::kPoints);

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "mcws/core/error.h"
+#include "mcws/core/markup.h"
 #include "mcws/core/text_file.h"
 #include "mcws/kinematics/detail/urdf_guard.h"
 #include "mcws/kinematics/robot_urdf.h"
@@ -19,30 +20,6 @@ namespace {
 /// The pair as the file wrote it, for messages.
 std::string describe(const DisabledCollision& pair) {
   return "disable_collisions link1=\"" + pair.link1 + "\" link2=\"" + pair.link2 + "\"";
-}
-
-/// XML attribute text of `value`, escaped for a double-quoted attribute.
-std::string escaped(const std::string& value) {
-  std::string out;
-  for (const char c : value) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 /// Every name an SRDF of `model` may use.
@@ -99,10 +76,10 @@ std::vector<DisabledCollision> loadSrdf(const std::string& path) {
 }
 
 std::string srdfText(const std::string& robot_name, const std::vector<DisabledCollision>& pairs) {
-  std::string out = "<?xml version=\"1.0\"?>\n<robot name=\"" + escaped(robot_name) + "\">\n";
+  std::string out = "<?xml version=\"1.0\"?>\n<robot name=\"" + escapeMarkup(robot_name) + "\">\n";
   for (const DisabledCollision& pair : pairs) {
-    out += "  <disable_collisions link1=\"" + escaped(pair.link1) + "\" link2=\"" +
-           escaped(pair.link2) + "\" reason=\"" + escaped(pair.reason) + "\"/>\n";
+    out += "  <disable_collisions link1=\"" + escapeMarkup(pair.link1) + "\" link2=\"" +
+           escapeMarkup(pair.link2) + "\" reason=\"" + escapeMarkup(pair.reason) + "\"/>\n";
   }
   return out + "</robot>\n";
 }

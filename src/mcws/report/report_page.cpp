@@ -3,8 +3,10 @@
 #include <cctype>
 #include <cstdlib>
 #include <map>
+#include <string>
 
 #include "mcws/core/error.h"
+#include "mcws/core/markup.h"
 #include "mcws/core/text_file.h"
 #include "mcws/report/detail/page_sources.h"
 #include "mcws/report/detail/scene_data.h"
@@ -13,21 +15,6 @@ namespace mcws::report {
 namespace {
 
 using nlohmann::json;
-
-/// The text of HTML element content or of an attribute value.
-std::string escapeHtml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 /// JSON for a <script type="application/json">: every '<' written \u003c, so that no "</script"
 /// or "<!--" ends or confuses the element; JSON.parse reads the same value back.
@@ -95,6 +82,42 @@ void checkPointer(const json& report, const json& answer, std::size_t index,
                 stated + " " + answer[stated].dump());
 }
 
+/// A section's members that the page reads as arrays are arrays (a table's rows of cells, a
+/// chart's series with x and y of one length, a timeline's lanes and events).
+void checkSection(const json& section, std::size_t index) {
+  const std::string what = "report view: section " + std::to_string(index) + ": ";
+  const std::string kind = section.is_object() ? section.value("kind", "") : "";
+  auto requireArray = [&](const json& parent, const char* key, const std::string& name) {
+    if (!parent.contains(key) || !parent[key].is_array())
+      throw Error(what + name + " is not an array: " +
+                  (parent.contains(key) ? parent[key].dump() : std::string("missing")));
+  };
+  if (kind == "table") {
+    requireArray(section, "columns", "columns");
+    requireArray(section, "rows", "rows");
+    for (std::size_t r = 0; r < section["rows"].size(); ++r)
+      if (!section["rows"][r].is_array())
+        throw Error(what + "row " + std::to_string(r) +
+                    " is not an array: " + section["rows"][r].dump());
+  } else if (kind == "chart") {
+    requireArray(section, "series", "series");
+    for (std::size_t s = 0; s < section["series"].size(); ++s) {
+      const json& series = section["series"][s];
+      const std::string name = "series " + std::to_string(s);
+      requireArray(series, "x", name + " x");
+      requireArray(series, "y", name + " y");
+      if (series["x"].size() != series["y"].size())
+        throw Error(what + name + ": " + std::to_string(series["x"].size()) + " x values, " +
+                    std::to_string(series["y"].size()) + " y values");
+    }
+  } else if (kind == "timeline") {
+    requireArray(section, "lanes", "lanes");
+    requireArray(section, "events", "events");
+  } else if (kind != "image" && kind != "text") {
+    throw Error(what + "kind \"" + kind + "\" is none of table, image, chart, timeline, text");
+  }
+}
+
 /// The view's answers point into the report at the numbers they show; its sections are of the
 /// kinds the page draws.
 void checkView(const json& report) {
@@ -102,7 +125,8 @@ void checkView(const json& report) {
     throw Error(std::string("report: a JSON object expected, not ") + report.type_name());
   if (!report.contains("view")) return;
   const json& view = report["view"];
-  if (!view.is_object()) throw Error(std::string("report view: not an object but ") + view.type_name());
+  if (!view.is_object())
+    throw Error(std::string("report view: not an object but ") + view.type_name());
   const json answers = view.value("answers", json::array());
   for (std::size_t i = 0; i < answers.size(); ++i) {
     if (!answers[i].is_object())
@@ -110,15 +134,8 @@ void checkView(const json& report) {
     checkPointer(report, answers[i], i, "source", "value");
     checkPointer(report, answers[i], i, "interval_source", "interval");
   }
-  static const std::map<std::string, int> kKinds = {
-      {"table", 0}, {"image", 0}, {"chart", 0}, {"timeline", 0}, {"text", 0}};
   const json sections = view.value("sections", json::array());
-  for (std::size_t i = 0; i < sections.size(); ++i) {
-    const std::string kind = sections[i].is_object() ? sections[i].value("kind", "") : "";
-    if (kKinds.count(kind) == 0)
-      throw Error("report view: section " + std::to_string(i) + ": kind \"" + kind +
-                  "\" is none of table, image, chart, timeline, text");
-  }
+  for (std::size_t i = 0; i < sections.size(); ++i) checkSection(sections[i], i);
 }
 
 /// The template with every <!--mcws:NAME--> replaced by parts[NAME] (inserted text is not
@@ -147,20 +164,23 @@ std::string threeJsDirectory() {
 
 std::string reportHtml(const nlohmann::json& report, const Scene& scene,
                        const PageOptions& options) {
-  checkView(report);
+  try {
+    checkView(report);
+  } catch (const json::exception& e) {  // a member of another type than the page reads
+    throw Error(std::string("report view: ") + e.what());
+  }
   detail::checkScene(scene);
   const detail::Decimation cut = detail::decimation(scene, options.max_embedded_bytes);
   const std::string three = readThreeJs("build/three.min.js");
   const std::string orbit = readThreeJs("examples/js/controls/OrbitControls.js");
-  return fill(detail::kPageReportHtml,
-              {{"title", escapeHtml(options.title)},
-               {"css", detail::kPageReportCss},
-               {"report", scriptJson(report)},
-               {"scene", scriptJson(detail::sceneJson(scene, cut))},
-               {"three", scriptText(three)},
-               {"orbit", scriptText(orbit)},
-               {"js", std::string(detail::kPageSectionsJs) + detail::kPageView3dJs +
-                          detail::kPageReportJs}});
+  return fill(detail::kPageReportHtml, {{"title", escapeMarkup(options.title)},
+                                        {"css", detail::kPageReportCss},
+                                        {"report", scriptJson(report)},
+                                        {"scene", scriptJson(detail::sceneJson(scene, cut))},
+                                        {"three", scriptText(three)},
+                                        {"orbit", scriptText(orbit)},
+                                        {"js", std::string(detail::kPageSectionsJs) +
+                                                   detail::kPageView3dJs + detail::kPageReportJs}});
 }
 
 }  // namespace mcws::report

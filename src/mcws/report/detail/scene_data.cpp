@@ -27,8 +27,7 @@ void checkPositions(const std::string& what, const std::vector<float>& positions
                 " position numbers, not a multiple of 3");
   for (std::size_t i = 0; i < positions.size(); ++i)
     if (!std::isfinite(positions[i]))
-      throw Error("report scene: " + what + ": point " + std::to_string(i / 3) +
-                  " is not finite");
+      throw Error("report scene: " + what + ": point " + std::to_string(i / 3) + " is not finite");
 }
 
 void checkTriangles(const std::string& what, const std::vector<std::uint32_t>& triangles,
@@ -159,7 +158,7 @@ std::size_t keptCount(std::size_t points, std::size_t stride) {
 Decimation decimation(const Scene& scene, std::size_t max_bytes) {
   Decimation out;
   out.stride.assign(scene.layers.size(), 1);
-  std::size_t fixed = 0;  // bytes that are kept whole
+  std::size_t fixed = 0;         // bytes that are kept whole
   std::vector<std::size_t> cut;  // the layers that may be cut (points, voxels)
   for (std::size_t i = 0; i < scene.layers.size(); ++i) {
     const Layer& layer = scene.layers[i];
@@ -168,7 +167,8 @@ Decimation decimation(const Scene& scene, std::size_t max_bytes) {
     else
       cut.push_back(i);
   }
-  for (const Body& body : scene.bodies) fixed += 4 * (body.positions.size() + body.triangles.size());
+  for (const Body& body : scene.bodies)
+    fixed += 4 * (body.positions.size() + body.triangles.size());
   for (const Animation& animation : scene.animations)
     fixed += 4 * (animation.poses.size() + animation.parameter.size());
   auto bytes = [&](std::size_t i) {

@@ -40,8 +40,17 @@ mcws.View = function (data, canvas) {
 
 // Draws on `canvas` (false when the browser gives no WebGL: the view stays empty).
 mcws.View.prototype.attach = function (canvas) {
+  // Asked first: three.js would log an error for a browser without WebGL.
+  const probe = document.createElement("canvas");
+  const gl = window.WebGLRenderingContext && (probe.getContext("webgl") || probe.getContext("experimental-webgl"));
+  if (!gl) return false;
+  const info = gl.getExtension("WEBGL_debug_renderer_info");
+  const software = /swiftshader|llvmpipe|software/i.test(info ? gl.getParameter(info.UNMASKED_RENDERER_WEBGL) : "");
+  const lose = gl.getExtension("WEBGL_lose_context");
+  if (lose) lose.loseContext();
   try {
-    this.renderer = new THREE.WebGLRenderer({canvas: canvas, antialias: true, preserveDrawingBuffer: true});
+    // Without a GPU (SwiftShader) antialiasing doubles the time of a large point cloud's frame.
+    this.renderer = new THREE.WebGLRenderer({canvas: canvas, antialias: !software, preserveDrawingBuffer: true});
   } catch (e) {
     return false;
   }
@@ -57,7 +66,7 @@ mcws.View.prototype.attach = function (canvas) {
 
 mcws.View.prototype.fit = function () {
   const sphere = mcws.boundingSphere(this);
-  const distance = sphere.radius / Math.sin(THREE.Math.degToRad(this.camera.fov / 2)) * 1.1;
+  const distance = sphere.radius / Math.sin(THREE.Math.degToRad(this.camera.fov / 2)) * 0.9;
   const direction = new THREE.Vector3(1.0, -1.4, 0.9).normalize();
   this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
   this.camera.near = distance / 200;
@@ -175,29 +184,41 @@ mcws.hook = function (hook, view) {
   hook.renderCount = function () { return view.renderCount; };
 };
 
+// The answers and sections first; the 3-D view once they are on the screen (a large scene takes
+// a while to upload and draw without a GPU).
 (function () {
   const hook = window.mcwsReport = {ready: false, webgl: false, error: null};
+  const fail = function (e) {
+    hook.error = String(e && e.stack || e);
+    console.error("mcws report: " + hook.error);
+  };
   try {
     const report = JSON.parse(document.getElementById("mcws-report").textContent);
-    const data = JSON.parse(document.getElementById("mcws-scene").textContent);
     const view = report.view || {};
     if (view.title) document.getElementById("title").textContent = view.title;
     mcws.renderAnswers(report, view.answers || [], document.getElementById("answers"));
     mcws.renderSections(report, view.sections || [], document.getElementById("sections"));
-    document.getElementById("length-unit").textContent = data.length_unit || "the robot's unit";
-    const scene = new mcws.View(data);
-    mcws.layerControls(scene);
-    mcws.animationControls(scene);
-    hook.webgl = scene.attach(document.getElementById("scene-canvas"));
-    if (!hook.webgl) {
-      const note = document.getElementById("webgl-error");
-      note.textContent = "This browser gives no WebGL: the 3-D view cannot be drawn (the rest of the report is shown).";
-      note.hidden = false;
-    }
-    mcws.hook(hook, scene);
-    hook.ready = true;
   } catch (e) {
-    hook.error = String(e && e.stack || e);
-    console.error("mcws report: " + hook.error);
+    return fail(e);
   }
+  requestAnimationFrame(function () { setTimeout(function () {
+    try {
+      const data = JSON.parse(document.getElementById("mcws-scene").textContent);
+      document.getElementById("length-unit").textContent = data.length_unit || "the robot's unit";
+      const scene = new mcws.View(data);
+      mcws.layerControls(scene);
+      mcws.animationControls(scene);
+      hook.webgl = scene.attach(document.getElementById("scene-canvas"));
+      if (!hook.webgl) {
+        const note = document.getElementById("webgl-error");
+        note.textContent = "This browser gives no WebGL: the 3-D view cannot be drawn (the rest of the report is shown).";
+        note.hidden = false;
+      }
+      mcws.hook(hook, scene);
+      hook.readyMs = performance.now();  // since the navigation started [ms]
+      hook.ready = true;
+    } catch (e) {
+      fail(e);
+    }
+  }, 0); });
 })();
