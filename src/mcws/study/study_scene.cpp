@@ -268,6 +268,15 @@ report::Scene studyScene(const StudyState& state) {
     report::Animation animation = pathAnimation(state, planned);
     if (animation.frames > 0) scene.animations.push_back(std::move(animation));
   }
+  if (scene.animations.empty()) {  // the page places the bodies by an animation's frame 0
+    Robot moved = study.problem.robot;
+    moved.T_world_base.pretranslate(move);
+    report::Animation still;
+    still.name = "the robot at the chosen stop, start configuration";
+    still.frames = 1;
+    addPoses(bodyPoses(moved, study.problem.start), still.poses);
+    scene.animations.push_back(std::move(still));
+  }
   return scene;
 }
 
