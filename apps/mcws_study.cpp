@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
       study.seed = study.problem.seed = study.problem.roadmap.seed = app::readSeed(cli);
     }
 
-    StudyDirectory directory(output);
+    StudyDirectory directory(output, study.inputs);
     std::map<std::string, app::Progress> bars;
     StudyRunOptions options;
     options.threads = threads;

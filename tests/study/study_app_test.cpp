@@ -230,18 +230,33 @@ TEST(StudyApp, NoStopReachingAnyTargetNamesTheTargetsAndLeavesOutputAlone) {
   test::replaceAll(study, "from: 20 cm, to: 40 cm", "from: 400 cm, to: 420 cm");
   const StudyFiles files(study);
   std::filesystem::create_directory(files.file("out"));
-  test::writeFile(files.file("out/keep.txt"), "old report");
+  test::writeFile(files.file("out/report.json"), "old report");
   const test::RunResult r = test::run(kStudyExe + " --study " + files.file("study.yaml") +
                                       " --output " + files.file("out"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("stops: no stop from 400 to 420 cm reaches any target "
                                "(targets t_1, t_2, t_3, t_4)"));
-  EXPECT_EQ(test::readFile(files.file("out/keep.txt")), "old report");
+  EXPECT_EQ(test::readFile(files.file("out/report.json")), "old report");
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(files.file("out")),
                           std::filesystem::directory_iterator()),
             1);
   // Nothing left beside it: the robot, targets and study files only, and the directory.
   EXPECT_EQ(files.dir.fileCount(), 4u);
+}
+
+TEST(StudyApp, RefusesToReplaceADirectoryOfInputsOrOfOtherFiles) {
+  const StudyFiles files;
+  const test::RunResult inputs =
+      test::run(kStudyExe + " --study " + files.file("study.yaml") + " --output " + files.file(""));
+  EXPECT_EQ(inputs.exit_code, 2);
+  EXPECT_THAT(inputs.err, HasSubstr("study.yaml, an input of the run"));
+  std::filesystem::create_directory(files.file("other"));
+  test::writeFile(files.file("other/notes.txt"), "mine");
+  const test::RunResult other = test::run(kStudyExe + " --study " + files.file("study.yaml") +
+                                          " --output " + files.file("other"));
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_THAT(other.err, HasSubstr("neither empty nor a former study's output"));
+  EXPECT_EQ(test::readFile(files.file("other/notes.txt")), "mine");
 }
 
 TEST(StudyApp, UsageErrorsExitTwo) {

@@ -49,8 +49,9 @@ struct StudyReach {
 /// \brief A study file as read.
 struct Study {
   std::string name;
-  std::string source;      ///< the study file
-  std::string robot_path;  ///< the robot file it names, resolved
+  std::string source;               ///< the study file
+  std::string robot_path;           ///< the robot file it names, resolved
+  std::vector<std::string> inputs;  ///< the files read: the study, the robot, the targets files
   /// The robot (its T_world_base the measured pose at stop 0), its collision model with the
   /// study's line as environment, start, sway, planner and validation as a scenario's; goal
   /// unset (each target's is found by IK).

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <system_error>
@@ -35,11 +36,27 @@ void writeFile(const std::string& path, const std::string& bytes) {
 
 }  // namespace
 
-StudyDirectory::StudyDirectory(std::string target) : target_(std::move(target)) {
+StudyDirectory::StudyDirectory(std::string target, const std::vector<std::string>& inputs)
+    : target_(std::move(target)) {
   std::error_code error;
   const fs::path path = fs::path(target_).lexically_normal();
   if (fs::exists(path, error) && !fs::is_directory(path, error))
     throw Error("--output " + target_ + ": exists and is not a directory");
+  if (fs::is_directory(path, error)) {
+    const fs::path inside = fs::weakly_canonical(path, error);
+    for (const std::string& input : inputs) {
+      const fs::path file = fs::weakly_canonical(input, error);
+      const auto [end, rest] =
+          std::mismatch(inside.begin(), inside.end(), file.begin(), file.end());
+      if (end == inside.end())
+        throw UsageError("--output " + target_ + ": holds " + input +
+                         ", an input of the run (the directory is replaced as a whole)");
+    }
+    if (!fs::is_empty(path, error) && !fs::exists(path / "report.json", error))
+      throw UsageError("--output " + target_ +
+                       ": a directory that is neither empty nor a former study's output (no "
+                       "report.json); it would be replaced as a whole");
+  }
   const fs::path parent = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   if (!fs::is_directory(parent, error))
     throw Error("--output " + target_ + ": directory " + parent.string() + " does not exist");

@@ -3,6 +3,7 @@
 /// \brief The output directory of a study, appearing whole or not at all, and the report files.
 
 #include <string>
+#include <vector>
 
 #include "mcws/study/study_run.h"
 
@@ -16,9 +17,12 @@ namespace mcws {
 /// what lay at `target` is untouched.
 class StudyDirectory {
  public:
-  /// \throws mcws::Error when `target` is an existing file (not a directory), when its parent
+  /// \param inputs the files the run reads: none may lie inside `target`.
+  /// \throws mcws::UsageError when `target` holds one of `inputs`, or is a directory neither
+  ///   empty nor a former output (it has no report.json: `--output ~` must not replace a home);
+  ///   mcws::Error when `target` is an existing file (not a directory), when its parent
   ///   directory does not exist, or when the new directory cannot be made.
-  explicit StudyDirectory(std::string target);
+  StudyDirectory(std::string target, const std::vector<std::string>& inputs);
   ~StudyDirectory();
   StudyDirectory(const StudyDirectory&) = delete;
   StudyDirectory& operator=(const StudyDirectory&) = delete;

@@ -33,6 +33,7 @@ class StudyReader : ScenarioSectionReader {
     study.name = text(require(root, "name", "study"), "name");
     study.distance_unit = readProblem(root, "study", study.robot_path, study.problem, false);
     if (const YAML::Node seed = root["seed"]) study.seed = seedOf(seed, "seed");
+    study.inputs = {study.source, study.robot_path};
     readLine(require(root, "line", "study"), study);
     readTargets(require(root, "targets", "study"), study);
     readStops(require(root, "stops", "study"), study);
@@ -150,6 +151,7 @@ class StudyReader : ScenarioSectionReader {
     if (file.is_relative()) file = std::filesystem::path(source()).parent_path() / file;
     const std::string name =
         item["name"] ? text(item["name"], where + ": name") : file.stem().string();
+    study.inputs.push_back(file.string());
     std::vector<ReachTarget> targets;
     try {
       targets = loadTargets(file.string());
