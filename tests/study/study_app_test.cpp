@@ -29,6 +29,7 @@ const std::string kMeasureExe = MCWS_MEASURE_EXE;
 const std::string kEnvelopeExe = MCWS_ENVELOPE_EXE;
 const std::string kPlaceExe = MCWS_PLACE_EXE;
 const std::string kPlanExe = MCWS_PLAN_EXE;
+const std::string kBehaveExe = MCWS_BEHAVE_EXE;
 
 // A goal and a pivot written as text with 17 digits and converted cm -> cm by the scenario reader
 // (x * 0.01 / 0.01) may differ from the study's own by an ulp: numbers of the plan agree to this
@@ -176,6 +177,19 @@ TEST_F(StudyRunTest, PlanIsMcwsPlansOnTheEquivalentScenario) {
     ASSERT_TRUE(plan.contains(key)) << key;
     expectClose(study_plan[key], plan[key], key);
   }
+}
+
+TEST_F(StudyRunTest, BehaviourIsMcwsBehavesRehearsal) {
+  const test::RunResult r = test::run(kBehaveExe + " --model " + MCWS_ROBOTS_DIR +
+                                      "/insulator_cleaner_behaviors.yaml --insulators 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Json study_behaviour = (*report_)["behaviour"];
+  for (const char* key : {"run", "model", "failure"}) study_behaviour.erase(key);
+  EXPECT_EQ(study_behaviour, Json::parse(r.out));
+  bool timeline = false;
+  for (const Json& section : (*report_)["view"]["sections"])
+    timeline = timeline || (section["kind"] == "timeline" && !section["events"].empty());
+  EXPECT_TRUE(timeline);
 }
 
 TEST(StudyApp, SameReportForOneAndTwoThreads) {

@@ -40,6 +40,7 @@ sway: {pivot: [0 cm, 0 cm, 25 cm], line: [1, 0, 0], swing: 2 deg, slide: 1 cm, p
 validation: {poses: 200}
 workspace: {samples: 3000}
 reach: {resolution: 4 cm, samples: 40000, orientations: 50, approach_tolerance: 10 deg, plan_targets: 1}
+behaviour: {model: @ROBOTS@/insulator_cleaner_behaviors.yaml, insulators: 2}
 )";
 
 inline const char* const kPlanner = R"(planner:
@@ -52,6 +53,10 @@ inline const char* const kPlanner = R"(planner:
   base_range: 0 cm
 )";
 
+inline std::string defaultStudyText() {
+  return replaceOnce(replaceOnce(kStudy, "@PLANNER@", kPlanner), "@ROBOTS@", MCWS_ROBOTS_DIR);
+}
+
 /// A directory with the test robot, targets and study (`study` replacing the default).
 struct StudyFiles {
   TempDir dir;
@@ -61,12 +66,9 @@ struct StudyFiles {
     robot.replace(from, to - from, kRobotEnvironment);
     writeFile(dir.file("robot.yaml"), robot);
     writeFile(dir.file("targets.csv"), kTargets);
-    writeFile(dir.file("study.yaml"),
-              study.empty() ? replaceOnce(kStudy, "@PLANNER@", kPlanner) : study);
+    writeFile(dir.file("study.yaml"), study.empty() ? defaultStudyText() : study);
   }
   std::string file(const std::string& name) const { return dir.file(name); }
 };
-
-inline std::string defaultStudyText() { return replaceOnce(kStudy, "@PLANNER@", kPlanner); }
 
 }  // namespace mcws::test

@@ -46,6 +46,12 @@ struct StudyReach {
   std::size_t plan_targets{0};  ///< targets planned at the chosen stop (the first reached); 0 all
 };
 
+/// \brief The optional behaviour rehearsal (mcws_behave): the cleaning job of a behaviour model.
+struct StudyBehaviour {
+  std::string model;  ///< the model file, resolved; empty: no rehearsal
+  int insulators{0};  ///< discs of the job
+};
+
 /// \brief A study file as read.
 struct Study {
   std::string name;
@@ -66,6 +72,7 @@ struct Study {
   std::uint64_t seed{1};      ///< of the workspace samples, the reach map and the IK starts
   StudyWorkspace workspace;
   StudyReach reach;
+  StudyBehaviour behaviour;
 };
 
 /// \brief Parses a study document.
@@ -94,6 +101,7 @@ struct Study {
 /// workspace: {samples: 20000, alpha: 3, azimuth: 0 deg}
 /// reach: {resolution: 4 cm, samples: 200000, orientations: 50, rolls: 1,
 ///         approach_tolerance: 5 deg, ik_starts: 4, plan_targets: 2}
+/// behaviour: {model: ../robots/insulator_cleaner_behaviors.yaml, insulators: 3}  # optional
 /// \endcode
 /// \throws mcws::Error "file:line: field: ..." for a mistake in any section (as parseScenario()
 ///   for the scenario's sections), an unknown fitting type, a conductor with fewer than two

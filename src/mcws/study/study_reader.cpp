@@ -27,7 +27,7 @@ class StudyReader : ScenarioSectionReader {
     if (!root.IsMap()) fail(root, "the document must be a map of study fields");
     checkKeys(root, "study",
               {"name", "robot", "seed", "line", "targets", "stops", "start", "joint_scale", "base",
-               "sway", "planner", "validation", "workspace", "reach"});
+               "sway", "planner", "validation", "workspace", "reach", "behaviour"});
     Study study;
     study.source = source();
     study.name = text(require(root, "name", "study"), "name");
@@ -39,6 +39,7 @@ class StudyReader : ScenarioSectionReader {
     readStops(require(root, "stops", "study"), study);
     if (const YAML::Node workspace = root["workspace"]) readWorkspace(workspace, study.workspace);
     readReach(require(root, "reach", "study"), study.reach);
+    if (const YAML::Node behaviour = root["behaviour"]) readBehaviour(behaviour, study);
     return study;
   }
 
@@ -188,6 +189,20 @@ class StudyReader : ScenarioSectionReader {
                                 " is outside [1, 1000] (local spacings)");
     }
     if (node["azimuth"]) workspace.azimuth = quantity(node["azimuth"], 'a', "workspace: azimuth");
+  }
+
+  void readBehaviour(const YAML::Node& node, Study& study) {
+    checkKeys(node, "behaviour", {"model", "insulators"});
+    std::filesystem::path file = text(require(node, "model", "behaviour"), "behaviour: model");
+    if (file.is_relative()) file = std::filesystem::path(source()).parent_path() / file;
+    study.behaviour.model = file.string();
+    study.inputs.push_back(file.string());
+    const std::size_t discs =
+        count(require(node, "insulators", "behaviour"), "behaviour: insulators");
+    if (discs > 200)
+      fail(node["insulators"], "behaviour: insulators " + node["insulators"].Scalar() +
+                                   " is more than 200 (as mcws_behave --insulators)");
+    study.behaviour.insulators = static_cast<int>(discs);
   }
 
   void readReach(const YAML::Node& node, StudyReach& reach) {

@@ -292,19 +292,15 @@ StudyRun runStudy(const Study& study, const std::string& directory,
       {"workspace", detail::runWorkspace},
       {"reach", detail::runReach},
       {"placement", detail::runPlacement},
-      {"planning", detail::runPlanning}};
+      {"planning", detail::runPlanning},
+      {"behaviour", detail::runBehaviour}};
   for (const auto& [name, step] : steps) {
     const Stopwatch clock;
     step(state);
     stages.push_back({{"stage", name}, {"seconds", clock.seconds()}});
   }
-  stages.push_back({{"stage", "behaviour"}, {"seconds", 0.0}, {"skipped", true}});
   report["stages"] = stages;
   report["units"]["stages.seconds"] = "s";
-  report["behaviour"] = {{"run", false},
-                         {"note",
-                          "the behaviour rehearsal is not part of this version of "
-                          "mcws_study (mcws_behave runs it)"}};
   report["view"] = detail::studyView(state);
   return {report, detail::studyScene(state)};
 }

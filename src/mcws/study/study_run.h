@@ -39,7 +39,8 @@ struct StudyRun {
 /// (mcws_place --confirm all), then the reach study at every stop; (4) at the best stop, for each
 /// target reached there (up to plan_targets), the IK solution as goal and SwayPlanner::plan()
 /// from `start` with the validation (mcws_plan), the robot's base and the sway pivot moved by the
-/// stop. The behaviour rehearsal is not run (the report says so).
+/// stop; (5) when the study names a behaviour model, the rehearsal of its cleaning job
+/// (runCleaningJob(), as mcws_behave --json) with its timeline.
 /// \throws mcws::Error naming the targets when no stop reaches any target, and for the stages'
 ///   own failures.
 StudyRun runStudy(const Study& study, const std::string& directory,

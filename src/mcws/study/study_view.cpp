@@ -181,8 +181,7 @@ Json stagesTable(const StudyState& state) {
   return {{"kind", "table"},
           {"title", "Time of each stage"},
           {"columns", {column("stage", ""), column("time", "s")}},
-          {"rows", rows},
-          {"note", "the behaviour rehearsal is not run by this version"}};
+          {"rows", rows}};
 }
 
 }  // namespace
@@ -197,6 +196,7 @@ Json studyView(const StudyState& state) {
   sections.push_back(candidatesTable(state));
   sections.push_back(validationTable(state));
   sections.push_back(reachTableView(state));
+  if (!state.behaviour_timeline.is_null()) sections.push_back(state.behaviour_timeline);
   sections.push_back(stagesTable(state));
   sections.push_back(
       {{"kind", "text"},

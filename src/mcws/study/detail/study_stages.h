@@ -50,6 +50,8 @@ struct StudyState {
   std::vector<std::vector<TargetReach>> per_stop;  ///< [stop][target]
   // planning
   std::vector<PlannedTarget> planned;
+  // behaviour
+  nlohmann::json behaviour_timeline;  ///< the view's timeline section (null: no rehearsal)
 };
 
 /// \brief The world move of the robot at `stop` [length unit] along the sway's line.
@@ -64,6 +66,9 @@ void runReach(StudyState& state);
 void runPlacement(StudyState& state);
 /// \brief Stage (4): planning under sway at the chosen stop.
 void runPlanning(StudyState& state);
+
+/// \brief Stage (5): the behaviour rehearsal, when the study names a model.
+void runBehaviour(StudyState& state);
 
 /// \brief The report's "view" (answers, sections).
 nlohmann::json studyView(const StudyState& state);
