@@ -1,15 +1,15 @@
 #include "mcws/study/study_run.h"
 
-#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "mcws/collision/robot_bodies.h"
+#include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
 #include "mcws/core/length_unit.h"
 #include "mcws/core/stopwatch.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/io/cloud_io.h"
-#include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
@@ -210,16 +210,20 @@ void runPlacement(StudyState& state) {
     report(state, "reach study per stop", s + 1, moves.size());
   }
   std::vector<std::string> unreached;
+  std::string names;
   for (std::size_t t = 0; t < targets.size(); ++t) {
     bool any = false;
     for (const auto& stop : state.per_stop) any = any || stop[t].reached;
-    if (!any) unreached.push_back(study.targets[t].name);
+    if (!any) {
+      unreached.push_back(study.targets[t].name);
+      names += (names.empty() ? "" : ", ") + study.targets[t].name;
+    }
   }
   if (unreached.size() == targets.size() || state.best < 0 ||
       state.candidates[static_cast<std::size_t>(state.best)].ik.reached == 0) {
     throw Error(study.source + ": stops: no stop from " + formatNumber(study.stops.front()) +
                 " to " + formatNumber(study.stops.back()) + " " + unitName(robot.length_unit) +
-                " reaches any target (targets " + joined(unreached) + ")");
+                " reaches any target (targets " + names + ")");
   }
   const nlohmann::json map_about = {
       {"source", "built"}, {"samples", study.reach.samples}, {"self_collision", true}};
