@@ -1,5 +1,6 @@
 // The 3-D scene of the study report: the line, the workspace at the chosen stop, the reach map,
 // the targets, the robot's collision bodies and the planned paths as animations.
+#include <algorithm>
 #include <cmath>
 
 #include "mcws/kinematics/forward_kinematics.h"
