@@ -6,7 +6,8 @@
 # form), and write the clouds and their pictures; then plan the arm of the maintenance-arm patent
 # under base sway (chosen path, report, validation) and draw the two-joint configuration space;
 # then rehearse the cleaning job of Wang et al. 2018 on a 28-disc string (clean, and with one of
-# every fault).
+# every fault); then the whole power-line study of studies/maintenance4_line.yaml in one command
+# (mcws_study: where to stop, which path, how likely it touches the line; out/study/report.html).
 # Usage: scripts/run_main.sh [OUTPUT_DIR]   (default: out/)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -19,7 +20,7 @@ bin=$root/build/apps
 # still builds them.
 "$root/scripts/build.sh" "$root/build" --target mcws_sample --target mcws_boundary \
   --target mcws_refine --target mcws_measure --target mcws_plan --target mcws_behave \
-  --target mcws_envelope
+  --target mcws_envelope --target mcws_study
 mkdir -p "$out"
 
 robot=$root/robots/deicing.yaml
@@ -86,6 +87,8 @@ mv "$out/.cleaning_28.txt.tmp" "$out/cleaning_28.txt"
   --log "$out/rehearsal_3.jsonl" --plot "$out/rehearsal_3.png" --plot-all \
   >"$out/.rehearsal_3.txt.tmp" 2>/dev/null
 mv "$out/.rehearsal_3.txt.tmp" "$out/rehearsal_3.txt"
+# The power-line study in one command: one report (HTML that works offline, and JSON).
+"$bin/mcws_study" --study "$root/studies/maintenance4_line.yaml" --output "$out/study" 2>/dev/null
 
 echo "mcws: de-icing arm workspace written to $out:"
 for f in deicing_xz.pcd deicing_xz.png deicing_3d.pcd deicing_3d.png deicing_xz_boundary.pcd \
@@ -118,3 +121,7 @@ for f in cleaning_28.txt cleaning_28.jsonl cleaning_28.csv cleaning_28.png behav
   rehearsal_3.jsonl rehearsal_3.png; do echo "  $out/$f"; done
 sed -n '1,3p' "$out/cleaning_28.txt"
 sed -n '/^faults/,$p' "$out/rehearsal_3.txt"
+echo "mcws: the power-line study (mcws_study) written to $out/study: report.html, report.json"
+python3 -c 'import json, sys
+for a in json.load(open(sys.argv[1]))["view"]["answers"]:
+    print("  %s: %.6g %s" % (a["label"], a["value"], a["unit"]))' "$out/study/report.json"
