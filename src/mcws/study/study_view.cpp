@@ -37,8 +37,23 @@ Json pathAnswer(const StudyState& state, std::size_t i) {
             formatNumber(interval[0].get<double>()) + ", " +
             formatNumber(interval[1].get<double>()) + "]";
   }
-  answer["note"] = note + " (95 % intervals, " +
+  // Whether the planner accepted the path: a refused one is shown, never recommended.
+  const Json& plan =
+      state.report.at(Json::json_pointer("/planning/targets/" + std::to_string(i) + "/plan"));
+  const std::string status = plan.at("status").get<std::string>();
+  const std::string verdict =
+      status == "ok"
+          ? "accepted: the upper end of its 95 % interval on the planning poses is at most " +
+                formatNumber(plan.at("max_collision_probability").get<double>())
+          : "REFUSED (" + status +
+                "): no path to this target keeps the collision "
+                "probability within " +
+                formatNumber(plan.at("max_collision_probability").get<double>()) +
+                "; do not use it without a smaller sway or another stop";
+  answer["note"] = verdict + "; " + note + " (95 % intervals, " +
                    std::to_string(validation.at("poses").get<std::size_t>()) + " fresh base poses)";
+  if (status != "ok")
+    answer["label"] = "Best path to " + name + " (refused): whole-path collision probability";
   return answer;
 }
 
