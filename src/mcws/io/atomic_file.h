@@ -109,6 +109,7 @@ class AtomicFile {
   std::string target_;         ///< `path_` with its symbolic links followed
   std::string temp_path_;      ///< the temporary name; empty while the file has none
   std::FILE* file_{nullptr};   ///< open until commit() or destruction
+  std::size_t unsynced_{0};    ///< bytes write() took since the last startWriteback()
   int device_{-1};             ///< a device whose bytes are buffered in `file_` (in an OutputSet)
   bool write_through_{false};  ///< the target is a device, FIFO, socket or descriptor
   bool unnamed_{false};        ///< made with O_TMPFILE and not linked yet
