@@ -258,6 +258,22 @@ TEST(StudyApp, NoStopReachingAnyTargetNamesTheTargetsAndLeavesOutputAlone) {
   EXPECT_EQ(files.dir.fileCount(), 4u);
 }
 
+TEST(StudyApp, RunStoppedBySignalLeavesNothingBesideTheOutputAndTheOutputAsItWas) {
+  const StudyFiles files;
+  std::filesystem::create_directory(files.file("out"));
+  test::writeFile(files.file("out/report.json"), "old report");
+  // SIGTERM as soon as the directory the study writes into has appeared beside out/.
+  const test::RunResult r =
+      test::run("cd " + files.file("") + " && (" + kStudyExe +
+                " --study study.yaml --output out 2>/dev/null & pid=$!; for i in $(seq 500); do "
+                "ls -a | grep -q mcws-study && break; sleep 0.01; done; "
+                "ls -a | grep -c mcws-study; kill -TERM $pid; wait $pid; echo \"status $?\")");
+  EXPECT_THAT(r.out, StartsWith("1\n")) << "the study's directory was not seen: " << r.out;
+  EXPECT_THAT(r.out, HasSubstr("status 143"));  // 128 + SIGTERM: ended by the signal
+  EXPECT_EQ(test::readFile(files.file("out/report.json")), "old report");
+  EXPECT_EQ(files.dir.fileCount(), 4u);  // robot, targets, study and out/: nothing beside them
+}
+
 TEST(StudyApp, RefusesToReplaceADirectoryOfInputsOrOfOtherFiles) {
   const StudyFiles files;
   const test::RunResult inputs =

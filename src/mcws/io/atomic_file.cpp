@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
@@ -41,9 +42,40 @@ constexpr int kMaxLinkHops = 40;
 constexpr std::size_t kMaxNamePrefix = 200;
 static_assert(1 + kMaxNamePrefix + 6 + 10 + 1 + 10 <= NAME_MAX);
 
+// Directories of files being made (registerTempDirectory()), emptied and removed on a signal.
+constexpr int kMaxDirectories = 4;
+char g_temp_dirs[kMaxDirectories][kMaxPath];
+std::atomic<bool> g_temp_dir_used[kMaxDirectories];
+
+/// Removes the files of a flat directory and the directory, with system calls only (no
+/// allocation: readdir's DIR is malloc'd, so the entries are read with getdents64).
+void removeFlatDirectory(const char* path) {
+  const int fd = ::open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    alignas(8) static char entries[8192];
+    for (;;) {
+      const long size = ::syscall(SYS_getdents64, fd, entries, sizeof entries);
+      if (size <= 0) break;
+      for (long at = 0; at < size;) {
+        // struct linux_dirent64: d_ino (8), d_off (8), d_reclen (2), d_type (1), d_name.
+        unsigned short length = 0;
+        std::memcpy(&length, entries + at + 16, sizeof length);
+        const char* name = entries + at + 19;
+        if (std::strcmp(name, ".") != 0 && std::strcmp(name, "..") != 0) ::unlinkat(fd, name, 0);
+        at += length;
+      }
+    }
+    ::close(fd);
+  }
+  ::rmdir(path);
+}
+
 extern "C" void removeTempFilesAndReraise(int signal_number) {
   for (int k = 0; k < kMaxOpenFiles; ++k) {
     if (g_temp_used[k].load()) ::unlink(g_temp_paths[k]);
+  }
+  for (int k = 0; k < kMaxDirectories; ++k) {
+    if (g_temp_dir_used[k].load()) removeFlatDirectory(g_temp_dirs[k]);
   }
   // The signal is blocked while its handler runs: raised again, it ends the process on return.
   std::signal(signal_number, SIG_DFL);
@@ -85,6 +117,29 @@ int registerTempFile(const std::string& path) {
 void unregisterTempFile(int slot) {
   if (slot >= 0) g_temp_used[slot].store(false);
 }
+
+}  // namespace
+
+int registerTempDirectory(const std::string& path) {
+  installSignalHandlers();
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (path.size() >= kMaxPath) return -1;
+  for (int k = 0; k < kMaxDirectories; ++k) {
+    if (!g_temp_dir_used[k].load()) {
+      std::memcpy(g_temp_dirs[k], path.c_str(), path.size() + 1);
+      g_temp_dir_used[k].store(true);
+      return k;
+    }
+  }
+  return -1;
+}
+
+void unregisterTempDirectory(int slot) {
+  if (slot >= 0) g_temp_dir_used[slot].store(false);
+}
+
+namespace {
 
 /// The descriptor N that `path` names when it is `/proc/self/fd/N`, `/proc/thread-self/fd/N`,
 /// `/proc/<this process>/fd/N` or `/dev/fd/N` (lexically).

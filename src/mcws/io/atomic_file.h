@@ -109,12 +109,20 @@ class AtomicFile {
   std::string target_;         ///< `path_` with its symbolic links followed
   std::string temp_path_;      ///< the temporary name; empty while the file has none
   std::FILE* file_{nullptr};   ///< open until commit() or destruction
-  std::size_t unsynced_{0};    ///< bytes write() took since the last startWriteback()
+  std::size_t unsynced_{0};    ///< bytes write() took since the disk was last asked to write
   int device_{-1};             ///< a device whose bytes are buffered in `file_` (in an OutputSet)
   bool write_through_{false};  ///< the target is a device, FIFO, socket or descriptor
   bool unnamed_{false};        ///< made with O_TMPFILE and not linked yet
   int signal_slot_{-1};        ///< where `temp_path_` is registered for the signal handler
 };
+
+/// \brief A directory of files being made (flat: files only), removed with its files if a signal
+/// ends the process before unregisterTempDirectory() (the handler of AtomicFile's temporary
+/// names, SIGINT, SIGTERM, ...). \return a slot for unregisterTempDirectory(); -1 when the table
+/// (4 directories) is full or the path too long: that directory is then not removed on a signal.
+int registerTempDirectory(const std::string& path);
+/// \brief Forgets a registerTempDirectory() slot (-1: nothing).
+void unregisterTempDirectory(int slot);
 
 /// \brief Writes `bytes` to `path` through an AtomicFile and commits it (into the OutputSet alive
 /// on this thread, if any). \throws mcws::Error as AtomicFile does.

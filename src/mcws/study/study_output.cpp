@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <system_error>
 
 #include "mcws/core/error.h"
+#include "mcws/io/atomic_file.h"
 #include "mcws/report/report_page.h"
 
 namespace mcws {
@@ -25,13 +25,6 @@ std::string besideTarget(const std::string& target, const std::string& tag) {
   return ((parent.empty() ? fs::path(".") : parent) /
           ("." + name.string() + "." + tag + "-" + std::to_string(::getpid())))
       .string();
-}
-
-void writeFile(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) throw Error(path + ": cannot be written");
 }
 
 }  // namespace
@@ -64,9 +57,11 @@ StudyDirectory::StudyDirectory(std::string target, const std::vector<std::string
   fs::remove_all(temporary_, error);
   if (!fs::create_directory(temporary_, error))
     throw Error("--output " + target_ + ": cannot make " + temporary_ + ": " + error.message());
+  signal_slot_ = io::registerTempDirectory(temporary_);  // Ctrl-C leaves nothing beside DIR
 }
 
 StudyDirectory::~StudyDirectory() {
+  io::unregisterTempDirectory(signal_slot_);
   if (committed_) return;
   std::error_code ignored;
   fs::remove_all(temporary_, ignored);
@@ -90,15 +85,17 @@ void StudyDirectory::commit() {
                 " onto it: " + error.message());
   }
   committed_ = true;
+  io::unregisterTempDirectory(signal_slot_);
+  signal_slot_ = -1;
   if (!old.empty()) fs::remove_all(old, error);
 }
 
 void saveStudyReport(const StudyRun& run, const std::string& directory) {
-  writeFile((fs::path(directory) / "report.json").string(), run.report.dump(2) + "\n");
+  io::writeWholeFile((fs::path(directory) / "report.json").string(), run.report.dump(2) + "\n");
   report::PageOptions options;
   options.title = run.report.value("study", std::string("mcws study"));
-  writeFile((fs::path(directory) / "report.html").string(),
-            report::reportHtml(run.report, run.scene, options));
+  io::writeWholeFile((fs::path(directory) / "report.html").string(),
+                     report::reportHtml(run.report, run.scene, options));
 }
 
 }  // namespace mcws

@@ -35,6 +35,7 @@ class StudyDirectory {
  private:
   std::string target_, temporary_;
   bool committed_{false};
+  int signal_slot_{-1};  ///< `temporary_` registered for removal if a signal ends the run
 };
 
 /// \brief Writes `run.report` as `directory`/report.json (2-space indented) and the page
