@@ -25,6 +25,7 @@ from ._mcws import (
     Robot,
     UsageError,
     _boundary,
+    _boundary_tiled,
     _envelope,
     _measure,
     _point_dtype,
@@ -175,12 +176,14 @@ def _record_arguments(robot, provenance):
 
 def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=None,
              adaptive=None, outer_radius=None, min_gap=None, hull_depth=None, cell=None,
-             gap=None, threads=0):
+             gap=None, threads=0, tiles=None, progress=None):
     """The boundary points of a workspace cloud, as mcws_boundary finds them, with its settings
     and their defaults.
 
     points: a structured array with fields x, y, z (such as sample() or read_pcd() return) or an
-        (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them.
+        (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them. Or
+        the path of a PCD file (str or os.PathLike): its points, read as read_pcd() reads them
+        (with tiles, a binary PCD read in pieces).
     plane: None (3-D) or "xy", "xz", "yz" (the cloud projected onto that plane).
     method: "orthant" (default; Yin, Wang & Yu 2010, section 4.3: a point some quadrant (in a
         plane) or octant (3-D) of whose neighbourhood is empty), "grid" (section 4.1: cells of
@@ -201,6 +204,14 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
         neighbourhood, 0 = off, else in [0.1, 10] (default 1).
     threads: worker threads, 0 = all cores (the result does not depend on it); the grid and
         extremum methods run on one thread and take only 0 (as the tool refuses --threads).
+    tiles: None, or N of mcws_boundary --tiles N (orthant with radius or adaptive, hull_depth=0
+        in a plane): points must then be the path of a binary PCD file, read in pieces, and the
+        boundary is found one slab at a time (N slabs of equal width along the cloud's longest
+        axis in the plane, each with a halo that holds every neighbour its points search), in
+        memory bounded by the largest slab and halo (and a byte a point for the mask): the same
+        mask as without tiles, which is mcws_boundary --tiles N's output.
+    progress: with tiles, True for progress lines on stderr, or a callable called with (slabs
+        done, slabs) after each slab; None: silent. Ctrl-C interrupts between slabs.
     Grid and extremum only:
     cell: grid: the cell side, extremum: the column width dL [length unit] (--cell; default:
         from the number of points and the mean spacing).
@@ -215,8 +226,23 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
     unknown method, a setting of another method, a length that is not positive, settings out of
     their range for this cloud (lengths between a tenth of the mean spacing and the cloud's
     extent, ...), method "extremum" without a plane, or a cloud flat in one of the plane's axes;
-    mcws.Error for a cloud with too few distinct points.
+    mcws.Error for a cloud with too few distinct points. With tiles: mcws.UsageError for tiles
+    not in 1 .. 100000, points that are not a path, another method, auto_radius, or a hull depth
+    (give hull_depth=0 with a plane); mcws.Error naming the file for one that cannot be read or
+    is ascii or compressed PCD.
     """
+    is_path = isinstance(points, (str, _os.PathLike))
+    if tiles is not None:
+        if not is_path:
+            raise UsageError("tiles: the cloud is read from a binary PCD file in pieces: give its "
+                             "path as points (an array in memory: leave tiles out, the same mask)")
+        return _boundary_tiled(_os.fspath(points), plane, method, radius, auto_radius, adaptive,
+                               outer_radius, min_gap, hull_depth, cell, gap, threads,
+                               tiles, progress)
+    if progress is not None:
+        raise UsageError("progress: applies with tiles (a boundary in memory takes seconds)")
+    if is_path:
+        points = read_pcd(points)
     return _boundary(_positions(points), plane, method, radius, auto_radius, adaptive,
                      outer_radius, min_gap, hull_depth, cell, gap, threads)
 

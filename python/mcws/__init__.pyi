@@ -44,7 +44,7 @@ class Measure(Dict[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
 
 def boundary(
-    points: npt.ArrayLike,
+    points: Union[npt.ArrayLike, str, "os.PathLike[str]"],
     plane: Optional[str] = None,
     *,
     method: str = "orthant",
@@ -57,6 +57,8 @@ def boundary(
     cell: Optional[float] = None,
     gap: Optional[float] = None,
     threads: int = 0,
+    tiles: Optional[int] = None,
+    progress: Any = None,
 ) -> npt.NDArray[np.bool_]: ...
 def measure(
     points: npt.ArrayLike,

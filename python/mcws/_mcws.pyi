@@ -96,6 +96,22 @@ def _boundary(
     gap: Optional[float],
     threads: int,
 ) -> npt.NDArray[np.bool_]: ...
+def _boundary_tiled(
+    path: str,
+    plane: Optional[str],
+    method: str,
+    radius: Optional[float],
+    auto_radius: Optional[float],
+    adaptive: Optional[int],
+    outer_radius: Optional[float],
+    min_gap: Optional[float],
+    hull_depth: Optional[float],
+    cell: Optional[float],
+    gap: Optional[float],
+    threads: int,
+    tiles: int,
+    progress: Any,
+) -> npt.NDArray[np.bool_]: ...
 def _measure(
     xyz: npt.NDArray[np.float32],
     plane: Optional[str],
