@@ -142,23 +142,23 @@ def write_pcd(path, points, robot=None, provenance=None):
     _write_points(_os.fspath(path), packed, quality, joints, robot, provenance)
 
 
-def _positions(points):
+def _positions(points, name="points"):
     """The x y z of a structured array, or an (N, 3) array, as float32 (N, 3): the positions as a
     PCD file holds them, so that the tools and these functions see the same numbers."""
     array = _np.asarray(points)
     if array.dtype.names is not None:
         missing = [name for name in "xyz" if name not in array.dtype.names]
         if missing:
-            raise UsageError(f"points: has no field '{missing[0]}'")
+            raise UsageError(f"{name}: has no field '{missing[0]}'")
         if array.ndim != 1:
-            raise UsageError(f"points: a structured array of shape {array.shape}, not (N,)")
+            raise UsageError(f"{name}: a structured array of shape {array.shape}, not (N,)")
         xyz = _np.empty((array.shape[0], 3), dtype=_np.float32)
         for axis, name in enumerate("xyz"):
             xyz[:, axis] = array[name]
         return xyz
     if array.ndim != 2 or array.shape[1] != 3:
         raise UsageError(
-            f"points: shape {array.shape} is neither a structured array (fields x y z) nor (N, 3)"
+            f"{name}: shape {array.shape} is neither a structured array (fields x y z) nor (N, 3)"
         )
     return _np.ascontiguousarray(array, dtype=_np.float32)
 
@@ -306,7 +306,8 @@ class Measure(_Record):
 
 
 def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None,
-            robot=None, provenance=None):
+            robot=None, provenance=None, method="delaunay", leave_one_out=None, triangulate=None,
+            boundary=None, column_width=None):
     """The area (in a plane) or volume (3-D) of the region a cloud samples, as mcws_measure.
 
     points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
@@ -326,6 +327,23 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         the robot's name and, as tip, its URDF tip link or "tool"; for points sampled at the
         flange give provenance). Neither: the result's robot and tip are None, as mcws_measure's
         for a cloud that records no robot.
+    method: "delaunay" (default) or "column" (the rectangles of Yin, Wang & Yu 2010, eqs. (2)-(4),
+        over the boundary points grouped into crossings per column: needs plane and boundary,
+        takes none of alpha, correction, leave_one_out, threads, triangulate), as mcws_measure
+        --method.
+    leave_one_out: how the edge correction finds the boundary vertices outside the region of the
+        others: "star" (each vertex's star, all threads; default) or "reinsert" (remove, locate
+        and reinsert each vertex: the same count, one thread, slower), as --leave-one-out.
+    triangulate: "shell" (only the points an empty ball of alpha radius may touch; default) or
+        "all" (every point: the same measure, slower), as --triangulate.
+    boundary: with a plane, the cloud's boundary points: a boolean mask over points (as
+        boundary() returns) or the points themselves (a structured array or (N, 3) array [length
+        unit], each one of points): the result then has the column method's area as
+        "cross_check" (biased high; for comparison with the paper, not the result), as
+        mcws_measure --boundary.
+    column_width: the column method's column width L [length unit], 0 or None automatic, else
+        between a tenth of the points' mean spacing and their extent (--column-width; needs
+        boundary).
 
     Returns a Measure with .area or .volume, .units, .robot, .tip and the rest of mcws_measure
     --json but for its input and seconds: the same numbers for the same points. The GIL is
@@ -335,13 +353,26 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
     edge correction), the same numbers as without the checks.
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit (or one that
-    is not robot's or provenance's unit), both robot and provenance, a malformed provenance, or a
-    cloud flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D
-    cloud.
+    is not robot's or provenance's unit), both robot and provenance, a malformed provenance, a
+    cloud flat in one of the plane's axes, a bad method, leave_one_out, triangulate or
+    column_width, a boundary without a plane or a mask of another length, settings the method
+    does not take (as mcws_measure's flags); mcws.Error for too few distinct points (in points or
+    boundary), a flat 3-D cloud, or a boundary point that is not one of points.
     """
     robot, provenance = _record_arguments(robot, provenance)
-    return Measure(_json.loads(_measure(_positions(points), plane, alpha, correction, threads,
-                                        length_unit, robot, provenance)))
+    xyz = _positions(points)
+    if boundary is not None:
+        mask = _np.asarray(boundary)
+        if mask.dtype == _np.bool_:
+            if mask.shape != (xyz.shape[0],):
+                raise UsageError(f"boundary: a mask of shape {mask.shape}, not ({xyz.shape[0]},) "
+                                 "as points")
+            boundary = xyz[mask]
+        else:
+            boundary = _positions(boundary, "boundary")
+    return Measure(_json.loads(_measure(xyz, plane, alpha, correction, threads, length_unit,
+                                        robot, provenance, method, leave_one_out, triangulate,
+                                        boundary, column_width)))
 
 
 class Envelope(_Record):

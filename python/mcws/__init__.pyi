@@ -70,6 +70,11 @@ def measure(
     length_unit: Optional[str] = None,
     robot: Optional[Robot] = None,
     provenance: Optional[Dict[str, Any]] = None,
+    method: str = "delaunay",
+    leave_one_out: Optional[str] = None,
+    triangulate: Optional[str] = None,
+    boundary: Optional[npt.ArrayLike] = None,
+    column_width: Optional[float] = None,
 ) -> Measure: ...
 
 class Envelope(Dict[str, Any]):

@@ -121,6 +121,11 @@ def _measure(
     length_unit: Optional[str],
     robot: Optional[Robot],
     provenance: Optional[Dict[str, Any]],
+    method: str,
+    leave_one_out: Optional[str],
+    triangulate: Optional[str],
+    boundary: Optional[npt.NDArray[np.float32]],
+    column_width: Optional[float],
 ) -> str: ...
 def _refine(
     robot: Robot,
