@@ -14,6 +14,9 @@ from ._mcws import read_provenance as read_provenance
 from ._mcws import sample as sample
 from ._mcws import sample_shape as sample_shape
 
+# A length argument: a number in the robot's length unit, or a string with its unit ("2cm").
+_Length = Union[float, str]
+
 def write_pcd(
     path: Union[str, "os.PathLike[str]"],
     points: npt.ArrayLike,
@@ -123,7 +126,7 @@ class ReachMap:
 
 def reach_map(
     robot: Robot,
-    resolution: float,
+    resolution: _Length,
     samples: int,
     seed: int = 0,
     threads: int = 0,
@@ -133,7 +136,7 @@ def reach_map(
     manipulability: bool = True,
     collision: bool = False,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> ReachMap: ...
 
@@ -154,14 +157,14 @@ def reach_study(
     targets: _Targets,
     normals: Optional[npt.ArrayLike] = None,
     *,
-    standoff: float = 0.0,
+    standoff: _Length = 0.0,
     approach_tolerance: float = 0.0,
     ik_starts: int = 4,
     seed: int = 0,
     threads: int = 0,
     collision: bool = True,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> ReachStudy: ...
 def place(
@@ -173,21 +176,21 @@ def place(
     *,
     normals: Optional[npt.ArrayLike] = None,
     map: Optional[ReachMap] = None,
-    resolution: Optional[float] = None,
+    resolution: Optional[_Length] = None,
     samples: Optional[int] = None,
     orientations: int = 200,
     rolls: int = 1,
     manipulability: bool = True,
     confirm: Optional[int] = 0,
     confirm_margin: Optional[float] = 0.1,
-    standoff: float = 0.0,
+    standoff: _Length = 0.0,
     approach_tolerance: float = 0.0,
     ik_starts: int = 4,
     seed: int = 0,
     threads: int = 0,
     collision: bool = True,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> Placement: ...
 
