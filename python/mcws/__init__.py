@@ -422,6 +422,29 @@ class Envelope(_Record):
         """
         return Measure(_json.loads(self._mesh.drawing(float(azimuth))))
 
+    def save_drawing(self, path, azimuth=0.0, source="points"):
+        """Writes the datasheet drawing as mcws_envelope --drawing does (through the same library
+        code, drawn by gnuplot): the side view (the mesh's section by the vertical plane at
+        azimuth [deg from +x]) and the top view of the samples, with dimension lines (reach in
+        front of and behind the axis, highest and lowest point [length unit], maximum and minimum
+        reach, swept angle [deg]); PNG or SVG by the extension of path (.png, .svg). The title
+        names the robot and tip when known (robot or provenance), else the file name of source:
+        mcws_envelope's --input path gives its bytes. drawing(azimuth) gives its numbers.
+
+        Raises mcws.UsageError for another extension, an azimuth that is not finite or whose
+        plane misses the mesh; mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._mesh.save_drawing(_os.fspath(path), float(azimuth), str(source))
+
+    def save_plot(self, path, source="points"):
+        """Writes the mesh shaded from two views (front-left from above, and along -y) as a PNG,
+        as mcws_envelope --plot does (gnuplot), axes in the length unit; the title names the robot
+        and tip, or source's file name, as save_drawing()'s.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._mesh.save_plot(_os.fspath(path), str(source))
+
 
 def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None, robot=None,
              provenance=None):

@@ -122,6 +122,23 @@ class ReachMap:
         """
         self._map.save_points(_os.fspath(path))
 
+    def save_halfcut(self, path):
+        """Writes the half-cut view (as ROS Reuleaux shows a map cut open: the voxels of the slab
+        one voxel thick at y = 0 seen along y, coloured by reachability, lengths in the map's
+        unit) as a PNG, as mcws_reach --halfcut does (gnuplot): its bytes for the same map.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._map.save_halfcut(_os.fspath(path))
+
+    def save_histogram(self, path):
+        """Writes the histogram of the reachability index D over the voxels (20 bins of width
+        0.05) as a PNG, as mcws_reach --histogram does (gnuplot): its bytes for the same map.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._map.save_histogram(_os.fspath(path))
+
 
 def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200, rolls=1,
               manipulability=True, collision=False, quality_task=None, length=None,
@@ -209,7 +226,18 @@ class Placement(_PointsResult):
     points: per position a record x, y, z (where the base frame lands [length unit]), map_share,
         map_score, ik_share, ik_score (-1 where not confirmed).
     save(path): those points as mcws_place --output writes them.
+    save_plot(path): the map's and the confirmed IK share reached against the offset along x, a
+        PNG as mcws_place --plot draws it (gnuplot; lengths in the robot's unit).
     """
+
+    def save_plot(self, path):
+        """Writes the map's and the confirmed IK share of the targets reached [1] against the
+        base offset along x [length unit], a PNG, as mcws_place --plot does (gnuplot): its bytes
+        for the same arguments.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._core.save_plot(_os.fspath(path))
 
 
 def _targets_argument(targets):
