@@ -78,3 +78,17 @@ def test_reach_and_place_pictures_are_the_tools(tmp_path):
     placed.save_plot(tmp_path / "own_place.png")
     assert (tmp_path / "own_place.png").read_bytes() == (tmp_path / "place.png").read_bytes()
     assert (tmp_path / "own_place.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_plan_pictures_are_mcws_plans(tmp_path):
+    scenario = robot_path("../scenarios/planar2.yaml")
+    run_tool("plan", "--scenario", scenario, "--seed", 3, "--validation-poses", 50, "--threads",
+             1, "--output", tmp_path / "path.csv", "--plot", tmp_path / "cspace.png", "--cells",
+             40, "--plot-offsets", tmp_path / "offsets.png")
+    planned = mcws.plan(scenario, seed=3, validation_poses=50, threads=1)
+    planned.save_plot(tmp_path / "own_cspace.png", cells=40)
+    planned.save_offsets_plot(tmp_path / "own_offsets.png")
+    assert (tmp_path / "own_cspace.png").read_bytes() == (tmp_path / "cspace.png").read_bytes()
+    assert (tmp_path / "own_offsets.png").read_bytes() == (tmp_path / "offsets.png").read_bytes()
+    with pytest.raises(mcws.UsageError, match=r"^cells: 3 is not in 4 \.\. 2000$"):
+        planned.save_plot(tmp_path / "x.png", cells=3)
