@@ -349,8 +349,8 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
     --json but for its input and seconds: the same numbers for the same points. The GIL is
     released; Ctrl-C interrupts within about a second (KeyboardInterrupt): the library checks
     between its phases and every few milliseconds within them (the local spacing, the exposed
-    points, the shell's triangulation, inserted in pieces of 32768 points, the alpha test, the
-    edge correction), the same numbers as without the checks.
+    points, the shell's triangulation, inserted in pieces of 65536 points when it has more, the
+    alpha test, the edge correction), the same numbers as without the checks.
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit (or one that
     is not robot's or provenance's unit), both robot and provenance, a malformed provenance, a
@@ -468,8 +468,8 @@ def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=N
     .save(path),
     .drawing(azimuth) and the rest of mcws_envelope --json: the same numbers and, saved, the same
     file as the tool for the same points. The GIL is released; Ctrl-C interrupts within about a
-    second (the points are triangulated in pieces of 32768 so it can: the same mesh as the tool's,
-    for somewhat more CPU).
+    second (more than 65536 points are triangulated in pieces so it can: the same mesh as the
+    tool's).
 
     Raises mcws.UsageError for a bad alpha, correction, threads or length_unit, robot or
     provenance (as measure()); mcws.Error for too few distinct points, a flat cloud, or an offset

@@ -116,13 +116,13 @@ def test_measure_choice_errors(disk, ball):
 
 
 def test_measure_in_pieces_is_mcws_measure(tmp_path):
-    # 70000 points of a disk, all triangulated: with the Ctrl-C check set (always in Python) the
-    # points are sorted once and inserted in 3 pieces of at most 32768, the tool's in one call:
+    # 100000 points of a disk, all triangulated: with the Ctrl-C check set (always in Python) the
+    # points are sorted once and inserted in 2 pieces of at most 65536, the tool's in one call:
     # the same triangulation, so the same numbers.
-    points = mcws.sample_shape("disk", 70000, seed=8)
+    points = mcws.sample_shape("disk", 100000, seed=8)
     path = tmp_path / "disk.pcd"
     mcws.write_pcd(path, points)
     expected = tool_json("measure", "--input", path, "--plane", "xy", "--triangulate", "all")
     result = mcws.measure(points, "xy", triangulate="all")
-    assert result.triangulated == 70000
+    assert result.triangulated == 100000
     assert_same(result, expected)

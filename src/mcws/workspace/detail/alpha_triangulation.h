@@ -43,12 +43,13 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 /// Cells per side of the lock grid of the parallel 3-D triangulation (CGAL's examples use 50).
 constexpr int kLockGridCells = 50;
-/// Points per piece of an insertion that checks for cancelling between its pieces: a sequential
-/// triangulation's (points inserted one at a time, a check costs nothing), and a parallel one's
-/// (each piece a parallel range insertion, whose start and end cost the threads' waiting: a
-/// 10^6-point ball's shell, about 140000 points, is one piece, inserted in well under a second).
-constexpr std::size_t kInsertPiece = 32768;
-constexpr std::size_t kParallelInsertPiece = 262144;
+/// Points per piece of an insertion that checks for cancelling between its pieces, well under a
+/// second of work on a loaded machine: a sequential triangulation's (points inserted one at a time
+/// from the last one's place, as CGAL's range insertion does), and a parallel one's (each piece a
+/// parallel range insertion). A 2 x 10^5-point ball's shell, about 46000 points, is one piece,
+/// inserted in one call as without the check.
+constexpr std::size_t kInsertPiece = 65536;
+constexpr std::size_t kParallelInsertPiece = 65536;
 /// Simplices between two checks for cancelling in a loop over the triangulation.
 constexpr unsigned kCancelStride = 65536;
 /// Boundary vertices between two checks for cancelling in the leave-one-out count (a small
