@@ -352,8 +352,9 @@ int runTiled(const app::CommandLine& cli, distributed::Processes& processes) {
   const auto make = [&] {
     return std::static_pointer_cast<Filter>(methodFromFlags(cli, threads).filter);
   };
-  const distributed::TiledBoundary found =
-      distributed::tiledBoundary(reader, file, tiles, make, threads, processes, clock);
+  const distributed::TiledBoundary found = distributed::tiledBoundary(
+      reader, file, tiles, make, threads, processes,
+      [&](std::size_t done, std::size_t all) { clock.update(done, all); });
   if (processes.rank() != 0) return app::kExitOk;
 
   const bool with_interior = cli.has("interior");

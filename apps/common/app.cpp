@@ -11,6 +11,7 @@
 #include "mcws/core/control_bytes.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/input_files.h"
+#include "mcws/core/length_text.h"
 #include "mcws/io/atomic_file.h"
 
 namespace mcws::app {
@@ -169,17 +170,7 @@ std::vector<std::string> CommandLine::all(const std::string& flag) const {
 std::string shortNumber(double value) { return formatNumber(value); }
 
 double parseNumber(const std::string& text, const std::string& flag) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  // Decimal notation only: strtod would also take hex ("0x10"), "inf", "nan" and leading blanks.
-  const bool decimal =
-      !text.empty() && text.find_first_not_of("0123456789+-.eE") == std::string::npos;
-  const double value = decimal ? std::strtod(begin, &end) : 0.0;
-  if (!decimal || end != begin + text.size() || errno == ERANGE || !std::isfinite(value)) {
-    throw UsageError("--" + flag + ": '" + text + "' is not a finite number");
-  }
-  return value;
+  return mcws::decimalFromText(text, "--" + flag);
 }
 
 std::int64_t parseInteger(const std::string& text, const std::string& flag, std::int64_t minimum,

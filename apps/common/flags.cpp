@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "mcws/core/length_text.h"
 #include "mcws/kinematics/robot_urdf.h"
 #include "mcws/kinematics/robot_yaml.h"
 
@@ -54,21 +55,7 @@ SamplePoint readPoint(const CommandLine& cli) {
 
 double parseLength(const std::string& text, const std::string& flag, LengthUnit unit,
                    bool allow_zero) {
-  std::size_t end = text.size();
-  double scale = 1.0;
-  for (const auto& [suffix, metres] : {std::pair{"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}}) {
-    const std::string s = suffix;
-    if (text.size() > s.size() && text.compare(text.size() - s.size(), s.size(), s) == 0) {
-      end = text.size() - s.size();
-      scale = metres / unitInMetres(unit);
-      break;
-    }
-  }
-  const std::string number = text.substr(0, end);
-  const double value =
-      (allow_zero ? parseNonNegative(number, flag) : parsePositive(number, flag)) * scale;
-  if (!std::isfinite(value)) throw UsageError("--" + flag + ": " + text + " is too large");
-  return value;
+  return mcws::lengthFromText(text, "--" + flag, unit, allow_zero);
 }
 
 double parseAngle(const std::string& text, const std::string& flag) {

@@ -25,6 +25,7 @@ from ._mcws import (
     Robot,
     UsageError,
     _boundary,
+    _boundary_tiled,
     _envelope,
     _measure,
     _point_dtype,
@@ -141,23 +142,23 @@ def write_pcd(path, points, robot=None, provenance=None):
     _write_points(_os.fspath(path), packed, quality, joints, robot, provenance)
 
 
-def _positions(points):
+def _positions(points, name="points"):
     """The x y z of a structured array, or an (N, 3) array, as float32 (N, 3): the positions as a
     PCD file holds them, so that the tools and these functions see the same numbers."""
     array = _np.asarray(points)
     if array.dtype.names is not None:
         missing = [name for name in "xyz" if name not in array.dtype.names]
         if missing:
-            raise UsageError(f"points: has no field '{missing[0]}'")
+            raise UsageError(f"{name}: has no field '{missing[0]}'")
         if array.ndim != 1:
-            raise UsageError(f"points: a structured array of shape {array.shape}, not (N,)")
+            raise UsageError(f"{name}: a structured array of shape {array.shape}, not (N,)")
         xyz = _np.empty((array.shape[0], 3), dtype=_np.float32)
         for axis, name in enumerate("xyz"):
             xyz[:, axis] = array[name]
         return xyz
     if array.ndim != 2 or array.shape[1] != 3:
         raise UsageError(
-            f"points: shape {array.shape} is neither a structured array (fields x y z) nor (N, 3)"
+            f"{name}: shape {array.shape} is neither a structured array (fields x y z) nor (N, 3)"
         )
     return _np.ascontiguousarray(array, dtype=_np.float32)
 
@@ -175,12 +176,14 @@ def _record_arguments(robot, provenance):
 
 def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=None,
              adaptive=None, outer_radius=None, min_gap=None, hull_depth=None, cell=None,
-             gap=None, threads=0):
+             gap=None, threads=0, tiles=None, progress=None):
     """The boundary points of a workspace cloud, as mcws_boundary finds them, with its settings
     and their defaults.
 
     points: a structured array with fields x, y, z (such as sample() or read_pcd() return) or an
-        (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them.
+        (N, 3) array [length unit]; positions are taken as float32, as a PCD file holds them. Or
+        the path of a PCD file (str or os.PathLike): its points, read as read_pcd() reads them
+        (with tiles, a binary PCD read in pieces).
     plane: None (3-D) or "xy", "xz", "yz" (the cloud projected onto that plane).
     method: "orthant" (default; Yin, Wang & Yu 2010, section 4.3: a point some quadrant (in a
         plane) or octant (3-D) of whose neighbourhood is empty), "grid" (section 4.1: cells of
@@ -201,6 +204,14 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
         neighbourhood, 0 = off, else in [0.1, 10] (default 1).
     threads: worker threads, 0 = all cores (the result does not depend on it); the grid and
         extremum methods run on one thread and take only 0 (as the tool refuses --threads).
+    tiles: None, or N of mcws_boundary --tiles N (orthant with radius or adaptive, hull_depth=0
+        in a plane): points must then be the path of a binary PCD file, read in pieces, and the
+        boundary is found one slab at a time (N slabs of equal width along the cloud's longest
+        axis in the plane, each with a halo that holds every neighbour its points search), in
+        memory bounded by the largest slab and halo (and a byte a point for the mask): the same
+        mask as without tiles, which is mcws_boundary --tiles N's output.
+    progress: with tiles, True for progress lines on stderr, or a callable called with (slabs
+        done, slabs) after each slab; None: silent. Ctrl-C interrupts between slabs.
     Grid and extremum only:
     cell: grid: the cell side, extremum: the column width dL [length unit] (--cell; default:
         from the number of points and the mean spacing).
@@ -215,8 +226,23 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
     unknown method, a setting of another method, a length that is not positive, settings out of
     their range for this cloud (lengths between a tenth of the mean spacing and the cloud's
     extent, ...), method "extremum" without a plane, or a cloud flat in one of the plane's axes;
-    mcws.Error for a cloud with too few distinct points.
+    mcws.Error for a cloud with too few distinct points. With tiles: mcws.UsageError for tiles
+    not in 1 .. 100000, points that are not a path, another method, auto_radius, or a hull depth
+    (give hull_depth=0 with a plane); mcws.Error naming the file for one that cannot be read or
+    is ascii or compressed PCD.
     """
+    is_path = isinstance(points, (str, _os.PathLike))
+    if tiles is not None:
+        if not is_path:
+            raise UsageError("tiles: the cloud is read from a binary PCD file in pieces: give its "
+                             "path as points (an array in memory: leave tiles out, the same mask)")
+        return _boundary_tiled(_os.fspath(points), plane, method, radius, auto_radius, adaptive,
+                               outer_radius, min_gap, hull_depth, cell, gap, threads,
+                               tiles, progress)
+    if progress is not None:
+        raise UsageError("progress: applies with tiles (a boundary in memory takes seconds)")
+    if is_path:
+        points = read_pcd(points)
     return _boundary(_positions(points), plane, method, radius, auto_radius, adaptive,
                      outer_radius, min_gap, hull_depth, cell, gap, threads)
 
@@ -280,7 +306,8 @@ class Measure(_Record):
 
 
 def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, length_unit=None,
-            robot=None, provenance=None):
+            robot=None, provenance=None, method="delaunay", leave_one_out=None, triangulate=None,
+            boundary=None, column_width=None):
     """The area (in a plane) or volume (3-D) of the region a cloud samples, as mcws_measure.
 
     points: a structured array with fields x, y, z or an (N, 3) array [length unit], taken as
@@ -300,22 +327,52 @@ def measure(points, plane=None, *, alpha=None, correction="efron", threads=0, le
         the robot's name and, as tip, its URDF tip link or "tool"; for points sampled at the
         flange give provenance). Neither: the result's robot and tip are None, as mcws_measure's
         for a cloud that records no robot.
+    method: "delaunay" (default) or "column" (the rectangles of Yin, Wang & Yu 2010, eqs. (2)-(4),
+        over the boundary points grouped into crossings per column: needs plane and boundary,
+        takes none of alpha, correction, leave_one_out, threads, triangulate), as mcws_measure
+        --method.
+    leave_one_out: how the edge correction finds the boundary vertices outside the region of the
+        others: "star" (each vertex's star, all threads; default) or "reinsert" (remove, locate
+        and reinsert each vertex: the same count, one thread, slower), as --leave-one-out.
+    triangulate: "shell" (only the points an empty ball of alpha radius may touch; default) or
+        "all" (every point: the same measure, slower), as --triangulate.
+    boundary: with a plane, the cloud's boundary points: a boolean mask over points (as
+        boundary() returns) or the points themselves (a structured array or (N, 3) array [length
+        unit], each one of points): the result then has the column method's area as
+        "cross_check" (biased high; for comparison with the paper, not the result), as
+        mcws_measure --boundary.
+    column_width: the column method's column width L [length unit], 0 or None automatic, else
+        between a tenth of the points' mean spacing and their extent (--column-width; needs
+        boundary).
 
     Returns a Measure with .area or .volume, .units, .robot, .tip and the rest of mcws_measure
     --json but for its input and seconds: the same numbers for the same points. The GIL is
     released; Ctrl-C interrupts within about a second (KeyboardInterrupt): the library checks
     between its phases and every few milliseconds within them (the local spacing, the exposed
-    points, the shell's triangulation, inserted in pieces of 32768 points, the alpha test, the
-    edge correction), the same numbers as without the checks.
+    points, the shell's triangulation, inserted in pieces of 65536 points when it has more, the
+    alpha test, the edge correction), the same numbers as without the checks.
 
     Raises mcws.UsageError for a bad plane, alpha, correction, threads or length_unit (or one that
-    is not robot's or provenance's unit), both robot and provenance, a malformed provenance, or a
-    cloud flat in one of the plane's axes; mcws.Error for too few distinct points or a flat 3-D
-    cloud.
+    is not robot's or provenance's unit), both robot and provenance, a malformed provenance, a
+    cloud flat in one of the plane's axes, a bad method, leave_one_out, triangulate or
+    column_width, a boundary without a plane or a mask of another length, settings the method
+    does not take (as mcws_measure's flags); mcws.Error for too few distinct points (in points or
+    boundary), a flat 3-D cloud, or a boundary point that is not one of points.
     """
     robot, provenance = _record_arguments(robot, provenance)
-    return Measure(_json.loads(_measure(_positions(points), plane, alpha, correction, threads,
-                                        length_unit, robot, provenance)))
+    xyz = _positions(points)
+    if boundary is not None:
+        mask = _np.asarray(boundary)
+        if mask.dtype == _np.bool_:
+            if mask.shape != (xyz.shape[0],):
+                raise UsageError(f"boundary: a mask of shape {mask.shape}, not ({xyz.shape[0]},) "
+                                 "as points")
+            boundary = xyz[mask]
+        else:
+            boundary = _positions(boundary, "boundary")
+    return Measure(_json.loads(_measure(xyz, plane, alpha, correction, threads, length_unit,
+                                        robot, provenance, method, leave_one_out, triangulate,
+                                        boundary, column_width)))
 
 
 class Envelope(_Record):
@@ -365,6 +422,29 @@ class Envelope(_Record):
         """
         return Measure(_json.loads(self._mesh.drawing(float(azimuth))))
 
+    def save_drawing(self, path, azimuth=0.0, source="points"):
+        """Writes the datasheet drawing as mcws_envelope --drawing does (through the same library
+        code, drawn by gnuplot): the side view (the mesh's section by the vertical plane at
+        azimuth [deg from +x]) and the top view of the samples, with dimension lines (reach in
+        front of and behind the axis, highest and lowest point [length unit], maximum and minimum
+        reach, swept angle [deg]); PNG or SVG by the extension of path (.png, .svg). The title
+        names the robot and tip when known (robot or provenance), else the file name of source:
+        mcws_envelope's --input path gives its bytes. drawing(azimuth) gives its numbers.
+
+        Raises mcws.UsageError for another extension, an azimuth that is not finite or whose
+        plane misses the mesh; mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._mesh.save_drawing(_os.fspath(path), float(azimuth), str(source))
+
+    def save_plot(self, path, source="points"):
+        """Writes the mesh shaded from two views (front-left from above, and along -y) as a PNG,
+        as mcws_envelope --plot does (gnuplot), axes in the length unit; the title names the robot
+        and tip, or source's file name, as save_drawing()'s.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._mesh.save_plot(_os.fspath(path), str(source))
+
 
 def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=None, robot=None,
              provenance=None):
@@ -388,8 +468,8 @@ def envelope(points, *, alpha=None, correction="efron", threads=0, length_unit=N
     .save(path),
     .drawing(azimuth) and the rest of mcws_envelope --json: the same numbers and, saved, the same
     file as the tool for the same points. The GIL is released; Ctrl-C interrupts within about a
-    second (the points are triangulated in pieces of 32768 so it can: the same mesh as the tool's,
-    for somewhat more CPU).
+    second (more than 65536 points are triangulated in pieces so it can: the same mesh as the
+    tool's).
 
     Raises mcws.UsageError for a bad alpha, correction, threads or length_unit, robot or
     provenance (as measure()); mcws.Error for too few distinct points, a flat cloud, or an offset

@@ -14,6 +14,9 @@ from ._mcws import read_provenance as read_provenance
 from ._mcws import sample as sample
 from ._mcws import sample_shape as sample_shape
 
+# A length argument: a number in the robot's length unit, or a string with its unit ("2cm").
+_Length = Union[float, str]
+
 def write_pcd(
     path: Union[str, "os.PathLike[str]"],
     points: npt.ArrayLike,
@@ -44,7 +47,7 @@ class Measure(Dict[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
 
 def boundary(
-    points: npt.ArrayLike,
+    points: Union[npt.ArrayLike, str, "os.PathLike[str]"],
     plane: Optional[str] = None,
     *,
     method: str = "orthant",
@@ -57,6 +60,8 @@ def boundary(
     cell: Optional[float] = None,
     gap: Optional[float] = None,
     threads: int = 0,
+    tiles: Optional[int] = None,
+    progress: Any = None,
 ) -> npt.NDArray[np.bool_]: ...
 def measure(
     points: npt.ArrayLike,
@@ -68,6 +73,11 @@ def measure(
     length_unit: Optional[str] = None,
     robot: Optional[Robot] = None,
     provenance: Optional[Dict[str, Any]] = None,
+    method: str = "delaunay",
+    leave_one_out: Optional[str] = None,
+    triangulate: Optional[str] = None,
+    boundary: Optional[npt.ArrayLike] = None,
+    column_width: Optional[float] = None,
 ) -> Measure: ...
 
 class Envelope(Dict[str, Any]):
@@ -78,6 +88,10 @@ class Envelope(Dict[str, Any]):
     def __getattr__(self, name: str) -> Any: ...
     def save(self, path: Union[str, "os.PathLike[str]"], source: str = "points") -> None: ...
     def drawing(self, azimuth: float = 0.0) -> Measure: ...
+    def save_drawing(
+        self, path: Union[str, "os.PathLike[str]"], azimuth: float = 0.0, source: str = "points"
+    ) -> None: ...
+    def save_plot(self, path: Union[str, "os.PathLike[str]"], source: str = "points") -> None: ...
 
 def envelope(
     points: npt.ArrayLike,
@@ -113,10 +127,12 @@ class ReachMap:
     def query(self, points: npt.ArrayLike, directions: Optional[npt.ArrayLike] = None) -> Dict[str, Any]: ...
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
     def save_points(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    def save_halfcut(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    def save_histogram(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
 
 def reach_map(
     robot: Robot,
-    resolution: float,
+    resolution: _Length,
     samples: int,
     seed: int = 0,
     threads: int = 0,
@@ -126,7 +142,7 @@ def reach_map(
     manipulability: bool = True,
     collision: bool = False,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> ReachMap: ...
 
@@ -140,21 +156,22 @@ class _PointsResult(Dict[str, Any]):
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
 
 class ReachStudy(_PointsResult): ...
-class Placement(_PointsResult): ...
+class Placement(_PointsResult):
+    def save_plot(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
 
 def reach_study(
     robot: Robot,
     targets: _Targets,
     normals: Optional[npt.ArrayLike] = None,
     *,
-    standoff: float = 0.0,
+    standoff: _Length = 0.0,
     approach_tolerance: float = 0.0,
     ik_starts: int = 4,
     seed: int = 0,
     threads: int = 0,
     collision: bool = True,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> ReachStudy: ...
 def place(
@@ -166,21 +183,21 @@ def place(
     *,
     normals: Optional[npt.ArrayLike] = None,
     map: Optional[ReachMap] = None,
-    resolution: Optional[float] = None,
+    resolution: Optional[_Length] = None,
     samples: Optional[int] = None,
     orientations: int = 200,
     rolls: int = 1,
     manipulability: bool = True,
     confirm: Optional[int] = 0,
     confirm_margin: Optional[float] = 0.1,
-    standoff: float = 0.0,
+    standoff: _Length = 0.0,
     approach_tolerance: float = 0.0,
     ik_starts: int = 4,
     seed: int = 0,
     threads: int = 0,
     collision: bool = True,
     quality_task: Optional[str] = None,
-    length: Optional[float] = None,
+    length: Optional[_Length] = None,
     progress: Any = None,
 ) -> Placement: ...
 
@@ -188,6 +205,8 @@ class Plan(Dict[str, Any]):
     path: Optional[npt.NDArray[np.float64]]
     def __getattr__(self, name: str) -> Any: ...
     def save(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
+    def save_plot(self, path: Union[str, "os.PathLike[str]"], cells: int = 120) -> None: ...
+    def save_offsets_plot(self, path: Union[str, "os.PathLike[str]"]) -> None: ...
 
 def plan(
     scenario: Union[str, "os.PathLike[str]"],

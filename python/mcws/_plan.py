@@ -18,6 +18,8 @@ class Plan(_Record):
         waypoints of mcws_plan --output), or None when no path was accepted.
     save(path): the path's CSV, byte for byte mcws_plan --output (raises mcws.Error naming the
         file and the status when no path was accepted).
+    save_plot(path, cells=120), save_offsets_plot(path): mcws_plan --plot's and --plot-offsets'
+        pictures.
     """
 
     def __init__(self, core):
@@ -29,6 +31,29 @@ class Plan(_Record):
         """Writes the chosen path as mcws_plan --output does: D (the distance along it, scaled
         as the report's distance_unit says) then one column per joint, units in the names."""
         self._core.save(_os.fspath(path))
+
+    def save_plot(self, path, cells=120):
+        """Writes the configuration space of a two-joint robot as a PNG, as mcws_plan --plot
+        does (gnuplot): each of cells x cells cells (4 .. 2000, default 120) coloured by the
+        fraction of the base poses for which it collides [1], with the candidate paths, the
+        chosen path, the shared nodes and the decision taken at each (joint values in rad or the
+        length unit): the tool's bytes for the same scenario and seed.
+
+        Raises mcws.UsageError for a robot of another joint count or a bad cells; mcws.Error
+        naming the file when no path was accepted, gnuplot fails or path cannot be written.
+        """
+        self._core.save_plot(_os.fspath(path), cells)
+
+    def save_offsets_plot(self, path):
+        """Writes P, the whole-path free fraction and the lower end of its 95 % interval [1] of
+        each base offset's best path against the offset [length unit] as a PNG, as mcws_plan
+        --plot-offsets does (every offset's round planned again, with the GIL released: seconds
+        to minutes): the tool's bytes for the same scenario and seed.
+
+        Raises mcws.Error naming the file when no path was accepted, gnuplot fails or path
+        cannot be written.
+        """
+        self._core.save_offsets_plot(_os.fspath(path))
 
 
 def plan(scenario, seed=None, validation_poses=None, threads=0, progress=None):

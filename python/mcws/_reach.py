@@ -5,8 +5,17 @@ import os as _os
 
 import numpy as _np
 
-from ._mcws import Robot, UsageError, _place, _reach_map, _reach_study, _ReachMap
+from ._mcws import Robot, UsageError, _parse_length, _place, _reach_map, _reach_study, _ReachMap
 from ._record import _Record
+
+
+def _length(value, name, robot, allow_zero=False):
+    """A length argument in the robot's unit: a string with its unit as the tools' length flags
+    take it ("2cm", "0.5m", "20mm"; a bare "0.02" in the robot's unit), converted; a number (or
+    None) as it is, checked where it is used."""
+    if isinstance(value, str):
+        return _parse_length(value, name, robot, allow_zero)
+    return value
 
 
 class ReachMap:
@@ -113,6 +122,23 @@ class ReachMap:
         """
         self._map.save_points(_os.fspath(path))
 
+    def save_halfcut(self, path):
+        """Writes the half-cut view (as ROS Reuleaux shows a map cut open: the voxels of the slab
+        one voxel thick at y = 0 seen along y, coloured by reachability, lengths in the map's
+        unit) as a PNG, as mcws_reach --halfcut does (gnuplot): its bytes for the same map.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._map.save_halfcut(_os.fspath(path))
+
+    def save_histogram(self, path):
+        """Writes the histogram of the reachability index D over the voxels (20 bins of width
+        0.05) as a PNG, as mcws_reach --histogram does (gnuplot): its bytes for the same map.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._map.save_histogram(_os.fspath(path))
+
 
 def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200, rolls=1,
               manipulability=True, collision=False, quality_task=None, length=None,
@@ -123,7 +149,8 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
     in a cubic voxel of edge resolution and whose orientation in one of orientations x rolls bins.
 
     robot: an mcws.Robot.
-    resolution: the voxel edge [length unit] (the robot's .length_unit), > 0.
+    resolution: the voxel edge [length unit] (the robot's .length_unit), > 0; or a string with
+        its unit, as mcws_reach --resolution takes it ("2cm", "0.02m", "20mm").
     samples: joint samples (int >= 1; mcws_reach's default is 5e8, 1e7 gives a first look).
     seed: random seed, a whole number >= 0 (mcws_reach's default is 1).
     threads: worker threads, 0 = all cores. The map is the same for any thread count.
@@ -132,7 +159,8 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
     manipulability: compute the Jacobian and keep each voxel's best manipulability (mcws_reach
         --no-manipulability is False).
     collision: count only collision-free samples (the robot file's collision model).
-    quality_task, length: how manipulability is measured, as sample(quality=True).
+    quality_task, length: how manipulability is measured, as sample(quality=True); length
+        [length unit] may also be a string with its unit ("50cm").
     progress: True for progress lines on stderr as mcws_reach writes them, or a callable called
         with (samples done, samples) after each chunk; None: silent.
 
@@ -141,11 +169,14 @@ def reach_map(robot, resolution, samples, seed=0, threads=0, *, orientations=200
     interrupts (KeyboardInterrupt) between chunks of 4 million samples.
 
     Raises mcws.UsageError for a bad resolution, samples, seed, threads, orientations, rolls,
-    quality_task or length; mcws.Error for collision=True without collision geometry, a tool
+    quality_task or length (a string: the message of the tools' length flags, "resolution: '2x'
+    is not a finite number"); mcws.Error for collision=True without collision geometry, a tool
     point beyond the grid's index range, or no sample counted.
     """
     if not isinstance(robot, Robot):
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    resolution = _length(resolution, "resolution", robot)
+    length = _length(length, "length", robot)
     return ReachMap(_reach_map(robot, resolution, samples, seed, threads, orientations, rolls,
                                manipulability, collision, quality_task, length, progress))
 
@@ -195,7 +226,18 @@ class Placement(_PointsResult):
     points: per position a record x, y, z (where the base frame lands [length unit]), map_share,
         map_score, ik_share, ik_score (-1 where not confirmed).
     save(path): those points as mcws_place --output writes them.
+    save_plot(path): the map's and the confirmed IK share reached against the offset along x, a
+        PNG as mcws_place --plot draws it (gnuplot; lengths in the robot's unit).
     """
+
+    def save_plot(self, path):
+        """Writes the map's and the confirmed IK share of the targets reached [1] against the
+        base offset along x [length unit], a PNG, as mcws_place --plot does (gnuplot): its bytes
+        for the same arguments.
+
+        Raises mcws.Error when gnuplot fails or path cannot be written.
+        """
+        self._core.save_plot(_os.fspath(path))
 
 
 def _targets_argument(targets):
@@ -218,7 +260,8 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
     normals: the surface normals (N, 3) of target points (any length): the tool's z axis
         approaches against the normal, its roll free.
     standoff: distance of the tool point from each target's surface, along its normal
-        [length unit] (default 0).
+        [length unit] (default 0), >= 0; or a string with its unit, as mcws_reach --standoff
+        takes it ("5cm").
     approach_tolerance: the largest accepted approach (or orientation) error [deg] in [0, 180]
         (default 0: exact).
     ik_starts: IK starting joint vectors per target, 1 .. 1000 (default 4).
@@ -226,7 +269,8 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
     threads: worker threads, 0 = all cores. The result does not depend on it.
     collision: use the robot file's collision model when it has one (mcws_reach --no-collision
         is False).
-    quality_task, length: how manipulability is measured, as sample(quality=True).
+    quality_task, length: how manipulability is measured, as sample(quality=True); length
+        [length unit] may also be a string with its unit ("50cm").
     progress: True for progress lines on stderr, or a callable called with (targets done,
         targets) now and then; None: silent.
 
@@ -239,6 +283,8 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
     """
     if not isinstance(robot, Robot):
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
+    standoff = _length(standoff, "standoff", robot, allow_zero=True)
+    length = _length(length, "length", robot)
     core = _reach_study(robot, _targets_argument(targets), normals, standoff,
                         approach_tolerance, ik_starts, seed, threads, collision, quality_task,
                         length, progress)
@@ -257,13 +303,15 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
     the best `confirm` by the map, solved by inverse kinematics as reach_study.
 
     robot, targets, normals, standoff, approach_tolerance, ik_starts, seed, threads, collision,
-        quality_task, length: as reach_study() (seed also draws a map built here).
+        quality_task, length: as reach_study() (seed also draws a map built here; standoff and
+        length also strings with their unit, "5cm").
     progress: as reach_study()'s, for the samples of a map built here, then for the positions
         confirmed.
     line, across, up: base offsets along x, y, z [length unit], sequences of values (the
         tool's "first last step" is first + k step, k = 0, 1, ...; numpy.arange gives them).
     map: an mcws.ReachMap of this robot file (mcws_reach --map read with ReachMap.load, or
-        reach_map()), without collision filtering; or None and resolution [length unit] and
+        reach_map()), without collision filtering; or None and resolution [length unit; or a
+        string with its unit, "2cm", as reach_map()'s] and
         samples to build one here, counting the samples free of self-collision (when
         collision and the robot file has a collision model), with orientations, rolls and
         manipulability as reach_map().
@@ -289,6 +337,9 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
         raise UsageError(f"map: {type(map).__name__} is not an mcws.ReachMap")
     if resolution is not None and samples is None:
         raise UsageError("samples: give the sample count of the map built at resolution")
+    resolution = _length(resolution, "resolution", robot)
+    standoff = _length(standoff, "standoff", robot, allow_zero=True)
+    length = _length(length, "length", robot)
     core = _place(robot, _targets_argument(targets), normals,
                   [float(v) for v in _np.atleast_1d(line)],
                   [float(v) for v in _np.atleast_1d(across)],

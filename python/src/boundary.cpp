@@ -10,6 +10,8 @@
 #include <utility>
 
 #include "bindings.h"
+#include "mcws/distributed/processes.h"
+#include "mcws/distributed/tiled_boundary.h"
 #include "mcws/filters/extremum_boundary.h"
 #include "mcws/filters/grid_boundary.h"
 #include "mcws/filters/orthant_boundary.h"
@@ -190,6 +192,57 @@ py::array boundaryMask(const FloatRows& xyz, const std::optional<std::string>& p
   return out;
 }
 
+/// The settings a tiled run cannot take, as mcws_boundary --tiles refuses them.
+void checkTiledMethod(const BoundaryArguments& a, const BoundaryMethod& method) {
+  if (a.method != "orthant") throw UsageError("tiles works with method 'orthant'");
+  if (a.auto_radius) {
+    throw UsageError(
+        "auto_radius needs the whole cloud's spacing: with tiles give radius or adaptive");
+  }
+  if (static_cast<const OrthantFilter&>(*method.filter).getHullDepth() > 0.0) {
+    throw UsageError(
+        "tiles: the hull-depth stage looks past the neighbourhood of a point; give "
+        "hull_depth=0 with a plane");
+  }
+}
+
+/// mcws_boundary --tiles on the binary PCD file at `path`: the file read in pieces, the boundary
+/// found one slab at a time (distributed::tiledBoundary(), on this process alone), checked as the
+/// tool checks it; a mask over the file's points.
+py::array tiledBoundaryMask(const std::string& path, const std::optional<std::string>& plane_name,
+                            const BoundaryArguments& a, int tiles, const py::object& progress) {
+  if (tiles < 1 || tiles > 100000) {
+    throw UsageError("tiles: " + std::to_string(tiles) + " is not in 1 .. 100000");
+  }
+  const BoundaryPlane plane = planeOf(plane_name);
+  const BoundaryMethod method = boundaryMethod(plane, a);
+  checkTiledMethod(a, method);
+  Checkpoint checkpoint(progress, "mcws.boundary", "slabs");
+  distributed::TiledBoundary found;
+  {
+    py::gil_scoped_release release;
+    io::PcdPointReader reader(path);
+    const distributed::FileSummary file = distributed::summarizeFile(reader, plane);
+    file.range.check(path);
+    requireRegionPoints(file.cloud, path);
+    if (plane == BoundaryPlane::k3D) io::requireVolume(file.range, path);
+    asUsageError("plane", [&] { requirePlaneFits(file.cloud, path); });
+    CloudSummary region = file.cloud;
+    if (a.radius || a.outer_radius) region.spacing = distributed::boundingBoxSpacing(region);
+    checkAgainstCloud(a, method, region);
+    const auto make = [&] {
+      return std::static_pointer_cast<OrthantFilter>(boundaryMethod(plane, a).filter);
+    };
+    const distributed::Processes alone;
+    found = distributed::tiledBoundary(
+        reader, file, tiles, make, a.threads, alone,
+        [&](std::size_t done, std::size_t all) { checkpoint(done, all); });
+  }
+  py::array_t<bool> out(static_cast<py::ssize_t>(found.boundary.size()));
+  std::copy(found.boundary.begin(), found.boundary.end(), out.mutable_data());
+  return out;
+}
+
 }  // namespace
 
 void bindBoundary(py::module_& m) {
@@ -210,6 +263,25 @@ void bindBoundary(py::module_& m) {
       py::arg("outer_radius").none(true), py::arg("min_gap").none(true),
       py::arg("hull_depth").none(true), py::arg("cell").none(true), py::arg("gap").none(true),
       py::arg("threads"));
+  m.def(
+      "_boundary_tiled",
+      [](const std::string& path, const std::optional<std::string>& plane,
+         const std::string& method, std::optional<double> radius, std::optional<double> auto_radius,
+         std::optional<int> adaptive, std::optional<double> outer_radius,
+         std::optional<double> min_gap, std::optional<double> hull_depth,
+         std::optional<double> cell, std::optional<double> gap, int threads, int tiles,
+         const py::object& progress) {
+        return tiledBoundaryMask(path, plane,
+                                 {method, radius, auto_radius, outer_radius, min_gap, hull_depth,
+                                  cell, gap, adaptive, threads},
+                                 tiles, progress);
+      },
+      "mcws.boundary's C++ part with tiles: the boundary of a binary PCD file, slab by slab.",
+      py::arg("path"), py::arg("plane").none(true), py::arg("method"), py::arg("radius").none(true),
+      py::arg("auto_radius").none(true), py::arg("adaptive").none(true),
+      py::arg("outer_radius").none(true), py::arg("min_gap").none(true),
+      py::arg("hull_depth").none(true), py::arg("cell").none(true), py::arg("gap").none(true),
+      py::arg("threads"), py::arg("tiles"), py::arg("progress").none(true));
 }
 
 }  // namespace mcws::python

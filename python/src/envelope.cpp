@@ -3,10 +3,13 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
+#include <utility>
 
 #include "bindings.h"
 #include "loaded_robot.h"
+#include "mcws/io/atomic_file.h"
 #include "mcws/sampling/sample_report.h"
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope.h"
@@ -80,6 +83,38 @@ std::string drawingJson(const EnvelopeResult& result, double azimuth) {
   return out.dump();
 }
 
+/// The pictures' title and frame, as mcws_envelope names them: the robot and its tip when the
+/// points' robot is known, else the file name of `source` (the tool's --input) and no frame.
+std::pair<std::string, std::string> pictureNames(const EnvelopeResult& r,
+                                                 const std::string& source) {
+  if (r.recorded) return {r.recorded->robot, io::recordedTip(*r.recorded).value_or("")};
+  return {std::filesystem::path(source).filename().string(), ""};
+}
+
+/// mcws_envelope --drawing: the datasheet drawing at `azimuth` [deg], PNG or SVG by the path's
+/// extension.
+void saveDrawing(const EnvelopeResult& r, const py::object& path, double azimuth,
+                 const std::string& source) {
+  const std::string file = pathArgument(path);
+  if (!std::isfinite(azimuth)) throw UsageError("azimuth: " + number(azimuth) + " is not finite");
+  const DrawingFormat format = asUsageError("path", [&] { return drawingFormatOf(file); });
+  const auto [title, tip] = pictureNames(r, source);
+  py::gil_scoped_release release;
+  const EnvelopeDrawing drawing = asUsageError("azimuth", [&] {
+    return envelopeDrawing(r.envelope.mesh, r.points, azimuth * M_PI / 180.0);
+  });
+  io::writeWholeFile(file,
+                     renderEnvelopeDrawing(drawing, format, title, r.units.lengthName(), tip));
+}
+
+/// mcws_envelope --plot: the mesh shaded from two views, a PNG.
+void savePlot(const EnvelopeResult& r, const py::object& path, const std::string& source) {
+  const std::string file = pathArgument(path);
+  const auto [title, tip] = pictureNames(r, source);
+  py::gil_scoped_release release;
+  io::writeWholeFile(file, renderEnvelopePng(r.envelope.mesh, title, r.units.lengthName(), tip));
+}
+
 constexpr char kSaveDoc[] =
     R"(Writes the mesh as mcws_envelope --output does: binary PLY, binary STL or ASCII VTK by the
 extension of path (.ply, .stl, .vtk), lengths in the positions' unit; the file appears whole or
@@ -110,7 +145,9 @@ void bindEnvelope(py::module_& m) {
                         r.units.lengthName());
           },
           kSaveDoc, py::arg("path"), py::arg("source"))
-      .def("drawing", &drawingJson, py::arg("azimuth"));
+      .def("drawing", &drawingJson, py::arg("azimuth"))
+      .def("save_drawing", &saveDrawing, py::arg("path"), py::arg("azimuth"), py::arg("source"))
+      .def("save_plot", &savePlot, py::arg("path"), py::arg("source"));
   m.def("_envelope", &makeEnvelope,
         "mcws.envelope's C++ part: the envelope of float32 (N, 3) positions.", py::arg("xyz"),
         py::arg("alpha").none(true), py::arg("correction"), py::arg("threads"),

@@ -16,6 +16,7 @@
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/reach_map.h"
+#include "mcws/reach/reach_plot.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
@@ -112,15 +113,28 @@ void saveMap(const MapResult& r, const py::object& path_value) {
   io::writeWholeFile(path, bytes.str());
 }
 
+/// A text member of the map file's header ("robot", "length_unit", ...), "" when it has none.
+std::string headerText(const MapResult& r, const char* key) {
+  const nlohmann::json h = nlohmann::json::parse(r.header, nullptr, false);
+  return h.is_object() && h.contains(key) && h[key].is_string() ? h[key].get<std::string>()
+                                                                : std::string();
+}
+
+/// mcws_reach --halfcut (`histogram` false) or --histogram: a PNG titled with the robot's name
+/// the header records, lengths in its unit.
+void savePicture(const MapResult& r, const py::object& path_value, bool histogram) {
+  const std::string path = pathArgument(path_value);
+  const std::string robot = headerText(r, "robot"), unit = headerText(r, "length_unit");
+  py::gil_scoped_release release;
+  io::writeWholeFile(path, histogram ? renderReachabilityHistogramPng(r.map, robot)
+                                     : renderHalfCutPng(r.map, 0.0, robot, unit));
+}
+
 /// The voxel centres with reachability, manipulability and count, as mcws_reach --output writes
 /// them; the robot the header names recorded as the tool records it.
 void savePoints(const MapResult& r, const py::object& path_value) {
   const std::string path = pathArgument(path_value);
-  const nlohmann::json h = nlohmann::json::parse(r.header, nullptr, false);
-  const auto text = [&](const char* key) {
-    return h.is_object() && h.contains(key) && h[key].is_string() ? h[key].get<std::string>()
-                                                                  : std::string();
-  };
+  const auto text = [&](const char* key) { return headerText(r, key); };
   const io::CloudProvenance provenance(text("robot"), text("robot_file"), text("robot_sha256"),
                                        text("length_unit"));
   py::gil_scoped_release release;
@@ -158,6 +172,14 @@ void bindReach(py::module_& m) {
       .def_static("load", &loadMap, py::arg("path"))
       .def("save", &saveMap, py::arg("path"))
       .def("save_points", &savePoints, py::arg("path"))
+      .def(
+          "save_halfcut",
+          [](const MapResult& r, const py::object& path) { savePicture(r, path, false); },
+          py::arg("path"))
+      .def(
+          "save_histogram",
+          [](const MapResult& r, const py::object& path) { savePicture(r, path, true); },
+          py::arg("path"))
       .def("header", [](const MapResult& r) { return r.header; })
       .def("summary", [](const MapResult& r) { return r.summary; })
       .def("grid",

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -13,6 +14,7 @@
 #include "loaded_robot.h"
 #include "mcws/collision/collision_checker.h"
 #include "mcws/core/decimal.h"
+#include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/placement_map.h"
@@ -35,6 +37,7 @@ struct PointsResult {
   std::vector<PointT, Eigen::aligned_allocator<PointT>> points;
   std::string summary;  ///< compact JSON
   std::optional<io::CloudProvenance> provenance;
+  std::function<std::string()> picture;  ///< the tool's --plot PNG (a placement's), or none
 
   void save(const py::object& path_value) const {
     const std::string path = pathArgument(path_value);
@@ -246,6 +249,9 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
   summary["confirmation"] = confirmationJson(placement, candidates);
   addRobotNames(summary, robot);  // "robot" and "tip", as mcws_place --json
   result->summary = summary.dump();
+  result->picture = [candidates, name = robot.name, unit = unitName(robot.length_unit)] {
+    return renderPlacementPng(candidates, name, unit);  // mcws_place --plot
+  };
   return result;
 }
 
@@ -261,6 +267,15 @@ void bindPointsResult(py::module_& m, const char* name) {
   py::class_<PointsResult<PointT>>(m, name)
       .def("summary", [](const PointsResult<PointT>& r) { return r.summary; })
       .def("save", &PointsResult<PointT>::save, py::arg("path"))
+      .def(
+          "save_plot",
+          [](const PointsResult<PointT>& r, const py::object& path_value) {
+            const std::string path = pathArgument(path_value);
+            if (!r.picture) throw UsageError("save_plot: this result has no picture");
+            py::gil_scoped_release release;
+            io::writeWholeFile(path, r.picture());
+          },
+          py::arg("path"))
       .def(
           "points",
           [](const py::object& self, int joints) {

@@ -12,6 +12,7 @@
 #include "mcws/collision/collision_checker.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/collision/robot_bodies.h"
+#include "mcws/core/length_text.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
@@ -291,6 +292,15 @@ std::unique_ptr<CollisionChecker> collisionChecker(const LoadedRobot& loaded) {
 }
 
 void bindRobot(py::module_& m) {
+  m.def(
+      "_parse_length",
+      [](const std::string& text, const std::string& name, const LoadedRobot& robot,
+         bool allow_zero) {
+        return lengthFromText(text, name, robot.robot.length_unit, allow_zero);
+      },
+      "A length argument written with its unit (\"2cm\", \"0.5m\"; a bare number in the robot's "
+      "unit) in the robot's length unit, as the tools read their length flags.",
+      py::arg("text"), py::arg("name"), py::arg("robot"), py::arg("allow_zero"));
   py::class_<LoadedRobot>(m, "Robot", kRobotDoc)
       .def(py::init([](const py::object& path, const std::optional<std::string>& base,
                        const std::optional<std::string>& tip, const py::object& package_path,

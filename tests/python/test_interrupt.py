@@ -19,7 +19,7 @@ SCENARIOS = Path(os.environ.get("MCWS_SCENARIOS_DIR",
 
 # From the signal to KeyboardInterrupt [s]: the library checks every few milliseconds of work,
 # the bindings look at most every 50 ms, and an uninterruptible step (the envelope's local
-# spacing, a piece of 32768 points of its triangulation) lasts well under a second on two cores;
+# spacing, a piece of 65536 points of its triangulation) lasts well under a second on two cores;
 # the rest is headroom for a loaded machine. A functional bound, not a speed benchmark.
 LATENCY_BOUND = 1.5
 SIGNAL_AFTER = 0.5  # [s] into the call
@@ -105,10 +105,10 @@ def test_ctrl_c_interrupts_a_measure_within_its_phases():
 
 
 def test_envelope_in_pieces_is_the_tools(tmp_path):
-    # 50000 points: the Python call inserts them in 2 pieces of at most 32768 (the tool in one
+    # 80000 points: the Python call inserts them in 2 pieces of at most 65536 (the tool in one
     # call); the Delaunay triangulation does not depend on the order, so the mesh is the same.
     path = tmp_path / "ball.pcd"
-    mcws.write_pcd(path, mcws.sample_shape("ball", 50000, seed=7))
+    mcws.write_pcd(path, mcws.sample_shape("ball", 80000, seed=7))
     tool_mesh = tmp_path / "tool.ply"
     run_tool("envelope", "--input", path, "--output", tool_mesh)
     own = tmp_path / "own.ply"

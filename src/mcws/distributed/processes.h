@@ -41,6 +41,9 @@ struct Agreement {
 class Processes {
  public:
   Processes(int& argc, char**& argv);
+  /// \brief This process alone, whatever launched it: MPI is not touched (a library caller
+  /// such as the Python module, which has no command line of its own to share).
+  Processes() = default;
   ~Processes();
   Processes(const Processes&) = delete;
   Processes& operator=(const Processes&) = delete;

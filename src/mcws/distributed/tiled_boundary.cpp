@@ -221,7 +221,7 @@ FileSummary summarizeFile(PcdPointReader& reader, BoundaryPlane plane) {
 TiledBoundary tiledBoundary(
     PcdPointReader& reader, const FileSummary& file, int tiles,
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
-    const Processes& processes, io::Progress& progress) {
+    const Processes& processes, const std::function<void(std::size_t, std::size_t)>& progress) {
   const std::shared_ptr<OrthantBoundary<WorkspacePoint>> settings = make();
   const BoundaryPlane plane = settings->getPlane();
   if (settings->getRadiusMode() == RadiusMode::kAutomatic || settings->getHullDepth() > 0.0) {
@@ -289,8 +289,7 @@ TiledBoundary tiledBoundary(
       break;
     }
     if (processes.rank() == 0)
-      progress.update(static_cast<std::size_t>(t - mine.begin + 1),
-                      static_cast<std::size_t>(mine.size()));
+      progress(static_cast<std::size_t>(t - mine.begin + 1), static_cast<std::size_t>(mine.size()));
   }
 
   std::vector<double> stats = {result.largest_halo, static_cast<double>(result.largest_tile),

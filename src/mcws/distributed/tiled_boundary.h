@@ -14,7 +14,6 @@
 #include "mcws/filters/boundary_geometry.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/io/cloud_io.h"
-#include "mcws/io/progress.h"
 
 namespace mcws::distributed {
 
@@ -52,11 +51,13 @@ struct TiledBoundary {
 /// (orthant::typicalOuterRadius()). So the flags are exactly those of one filter on the whole
 /// cloud, for any number of tiles and processes.
 ///
-/// Every process reads the file; rank 0 gathers the flags.
+/// Every process reads the file; rank 0 gathers the flags. `progress` is called on rank 0 after
+/// each of its tiles with (tiles done, its tiles): a progress line, or a check that ends the run
+/// by throwing (Ctrl-C in the Python module).
 TiledBoundary tiledBoundary(
     io::PcdPointReader& reader, const FileSummary& file, int tiles,
     const std::function<std::shared_ptr<OrthantBoundary<WorkspacePoint>>()>& make, int threads,
-    const Processes& processes, io::Progress& progress);
+    const Processes& processes, const std::function<void(std::size_t, std::size_t)>& progress);
 
 /// \brief The spacing of `cloud.finite` points spread evenly through its bounding box in its
 /// plane (an extent below 1e-3 of the largest counts as that much) [length unit]: what a tiled

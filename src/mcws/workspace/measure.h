@@ -109,7 +109,7 @@ struct MeasureOptions {
   std::function<void(const std::string&)> phase;
   /// Called on the calling thread every few milliseconds of work within the phases
   /// (CancelCheck): the local spacing's neighbour searches, the exposed points' passes, the
-  /// insertion (then done in pieces of 32768 points sorted along a Hilbert curve: the same
+  /// insertion (beyond 65536 points then done in pieces sorted along a Hilbert curve: the same
   /// triangulation), the alpha test (and the shell's completion, round by round), the edge
   /// correction's stars and the surface repair. What it throws ends the call. It changes no
   /// number of the result.

@@ -43,8 +43,13 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 /// Cells per side of the lock grid of the parallel 3-D triangulation (CGAL's examples use 50).
 constexpr int kLockGridCells = 50;
-/// Points per piece of an insertion that checks for cancelling between its pieces.
-constexpr std::size_t kInsertPiece = 32768;
+/// Points per piece of an insertion that checks for cancelling between its pieces, well under a
+/// second of work on a loaded machine: a sequential triangulation's (points inserted one at a time
+/// from the last one's place, as CGAL's range insertion does), and a parallel one's (each piece a
+/// parallel range insertion). A 2 x 10^5-point ball's shell, about 46000 points, is one piece,
+/// inserted in one call as without the check.
+constexpr std::size_t kInsertPiece = 65536;
+constexpr std::size_t kParallelInsertPiece = 65536;
 /// Simplices between two checks for cancelling in a loop over the triangulation.
 constexpr unsigned kCancelStride = 65536;
 /// Boundary vertices between two checks for cancelling in the leave-one-out count (a small
@@ -190,16 +195,45 @@ void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
   }
 }
 
-/// Inserts the points, each with its index, into `dt`: in one call, or with `cancel_check` set,
-/// sorted along a Hilbert curve (CGAL::spatial_sort, as CGAL sorts the points of one call) and
-/// then in pieces of kInsertPiece points with a check before each (the Delaunay triangulation
-/// does not depend on the order its points come in). A parallel triangulation (`Concurrency` =
+/// Inserts input[begin, end) (points with their indices, sorted along a Hilbert curve) one at a
+/// time, each located from the vertex inserted before it (`last`), as CGAL's sequential range
+/// insertion does after its own sort.
+template <typename Delaunay, typename Input>
+void insertSorted(Delaunay& dt, const Input& input, std::size_t begin, std::size_t end,
+                  typename Delaunay::Vertex_handle& last) {
+  using Vertex = typename Delaunay::Vertex_handle;
+  for (std::size_t i = begin; i < end; ++i) {
+    if constexpr (Delaunay::Point::Ambient_dimension::value == 2) {
+      const Vertex v = dt.insert(
+          input[i].first, last != Vertex() ? last->face() : typename Delaunay::Face_handle());
+      if (v != Vertex()) {
+        v->info() = input[i].second;
+        last = v;
+      }
+    } else {
+      last = dt.insert(input[i].first, last);
+      if (last != Vertex()) last->info() = input[i].second;
+    }
+  }
+}
+
+/// Inserts the points, each with its index, into `dt`: in one call (CGAL's range insertion: a
+/// spatial sort, then each point located from the one before), or with `cancel_check` set and
+/// more points than a piece holds, in pieces with a check before each (the Delaunay
+/// triangulation does not depend on the order its points come in). A sequential triangulation
+/// then sorts the points once along a Hilbert curve (CGAL::spatial_sort, as CGAL sorts the points
+/// of one call) and inserts them as CGAL's range insertion does, checking every kInsertPiece
+/// points: the same work as one call. A parallel triangulation (`Concurrency` =
 /// CGAL::Parallel_tag) inserts spatially sorted points on TBB's threads, each locking the cells
-/// of a grid over the points' bounding box.
+/// of a grid over the points' bounding box: there each piece of kParallelInsertPiece points is
+/// one range insertion.
 template <typename Concurrency, typename Delaunay, typename Input>
 void insertPoints(Delaunay& dt, Input& input, const CancelCheck& cancel_check) {
+  constexpr bool kParallel = std::is_same_v<Concurrency, CGAL::Parallel_tag>;
+  const std::size_t piece = kParallel ? kParallelInsertPiece : kInsertPiece;
   const auto insert = [&] {
-    if (!cancel_check) {
+    if (!cancel_check || input.size() <= piece) {
+      if (cancel_check) cancel_check();
       dt.insert(input.begin(), input.end());
       return;
     }
@@ -212,13 +246,18 @@ void insertPoints(Delaunay& dt, Input& input, const CancelCheck& cancel_check) {
       CGAL::spatial_sort(input.begin(), input.end(),
                          CGAL::Spatial_sort_traits_adapter_3<Kernel, Position>());
     }
-    for (std::size_t begin = 0; begin < input.size(); begin += kInsertPiece) {
+    [[maybe_unused]] typename Delaunay::Vertex_handle last;
+    for (std::size_t begin = 0; begin < input.size(); begin += piece) {
       cancel_check();
-      const std::size_t end = std::min(input.size(), begin + kInsertPiece);
-      dt.insert(input.begin() + begin, input.begin() + end);
+      const std::size_t end = std::min(input.size(), begin + piece);
+      if constexpr (kParallel) {
+        dt.insert(input.begin() + begin, input.begin() + end);
+      } else {
+        insertSorted(dt, input, begin, end, last);
+      }
     }
   };
-  if constexpr (std::is_same_v<Concurrency, CGAL::Parallel_tag>) {
+  if constexpr (kParallel) {
     CGAL::Bbox_3 box;
     for (const auto& item : input) box += item.first.bbox();
     typename Delaunay::Lock_data_structure locks(box, kLockGridCells);
