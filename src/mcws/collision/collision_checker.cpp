@@ -15,6 +15,7 @@
 #include <set>
 #include <tuple>
 
+#include "mcws/collision/mesh_witness.h"
 #include "mcws/collision/segment_distance.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -32,6 +33,8 @@ struct CollisionChecker::Shape {
   double radius{0.0};
   Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
+  /// A mesh's sphere tree over `geometry`'s hierarchy, for the intersecting-triangle search.
+  std::shared_ptr<const MeshSphereTree> spheres;
   Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< bounding sphere in the body frame
   double bound{0.0};
   int index{0};  ///< among all shapes of the checker
@@ -50,6 +53,9 @@ struct CollisionChecker::Scratch::Data {
   std::vector<Eigen::Vector3d> p_from, p_to;
   std::vector<std::uint64_t> stamp;
   std::uint64_t sample{0};
+  /// Per pair of mesh shapes (shape a's index times the shape count plus b's): where the
+  /// intersecting-triangle search looks first.
+  std::vector<TriangleSearchHint> hints;
   fcl::CollisionRequest<double> request;
   fcl::CollisionResult<double> result;
 };
@@ -59,6 +65,10 @@ CollisionChecker::Scratch::~Scratch() = default;
 CollisionChecker::Scratch::Scratch(Scratch&&) noexcept = default;
 
 namespace {
+
+/// Sphere tests the intersecting-triangle search may spend on a mesh pair before fcl::collide
+/// decides it.
+constexpr int kTriangleSearchBudget = 400;
 
 /// Bounding sphere (center, radius) of points, not minimal: centre of the bounding box.
 std::pair<Eigen::Vector3d, double> boundPoints(const std::vector<Eigen::Vector3d>& points) {
@@ -104,7 +114,7 @@ std::tuple<Eigen::Vector3d, Eigen::Vector3d, double> boundingCapsule(
   return {mean + t_low * axis, mean + t_high * axis, radius};
 }
 
-std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh& mesh) {
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> meshGeometry(const TriangleMesh& mesh) {
   auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
   std::vector<fcl::Triangle> triangles;
   triangles.reserve(mesh.triangles.size());
@@ -211,7 +221,9 @@ CollisionChecker::Shape CollisionChecker::makeShape(const ShapeSpec& in) {
       break;
     }
     case ShapeType::kMesh: {
-      shape.geometry = meshGeometry(*in.mesh);
+      auto model = meshGeometry(*in.mesh);
+      if (options_.triangle_search) shape.spheres = std::make_shared<MeshSphereTree>(*model);
+      shape.geometry = std::move(model);
       std::vector<Eigen::Vector3d> vertices;
       vertices.reserve(in.mesh->vertices.size());
       for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
@@ -266,6 +278,7 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
     data.p_from.resize(shape_count_);
     data.p_to.resize(shape_count_);
     data.stamp.assign(shape_count_, 0);
+    data.hints.assign(static_cast<std::size_t>(shape_count_) * shape_count_, {});
     data.request.num_max_contacts = 1;
   }
   ++data.sample;
@@ -314,9 +327,20 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
     // Exact for two capsules; for a mesh, only a bounding capsule: apart means apart.
     if (!overlap || (a.swept && b.swept)) return overlap;
   }
+  const Eigen::Isometry3d T_world_a = T_a * a.T_body_shape, T_world_b = T_b * b.T_body_shape;
+  if (a.spheres && b.spheres) {
+    // FCL's relative transform (fcl::relativeTransform): mesh b's frame in mesh a's.
+    const Eigen::Matrix3d R_a_b = T_world_a.linear().transpose() * T_world_b.linear();
+    const Eigen::Vector3d p_a_b =
+        T_world_a.linear().transpose() * (T_world_b.translation() - T_world_a.translation());
+    if (findIntersectingTriangles(*a.spheres, *b.spheres, R_a_b, p_a_b, kTriangleSearchBudget,
+                                  &data.hints[a.index * shape_count_ + b.index])) {
+      return true;
+    }
+  }
   data.result.clear();
-  return fcl::collide(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
-                      T_b * b.T_body_shape, data.request, data.result) > 0;
+  return fcl::collide(a.geometry.get(), T_world_a, b.geometry.get(), T_world_b, data.request,
+                      data.result) > 0;
 }
 
 bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const {

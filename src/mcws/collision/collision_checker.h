@@ -46,6 +46,10 @@ struct CollisionCheckerOptions {
   /// Reject body and shape pairs whose bounding spheres, and mesh pairs whose bounding capsules,
   /// are apart before any exact test.
   bool bounding_spheres{true};
+  /// Before fcl::collide of two meshes, a short search for one pair of intersecting triangles
+  /// (findIntersectingTriangles()), which proves a collision; false sends every mesh pair
+  /// straight to fcl::collide.
+  bool triangle_search{true};
 };
 
 /// \brief Tests joint vectors of a robot against its collision model.
