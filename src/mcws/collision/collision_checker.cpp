@@ -33,8 +33,8 @@ struct CollisionChecker::Shape {
   double radius{0.0};
   Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
-  /// A mesh's sphere tree over `geometry`'s hierarchy, for the intersecting-triangle search.
-  std::shared_ptr<const MeshSphereTree> spheres;
+  /// A mesh's search tree over `geometry`'s hierarchy (findIntersectingTriangles()).
+  std::shared_ptr<const MeshSearchTree> search_tree;
   Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< bounding sphere in the body frame
   double bound{0.0};
   int index{0};  ///< among all shapes of the checker
@@ -53,9 +53,6 @@ struct CollisionChecker::Scratch::Data {
   std::vector<Eigen::Vector3d> p_from, p_to;
   std::vector<std::uint64_t> stamp;
   std::uint64_t sample{0};
-  /// Per pair of mesh shapes (shape a's index times the shape count plus b's): where the
-  /// intersecting-triangle search looks first.
-  std::vector<TriangleSearchHint> hints;
   fcl::CollisionRequest<double> request;
   fcl::CollisionResult<double> result;
 };
@@ -222,7 +219,7 @@ CollisionChecker::Shape CollisionChecker::makeShape(const ShapeSpec& in) {
     }
     case ShapeType::kMesh: {
       auto model = meshGeometry(*in.mesh);
-      if (options_.triangle_search) shape.spheres = std::make_shared<MeshSphereTree>(*model);
+      if (options_.triangle_search) shape.search_tree = std::make_shared<MeshSearchTree>(*model);
       shape.geometry = std::move(model);
       std::vector<Eigen::Vector3d> vertices;
       vertices.reserve(in.mesh->vertices.size());
@@ -278,7 +275,6 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
     data.p_from.resize(shape_count_);
     data.p_to.resize(shape_count_);
     data.stamp.assign(shape_count_, 0);
-    data.hints.assign(static_cast<std::size_t>(shape_count_) * shape_count_, {});
     data.request.num_max_contacts = 1;
   }
   ++data.sample;
@@ -328,15 +324,14 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
     if (!overlap || (a.swept && b.swept)) return overlap;
   }
   const Eigen::Isometry3d T_world_a = T_a * a.T_body_shape, T_world_b = T_b * b.T_body_shape;
-  if (a.spheres && b.spheres) {
+  if (a.search_tree && b.search_tree) {
     // FCL's relative transform (fcl::relativeTransform): mesh b's frame in mesh a's.
     const Eigen::Matrix3d R_a_b = T_world_a.linear().transpose() * T_world_b.linear();
     const Eigen::Vector3d p_a_b =
         T_world_a.linear().transpose() * (T_world_b.translation() - T_world_a.translation());
-    if (findIntersectingTriangles(*a.spheres, *b.spheres, R_a_b, p_a_b, kTriangleSearchBudget,
-                                  &data.hints[a.index * shape_count_ + b.index])) {
+    if (findIntersectingTriangles(*a.search_tree, *b.search_tree, R_a_b, p_a_b,
+                                  kTriangleSearchBudget))
       return true;
-    }
   }
   data.result.clear();
   return fcl::collide(a.geometry.get(), T_world_a, b.geometry.get(), T_world_b, data.request,

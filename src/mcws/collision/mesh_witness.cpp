@@ -10,7 +10,7 @@
 
 namespace mcws {
 
-MeshSphereTree::MeshSphereTree(const fcl::BVHModel<fcl::OBBRSS<double>>& model)
+MeshSearchTree::MeshSearchTree(const fcl::BVHModel<fcl::OBBRSS<double>>& model)
     : model_(model), nodes_(static_cast<std::size_t>(model.getNumBVs())) {
   for (int i = 0; i < size(); ++i) {
     const auto& obb = model.getBV(i).bv.obb;
@@ -19,26 +19,15 @@ MeshSphereTree::MeshSphereTree(const fcl::BVHModel<fcl::OBBRSS<double>>& model)
     nodes_[i].extent = obb.extent;
     nodes_[i].first_child = model.getBV(i).first_child;
   }
-  parents_.assign(nodes_.size(), -1);
-  for (int i = 0; i < size(); ++i) {
-    if (nodes_[i].first_child >= 0) {
-      parents_[nodes_[i].first_child] = parents_[nodes_[i].first_child + 1] = i;
-    }
-  }
   std::vector<int> below;
   if (!nodes_.empty()) fitRadius(0, below);
 }
 
-int MeshSphereTree::ancestor(int i, int levels) const {
-  for (; levels > 0 && parents_[i] >= 0; --levels) i = parents_[i];
-  return i;
-}
+const Eigen::Vector3d& MeshSearchTree::vertex(int i) const { return model_.vertices[i]; }
 
-const Eigen::Vector3d& MeshSphereTree::vertex(int i) const { return model_.vertices[i]; }
+const fcl::Triangle& MeshSearchTree::triangle(int i) const { return model_.tri_indices[i]; }
 
-const fcl::Triangle& MeshSphereTree::triangle(int i) const { return model_.tri_indices[i]; }
-
-void MeshSphereTree::fitRadius(int i, std::vector<int>& below) {
+void MeshSearchTree::fitRadius(int i, std::vector<int>& below) {
   Node& node = nodes_[i];
   const std::size_t first = below.size();
   if (node.first_child < 0) {
@@ -58,11 +47,6 @@ void MeshSphereTree::fitRadius(int i, std::vector<int>& below) {
 }
 
 namespace {
-
-/// Sphere tests a search from the hint's pair may spend before the search from the roots.
-constexpr int kHintBudget = 48;
-/// The hint keeps the witness's ancestors this many levels up (subtrees of about 2^4 triangles).
-constexpr int kHintLevels = 4;
 
 /// Whether two boxes are apart by one of the 15 separating axes of Gottschalk, Lin & Manocha
 /// (1996): box b's axes are the columns of B and its centre is t, in box a's frame; a and b are
@@ -96,10 +80,10 @@ bool boxesApart(const double (&B)[3][3], const double (&t)[3], const Eigen::Vect
   return false;
 }
 
-/// Depth-first search from the node pair (i, j); on success the two leaves of the pair of
-/// intersecting triangles. Spends `budget`.
-bool searchFrom(const MeshSphereTree& a, const MeshSphereTree& b, const Eigen::Matrix3d& R_a_b,
-                const Eigen::Vector3d& p_a_b, int i, int j, int& budget, int& leaf_a, int& leaf_b) {
+/// Depth-first search from the node pair (i, j) for a pair of intersecting triangles, `budget`
+/// node pairs at most.
+bool searchFrom(const MeshSearchTree& a, const MeshSearchTree& b, const Eigen::Matrix3d& R_a_b,
+                const Eigen::Vector3d& p_a_b, int i, int j, int budget) {
   // Each step replaces a pair by the two pairs of the larger sphere's children, so the stack
   // holds at most one pair per level of the two trees.
   constexpr int kStack = 256;
@@ -113,8 +97,8 @@ bool searchFrom(const MeshSphereTree& a, const MeshSphereTree& b, const Eigen::M
   Eigen::Matrix3d axes_b = Eigen::Matrix3d::Zero();
   while (top > 0 && budget-- > 0) {
     std::tie(i, j) = stack[--top];
-    const MeshSphereTree::Node& na = a.node(i);
-    const MeshSphereTree::Node& nb = b.node(j);
+    const MeshSearchTree::Node& na = a.node(i);
+    const MeshSearchTree::Node& nb = b.node(j);
     if (placed_j != j) {
       placed_j = j;
       c_b.noalias() = R_a_b * nb.center + p_a_b;
@@ -136,8 +120,6 @@ bool searchFrom(const MeshSphereTree& a, const MeshSphereTree& b, const Eigen::M
       if (fcl::detail::Intersect<double>::intersect_Triangle(
               a.vertex(ta[0]), a.vertex(ta[1]), a.vertex(ta[2]), b.vertex(tb[0]), b.vertex(tb[1]),
               b.vertex(tb[2]), R_a_b, p_a_b)) {
-        leaf_a = i;
-        leaf_b = j;
         return true;
       }
       continue;
@@ -165,25 +147,11 @@ bool searchFrom(const MeshSphereTree& a, const MeshSphereTree& b, const Eigen::M
 
 }  // namespace
 
-bool findIntersectingTriangles(const MeshSphereTree& a, const MeshSphereTree& b,
+bool findIntersectingTriangles(const MeshSearchTree& a, const MeshSearchTree& b,
                                const Eigen::Matrix3d& R_a_b, const Eigen::Vector3d& p_a_b,
-                               int budget, TriangleSearchHint* hint) {
+                               int budget) {
   if (a.size() == 0 || b.size() == 0) return false;
-  int leaf_a = 0, leaf_b = 0;
-  bool found = false;
-  if (hint && hint->node_a >= 0 && hint->node_a < a.size() && hint->node_b >= 0 &&
-      hint->node_b < b.size()) {
-    int hint_budget = std::min(budget, kHintBudget);
-    budget -= hint_budget;
-    found = searchFrom(a, b, R_a_b, p_a_b, hint->node_a, hint->node_b, hint_budget, leaf_a, leaf_b);
-    budget += hint_budget;
-  }
-  if (!found) found = searchFrom(a, b, R_a_b, p_a_b, 0, 0, budget, leaf_a, leaf_b);
-  if (found && hint) {
-    hint->node_a = a.ancestor(leaf_a, kHintLevels);
-    hint->node_b = b.ancestor(leaf_b, kHintLevels);
-  }
-  return found;
+  return searchFrom(a, b, R_a_b, p_a_b, 0, 0, budget);
 }
 
 }  // namespace mcws
