@@ -13,8 +13,8 @@
 #include <cmath>
 #include <limits>
 #include <set>
-#include <tuple>
 
+#include "mcws/collision/mesh_bounds.h"
 #include "mcws/collision/mesh_witness.h"
 #include "mcws/collision/segment_distance.h"
 #include "mcws/core/error.h"
@@ -67,50 +67,6 @@ namespace {
 /// decides it.
 constexpr int kTriangleSearchBudget = 400;
 
-/// Bounding sphere (center, radius) of points, not minimal: centre of the bounding box.
-std::pair<Eigen::Vector3d, double> boundPoints(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d lo = points.front(), hi = points.front();
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Eigen::Vector3d center = 0.5 * (lo + hi);
-  double radius = 0.0;
-  for (const auto& p : points) radius = std::max(radius, (p - center).norm());
-  return {center, radius};
-}
-
-/// Tight bounding capsule of points: the segment lies on their principal axis and every point
-/// is within `radius` of it. \return (from, to, radius).
-std::tuple<Eigen::Vector3d, Eigen::Vector3d, double> boundingCapsule(
-    const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points) mean += p;
-  mean /= double(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
-  const Eigen::Vector3d axis =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
-  double radius = 0.0;
-  for (const auto& p : points) {
-    const Eigen::Vector3d v = p - mean;
-    radius = std::max(radius, (v - v.dot(axis) * axis).norm());
-  }
-  // A point at t along the axis, off it by h, lies in the capsule when the nearer end is within
-  // s = sqrt(r^2 - h^2) of t: the ends are the tightest that satisfy every point.
-  double t_low = std::numeric_limits<double>::infinity(), t_high = -t_low;
-  for (const auto& p : points) {
-    const Eigen::Vector3d v = p - mean;
-    const double t = v.dot(axis);
-    const double s = std::sqrt(std::max(0.0, radius * radius - (v - t * axis).squaredNorm()));
-    t_low = std::min(t_low, t + s);
-    t_high = std::max(t_high, t - s);
-  }
-  if (t_low > t_high) t_low = t_high = 0.5 * (t_low + t_high);
-  radius *= 1.0 + 1e-12;  // rounding must not push a vertex out
-  return {mean + t_low * axis, mean + t_high * axis, radius};
-}
-
 std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> meshGeometry(const TriangleMesh& mesh) {
   auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
   std::vector<fcl::Triangle> triangles;
@@ -155,7 +111,7 @@ CollisionChecker::Body CollisionChecker::makeBody(const BodySpec& spec) {
     body.shapes.push_back(std::move(shape));
   }
   if (!body.shapes.empty()) {
-    body.center = boundPoints(extreme).first;
+    body.center = boundingSphere(extreme).center;
     for (const Shape& shape : body.shapes)
       body.bound = std::max(body.bound, (shape.center - body.center).norm() + shape.bound);
   }
@@ -224,8 +180,13 @@ CollisionChecker::Shape CollisionChecker::makeShape(const ShapeSpec& in) {
       std::vector<Eigen::Vector3d> vertices;
       vertices.reserve(in.mesh->vertices.size());
       for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
-      std::tie(shape.center, shape.bound) = boundPoints(vertices);
-      std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
+      const BoundingSphere sphere = boundingSphere(vertices);
+      const BoundingCapsule capsule = boundingCapsule(vertices);
+      shape.center = sphere.center;
+      shape.bound = sphere.radius;
+      shape.p_from = capsule.p_from;
+      shape.p_to = capsule.p_to;
+      shape.radius = capsule.radius;
       shape.lss = options_.bounding_spheres;
       break;
     }
