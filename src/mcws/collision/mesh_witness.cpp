@@ -129,15 +129,17 @@ bool searchFrom(const MeshSearchTree& a, const MeshSearchTree& b, const Eigen::M
     // surface.
     if (leaf_j || (!leaf_i && na.radius >= nb.radius)) {
       const int first = na.first_child;
-      const bool second_nearer = (a.node(first + 1).center - c_b).squaredNorm() <
-                                 (a.node(first).center - c_b).squaredNorm();
+      const bool second_nearer =
+          (a.node(first + 1).center - c_b).norm() - a.node(first + 1).radius <
+          (a.node(first).center - c_b).norm() - a.node(first).radius;
       stack[top++] = {first + (second_nearer ? 0 : 1), j};
       stack[top++] = {first + (second_nearer ? 1 : 0), j};
     } else {
       const int first = nb.first_child;
       const Eigen::Vector3d c_a = R_a_b.transpose() * (na.center - p_a_b);  // in b's frame
-      const bool second_nearer = (b.node(first + 1).center - c_a).squaredNorm() <
-                                 (b.node(first).center - c_a).squaredNorm();
+      const bool second_nearer =
+          (b.node(first + 1).center - c_a).norm() - b.node(first + 1).radius <
+          (b.node(first).center - c_a).norm() - b.node(first).radius;
       stack[top++] = {i, first + (second_nearer ? 0 : 1)};
       stack[top++] = {i, first + (second_nearer ? 1 : 0)};
     }
