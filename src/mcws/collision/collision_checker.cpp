@@ -284,15 +284,22 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
     // Exact for two capsules; for a mesh, only a bounding capsule: apart means apart.
     if (!overlap || (a.swept && b.swept)) return overlap;
   }
-  const Eigen::Isometry3d T_world_a = T_a * a.T_body_shape, T_world_b = T_b * b.T_body_shape;
+  return exactlyCollide(a, b, T_a * a.T_body_shape, T_b * b.T_body_shape, data);
+}
+
+bool CollisionChecker::exactlyCollide(const Shape& a, const Shape& b,
+                                      const Eigen::Isometry3d& T_world_a,
+                                      const Eigen::Isometry3d& T_world_b,
+                                      Scratch::Data& data) const {
   if (a.search_tree && b.search_tree) {
     // FCL's relative transform (fcl::relativeTransform): mesh b's frame in mesh a's.
     const Eigen::Matrix3d R_a_b = T_world_a.linear().transpose() * T_world_b.linear();
     const Eigen::Vector3d p_a_b =
         T_world_a.linear().transpose() * (T_world_b.translation() - T_world_a.translation());
     if (findIntersectingTriangles(*a.search_tree, *b.search_tree, R_a_b, p_a_b,
-                                  kTriangleSearchBudget))
+                                  kTriangleSearchBudget)) {
       return true;
+    }
   }
   data.result.clear();
   return fcl::collide(a.geometry.get(), T_world_a, b.geometry.get(), T_world_b, data.request,

@@ -155,6 +155,12 @@ class CollisionChecker {
   bool bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const;
   bool shapesCollide(const Shape& a, const Shape& b, Scratch::Data& data, int body_a,
                      int body_b) const;
+  /// The exact test of two shapes placed in the world (a search for intersecting triangles of
+  /// two meshes, then fcl::collide); kept out of line so that the broad phase stays small.
+  [[gnu::noinline]] bool exactlyCollide(const Shape& a, const Shape& b,
+                                        const Eigen::Isometry3d& T_world_a,
+                                        const Eigen::Isometry3d& T_world_b,
+                                        Scratch::Data& data) const;
 
   const Robot robot_;
   CollisionCheckerOptions options_;
