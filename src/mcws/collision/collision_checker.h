@@ -66,7 +66,11 @@ struct CollisionCheckerOptions {
 /// `fcl::BVHModel<fcl::OBBRSSd>` meshes are the OBB/RSS (swept-sphere) hierarchy of
 /// Fu, Hu, Chen & Pan 2016. A broad phase first rejects body and shape pairs whose bounding spheres
 /// are apart, and mesh pairs whose bounding capsules (line-swept spheres on the mesh's principal
-/// axis, the top level of the paper's hierarchy) are apart.
+/// axis, the top level of the paper's hierarchy) are apart. Two meshes whose bounds overlap are
+/// first searched for one pair of intersecting triangles (findIntersectingTriangles(), FCL's own
+/// triangle test over FCL's own trees, a few hundred node pairs at most), which proves the
+/// collision; fcl::collide decides when the search gives up. Labels are those of fcl::collide on
+/// every pair (tests/collision/mesh_broad_phase_test.cpp checks it sample by sample).
 ///
 /// The checker is immutable after construction and may be shared between threads; each thread
 /// passes its own Scratch (poses and FCL request/result objects), so no lock is taken. The FCL
