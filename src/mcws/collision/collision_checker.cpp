@@ -52,6 +52,9 @@ struct CollisionChecker::Scratch::Data {
   /// World endpoints of swept shapes, valid when stamp[shape] == sample.
   std::vector<Eigen::Vector3d> p_from, p_to;
   std::vector<std::uint64_t> stamp;
+  /// World centres of the bounding spheres of bodies and shapes, valid when their stamp is sample.
+  std::vector<Eigen::Vector3d> body_center, shape_center;
+  std::vector<std::uint64_t> body_stamp, shape_stamp;
   std::uint64_t sample{0};
   fcl::CollisionRequest<double> request;
   fcl::CollisionResult<double> result;
@@ -62,6 +65,18 @@ CollisionChecker::Scratch::~Scratch() = default;
 CollisionChecker::Scratch::Scratch(Scratch&&) noexcept = default;
 
 namespace {
+
+/// T * p, computed once a sample: points[i] is valid when stamp[i] == sample.
+const Eigen::Vector3d& placedOnce(std::vector<Eigen::Vector3d>& points,
+                                  std::vector<std::uint64_t>& stamp, std::size_t i,
+                                  std::uint64_t sample, const Eigen::Isometry3d& T,
+                                  const Eigen::Vector3d& p) {
+  if (stamp[i] != sample) {
+    stamp[i] = sample;
+    points[i] = T * p;
+  }
+  return points[i];
+}
 
 /// Sphere tests the intersecting-triangle search may spend on a mesh pair before fcl::collide
 /// decides it.
@@ -236,6 +251,10 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
     data.p_from.resize(shape_count_);
     data.p_to.resize(shape_count_);
     data.stamp.assign(shape_count_, 0);
+    data.body_center.resize(bodies_.size());
+    data.body_stamp.assign(bodies_.size(), 0);
+    data.shape_center.resize(shape_count_);
+    data.shape_stamp.assign(shape_count_, 0);
     data.request.num_max_contacts = 1;
   }
   ++data.sample;
@@ -265,7 +284,9 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
   const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
   const double reach = a.bound + b.bound;
   if (options_.bounding_spheres &&
-      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+      (placedOnce(data.shape_center, data.shape_stamp, a.index, data.sample, T_a, a.center) -
+       placedOnce(data.shape_center, data.shape_stamp, b.index, data.sample, T_b, b.center))
+              .squaredNorm() >= reach * reach) {
     return false;
   }
   if (a.lss && b.lss) {
@@ -313,7 +334,9 @@ bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& d
   const Eigen::Isometry3d& T_b = data.T_world_body[pair.body_b];
   const double reach = a.bound + b.bound;
   if (options_.bounding_spheres &&
-      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+      (placedOnce(data.body_center, data.body_stamp, pair.body_a, data.sample, T_a, a.center) -
+       placedOnce(data.body_center, data.body_stamp, pair.body_b, data.sample, T_b, b.center))
+              .squaredNorm() >= reach * reach) {
     return false;
   }
   for (const Shape& shape_a : a.shapes) {
