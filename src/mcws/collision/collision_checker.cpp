@@ -13,8 +13,9 @@
 #include <cmath>
 #include <limits>
 #include <set>
-#include <tuple>
 
+#include "mcws/collision/mesh_bounds.h"
+#include "mcws/collision/mesh_witness.h"
 #include "mcws/collision/segment_distance.h"
 #include "mcws/core/error.h"
 #include "mcws/kinematics/forward_kinematics.h"
@@ -32,6 +33,8 @@ struct CollisionChecker::Shape {
   double radius{0.0};
   Eigen::Isometry3d T_body_shape{Eigen::Isometry3d::Identity()};
   std::shared_ptr<fcl::CollisionGeometry<double>> geometry;
+  /// A mesh's search tree over `geometry`'s hierarchy (findIntersectingTriangles()).
+  std::shared_ptr<const MeshSearchTree> search_tree;
   Eigen::Vector3d center{Eigen::Vector3d::Zero()};  ///< bounding sphere in the body frame
   double bound{0.0};
   int index{0};  ///< among all shapes of the checker
@@ -49,6 +52,9 @@ struct CollisionChecker::Scratch::Data {
   /// World endpoints of swept shapes, valid when stamp[shape] == sample.
   std::vector<Eigen::Vector3d> p_from, p_to;
   std::vector<std::uint64_t> stamp;
+  /// World centres of the bounding spheres of bodies and shapes, valid when their stamp is sample.
+  std::vector<Eigen::Vector3d> body_center, shape_center;
+  std::vector<std::uint64_t> body_stamp, shape_stamp;
   std::uint64_t sample{0};
   fcl::CollisionRequest<double> request;
   fcl::CollisionResult<double> result;
@@ -60,51 +66,23 @@ CollisionChecker::Scratch::Scratch(Scratch&&) noexcept = default;
 
 namespace {
 
-/// Bounding sphere (center, radius) of points, not minimal: centre of the bounding box.
-std::pair<Eigen::Vector3d, double> boundPoints(const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d lo = points.front(), hi = points.front();
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+/// T * p, computed once a sample: points[i] is valid when stamp[i] == sample.
+const Eigen::Vector3d& placedOnce(std::vector<Eigen::Vector3d>& points,
+                                  std::vector<std::uint64_t>& stamp, std::size_t i,
+                                  std::uint64_t sample, const Eigen::Isometry3d& T,
+                                  const Eigen::Vector3d& p) {
+  if (stamp[i] != sample) {
+    stamp[i] = sample;
+    points[i] = T * p;
   }
-  const Eigen::Vector3d center = 0.5 * (lo + hi);
-  double radius = 0.0;
-  for (const auto& p : points) radius = std::max(radius, (p - center).norm());
-  return {center, radius};
+  return points[i];
 }
 
-/// Tight bounding capsule of points: the segment lies on their principal axis and every point
-/// is within `radius` of it. \return (from, to, radius).
-std::tuple<Eigen::Vector3d, Eigen::Vector3d, double> boundingCapsule(
-    const std::vector<Eigen::Vector3d>& points) {
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& p : points) mean += p;
-  mean /= double(points.size());
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& p : points) covariance += (p - mean) * (p - mean).transpose();
-  const Eigen::Vector3d axis =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(2);
-  double radius = 0.0;
-  for (const auto& p : points) {
-    const Eigen::Vector3d v = p - mean;
-    radius = std::max(radius, (v - v.dot(axis) * axis).norm());
-  }
-  // A point at t along the axis, off it by h, lies in the capsule when the nearer end is within
-  // s = sqrt(r^2 - h^2) of t: the ends are the tightest that satisfy every point.
-  double t_low = std::numeric_limits<double>::infinity(), t_high = -t_low;
-  for (const auto& p : points) {
-    const Eigen::Vector3d v = p - mean;
-    const double t = v.dot(axis);
-    const double s = std::sqrt(std::max(0.0, radius * radius - (v - t * axis).squaredNorm()));
-    t_low = std::min(t_low, t + s);
-    t_high = std::max(t_high, t - s);
-  }
-  if (t_low > t_high) t_low = t_high = 0.5 * (t_low + t_high);
-  radius *= 1.0 + 1e-12;  // rounding must not push a vertex out
-  return {mean + t_low * axis, mean + t_high * axis, radius};
-}
+/// Sphere tests the intersecting-triangle search may spend on a mesh pair before fcl::collide
+/// decides it.
+constexpr int kTriangleSearchBudget = 400;
 
-std::shared_ptr<fcl::CollisionGeometry<double>> meshGeometry(const TriangleMesh& mesh) {
+std::shared_ptr<fcl::BVHModel<fcl::OBBRSS<double>>> meshGeometry(const TriangleMesh& mesh) {
   auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>();
   std::vector<fcl::Triangle> triangles;
   triangles.reserve(mesh.triangles.size());
@@ -148,7 +126,7 @@ CollisionChecker::Body CollisionChecker::makeBody(const BodySpec& spec) {
     body.shapes.push_back(std::move(shape));
   }
   if (!body.shapes.empty()) {
-    body.center = boundPoints(extreme).first;
+    body.center = boundingSphere(extreme).center;
     for (const Shape& shape : body.shapes)
       body.bound = std::max(body.bound, (shape.center - body.center).norm() + shape.bound);
   }
@@ -211,12 +189,19 @@ CollisionChecker::Shape CollisionChecker::makeShape(const ShapeSpec& in) {
       break;
     }
     case ShapeType::kMesh: {
-      shape.geometry = meshGeometry(*in.mesh);
+      auto model = meshGeometry(*in.mesh);
+      if (options_.triangle_search) shape.search_tree = std::make_shared<MeshSearchTree>(*model);
+      shape.geometry = std::move(model);
       std::vector<Eigen::Vector3d> vertices;
       vertices.reserve(in.mesh->vertices.size());
       for (const auto& v : in.mesh->vertices) vertices.push_back(in.T_body_shape * v);
-      std::tie(shape.center, shape.bound) = boundPoints(vertices);
-      std::tie(shape.p_from, shape.p_to, shape.radius) = boundingCapsule(vertices);
+      const BoundingSphere sphere = boundingSphere(vertices);
+      const BoundingCapsule capsule = boundingCapsule(vertices);
+      shape.center = sphere.center;
+      shape.bound = sphere.radius;
+      shape.p_from = capsule.p_from;
+      shape.p_to = capsule.p_to;
+      shape.radius = capsule.radius;
       shape.lss = options_.bounding_spheres;
       break;
     }
@@ -266,6 +251,10 @@ void CollisionChecker::computePoses(const double* q, const Eigen::Isometry3d& T_
     data.p_from.resize(shape_count_);
     data.p_to.resize(shape_count_);
     data.stamp.assign(shape_count_, 0);
+    data.body_center.resize(bodies_.size());
+    data.body_stamp.assign(bodies_.size(), 0);
+    data.shape_center.resize(shape_count_);
+    data.shape_stamp.assign(shape_count_, 0);
     data.request.num_max_contacts = 1;
   }
   ++data.sample;
@@ -295,7 +284,9 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
   const Eigen::Isometry3d& T_b = data.T_world_body[body_b];
   const double reach = a.bound + b.bound;
   if (options_.bounding_spheres &&
-      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+      (placedOnce(data.shape_center, data.shape_stamp, a.index, data.sample, T_a, a.center) -
+       placedOnce(data.shape_center, data.shape_stamp, b.index, data.sample, T_b, b.center))
+              .squaredNorm() >= reach * reach) {
     return false;
   }
   if (a.lss && b.lss) {
@@ -314,9 +305,26 @@ bool CollisionChecker::shapesCollide(const Shape& a, const Shape& b, Scratch::Da
     // Exact for two capsules; for a mesh, only a bounding capsule: apart means apart.
     if (!overlap || (a.swept && b.swept)) return overlap;
   }
+  return exactlyCollide(a, b, T_a * a.T_body_shape, T_b * b.T_body_shape, data);
+}
+
+bool CollisionChecker::exactlyCollide(const Shape& a, const Shape& b,
+                                      const Eigen::Isometry3d& T_world_a,
+                                      const Eigen::Isometry3d& T_world_b,
+                                      Scratch::Data& data) const {
+  if (a.search_tree && b.search_tree) {
+    // FCL's relative transform (fcl::relativeTransform): mesh b's frame in mesh a's.
+    const Eigen::Matrix3d R_a_b = T_world_a.linear().transpose() * T_world_b.linear();
+    const Eigen::Vector3d p_a_b =
+        T_world_a.linear().transpose() * (T_world_b.translation() - T_world_a.translation());
+    if (findIntersectingTriangles(*a.search_tree, *b.search_tree, R_a_b, p_a_b,
+                                  kTriangleSearchBudget)) {
+      return true;
+    }
+  }
   data.result.clear();
-  return fcl::collide(a.geometry.get(), T_a * a.T_body_shape, b.geometry.get(),
-                      T_b * b.T_body_shape, data.request, data.result) > 0;
+  return fcl::collide(a.geometry.get(), T_world_a, b.geometry.get(), T_world_b, data.request,
+                      data.result) > 0;
 }
 
 bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& data) const {
@@ -326,7 +334,9 @@ bool CollisionChecker::bodiesCollide(const CollisionPair& pair, Scratch::Data& d
   const Eigen::Isometry3d& T_b = data.T_world_body[pair.body_b];
   const double reach = a.bound + b.bound;
   if (options_.bounding_spheres &&
-      (T_a * a.center - T_b * b.center).squaredNorm() >= reach * reach) {
+      (placedOnce(data.body_center, data.body_stamp, pair.body_a, data.sample, T_a, a.center) -
+       placedOnce(data.body_center, data.body_stamp, pair.body_b, data.sample, T_b, b.center))
+              .squaredNorm() >= reach * reach) {
     return false;
   }
   for (const Shape& shape_a : a.shapes) {

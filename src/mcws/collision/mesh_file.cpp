@@ -90,11 +90,13 @@ TriangleMesh parseBinaryStl(const std::string& bytes, const std::string& source)
         const std::uint32_t bits = littleEndian32(triangle + 12 * (c + 1) + 4 * k);
         float value = 0.f;
         std::memcpy(&value, &bits, sizeof value);
-        detail::checkMeshCoordinate(
-            value,
-            where + ": triangle " + std::to_string(t + 1) + " corner " + std::to_string(c + 1) +
-                ": " + std::string(1, "xyz"[k]),
-            formatNumber(value, 9));  // 9 digits read back as the same float
+        if (!(std::abs(value) <= kLargestMeshCoordinate)) {  // the message only when it fails
+          detail::checkMeshCoordinate(
+              value,
+              where + ": triangle " + std::to_string(t + 1) + " corner " + std::to_string(c + 1) +
+                  ": " + std::string(1, "xyz"[k]),
+              formatNumber(value, 9));  // 9 digits read back as the same float
+        }
         p[k] = value;
       }
       corners[c] = merger.add(p);
