@@ -168,7 +168,7 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
                                         static_cast<std::size_t>(resolved.threads));
   RegionMeasure result;
   const bool star = options.leave_one_out == LeaveOneOut::kStar;
-  if (options.shell && star && !options.surface) {
+  if (options.shell && star) {
     if (dimensions == 2) {
       result = detail::measureShell<2>(*flat, spacing, resolved);
     } else if (resolved.threads > 1) {

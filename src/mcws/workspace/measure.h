@@ -99,8 +99,10 @@ struct MeasureOptions {
   /// is a simplex of the shell's triangulation too; the shell's other simplices, those that fill
   /// in for the left-out points, are all kept. Same kept total (to the rounding of the per-simplex
   /// sum, about 1e-12 of it), boundary vertices and leave-one-out count as triangulating every
-  /// point, in a fraction of the time and memory. Not with `surface` or
-  /// LeaveOneOut::kRemoveAndReinsert, which triangulate every point.
+  /// point, in a fraction of the time and memory. With `surface`, the stars of the surface's
+  /// vertices are completed as the repairs go (the points in their simplices' circumspheres
+  /// inserted), so every cell the surface and its repairs look at is the whole triangulation's:
+  /// the same surface. Not with LeaveOneOut::kRemoveAndReinsert, which triangulates every point.
   bool shell{true};
   /// 3-D: also return the boundary surface of the kept tetrahedra (RegionMeasure::surface).
   bool surface{false};

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <utility>
@@ -13,6 +14,7 @@
 
 #include "mcws/core/first_error.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
+#include "mcws/workspace/detail/surface_repair.h"
 #include "mcws/workspace/exposed_points.h"
 
 namespace mcws::detail {
@@ -299,28 +301,55 @@ std::vector<typename SimplexOf<D, Delaunay>::Handle> retestAround(
   return stars;
 }
 
-/// Makes each boundary vertex's star the whole triangulation's: a star simplex with left-out
+/// Makes each of the vertices' stars the whole triangulation's: a star simplex with left-out
 /// points in its circumsphere is not the whole triangulation's, so those points join (inserted,
 /// the simplices around them flagged by `keep`), round by round until no star simplex has one.
-/// `finite` is listed anew after each round (some of its simplices are gone).
+/// Only simplices with a left-out point in their circumsphere are replaced (the whole
+/// triangulation's are not), and they are all kept (filling in for a covered point), as are the
+/// new ones (the whole triangulation's simplices around a covered point are within its alpha
+/// limit). \return whether a point joined (simplex handles listed before may be gone).
 template <int D, typename Delaunay, typename Keep>
-void completeStars(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
-                   const std::vector<typename Delaunay::Vertex_handle>& boundary,
-                   LeftOut<D>& left_out, const Keep& keep,
-                   std::vector<typename SimplexOf<D, Delaunay>::Handle>& finite, int threads,
+bool completeStars(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                   const std::vector<typename Delaunay::Vertex_handle>& vertices,
+                   LeftOut<D>& left_out, const Keep& keep, int threads,
                    const CancelCheck& cancel_check) {
-  std::vector<typename SimplexOf<D, Delaunay>::Handle> stars = keptStars<D>(dt, boundary);
+  std::vector<typename SimplexOf<D, Delaunay>::Handle> stars = keptStars<D>(dt, vertices);
   std::vector<char> on_boundary(points.size(), 0);
-  for (const auto v : boundary) on_boundary[v->info()] = 1;
+  for (const auto v : vertices) on_boundary[v->info()] = 1;
+  bool joined_any = false;
   for (;;) {
     if (cancel_check) cancel_check();  // between rounds
     const std::vector<std::uint32_t> joining = leftOutInStars<D>(dt, stars, left_out, threads);
-    if (joining.empty()) break;
+    if (joining.empty()) return joined_any;
+    joined_any = true;
     const auto joined = insertJoining<D>(dt, points, joining, left_out);
     stars = retestAround<D>(dt, joined, keep, on_boundary);
-    finite.clear();
-    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
   }
+}
+
+/// The envelope surface (MeasureOptions::surface) of a shell triangulation whose boundary
+/// vertices' stars are complete: fillForSurface() with the stars of the vertices of the cells
+/// each round fills or drops completed before the next round (a dropped cell's vertices join the
+/// boundary; a filled one's were on it, or had only dropped cells, the whole triangulation's,
+/// around them), so that every cell the repair and keptSurface() look at, those around the
+/// boundary's vertices and edges, is the whole triangulation's, flagged as there.
+template <typename Delaunay, typename Keep>
+bool repairShellSurface(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
+                        LeftOut<3>& left_out, const Keep& keep, int threads,
+                        const CancelCheck& cancel_check) {
+  using Cell = typename Delaunay::Cell_handle;
+  const auto complete = [&](const std::vector<Cell>& changed) {
+    std::vector<typename Delaunay::Vertex_handle> vertices;
+    for (const Cell c : changed) {
+      for (int k = 0; k < 4; ++k) {
+        if (!dt.is_infinite(c->vertex(k))) vertices.push_back(c->vertex(k));
+      }
+    }
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    completeStars<3>(dt, points, vertices, left_out, keep, threads, cancel_check);
+  };
+  return fillForSurface(dt, cancel_check, std::function<void(const std::vector<Cell>&)>(complete));
 }
 
 /// The kept simplices' total area (D = 2) or volume (D = 3), summed on all threads (OrderFreeSum
@@ -368,8 +397,11 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   // circumsphere, and a simplex around a covered point is within its alpha limit), so the
   // boundary vertices are final.
   const auto boundary = boundaryVertices<D>(dt, points.size());
-  if (options.edge_correction) {
-    completeStars<D>(dt, points, boundary, left_out, keep, finite, threads, options.cancel_check);
+  const bool surface = D == 3 && options.surface;
+  if ((options.edge_correction || surface) &&
+      completeStars<D>(dt, points, boundary, left_out, keep, threads, options.cancel_check)) {
+    finite.clear();
+    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
   }
   RegionMeasure result;
   result.uncorrected = keptTotal<D>(finite, boundingMeasure(points, D), threads);
@@ -380,6 +412,14 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
     if (options.phase) options.phase("edge correction");
     result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads, nullptr,
                                       options.cancel_check);
+  }
+  if constexpr (D == 3) {
+    if (surface) {
+      if (options.phase) options.phase("surface");
+      result.surface_is_manifold =
+          repairShellSurface(dt, points, left_out, keep, threads, options.cancel_check);
+      result.surface = keptSurface(dt, points, options.cancel_check);
+    }
   }
   return result;
 }

@@ -116,7 +116,9 @@ void fillCavities(Delaunay& dt, CancelPacer& pacer) {
 }  // namespace
 
 template <typename Delaunay>
-bool fillForSurface(Delaunay& dt, const CancelCheck& cancel_check) {
+bool fillForSurface(
+    Delaunay& dt, const CancelCheck& cancel_check,
+    const std::function<void(const std::vector<typename Delaunay::Cell_handle>&)>& changed) {
   using Cell = typename Delaunay::Cell_handle;
   std::vector<Cell> around, fill, drop;
   std::vector<std::size_t> group;
@@ -180,6 +182,10 @@ bool fillForSurface(Delaunay& dt, const CancelCheck& cancel_check) {
     if (fill.empty() && drop.empty()) return true;
     for (const Cell a : fill) a->info() = 2;
     for (const Cell a : drop) a->info() = 0;
+    if (changed) {
+      fill.insert(fill.end(), drop.begin(), drop.end());
+      changed(fill);
+    }
   }
   return false;
 }
@@ -225,8 +231,13 @@ TriangleSurface keptSurface(const Delaunay& dt, const pcl::PointCloud<pcl::Point
   return surface;
 }
 
-template bool fillForSurface(Simplices<3, CGAL::Sequential_tag>::Delaunay&, const CancelCheck&);
-template bool fillForSurface(Simplices<3, CGAL::Parallel_tag>::Delaunay&, const CancelCheck&);
+template <typename Concurrency>
+using ChangedCells = std::function<void(
+    const std::vector<typename Simplices<3, Concurrency>::Delaunay::Cell_handle>&)>;
+template bool fillForSurface(Simplices<3, CGAL::Sequential_tag>::Delaunay&, const CancelCheck&,
+                             const ChangedCells<CGAL::Sequential_tag>&);
+template bool fillForSurface(Simplices<3, CGAL::Parallel_tag>::Delaunay&, const CancelCheck&,
+                             const ChangedCells<CGAL::Parallel_tag>&);
 template TriangleSurface keptSurface(const Simplices<3, CGAL::Sequential_tag>::Delaunay&,
                                      const pcl::PointCloud<pcl::PointXYZ>&, const CancelCheck&);
 template TriangleSurface keptSurface(const Simplices<3, CGAL::Parallel_tag>::Delaunay&,

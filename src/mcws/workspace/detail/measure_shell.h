@@ -25,7 +25,11 @@ namespace mcws::detail {
 /// the same; the leave-one-out test needs each one's star, which is the whole triangulation's when
 /// none of the star's simplices has a left-out point in its circumsphere. Where one has (a few
 /// dozen points of 10^6, where the shell is thinnest), those left-out points are inserted and the
-/// simplices around them tested again, until no star has one.
+/// simplices around them tested again, until no star has one. With MeasureOptions::surface (3-D)
+/// the same is done for the boundary vertices without the edge correction, and, after each round
+/// of the surface repair (fillForSurface()), for the vertices of the cells it filled or dropped,
+/// so that the repair and keptSurface() see only the whole triangulation's cells around the
+/// surface: the same surface as triangulating every point.
 /// \param spacing the local spacing at every point [length unit].
 template <int D, typename Concurrency = CGAL::Sequential_tag>
 RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,

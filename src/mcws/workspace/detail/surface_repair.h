@@ -8,6 +8,9 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <functional>
+#include <vector>
+
 #include "mcws/workspace/measure.h"
 
 namespace mcws::detail {
@@ -22,8 +25,13 @@ namespace mcws::detail {
 /// were at its start, so the result does not depend on the order the cells are listed in; a cell
 /// one round fills is not dropped again. \return false when singularities remain after
 /// kFillRounds rounds. `cancel_check` (when set) is called between pieces of the rounds.
+/// `changed` (when set) is called after each round that changed flags, with the cells it filled
+/// or dropped (a cell may come more than once), before the next round looks at the flags: the
+/// shell triangulation (MeasureOptions::shell) completes the stars of their vertices there.
 template <typename Delaunay>
-bool fillForSurface(Delaunay& dt, const CancelCheck& cancel_check);
+bool fillForSurface(
+    Delaunay& dt, const CancelCheck& cancel_check,
+    const std::function<void(const std::vector<typename Delaunay::Cell_handle>&)>& changed = {});
 
 /// The facets between kept and dropped tetrahedra (info 1 and 0; infinite cells are dropped),
 /// each oriented away from its kept tetrahedron (exact orientation test), over the points of
