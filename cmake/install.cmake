@@ -13,7 +13,8 @@ set(mcws_exported
   mcws_behavior_model behavior_model  mcws_behavior_sim behavior_sim
   mcws_behavior_faults behavior_faults  mcws_behavior_exec behavior_exec
   mcws_behavior_report behavior_report  mcws_behavior behavior
-  mcws_distributed distributed  mcws_pcl pcl  mcws_warnings warnings)
+  mcws_distributed distributed  mcws_report report  mcws_study_lib study
+  mcws_pcl pcl  mcws_warnings warnings)
 set(mcws_install_targets "")
 list(LENGTH mcws_exported count)
 math(EXPR last "${count} - 1")

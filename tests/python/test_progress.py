@@ -65,16 +65,16 @@ def test_progress_that_raises_ends_the_call(ta1400):
 
 
 def test_progress_true_writes_lines_for_long_calls():
-    # 3e5 samples labelled against meshes: about 1.6 s of CPU, lines "mcws.sample: N% (...)".
+    # 1e6 samples labelled against meshes: about 2 s of CPU, lines "mcws.sample: N% (...)".
     script = ("import mcws\n"
               f"robot = mcws.Robot({robot_path('ta1400_mesh.yaml')!r})\n"
-              "mcws.sample(robot, 300_000, threads=1, collision=True, progress=True)\n"
+              "mcws.sample(robot, 1_000_000, threads=1, collision=True, progress=True)\n"
               "mcws.sample(robot, 1000, progress=True)\n")
     err = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
                          check=True).stderr
     lines = err.splitlines()
     assert lines and all(line.startswith("mcws.sample: ") for line in lines), err
-    assert lines[-1] == "mcws.sample: 100% (300000/300000 samples)"  # the short call is silent
+    assert lines[-1] == "mcws.sample: 100% (1000000/1000000 samples)"  # the short call is silent
 
 
 def test_bad_progress(ta1400):

@@ -209,7 +209,7 @@ class RoadmapBuilder : public og::PRM {
   /// sorts the milestones in the order they were added), so those neighbours are known before
   /// the milestones are added. A motion not foreseen is checked when PRM asks for it.
   void addBatch(const std::vector<ob::State*>& states, unsigned k,
-                CertifiedMotionValidator& validator) {
+                CertifiedMotionValidator& validator, const CancelCheck& cancel_check) {
     std::vector<const ob::State*> before;
     for (Vertex v = 0; v < boost::num_vertices(g_); ++v) before.push_back(stateProperty_[v]);
     std::vector<std::pair<const ob::State*, const ob::State*>> edges;
@@ -233,7 +233,18 @@ class RoadmapBuilder : public og::PRM {
       before.push_back(state);
     }
     validator.checkAhead(edges);
-    for (ob::State* state : states) addMilestone(state);
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      if (cancel_check) {
+        try {
+          cancel_check();
+        } catch (...) {  // the states not added are still ours
+          for (std::size_t j = i; j < states.size(); ++j) si_->freeState(states[j]);
+          validator.checkAhead({});
+          throw;
+        }
+      }
+      addMilestone(states[i]);
+    }
     validator.checkAhead({});  // nothing looked up past the batch
   }
   /// Exact, deterministic k nearest neighbours (OMPL's default GNAT picks pivots at random).
@@ -461,10 +472,9 @@ Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& 
   auto grow_to = [&](std::size_t count) {
     if (options.batch == 0) return growOneByOne(prm, count, cancel_check);
     while (prm.milestoneCount() < count) {
-      if (cancel_check) cancel_check();
       std::vector<ob::State*> states =
           stream.next(std::min(options.batch, count - prm.milestoneCount()), *si);
-      prm.addBatch(states, options.neighbours, *validator);
+      prm.addBatch(states, options.neighbours, *validator, cancel_check);
     }
   };
   grow_to(options.nodes);

@@ -62,9 +62,8 @@ struct Roadmap {
 /// the roadmap depends only on the seed; the validity of draws and the motions of each batch of
 /// milestones are checked on all threads first (RoadmapOptions::batch), which changes nothing
 /// in the roadmap. Start and goal are added last, each joined to its k nearest milestones.
-/// `cancel_check` (when set) is called before each batch (with batch 0: as the growth's
-/// termination condition is, before each milestone): what it throws stops the growth and is
-/// rethrown.
+/// `cancel_check` (when set) is called before each milestone is added (with batch 0: as the
+/// growth's termination condition is): what it throws stops the growth and is rethrown.
 /// \throws mcws::Error for a start or goal of the wrong size or outside the limits, or a bad
 ///   option (no nodes, a scale that is not positive).
 Roadmap buildRoadmap(const MotionCertifier& certifier, const Eigen::Isometry3d& T_world_base,
