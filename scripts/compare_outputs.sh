@@ -121,6 +121,8 @@ run_all() {  # build, output dir
     sed -i -E 's/"[a-z_]*seconds":[-0-9.e+]+,?//g; s/, *[0-9.]+ ?(ms|s) *\)//g' "$out/stdout.$k"
     # stderr: progress lines ("mcws_x: 40% (...)") come as time allows: dropped; wall times out.
     sed -i -E '/^mcws_[a-z]+: [0-9]+% \(/d; s/\[done, [0-9]+ ms/[done, X ms/' "$out/stderr.$k"
+    # mcws_place's estimate of its map's time, from the rate of its first samples.
+    sed -i -E '/^mcws_place: the map will take about /d' "$out/stderr.$k"
     sed -i -E 's/, *[0-9.]+ ?(ms|s) *\)//g' "$out/stderr.$k"
     # Paths differ between the two runs only by the output directory (and gnuplot's temporary
     # names).
