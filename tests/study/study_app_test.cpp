@@ -30,6 +30,7 @@ const std::string kEnvelopeExe = MCWS_ENVELOPE_EXE;
 const std::string kPlaceExe = MCWS_PLACE_EXE;
 const std::string kPlanExe = MCWS_PLAN_EXE;
 const std::string kBehaveExe = MCWS_BEHAVE_EXE;
+const std::string kRefineExe = MCWS_REFINE_EXE;
 
 // A goal and a pivot written as text with 17 digits and converted cm -> cm by the scenario reader
 // (x * 0.01 / 0.01) may differ from the study's own by an ulp: numbers of the plan agree to this
@@ -213,6 +214,59 @@ std::string failure(const std::string& study, int exit_code = 1) {
 }
 
 std::string defaultStudy() { return test::defaultStudyText(); }
+
+TEST(StudyApp, OffsetsScanPlansEachTargetAgainAtEveryShiftTheShiftZeroBeingThePlanItself) {
+  const StudyFiles files(defaultStudy() + "offsets: {range: 4 cm, step: 2 cm}\n");
+  const Json report = runStudy(files, files.file("out"), "");
+  ASSERT_FALSE(report.is_null());
+  std::size_t scanned = 0;
+  for (const Json& target : report["planning"]["targets"]) {
+    const Json& plan_round = target["plan"]["rounds"][0];
+    ASSERT_TRUE(target.contains("offsets"));
+    const Json& rows = target["offsets"];
+    ASSERT_EQ(rows.size(), 5u);
+    for (std::size_t k = 0; k < rows.size(); ++k)
+      EXPECT_NEAR(rows[k]["base_offset"].get<double>(), -4.0 + 2.0 * k, 1e-12);
+    if (!plan_round.contains("best")) continue;
+    // The round at shift 0 is the planning of the chosen stop itself: the same best path.
+    EXPECT_EQ(rows[2]["P"], plan_round["best"]["probability"]);
+    EXPECT_EQ(rows[2]["whole_path_free_fraction"], plan_round["best"]["whole_path_free_fraction"]);
+    ++scanned;
+  }
+  EXPECT_GT(scanned, 0u);
+  bool charted = false;
+  for (const Json& section : report["view"]["sections"])
+    charted = charted || section["title"] == "P against the base offset from the chosen stop";
+  EXPECT_TRUE(charted);
+}
+
+TEST(StudyApp, RefinedVolumeIsMcwsRefineThenMcwsMeasureOnTheStudysFiles) {
+  const StudyFiles files(test::replaceOnce(defaultStudy(), "workspace: {samples: 3000}",
+                                           "workspace: {samples: 3000, refine: 4000, alpha: 5}"));
+  const Json report = runStudy(files, files.file("out"), "");
+  ASSERT_FALSE(report.is_null());
+  EXPECT_EQ(report["workspace"]["refine"]["points"], 7000);
+  const std::string refined = files.file("r.pcd");
+  const test::RunResult refine =
+      test::run(kRefineExe + " --robot " + files.file("robot.yaml") + " --input " +
+                files.file("out/boundary.pcd") + " --cloud " + files.file("out/samples.pcd") +
+                " --samples 4000 --seed 3 --output " + refined);
+  ASSERT_EQ(refine.exit_code, 0) << refine.err;
+  const test::RunResult r =
+      test::run(kMeasureExe + " --input " + refined + " --correction none --alpha 5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json measure = Json::parse(r.out);
+  EXPECT_EQ(report["workspace"]["measure"]["volume"], measure["volume"]);
+  EXPECT_EQ(report["workspace"]["measure"]["outside"], measure["outside"]);
+  EXPECT_EQ(report["workspace"]["measure"]["correction"], "none");
+  EXPECT_EQ(measure["correction"], "none");
+}
+
+TEST(StudyApp, OffsetsOfNoStepAreRefused) {
+  const std::string err = failure(defaultStudy() + "offsets: {range: 4 cm, step: 0 cm}\n");
+  EXPECT_THAT(err, HasSubstr("offsets: step must be > 0"));
+  EXPECT_THAT(err, HasSubstr("study.yaml:"));
+}
 
 TEST(StudyApp, UnknownFittingTypeNamesFileLineAndField) {
   const std::string err = failure(test::replaceOnce(defaultStudy(), "type: box", "type: cone"));

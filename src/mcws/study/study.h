@@ -33,6 +33,10 @@ struct StudyTarget {
 /// mcws_envelope with their defaults otherwise).
 struct StudyWorkspace {
   std::size_t samples{20000};
+  /// New samples near the boundary points' configurations (mcws_refine --samples); 0: none. The
+  /// volume and envelope are then those of the refined cloud, without the edge correction (its
+  /// samples lie on the edge), as mcws_measure --correction none measures it.
+  std::size_t refine{0};
   double alpha{3.0};    ///< [local spacings] (mcws_measure --alpha)
   double azimuth{0.0};  ///< the drawing's side view [rad] (mcws_envelope --azimuth)
 };
@@ -44,6 +48,14 @@ struct StudyReach {
   double approach_tolerance{0.0};  ///< [rad]
   int ik_starts{4};
   std::size_t plan_targets{0};  ///< targets planned at the chosen stop (the first reached); 0 all
+};
+
+/// \brief The scan of P against the base offset at the chosen stop (mcws_plan --plot-offsets):
+/// each planned target planned again with the base shifted along the line by -range, ...,
+/// +range, step apart, the goal kept in joint space. range 0: no scan.
+struct StudyOffsets {
+  double range{0.0};  ///< largest shift either way [length unit]
+  double step{0.0};   ///< [length unit]
 };
 
 /// \brief The optional behaviour rehearsal (mcws_behave): the cleaning job of a behaviour model.
@@ -72,6 +84,7 @@ struct Study {
   std::uint64_t seed{1};      ///< of the workspace samples, the reach map and the IK starts
   StudyWorkspace workspace;
   StudyReach reach;
+  StudyOffsets offsets;
   StudyBehaviour behaviour;
 };
 
@@ -98,9 +111,10 @@ struct Study {
 /// sway: {...}                            # as a scenario's
 /// planner: {...}
 /// validation: {poses: 2000}
-/// workspace: {samples: 20000, alpha: 3, azimuth: 0 deg}
+/// workspace: {samples: 20000, refine: 20000, alpha: 3, azimuth: 0 deg}
 /// reach: {resolution: 4 cm, samples: 200000, orientations: 50, rolls: 1,
 ///         approach_tolerance: 5 deg, ik_starts: 4, plan_targets: 2}
+/// offsets: {range: 10 cm, step: 5 cm}   # optional: P against the base offset at the stop
 /// behaviour: {model: ../robots/insulator_cleaner_behaviors.yaml, insulators: 3}  # optional
 /// \endcode
 /// \throws mcws::Error "file:line: field: ..." for a mistake in any section (as parseScenario()

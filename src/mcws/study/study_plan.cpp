@@ -27,6 +27,22 @@ Scenario stopScenario(const Study& study, double stop, const StudyTarget& target
   return scenario;
 }
 
+/// The best path of each round of a scan of the base offset (scanOffsets()).
+nlohmann::json offsetsJson(const std::vector<PlanningRound>& rounds) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const PlanningRound& round : rounds) {
+    nlohmann::json row = {{"base_offset", round.base_offset},
+                          {"roadmap", roadmapStatusName(round.status)}};
+    if (round.best) {
+      row["P"] = round.best->probability;
+      row["whole_path_free_fraction"] = round.best->free_fraction;
+      row["free_interval_95"] = {round.best->free_interval.low, round.best->free_interval.high};
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace
 
 void runPlanning(StudyState& state) {
@@ -55,6 +71,13 @@ void runPlanning(StudyState& state) {
                            {"stop", stop},
                            {"goal", goal},
                            {"plan", planJson(planned.scenario, planned.result)}};
+    if (study.offsets.range > 0.0) {  // P against the base offset, as mcws_plan --plot-offsets
+      SwayPlanningProblem scan = planned.scenario.problem;
+      scan.base_step = study.offsets.step;
+      scan.base_range = study.offsets.range;
+      const SwayPlanner scanner(scan);
+      item["offsets"] = offsetsJson(scanOffsets(scanner));
+    }
     if (planned.result.accepted) {
       const PlanningRound& round = planned.result.rounds[*planned.result.accepted];
       const std::string file = "path_" + study.targets[t].name + ".csv";
@@ -75,7 +98,10 @@ void runPlanning(StudyState& state) {
        "mcws_plan plans a scenario"}};
   state.report["planning"]["units"] = {
       {"stop", unitName(study.problem.robot.length_unit)},
-      {"targets.goal", "per joint as plan.units.configuration (rad, or the length unit)"}};
+      {"targets.goal", "per joint as plan.units.configuration (rad, or the length unit)"},
+      {"targets.offsets.base_offset", unitName(study.problem.robot.length_unit)},
+      {"targets.offsets.P", "fraction"},
+      {"targets.offsets.whole_path_free_fraction", "fraction"}};
 }
 
 }  // namespace mcws::detail

@@ -27,7 +27,7 @@ class StudyReader : ScenarioSectionReader {
     if (!root.IsMap()) fail(root, "the document must be a map of study fields");
     checkKeys(root, "study",
               {"name", "robot", "seed", "line", "targets", "stops", "start", "joint_scale", "base",
-               "sway", "planner", "validation", "workspace", "reach", "behaviour"});
+               "sway", "planner", "validation", "workspace", "reach", "offsets", "behaviour"});
     Study study;
     study.source = source();
     study.name = text(require(root, "name", "study"), "name");
@@ -39,6 +39,7 @@ class StudyReader : ScenarioSectionReader {
     readStops(require(root, "stops", "study"), study);
     if (const YAML::Node workspace = root["workspace"]) readWorkspace(workspace, study.workspace);
     readReach(require(root, "reach", "study"), study.reach);
+    if (const YAML::Node offsets = root["offsets"]) readOffsets(offsets, study.offsets);
     if (const YAML::Node behaviour = root["behaviour"]) readBehaviour(behaviour, study);
     return study;
   }
@@ -180,8 +181,9 @@ class StudyReader : ScenarioSectionReader {
   }
 
   void readWorkspace(const YAML::Node& node, StudyWorkspace& workspace) {
-    checkKeys(node, "workspace", {"samples", "alpha", "azimuth"});
+    checkKeys(node, "workspace", {"samples", "refine", "alpha", "azimuth"});
     if (node["samples"]) workspace.samples = count(node["samples"], "workspace: samples");
+    if (node["refine"]) workspace.refine = count(node["refine"], "workspace: refine");
     if (node["alpha"]) {
       workspace.alpha = number(node["alpha"], "workspace: alpha");
       if (!(workspace.alpha >= 1.0 && workspace.alpha <= 1000.0))
@@ -203,6 +205,14 @@ class StudyReader : ScenarioSectionReader {
       fail(node["insulators"], "behaviour: insulators " + node["insulators"].Scalar() +
                                    " is more than 200 (as mcws_behave --insulators)");
     study.behaviour.insulators = static_cast<int>(discs);
+  }
+
+  void readOffsets(const YAML::Node& node, StudyOffsets& offsets) {
+    checkKeys(node, "offsets", {"range", "step"});
+    offsets.range = quantity(require(node, "range", "offsets"), 'l', "offsets: range");
+    offsets.step = quantity(require(node, "step", "offsets"), 'l', "offsets: step");
+    if (!(offsets.step > 0.0) || !(offsets.range >= 0.0) || offsets.range > 50 * offsets.step)
+      fail(node, "offsets: step must be > 0 and range from 0 to 50 steps");
   }
 
   void readReach(const YAML::Node& node, StudyReach& reach) {

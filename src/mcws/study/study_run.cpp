@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 
 #include "mcws/collision/robot_bodies.h"
 #include "mcws/core/decimal.h"
@@ -17,6 +18,7 @@
 #include "mcws/workspace/drawing.h"
 #include "mcws/workspace/envelope_report.h"
 #include "mcws/workspace/measure_report.h"
+#include "mcws/workspace/refine.h"
 
 namespace mcws {
 namespace detail {
@@ -58,6 +60,36 @@ std::vector<ReachTarget> targetsOf(const Study& study) {
 }
 
 /// The workspace samples as mcws_sample writes them, read back as mcws_measure reads them.
+/// mcws_refine --input boundary.pcd --cloud samples.pcd --seed S: the cloud followed by new
+/// samples near the boundary points' configurations, into refined.pcd and state.samples.
+nlohmann::json refineWorkspace(StudyState& state, const pcl::PointCloud<WorkspacePoint>& parents,
+                               const io::WorkspaceCloud& cloud) {
+  const Study& study = *state.study;
+  RefineOptions options;
+  options.seed = study.seed;
+  const RefineSampler refine(study.problem.robot, parents, options);
+  io::WorkspaceCloud refined = cloud;
+  const std::size_t kept = refined.size();
+  refined.resize(kept + study.workspace.refine);
+  generateInChunks(refine, study.workspace.refine, refined.data() + kept, state.options.threads,
+                   reporter(state, "workspace refinement"));
+  pcl::Indices all(refined.size());
+  std::iota(all.begin(), all.end(), 0);
+  io::CloudProvenance provenance = robotProvenance(study.problem.robot);
+  provenance.sampling = io::SamplingRecord{"tool", false, {}};
+  io::writeCloud(refined, all, inDirectory(state, "refined.pcd"), provenance);
+  state.samples.clear();
+  for (const WorkspacePoint& p : refined) state.samples.push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  return {{"file", "refined.pcd"},
+          {"new_samples", study.workspace.refine},
+          {"points", refined.size()},
+          {"spread", options.spread},
+          {"seed", options.seed},
+          {"note",
+           "as mcws_refine --input boundary.pcd --cloud samples.pcd; the volume and the "
+           "envelope are the refined cloud's, without the edge correction"}};
+}
+
 nlohmann::json sampleWorkspace(StudyState& state) {
   const Study& study = *state.study;
   const Robot& robot = study.problem.robot;
@@ -93,12 +125,17 @@ nlohmann::json sampleWorkspace(StudyState& state) {
   filter.filter(kept);
   io::writeCloud(*cloud, kept, inDirectory(state, "boundary.pcd"), provenance);
   state.boundary.clear();
+  pcl::PointCloud<WorkspacePoint> parents;
   for (const auto i : kept) {
     const WorkspacePoint& p = (*cloud)[static_cast<std::size_t>(i)];
     state.boundary.push_back(pcl::PointXYZ(p.x, p.y, p.z));
+    parents.push_back(p);
   }
-  return {{"samples", out},
-          {"boundary", {{"file", "boundary.pcd"}, {"method", "orthant"}, {"points", kept.size()}}}};
+  nlohmann::json result = {
+      {"samples", out},
+      {"boundary", {{"file", "boundary.pcd"}, {"method", "orthant"}, {"points", kept.size()}}}};
+  if (study.workspace.refine > 0) result["refine"] = refineWorkspace(state, parents, *cloud);
+  return result;
 }
 
 }  // namespace
@@ -114,6 +151,7 @@ void runWorkspace(StudyState& state) {
   report(state, "workspace envelope", 0, 1);
   MeasureOptions options;
   options.alpha_factor = study.workspace.alpha;
+  options.edge_correction = study.workspace.refine == 0;  // refined samples lie on the edge
   options.threads = state.options.threads;
   state.envelope = workspaceEnvelope(state.samples, options);
   const ResultUnits units(robot.length_unit, std::nullopt);
