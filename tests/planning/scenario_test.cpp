@@ -591,13 +591,13 @@ TEST_F(ScenarioFile, AngleUnitOnAPrismaticJoint) {
 
 TEST_F(ScenarioFile, UnknownFields) {
   expectError(replaced(kScenario, "joint_scale:", "speed: 3\njoint_scale:"), 5,
-              {"scenario: unknown field 'speed'"});
+              {"scenario: unknown key 'speed'"});
   expectError(replaced(kScenario, "  candidates: 4", "  candidates: 4\n  iterations: 9"), 16,
-              {"planner: unknown field 'iterations'"});
+              {"planner: unknown key 'iterations'"});
   expectError(replaced(kScenario, "  seed: 7", "  seed: 7\n  gust: 1 deg"), 14,
-              {"sway: unknown field 'gust'"});
+              {"sway: unknown key 'gust'"});
   expectError(replaced(kScenario, "validation: {poses: 500}", "validation: {samples: 500}"), 28,
-              {"validation: unknown field 'samples'"});
+              {"validation: unknown key 'samples'"});
 }
 
 TEST_F(ScenarioFile, DuplicateFields) {

@@ -36,7 +36,7 @@ TEST(StudyReader, ConductorNeedsTwoPoints) {
 
 TEST(StudyReader, UnknownFieldAndMissingTargetsFile) {
   EXPECT_THAT(studyError("seed: 3", "seeds: 3"),
-              HasSubstr("study.yaml:3: study: unknown field 'seeds'"));
+              HasSubstr("study.yaml:3: study: unknown key 'seeds'"));
   EXPECT_THAT(studyError("file: targets.csv", "file: none.csv"),
               HasSubstr("study.yaml:10: targets[1]: file: "));
   EXPECT_THAT(studyError("name: spacer, type", "name: conductor_a, type"),

@@ -49,20 +49,6 @@ bool parseExpression(std::string text, double& value) {
 
 }  // namespace
 
-void ScenarioSectionReader::checkKeys(const YAML::Node& map, const std::string& where,
-                                      const std::set<std::string>& allowed) const {
-  if (!map.IsMap()) fail(map, where + ": must be a map");
-  std::set<std::string> seen;
-  for (const auto& item : map) {
-    // A map or list as a key (YAML's "? ..." form) made as<std::string>() throw past the
-    // loader; found by the scenario fuzzer.
-    if (!item.first.IsScalar()) fail(item.first, where + ": a key must be a plain name");
-    const std::string key = item.first.Scalar();
-    if (!allowed.count(key)) fail(item.first, where + ": unknown field '" + key + "'");
-    if (!seen.insert(key).second) fail(item.first, where + ": field '" + key + "' given twice");
-  }
-}
-
 void ScenarioSectionReader::readRobot(const YAML::Node& node, std::string& robot_path,
                                       SwayPlanningProblem& problem) {
   const RobotEntry entry = readRobotEntry(*this, node);

@@ -24,10 +24,6 @@ class ScenarioSectionReader : public YamlReader {
  public:
   explicit ScenarioSectionReader(std::string source) : YamlReader(std::move(source)) {}
 
-  /// The scenario file's own wording ("unknown field 'k'", no list of the allowed keys), not
-  /// YamlReader::checkKeys().
-  void checkKeys(const YAML::Node& map, const std::string& where,
-                 const std::set<std::string>& allowed) const;
   /// The robot (`robot: FILE`, or a map choosing a URDF's chain: readRobotEntry()) and its
   /// collision model, of the same chain, into `problem`; the robot file's path into
   /// `robot_path`; sets the length unit of the quantities read after it.
