@@ -149,6 +149,22 @@ TEST_F(PlaceCacheApp, ADamagedEntryIsRebuiltWithAOneLineWarning) {
   EXPECT_EQ(test::readFile(file("c.pcd")), test::readFile(file("a.pcd")));
 }
 
+TEST_F(PlaceCacheApp, TwoRunsAtOnceLeaveOneGoodEntry) {
+  const std::string one = kPlace + " --robot " + test::robotPath("planar2") + " --targets " +
+                          file("targets.csv") +
+                          " --along \"-30 70 10\" --orientations 16 --samples 20000 --confirm all "
+                          "--resolution 10cm --seed 3 --map-cache " +
+                          cache() + " --output ";
+  const test::RunResult both = test::run("(" + one + file("a.pcd") + " & p=$!; " + one +
+                                         file("b.pcd") + " & q=$!; wait $p && wait $q)");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  ASSERT_EQ(entries().size(), 1u);
+  const test::RunResult after = place("--map-cache " + cache(), "c.pcd");
+  EXPECT_THAT(after.err, HasSubstr("reusing the cached map " + entries()[0]));
+  EXPECT_EQ(test::readFile(file("a.pcd")), test::readFile(file("c.pcd")));
+  EXPECT_EQ(test::readFile(file("b.pcd")), test::readFile(file("c.pcd")));
+}
+
 TEST_F(PlaceCacheApp, OffUnwritableAndFailedRunsStoreNothing) {
   // off: no cache, as before it existed.
   const test::RunResult off = place("--map-cache off --json", "a.pcd");
@@ -182,6 +198,9 @@ TEST_F(PlaceCacheApp, OffUnwritableAndFailedRunsStoreNothing) {
                 "--samples 100000000000 --map-cache " + cache() + " --output " + file("e.pcd"));
   EXPECT_NE(killed.exit_code, 0);
   EXPECT_TRUE(entries().empty());
+  const test::RunResult help = test::run(kPlace + " --help");
+  EXPECT_THAT(help.out, HasSubstr("--map-cache"));
+  EXPECT_THAT(help.out, HasSubstr("~/.cache/mcws/reach-maps"));
   // With --map, --map-cache is refused.
   test::expectToolFailure(kPlace,
                           "--robot " + test::robotPath("planar2") + " --targets " +
