@@ -306,7 +306,7 @@ int main(int argc, char** argv) {
                                              checker != nullptr, candidates, best);
       addRobotNames(json, robot);
       json["confirmation"] = confirmationJson(placement, candidates);
-      json["map_cache"] = map_cache;
+      if (!map_cache.is_null()) json["map_cache"] = map_cache;  // none with --map
       json["seconds"] = clock.seconds();
       json["output"] = output;
       std::cout << json.dump() << "\n";

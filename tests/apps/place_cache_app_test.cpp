@@ -93,7 +93,7 @@ TEST_F(PlaceCacheApp, ASecondRunReusesTheMapAndPlacesByteForByteAsTheFirst) {
                 entry + " --json --output " + file("third.pcd"));
   ASSERT_EQ(as_map.exit_code, 0) << as_map.err;
   EXPECT_EQ(nlohmann::json::parse(as_map.out)["candidates"], one["candidates"]);
-  EXPECT_EQ(nlohmann::json::parse(as_map.out)["map_cache"], nullptr);
+  EXPECT_FALSE(nlohmann::json::parse(as_map.out).contains("map_cache"));
   EXPECT_EQ(test::readFile(file("third.pcd")), test::readFile(file("bases.pcd")));
 }
 
