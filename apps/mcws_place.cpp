@@ -4,16 +4,21 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "common/app.h"
 #include "common/flags.h"
 #include "common/reach_args.h"
+#include "mcws/collision/collision_checker.h"
+#include "mcws/collision/robot_bodies.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/cloud_io.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
+#include "mcws/reach/map_cache.h"
 #include "mcws/reach/placement_map.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sample_report.h"
@@ -41,8 +46,10 @@ than the best), and the --confirm best by the map (default 0; all: every positio
 by inverse kinematics with the collision model, as mcws_reach --targets does; the best position
 is the confirmed one with the most targets reached, then the best mean score. A map built here
 (no --map) takes as long as mcws_reach takes for it, much longer with a mesh collision model;
-the tool says so with an estimate after its first samples, and shows progress. Nothing caches
-it: build it once with mcws_reach --map MAP.bin (without --collision) and pass --map.
+the tool says so with an estimate after its first samples, and shows progress. It is kept in the
+map cache (--map-cache) and reused by every later run whose map inputs are the same (the robot
+file, its collision model and meshes, --base/--tip, --resolution, --orientations, --rolls,
+--samples, --seed, the manipulability flags, --no-collision); a cached map is also a --map file.
 --output writes the candidate bases (where the base frame lands) with fields map_share,
 map_score, ik_share and ik_score (-1: not confirmed); --plot the share reached against the
 offset along x.)";
@@ -58,6 +65,9 @@ void declareFlags(app::CommandLine& cli) {
   app::declareMapFlags(cli,
                        "voxel edge of a map built here (without --map): a length with unit "
                        "(2cm, 0.02m, 20mm) or a number in the robot's unit");
+  cli.addValue("map-cache",
+               "folder where a map built here is kept and reused, or off (default "
+               "$XDG_CACHE_HOME/mcws/reach-maps, else ~/.cache/mcws/reach-maps)");
   app::declareSharedFlags(cli);
   app::declareStudyFlags(cli);
   cli.addValue("confirm-margin",
@@ -120,11 +130,58 @@ PlacementOptions readPlacementOptions(const app::CommandLine& cli) {
   return placement;
 }
 
-/// The map from --map (checked against the robot) or built from the map flags.
-ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about) {
+/// The cache directory of --map-cache: a folder, "off" (none) or, without the flag, the default
+/// (empty when HOME is not set either).
+std::string mapCacheDirectory(const app::CommandLine& cli) {
+  if (!cli.has("map-cache")) {
+    const std::string directory = defaultMapCacheDirectory();
+    if (directory.empty())
+      std::cerr << "mcws_place: neither XDG_CACHE_HOME nor HOME is set: no map cache\n";
+    return directory;
+  }
+  const std::string directory = cli.required("map-cache");
+  if (directory.empty()) throw app::UsageError("--map-cache: empty (a folder, or off)");
+  return directory == "off" ? std::string() : directory;
+}
+
+/// The map of the map flags, built here with its progress and time estimate.
+ReachMap buildMapHere(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                      const ReachMapCache& cache) {
+  std::cerr << "mcws_place: no --map: building a reachability map here from " << sampling.samples
+            << " samples" << (sampling.collision ? ", each checked for self-collision" : "")
+            << (cache.enabled() ? " (will be cached at " + cache.path() + ")"
+                                : std::string(" (mcws_reach --map MAP.bin builds one to pass as "
+                                              "--map)"))
+            << "\n";
+  app::Progress progress("mcws_place", "map samples");
+  // The time estimate from the second chunk's rate (the first chunk, a few hundred samples a
+  // thread, is timed mostly for its start-up: threads, tables, first touches).
+  int chunks = 0;
+  double first_seconds = 0.0;
+  std::uint64_t first_done = 0;
+  return buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
+    if (++chunks == 1) {
+      first_seconds = progress.seconds();
+      first_done = done;
+    } else if (chunks == 2) {
+      const double rate = static_cast<double>(done - first_done) /
+                          std::max(progress.seconds() - first_seconds, 1e-9);
+      std::cerr << "mcws_place: the map will take about "
+                << app::shortNumber(progress.seconds() + static_cast<double>(all - done) / rate)
+                << " s in all (" << app::shortNumber(rate) << " samples a second)\n";
+    }
+    progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
+  });
+}
+
+/// The map from --map (checked against the robot), or the one of the map flags: from the map
+/// cache when it holds it, else built here (and then stored in the cache). `cache_json` receives
+/// what the cache did (null with --map).
+ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohmann::json& about,
+                        nlohmann::json& cache_json) {
   if (cli.has("map")) {
     for (const char* flag :
-         {"resolution", "orientations", "rolls", "samples", "no-manipulability"}) {
+         {"resolution", "orientations", "rolls", "samples", "no-manipulability", "map-cache"}) {
       if (cli.has(flag))
         throw app::UsageError(std::string("--") + flag +
                               " is for a map built here, not with --map");
@@ -140,31 +197,38 @@ ReachMap loadOrBuildMap(const app::CommandLine& cli, const Robot& robot, nlohman
   if (!cli.has("resolution")) throw app::UsageError("missing --map or --resolution");
   const ReachGrid grid = app::readReachGrid(cli, robot);
   ReachSampling sampling = app::readReachSampling(cli, robot);
-  const std::unique_ptr<CollisionChecker> self = app::studyChecker(cli, robot, false);
-  sampling.collision = self.get();
-  std::cerr << "mcws_place: no --map: building a reachability map here from " << sampling.samples
-            << " samples" << (self ? ", each checked for self-collision" : "")
-            << " (mcws_reach --map MAP.bin builds one to pass as --map)\n";
-  app::Progress progress("mcws_place", "map samples");
-  // The time estimate from the second chunk's rate (the first chunk, a few hundred samples a
-  // thread, is timed mostly for its start-up: threads, tables, first touches).
-  int chunks = 0;
-  double first_seconds = 0.0;
-  std::uint64_t first_done = 0;
-  ReachMap map = buildReachMap(robot, grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
-    if (++chunks == 1) {
-      first_seconds = progress.seconds();
-      first_done = done;
-    } else if (chunks == 2) {
-      const double rate = static_cast<double>(done - first_done) /
-                          std::max(progress.seconds() - first_seconds, 1e-9);
-      std::cerr << "mcws_place: the map will take about "
-                << app::shortNumber(progress.seconds() + static_cast<double>(all - done) / rate)
-                << " s in all (" << app::shortNumber(rate) << " samples a second)\n";
-    }
-    progress.update(static_cast<std::size_t>(done), static_cast<std::size_t>(all));
-  });
-  about = {{"source", "built"}, {"samples", sampling.samples}, {"self_collision", self != nullptr}};
+  const std::string directory = mapCacheDirectory(cli);
+  // The self-collision model (checkerIfModelled()'s, without the environment): part of the key.
+  std::optional<CollisionModel> self;
+  if (!cli.has("no-collision")) {
+    self = robotBodiesOnly(loadCollisionModel(robot, cli.required("robot")));
+    if (!hasGeometry(*self)) self.reset();
+  }
+  const ReachMapCache cache(directory, robot, grid, sampling, self ? &*self : nullptr);
+  cache_json = {{"directory", cache.enabled() ? nlohmann::json(directory) : nlohmann::json()},
+                {"path", cache.enabled() ? nlohmann::json(cache.path()) : nlohmann::json()},
+                {"reused", false},
+                {"stored", false}};
+  CachedMapInfo info;
+  if (std::optional<ReachMap> cached = cache.load(std::cerr, "mcws_place", &info)) {
+    std::cerr << "mcws_place: reusing the cached map " << cache.path() << " (built "
+              << info.built_utc << " from " << info.samples << " samples in "
+              << app::shortNumber(info.build_seconds) << " s)\n";
+    cache_json["reused"] = true;
+    about = {{"source", "cache"},
+             {"samples", info.samples},
+             {"self_collision", info.self_collision},
+             {"built_utc", info.built_utc}};
+    return std::move(*cached);
+  }
+  const std::unique_ptr<CollisionChecker> checker =
+      self ? std::make_unique<CollisionChecker>(robot, *self) : nullptr;
+  sampling.collision = checker.get();
+  const app::Progress clock("mcws_place", "");
+  ReachMap map = buildMapHere(robot, grid, sampling, cache);
+  cache_json["stored"] = cache.store(map, clock.seconds(), std::cerr, "mcws_place");
+  about = {
+      {"source", "built"}, {"samples", sampling.samples}, {"self_collision", self.has_value()}};
   return map;
 }
 
@@ -216,8 +280,8 @@ int main(int argc, char** argv) {
     placement.approach_tolerance = options.approach_tolerance;
     const std::vector<ReachTarget> targets = app::readTargets(cli, robot);
 
-    nlohmann::json map_about;
-    const ReachMap map = loadOrBuildMap(cli, robot, map_about);
+    nlohmann::json map_about, map_cache;
+    const ReachMap map = loadOrBuildMap(cli, robot, map_about, map_cache);
     const std::unique_ptr<CollisionChecker> checker = app::studyChecker(cli, robot);
     const ReachStudy study(robot, checker.get(), options);
     app::Progress progress("mcws_place", "positions confirmed");
@@ -242,6 +306,7 @@ int main(int argc, char** argv) {
                                              checker != nullptr, candidates, best);
       addRobotNames(json, robot);
       json["confirmation"] = confirmationJson(placement, candidates);
+      if (!map_cache.is_null()) json["map_cache"] = map_cache;  // none with --map
       json["seconds"] = clock.seconds();
       json["output"] = output;
       std::cout << json.dump() << "\n";

@@ -44,6 +44,9 @@ int main(int argc, char** argv) {
     cli.addSwitch("json", "print the report as one JSON object on stdout");
     cli.addValue("seed", "seed of every random draw of the study (default: the study's)");
     cli.addValue("threads", "worker threads, 0 = all cores (default 0)");
+    cli.addValue("map-cache",
+                 "folder of the reach-map cache (mcws_place's, e.g. ~/.cache/mcws/reach-maps): "
+                 "the reach map is reused from it or stored there, or off (default: off)");
     if (!cli.parse(argc, argv)) return app::kExitOk;
     const std::string output = cli.required("output");
     const int threads = app::readThreads(cli);
@@ -57,6 +60,10 @@ int main(int argc, char** argv) {
     std::map<std::string, app::Progress> bars;
     StudyRunOptions options;
     options.threads = threads;
+    options.map_cache = cli.text("map-cache", "off");
+    if (options.map_cache.empty()) throw app::UsageError("--map-cache: empty (a folder, or off)");
+    if (options.map_cache == "off") options.map_cache.clear();
+    options.log = &std::cerr;
     options.progress = [&](const std::string& stage, std::size_t done, std::size_t total) {
       bars.try_emplace(stage, "mcws_study", stage).first->second.update(done, total);
     };

@@ -33,7 +33,7 @@ echo "|---:|---:|---:|---:|"
 for threads in 2 1; do
   read -r wall rss < <(time_runs "$build/apps/mcws_place" --robot "$root/robots/maintenance4.yaml" \
     --targets "$root/robots/maintenance4_damper_targets.pcd" --standoff 2cm --along "-120 120 1" \
-    --resolution 2cm --samples 20000000 --confirm all --threads "$threads" \
+    --resolution 2cm --samples 20000000 --confirm all --threads "$threads" --map-cache off \
     --output "$tmp/bases.pcd" --json)
   best=$(python3 -c "import json; print(json.load(open('$tmp/out'))['best']['offset'][0])")
   awk -v t="$threads" -v b="$best" -v w="$wall" -v rss="$rss" 'BEGIN {

@@ -109,7 +109,9 @@ EOF
 # Runs every command with one build; writes stdout, stderr (timing removed) and exit codes.
 run_all() {  # build, output dir
   local apps=$1/apps out=$2 k=0 line
-  rm -rf "$out" && mkdir -p "$out"
+  rm -rf "$out" "$out.cache" && mkdir -p "$out"
+  # mcws_place's map cache: a fresh one per build, so that no build reuses the other's maps.
+  export XDG_CACHE_HOME=$out.cache
   while IFS= read -r line; do
     k=$((k + 1))
     line=${line//@B@/$apps}

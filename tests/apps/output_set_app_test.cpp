@@ -242,7 +242,7 @@ INSTANTIATE_TEST_SUITE_P(
                       MCWS_PLACE_EXE,
                       "--robot " + test::kPlanar2Robot + " --targets {targets}" +
                           " --along '0 10 5' --resolution 10cm --samples 20000 --orientations 8 "
-                          "--no-collision",
+                          "--no-collision --map-cache off",
                       {{"output", "p.pcd"}, {"plot", "p.png"}}},
         OutputSetCase{
             "Plan",

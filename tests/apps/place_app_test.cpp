@@ -173,10 +173,10 @@ TEST_F(StudyApp, ApproachToleranceAdmitsTiltedTargets) {
 /// never closer than r_min; IK confirms every position, the map agrees within a voxel.
 TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
   const std::string targets = planarTargets({{0, 50}, {40, 50}});
-  const std::string common = kPlace + " --robot " + test::robotPath("planar2") + " --targets " +
-                             targets +
-                             " --along \"-30 70 2\" --resolution 2cm --orientations 16 "
-                             "--samples 2000000 --confirm all --no-collision --json";
+  const std::string common =
+      kPlace + " --robot " + test::robotPath("planar2") + " --targets " + targets +
+      " --along \"-30 70 2\" --resolution 2cm --orientations 16 "
+      "--samples 2000000 --confirm all --no-collision --map-cache off --json";
   const test::RunResult r =
       test::run(common + " --output " + file("bases.pcd") + " --plot " + file("placement.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -237,11 +237,11 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
 // of the best, saying how many (JSON "confirmation", and the text after the table).
 TEST_F(StudyApp, PlacementBuildingItsOwnMapSaysSoAndConfirmsTheMargin) {
   const std::string targets = planarTargets({{0, 50}, {40, 50}});
-  const std::string common = kPlace + " --robot " + test::robotPath("planar2") + " --targets " +
-                             targets +
-                             " --along \"-30 70 5\" --resolution 10cm --orientations 16 "
-                             "--samples 100000 --threads 2 --confirm-margin 0.5 --output " +
-                             file("bases.pcd");
+  const std::string common =
+      kPlace + " --robot " + test::robotPath("planar2") + " --targets " + targets +
+      " --along \"-30 70 5\" --resolution 10cm --orientations 16 "
+      "--samples 100000 --threads 2 --confirm-margin 0.5 --map-cache off --output " +
+      file("bases.pcd");
   const test::RunResult r = test::run(common + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("mcws_place: no --map: building a reachability map here from "

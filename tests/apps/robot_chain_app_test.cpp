@@ -318,6 +318,7 @@ TEST_F(RobotChainApp, ReachAndPlaceReachThePoseOfTheTipChosen) {
   const test::RunResult place = test::run(
       kTools[6].exe + robot("--tip ee_link") + " --targets " + targets +
       " --along '0 0 1' --resolution 20cm --samples 20000 --ik-starts 16 --confirm all --json "
+      "--map-cache off "
       "--output " +
       file("bases.pcd"));
   ASSERT_EQ(place.exit_code, 0) << place.err;

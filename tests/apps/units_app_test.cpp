@@ -238,7 +238,8 @@ TEST_F(UnitsApp, PlaceTableSaysTheSharesAreFractionsOfTheTargets) {
   const test::RunResult r = test::run(
       kPlace + " --robot " + test::robotPath("maintenance4") + " --standoff 2cm --targets " +
       std::string(MCWS_ROBOTS_DIR) + "/maintenance4_damper_targets.pcd" +
-      " --along '-80 -40 40' --resolution 4cm --samples 100000 --confirm 1 --output " +
+      " --along '-80 -40 40' --resolution 4cm --samples 100000 --confirm 1 --map-cache off "
+      "--output " +
       dir_->file("bases.pcd"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("offset x y z [cm]   map share   IK share   (fractions of the 15 "

@@ -140,12 +140,12 @@ TEST_F(StudyRunTest, EnvelopeIsMcwsEnvelopesOnTheStudysSamples) {
 }
 
 TEST_F(StudyRunTest, PlacementIsMcwsPlacesOverTheSameStops) {
-  const test::RunResult r =
-      test::run(kPlaceExe + " --robot " + files_->file("robot.yaml") + " --targets " +
-                files_->file("targets.csv") +
-                " --along '20 40 10' --resolution 4 --samples 40000 --orientations 50 --seed 3"
-                " --approach-tolerance 10deg --confirm all --threads 1 --json --output " +
-                files_->file("bases.pcd"));
+  const test::RunResult r = test::run(
+      kPlaceExe + " --robot " + files_->file("robot.yaml") + " --targets " +
+      files_->file("targets.csv") +
+      " --along '20 40 10' --resolution 4 --samples 40000 --orientations 50 --seed 3"
+      " --approach-tolerance 10deg --confirm all --threads 1 --map-cache off --json --output " +
+      files_->file("bases.pcd"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Json place = Json::parse(r.out);
   EXPECT_EQ((*report_)["placement"]["candidates"], place["candidates"]);

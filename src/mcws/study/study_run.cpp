@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <optional>
+#include <sstream>
 
 #include "mcws/collision/robot_bodies.h"
 #include "mcws/core/decimal.h"
@@ -11,6 +13,7 @@
 #include "mcws/core/stopwatch.h"
 #include "mcws/filters/orthant_boundary.h"
 #include "mcws/io/cloud_io.h"
+#include "mcws/reach/map_cache.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sample_report.h"
 #include "mcws/sampling/sampler.h"
@@ -172,6 +175,37 @@ void runWorkspace(StudyState& state) {
   state.report["workspace"] = out;
 }
 
+namespace {
+
+/// The reach stage's map: from the map cache when it holds it (StudyRunOptions::map_cache), else
+/// built and stored there.
+ReachMap cachedMap(const StudyState& state, const ReachSampling& sampling,
+                   const CollisionModel* self) {
+  const Study& study = *state.study;
+  const Robot& robot = study.problem.robot;
+  std::ostringstream nowhere;
+  std::ostream& log = state.options.log ? *state.options.log : nowhere;
+  const ReachMapCache cache(state.options.map_cache, robot, study.reach.grid, sampling, self);
+  CachedMapInfo info;
+  if (std::optional<ReachMap> cached = cache.load(log, "mcws_study", &info)) {
+    log << "mcws_study: reusing the cached map " << cache.path() << " (built " << info.built_utc
+        << " from " << info.samples << " samples in " << info.build_seconds << " s)\n";
+    return std::move(*cached);
+  }
+  if (cache.enabled())
+    log << "mcws_study: building the reach map (will be cached at " << cache.path() << ")\n";
+  const Stopwatch clock;
+  ReachMap map =
+      buildReachMap(robot, study.reach.grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
+        report(state, "reach map samples", static_cast<std::size_t>(done),
+               static_cast<std::size_t>(all));
+      });
+  cache.store(map, clock.seconds(), log, "mcws_study");
+  return map;
+}
+
+}  // namespace
+
 void runReach(StudyState& state) {
   const Study& study = *state.study;
   const Robot& robot = study.problem.robot;
@@ -181,13 +215,10 @@ void runReach(StudyState& state) {
   sampling.threads = state.options.threads;
   sampling.quality = defaultQualityOptions(robot);
   // The map counts samples free of self-collision, the line left to IK (as mcws_place's).
-  const CollisionChecker self(robot, robotBodiesOnly(study.problem.collision));
+  const CollisionModel self_model = robotBodiesOnly(study.problem.collision);
+  const CollisionChecker self(robot, self_model);
   sampling.collision = &self;
-  state.map =
-      buildReachMap(robot, study.reach.grid, sampling, [&](std::uint64_t done, std::uint64_t all) {
-        report(state, "reach map samples", static_cast<std::size_t>(done),
-               static_cast<std::size_t>(all));
-      });
+  state.map = cachedMap(state, sampling, hasGeometry(self_model) ? &self_model : nullptr);
   state.checker = std::make_unique<CollisionChecker>(robot, study.problem.collision);
   const ReachStudy reach(robot, state.checker.get(), studyOptions(state));
   state.at_origin = reach.evaluate(targetsOf(study), Eigen::Isometry3d::Identity(),

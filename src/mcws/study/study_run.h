@@ -5,6 +5,7 @@
 /// "view" the report page shows) and its 3-D scene.
 
 #include <functional>
+#include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -18,6 +19,12 @@ struct StudyRunOptions {
   int threads{0};  ///< 0: all cores; the report does not depend on it (apart from seconds)
   /// Called as a stage's work goes on: (stage, done, total); may be empty.
   std::function<void(const std::string&, std::size_t, std::size_t)> progress;
+  /// The reach-map cache's folder (ReachMapCache, mcws_place's): the reach stage's map is read
+  /// from it when it holds the map of the same inputs, else built and stored there; empty: no
+  /// cache. The report is the same either way.
+  std::string map_cache;
+  /// Where the cache's lines go ("mcws_study: reusing the cached map ..."); nullptr: nowhere.
+  std::ostream* log{nullptr};
 };
 
 /// \brief What runStudy() made.
