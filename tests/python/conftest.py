@@ -15,6 +15,13 @@ import pytest
 ROBOTS = Path(os.environ.get("MCWS_ROBOTS_DIR", Path(__file__).resolve().parents[2] / "robots"))
 
 
+@pytest.fixture(autouse=True, scope="session")
+def _own_map_cache(tmp_path_factory):
+    """The tools the tests run store their map cache here (mcws_place keeps the maps it builds under
+    $XDG_CACHE_HOME), never in the home directory."""
+    os.environ["XDG_CACHE_HOME"] = str(tmp_path_factory.mktemp("cache"))
+
+
 def robot_path(name):
     """The path of robots/<name>."""
     return str(ROBOTS / name)
