@@ -66,6 +66,7 @@ class CellGrid {
 
   int dimensions_;
   double cell_;
+  double inverse_cell_{1.0};  ///< 1 / cell_
   Eigen::Vector3d origin_;
   std::int64_t counts_[3]{1, 1, 1};
   std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])
