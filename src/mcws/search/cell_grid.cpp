@@ -11,14 +11,26 @@
 
 namespace mcws {
 
-CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell)
+CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell,
+                   int threads)
     : dimensions_(dimensions), cell_(cell) {
-  const std::size_t n = cloud.size();
+  const auto n = static_cast<std::int64_t>(cloud.size());
   Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
   Eigen::Vector3d max = -min;
-  for (const auto& p : cloud) {
-    min = min.cwiseMin(p.getVector3fMap().cast<double>());
-    max = max.cwiseMax(p.getVector3fMap().cast<double>());
+#pragma omp parallel num_threads(threads)
+  {
+    // Each thread's box, then their union: the same box in any order.
+    Eigen::Vector3d own_min = min, own_max = max;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i) {
+      own_min = own_min.cwiseMin(cloud[i].getVector3fMap().cast<double>());
+      own_max = own_max.cwiseMax(cloud[i].getVector3fMap().cast<double>());
+    }
+#pragma omp critical
+    {
+      min = min.cwiseMin(own_min);
+      max = max.cwiseMax(own_max);
+    }
   }
   origin_ = n > 0 ? min : Eigen::Vector3d::Zero();
   const Eigen::Vector3d extent = n > 0 ? Eigen::Vector3d(max - min) : Eigen::Vector3d::Zero();
@@ -40,21 +52,22 @@ CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, 
   }
 
   // Counting sort of the points by cell.
-  std::vector<std::uint32_t> cell_of(n);
-  start_.assign(static_cast<std::size_t>(total) + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  std::vector<std::uint32_t> cell_of(static_cast<std::size_t>(n));
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
     std::int64_t c = 0;
     for (int k = dimensions - 1; k >= 0; --k) c = c * counts_[k] + cellOf(cloud[i], k);
     cell_of[i] = static_cast<std::uint32_t>(c);
-    ++start_[c + 1];
   }
+  start_.assign(static_cast<std::size_t>(total) + 1, 0);
+  for (const std::uint32_t c : cell_of) ++start_[c + 1];
   for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-  x_.resize(n);
-  y_.resize(n);
-  z_.resize(n);
-  index_.resize(n);
+  x_.resize(cell_of.size());
+  y_.resize(cell_of.size());
+  z_.resize(cell_of.size());
+  index_.resize(cell_of.size());
   std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < cell_of.size(); ++i) {
     const std::uint32_t slot = next[cell_of[i]]++;
     x_[slot] = cloud[i].x;
     y_[slot] = cloud[i].y;
