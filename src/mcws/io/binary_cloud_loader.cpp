@@ -25,14 +25,14 @@ namespace {
 constexpr std::size_t kPieceBytes = std::size_t{256} << 10;
 
 /// A file descriptor closed when it leaves scope.
-class InputFile {
+class DataFile {
  public:
-  explicit InputFile(const std::string& path) : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {
+  explicit DataFile(const std::string& path) : fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {
     if (fd_ < 0) throw Error(path + ": cannot read the file");
   }
-  ~InputFile() { ::close(fd_); }
-  InputFile(const InputFile&) = delete;
-  InputFile& operator=(const InputFile&) = delete;
+  ~DataFile() { ::close(fd_); }
+  DataFile(const DataFile&) = delete;
+  DataFile& operator=(const DataFile&) = delete;
 
   /// Whether all `size` bytes at `offset` were read into `out`.
   bool readAt(std::uint64_t offset, std::size_t size, std::uint8_t* out) const {
@@ -124,7 +124,7 @@ void loadBinaryCloud(const std::string& path, const pcd::PcdHeader& header,
   cloud.width = static_cast<std::uint32_t>(header.width);
   cloud.height = static_cast<std::uint32_t>(header.height);
   cloud.resize(n);  // default points: the bytes no field of the file fills
-  const InputFile file(path);
+  const DataFile file(path);
   const std::size_t piece = std::max<std::size_t>(1, kPieceBytes / layout.bytes);
   const auto pieces = static_cast<std::int64_t>((n + piece - 1) / piece);
   FirstError error;
