@@ -16,6 +16,7 @@
 #include "mcws/core/activity.h"
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/io/binary_cloud_loader.h"
 #include "mcws/io/pcd_header.h"
 
 namespace mcws::io {
@@ -101,6 +102,23 @@ pcl::PCLPointCloud2 readPcd(const std::string& path) {
 }
 
 WorkspaceCloud::Ptr readCloud(const std::string& path) {
+  const Activity reading("reading '" + path + "'");
+  const std::uint64_t file_size = cloudFileSize(path);
+  const PcdHeader header = readHeader(path, file_size, true);
+  if (header.data != "binary") return readCloudWithPcl(path);
+  // The checks and the cloud of readCloudWithPcl(), the data read straight into the points.
+  requirePointsWithXyz(header, path);
+  checkBinaryData(path, header, file_size);
+  const std::vector<pcl::PCLPointField> fields = pcdFields(header);
+  requireWorkspaceFieldTypes(fields, path);
+  auto cloud = std::make_shared<WorkspaceCloud>();
+  CoordinateRange range;
+  loadBinaryCloud(path, header, fields, *cloud, range);
+  range.check(path);
+  return cloud;
+}
+
+WorkspaceCloud::Ptr readCloudWithPcl(const std::string& path) {
   const pcl::PCLPointCloud2 blob = readPcd(path);
   requireWorkspaceFieldTypes(blob.fields, path);
   auto cloud = std::make_shared<WorkspaceCloud>();
@@ -179,12 +197,7 @@ std::optional<LengthUnit> recordedUnit(const std::string& cloud_path) {
 }
 
 void CoordinateRange::add(const WorkspaceCloud& cloud) {
-  for (const auto& p : cloud) {
-    if (!pcl::isFinite(p)) continue;
-    largest_ = std::max(largest_, p.getArray3fMap().abs().maxCoeff());
-    min_ = min_.min(p.getArray3fMap());
-    max_ = max_.max(p.getArray3fMap());
-  }
+  for (const auto& p : cloud) add(p);
 }
 
 void CoordinateRange::check(const std::string& path) const {

@@ -6,6 +6,7 @@
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <optional>
@@ -63,6 +64,19 @@ WorkspaceCloud::Ptr readCloud(const std::string& path);
 class CoordinateRange {
  public:
   void add(const WorkspaceCloud& cloud);
+  /// \brief Adds one point (nothing when a coordinate is not finite).
+  void add(const WorkspacePoint& p) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return;
+    largest_ = std::max(largest_, p.getArray3fMap().abs().maxCoeff());
+    min_ = min_.min(p.getArray3fMap());
+    max_ = max_.max(p.getArray3fMap());
+  }
+  /// \brief Adds the points another range gathered (the result does not depend on the order).
+  void merge(const CoordinateRange& other) {
+    largest_ = std::max(largest_, other.largest_);
+    min_ = min_.min(other.min_);
+    max_ = max_.max(other.max_);
+  }
   /// \throws mcws::Error naming `path` as readCloud() does for coordinates beyond 1e18 or an
   ///   extent below 1e-19.
   void check(const std::string& path) const;

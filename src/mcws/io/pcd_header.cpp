@@ -280,6 +280,8 @@ class HeaderChecker {
 
   void points(const std::vector<std::string>& values) {
     header_.points = single("POINTS", values, kMaxPoints);
+    header_.width = width_;
+    header_.height = height_;
     if (width_ * height_ != header_.points) {
       fail("POINTS " + std::to_string(header_.points) +
            " is not WIDTH x HEIGHT = " + std::to_string(width_) + " x " + std::to_string(height_));

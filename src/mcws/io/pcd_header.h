@@ -26,6 +26,7 @@ struct PcdField {
 struct PcdHeader {
   std::vector<PcdField> fields;
   std::uint64_t points{0};
+  std::uint64_t width{0}, height{0};              ///< WIDTH and HEIGHT (POINTS = WIDTH x HEIGHT)
   std::string data;                               ///< ascii, binary or binary_compressed
   std::uint64_t data_offset{0};                   ///< bytes before the data [byte]
   int data_line{0};                               ///< line number of the DATA line

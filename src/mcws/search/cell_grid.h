@@ -27,8 +27,10 @@ namespace mcws {
 class CellGrid {
  public:
   /// \brief Buckets `cloud` (finite points; z ignored when `dimensions` == 2) into cells of side
-  /// `cell` [length unit], enlarged if the grid would have more than 4 cells per point.
-  CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell);
+  /// `cell` [length unit], enlarged if the grid would have more than 4 cells per point; the
+  /// points' box and cells found on `threads` threads (the grid is the same for any number).
+  CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell,
+           int threads = 1);
 
   /// \brief The cell side actually used [length unit].
   double cellSize() const { return cell_; }
@@ -66,6 +68,7 @@ class CellGrid {
 
   int dimensions_;
   double cell_;
+  double inverse_cell_{1.0};  ///< 1 / cell_
   Eigen::Vector3d origin_;
   std::int64_t counts_[3]{1, 1, 1};
   std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])

@@ -26,9 +26,10 @@ constexpr double kCrowdedCell = 16.0;
 
 GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& positions,
                                        std::vector<pcl::index_t>& position_of, int dimensions,
-                                       double typical_radius, double mean_spacing, bool use_grid)
+                                       double typical_radius, double mean_spacing, bool use_grid,
+                                       int threads)
     : positions_(std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(std::move(positions))),
-      grid_(*positions_, dimensions, cellPerRadius(dimensions) * typical_radius),
+      grid_(*positions_, dimensions, cellPerRadius(dimensions) * typical_radius, threads),
       use_grid_(use_grid),
       first_reach_(kFirstReach * typical_radius),
       max_reach_(maxReachInCells(dimensions) * grid_.cellSize()) {
@@ -37,11 +38,19 @@ GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& position
   auto sorted = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   sorted->resize(n);
   std::vector<pcl::index_t> rank(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    (*sorted)[k] = (*positions_)[grid_.order()[k]];
-    rank[grid_.order()[k]] = static_cast<pcl::index_t>(k);
+  const std::vector<pcl::index_t>& order = grid_.order();
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
+      (*sorted)[k] = (*positions_)[order[k]];
+      rank[order[k]] = static_cast<pcl::index_t>(k);  // a permutation: every k its own place
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(position_of.size()); ++k) {
+      position_of[k] = rank[position_of[k]];
+    }
   }
-  for (auto& position : position_of) position = rank[position];
   positions_ = sorted;
   grid_.renumberInCellOrder();
   const double expected = mean_spacing > 0.0 ? std::pow(grid_.cellSize() / mean_spacing, dimensions)

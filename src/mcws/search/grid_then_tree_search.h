@@ -34,9 +34,11 @@ class GridThenTreeSearch {
   /// \param mean_spacing the cloud's mean spacing [length unit] (0: unknown), which tells what
   ///   a crowded cell is.
   /// \param use_grid false: every point is searched in the tree (the reference).
+  /// \param threads threads of the grid's construction and the renumbering (the result does not
+  ///   depend on them).
   GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& positions,
                      std::vector<pcl::index_t>& position_of, int dimensions, double typical_radius,
-                     double mean_spacing, bool use_grid);
+                     double mean_spacing, bool use_grid, int threads = 1);
 
   /// \brief The cloud, in cell order.
   const pcl::PointCloud<pcl::PointXYZ>& positions() const { return *positions_; }

@@ -33,10 +33,10 @@ void OrthantBoundary<PointT>::applyFilter(pcl::Indices& indices) {
   std::vector<char> boundary(positions.size(),
                              radius_mode_ == RadiusMode::kAutomatic && !(test.radius > 0.0));
   if (!positions.empty() && (test.adaptive || test.radius > 0.0)) {
+    const int threads = threads_ > 0 ? threads_ : omp_get_num_procs();
     GridThenTreeSearch search(std::move(positions), position_of, dimensions,
                               orthant::typicalOuterRadius(test, used_spacing_), used_spacing_,
-                              grid_search_);
-    const int threads = threads_ > 0 ? threads_ : omp_get_num_procs();
+                              grid_search_, threads);
     orthant::CloudDecisions decisions = orthant::testEveryPoint(search, test, threads);
     if (getHullDepth() > 0.0) {
       orthant::keepShallowPoints(search, test, getHullDepth(), threads, decisions);

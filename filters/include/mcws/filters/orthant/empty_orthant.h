@@ -3,6 +3,10 @@
 /// \brief Does some quadrant (2-D) or octant (3-D) around p hold none of p's neighbours, in the
 /// axis frame or in the outward frame? The test of Yin, Wang & Yu 2010, section 4.3.
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -65,6 +69,36 @@ inline const std::uint8_t* orthantBits(int dimensions) {
   return table.bit[dimensions - 2];
 }
 
+#if defined(__SSE2__)
+/// \brief orthantBits() indexed by sign masks instead of sign codes: bits 0-2 say x, y, z > 0,
+/// bits 3-5 x, y, z < 0 (signMasks()), which two SSE comparisons give at once.
+inline const std::uint8_t* orthantBitsByMasks(int dimensions) {
+  struct Table {
+    std::uint8_t bit[2][64];
+    Table() : bit{} {
+      for (unsigned masks = 0; masks < 64; ++masks) {
+        unsigned code = 0;
+        for (unsigned axis = 0; axis < 3; ++axis) {
+          code |= (masks >> axis & 1u) << (2 * axis) | (masks >> (axis + 3) & 1u) << (2 * axis + 1);
+        }
+        bit[0][masks] = orthantBits(2)[code];
+        bit[1][masks] = orthantBits(3)[code];
+      }
+    }
+  };
+  static const Table table;
+  return table.bit[dimensions - 2];
+}
+
+/// \brief The sign masks of lanes x, y, z of `v` (the fourth is ignored): bits 0-2 > 0, bits 3-5
+/// < 0, as signCode() tells them apart (0 and -0 neither).
+inline unsigned signMasks(__m128 v) {
+  const __m128 zero = _mm_setzero_ps();
+  return (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(v, zero))) & 7u) |
+         (static_cast<unsigned>(_mm_movemask_ps(_mm_cmplt_ps(v, zero))) & 7u) << 3;
+}
+#endif
+
 /// \brief The rows of the outward frame for the unit outward direction n: in 2-D, n bisects the
 /// first quadrant; in 3-D, e_k = n / sqrt(3) + sqrt(2/3) (cos t_k a + sin t_k b), t_k = 0, 120,
 /// 240 degrees, an orthonormal frame whose first octant has n as its diagonal.
@@ -96,7 +130,6 @@ inline Eigen::Matrix3f outwardFrame(const Eigen::Vector3f& n, int dimensions) {
 inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimensions,
                             OrthantFrames frames) {
   const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
-  const std::uint8_t* bits = orthantBits(dimensions);
   // One pass for the axis frame's orthants and what the outward frame needs: the centroid's offset
   // from p, summed as offsets so that far from the origin no precision is lost, and in double so
   // that the order of the neighbours (tree or grid) does not matter; and the neighbourhood's size,
@@ -104,6 +137,22 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
   unsigned axis_mask = 0;
   double sx = 0.0, sy = 0.0, sz = 0.0;
   float size2 = 0.0f;
+#if defined(__SSE2__)
+  // The same sums and bits, x and y summed side by side in one register (each lane the same
+  // double additions in the same order), the signs of x, y, z compared at once.
+  const std::uint8_t* by_masks = orthantBitsByMasks(dimensions);
+  __m128d sxy = _mm_setzero_pd();
+  for (const auto& q : neighbours) {
+    const __m128 v = _mm_loadu_ps(&q.x);  // x, y, z, d2
+    axis_mask |= by_masks[signMasks(v)];
+    sxy = _mm_add_pd(sxy, _mm_cvtps_pd(v));
+    sz += q.z;
+    size2 = std::max(size2, q.d2);
+  }
+  sx = _mm_cvtsd_f64(sxy);
+  sy = _mm_cvtsd_f64(_mm_unpackhi_pd(sxy, sxy));
+#else
+  const std::uint8_t* bits = orthantBits(dimensions);
   for (const auto& q : neighbours) {
     axis_mask |= bits[signCode(q.x, q.y, q.z)];
     sx += q.x;
@@ -111,6 +160,7 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
     sz += q.z;
     size2 = std::max(size2, q.d2);
   }
+#endif
   if (axis_mask == 0) return true;
   if (frames.has(OrthantFrame::kAxis) && axis_mask != full) return true;
   if (!frames.has(OrthantFrame::kOutward)) return false;
@@ -125,7 +175,11 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
   unsigned outward_mask = 0;
   for (const auto& q : neighbours) {
     const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+#if defined(__SSE2__)
+    outward_mask |= by_masks[signMasks(_mm_setr_ps(w.x(), w.y(), w.z(), 0.0f))];
+#else
     outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+#endif
     if (outward_mask == full) return false;
   }
   return true;

@@ -1,0 +1,93 @@
+// orthant::hasEmptyOrthant() (signs compared four lanes at a time, x and y summed side by side)
+// against the plain per-coordinate form it replaced, on random neighbourhoods full of the cases
+// the signs and the sums must get right: zeros of either sign, values on the axes, tiny offsets.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "mcws/filters/orthant/empty_orthant.h"
+
+namespace mcws::orthant {
+namespace {
+
+/// hasEmptyOrthant() as it was written before (scalar sign codes, three double sums).
+bool reference(const std::vector<Neighbour>& neighbours, int dimensions, OrthantFrames frames) {
+  const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
+  const std::uint8_t* bits = orthantBits(dimensions);
+  unsigned axis_mask = 0;
+  double sx = 0.0, sy = 0.0, sz = 0.0;
+  float size2 = 0.0f;
+  for (const auto& q : neighbours) {
+    axis_mask |= bits[signCode(q.x, q.y, q.z)];
+    sx += q.x;
+    sy += q.y;
+    sz += q.z;
+    size2 = std::max(size2, q.d2);
+  }
+  if (axis_mask == 0) return true;
+  if (frames.has(OrthantFrame::kAxis) && axis_mask != full) return true;
+  if (!frames.has(OrthantFrame::kOutward)) return false;
+  const double count = static_cast<double>(neighbours.size());
+  Eigen::Vector3f n(static_cast<float>(-sx / count), static_cast<float>(-sy / count),
+                    static_cast<float>(-sz / count));
+  if (dimensions == 2) n.z() = 0;
+  const float length = n.norm();
+  if (!(length > 1e-6f * std::sqrt(size2))) return false;
+  n /= length;
+  const Eigen::Matrix3f E = outwardFrame(n, dimensions);
+  unsigned outward_mask = 0;
+  for (const auto& q : neighbours) {
+    const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+    outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+    if (outward_mask == full) return false;
+  }
+  return true;
+}
+
+/// A coordinate: mostly uniform in [-1, 1], now and then 0, -0, +-1 exactly or tiny.
+float coordinate(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  switch (rng() % 12) {
+    case 0:
+      return 0.0f;
+    case 1:
+      return -0.0f;
+    case 2:
+      return rng() % 2 ? 1.0f : -1.0f;
+    case 3:
+      return u(rng) * 1e-30f;
+    default:
+      return u(rng);
+  }
+}
+
+TEST(EmptyOrthant, SameAnswerAsThePerCoordinateForm) {
+  std::mt19937 rng(7);
+  const OrthantFrames frame_sets[] = {OrthantFrame::kAxis, OrthantFrame::kOutward,
+                                      OrthantFrame::kAxis | OrthantFrame::kOutward};
+  int boundary = 0, cases = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int dimensions = 2 + trial % 2;
+    std::vector<Neighbour> neighbours(rng() % 40);
+    for (auto& q : neighbours) {
+      const float x = coordinate(rng), y = coordinate(rng);
+      const float z = dimensions == 3 ? coordinate(rng) : 0.0f;
+      q = Neighbour(x, y, z, x * x + y * y + z * z, 0);
+    }
+    for (const OrthantFrames frames : frame_sets) {
+      const bool expected = reference(neighbours, dimensions, frames);
+      ASSERT_EQ(hasEmptyOrthant(neighbours, dimensions, frames), expected)
+          << "trial " << trial << ", frames " << frames.bits();
+      boundary += expected;
+      ++cases;
+    }
+  }
+  // Both answers occur often: the comparison means something.
+  EXPECT_GT(boundary, cases / 10);
+  EXPECT_LT(boundary, cases - cases / 10);
+}
+
+}  // namespace
+}  // namespace mcws::orthant
