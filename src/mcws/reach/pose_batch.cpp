@@ -343,3 +343,5 @@ void PoseBatch::poses(const double* q, double* p, double* approach, double* x_ax
 }
 
 }  // namespace mcws
+
+#undef MCWS_KERNEL_INLINE
