@@ -63,14 +63,20 @@ SpherePartition::SpherePartition(int regions) : regions_(regions) {
     zone_top_z_.push_back(1.0 - 2.0 * zone_first_[j] / static_cast<double>(regions));
   }
   zone_top_z_.push_back(-1.0);
+  // The zone of each whole number of regions' area above a direction.
+  for (int above = 0, zone = 0; above <= regions_; ++above) {
+    while (zone + 1 < zones() && above >= zone_first_[zone + 1]) ++zone;
+    zone_of_area_.push_back(zone);
+  }
 }
 
 int SpherePartition::zoneOfZ(double z) const {
   // Area above the direction in units of one region: the zone is found by its region counts.
+  // The zone is the last whose first region count is <= above; the counts are whole numbers, so
+  // it is that of floor(above) (in the table); below 1 (or NaN) zone 0, above all the last.
   const double above = 0.5 * regions_ * (1.0 - z);
-  int zone = 0;
-  while (zone + 1 < zones() && above >= zone_first_[zone + 1]) ++zone;
-  return zone;
+  if (!(above >= 1.0)) return 0;
+  return zone_of_area_[above < regions_ ? static_cast<int>(above) : regions_];
 }
 
 void SpherePartition::regions(const double* d, int lanes, int* out) const {

@@ -51,6 +51,7 @@ class SpherePartition {
   int regions_;
   std::vector<double> zone_top_z_;  ///< z = cos(colatitude) of each zone's upper edge; last -1
   std::vector<int> zone_first_;     ///< first region of each zone; last entry regions_
+  std::vector<int> zone_of_area_;   ///< [a]: the zone of a direction with a regions' area above it
 };
 
 /// \brief The tool orientation as a bin: the approach direction (the tool's z axis, as in

@@ -2,118 +2,296 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "mcws/core/error.h"
-#include "mcws/core/libmvec.h"  // vector sin, cos, atan2 for the simd loops
+#include "mcws/core/libmvec.h"  // vector sin, cos for the simd loops
 
 namespace mcws {
 namespace {
 
 constexpr int L = PoseBatch::kLanes;
+constexpr int kSplat = 4;  ///< copies of each fixed element (the widest kernel's lanes)
+
+// The kernels work on GCC/Clang vectors of two doubles (SSE2, what the build targets) or four
+// (AVX, where the processor has it): every operation on one is the same IEEE operation on each
+// lane as on a double, and the build enables no fused multiply-add that could contract them, so
+// a lane's results are the bits of the scalar formulas in the same order. Every helper is inlined
+// into its kernel, so the four-lane one is compiled for AVX with it.
+using V2 = double __attribute__((vector_size(16)));
+using V4 = double __attribute__((vector_size(32)));
+#define MCWS_KERNEL_INLINE inline __attribute__((always_inline))
 
 Eigen::Matrix3d rotationTakingZTo(const Eigen::Vector3d& axis) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis).toRotationMatrix();
 }
 
-/// y[lane] = E * x[lane] for 3-vectors laid out [a * L + lane], plus E's translation if `point`.
-inline void transform(const double* E, double* v, bool point) {
-  const double tx = point ? E[3] : 0.0, ty = point ? E[7] : 0.0, tz = point ? E[11] : 0.0;
-#pragma omp simd
-  for (int k = 0; k < L; ++k) {
-    const double x = v[k], y = v[L + k], z = v[2 * L + k];
-    v[k] = E[0] * x + E[1] * y + E[2] * z + tx;
-    v[L + k] = E[4] * x + E[5] * y + E[6] * z + ty;
-    v[2 * L + k] = E[8] * x + E[9] * y + E[10] * z + tz;
-  }
+template <typename V>
+constexpr int kWidth = sizeof(V) / sizeof(double);
+
+template <typename V>
+MCWS_KERNEL_INLINE void splat(double x, V& v) {
+  for (int i = 0; i < kWidth<V>; ++i) v[i] = x;  // no arithmetic: -0.0 stays -0.0
+}
+/// V without its alignment, and allowed to alias doubles: how the kernels read arrays.
+template <typename V>
+struct Loose;
+template <>
+struct Loose<V2> {
+  typedef double type __attribute__((vector_size(16), may_alias, aligned(8)));
+};
+template <>
+struct Loose<V4> {
+  typedef double type __attribute__((vector_size(32), may_alias, aligned(8)));
+};
+template <typename V>
+MCWS_KERNEL_INLINE void load(const double* p, V& v) {
+  v = *reinterpret_cast<const typename Loose<V>::type*>(p);
+}
+template <typename V>
+MCWS_KERNEL_INLINE void store(double* p, const V& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+/// mask ? a : b, lane-wise (a comparison's mask: all ones or all zeros).
+template <typename V, typename Mask>
+MCWS_KERNEL_INLINE void select(const Mask& mask, const V& a, const V& b, V& out) {
+  Mask ia, ib;
+  std::memcpy(&ia, &a, sizeof a);
+  std::memcpy(&ib, &b, sizeof b);
+  const Mask bits = (mask & ia) | (~mask & ib);
+  std::memcpy(&out, &bits, sizeof out);
 }
 
-/// Rotates 3-vectors laid out [a * L + lane] about z by the angles whose cos and sin are c, s.
-inline void turn(const double* c, const double* s, double* v) {
-#pragma omp simd
-  for (int k = 0; k < L; ++k) {
-    const double x = v[k];
-    v[k] = c[k] * x - s[k] * v[L + k];
-    v[L + k] = s[k] * x + c[k] * v[L + k];
-  }
+/// The fixed data of the chain, as the kernels read them.
+struct Chain {
+  const double* fixed;  ///< PoseBatch::fixed_
+  const char* revolute;
+  int n;
+  const double* p_last;  ///< 3 values
+  const double* R_last;  ///< column-major 3x3
+};
+
+/// x, y of a 3-vector turned about z by the angle of cosine c and sine s.
+template <typename V>
+MCWS_KERNEL_INLINE void turn(const V& c, const V& s, V* v) {
+  const V x = v[0];
+  v[0] = c * x - s * v[1];
+  v[1] = s * x + c * v[1];
 }
 
-/// Product of the diagonal of the Cholesky factor of the m x m Gram matrices G (G[(a*m+b)*L+k]),
-/// lane-wise; 0 for a lane whose matrix is not positive definite. Every loop runs over the lanes
-/// innermost, so each vectorises.
-void choleskyDiagonalProduct(double* G, int m, double* out) {
-  double product[L], singular[L];
-  for (int k = 0; k < L; ++k) product[k] = 1.0, singular[k] = 0.0;
-  for (int j = 0; j < m; ++j) {
-    double d[L], inverse[L];
-    for (int k = 0; k < L; ++k) d[k] = G[(j * m + j) * L + k];
-    for (int r = 0; r < j; ++r) {
-      const double* g = G + (j * m + r) * L;
-#pragma omp simd
-      for (int k = 0; k < L; ++k) d[k] -= g[k] * g[k];
-    }
-#pragma omp simd
-    for (int k = 0; k < L; ++k) {
-      const bool positive = d[k] > 0.0;
-      singular[k] = positive ? singular[k] : 1.0;
-      const double root = std::sqrt(positive ? d[k] : 1.0);
-      product[k] *= root;
-      inverse[k] = 1.0 / root;
-    }
-    for (int i = j + 1; i < m; ++i) {
-      double v[L];
-      for (int k = 0; k < L; ++k) v[k] = G[(i * m + j) * L + k];
-      for (int r = 0; r < j; ++r) {
-        const double *gi = G + (i * m + r) * L, *gj = G + (j * m + r) * L;
-#pragma omp simd
-        for (int k = 0; k < L; ++k) v[k] -= gi[k] * gj[k];
-      }
-#pragma omp simd
-      for (int k = 0; k < L; ++k) G[(i * m + j) * L + k] = v[k] * inverse[k];
-    }
-  }
-  for (int k = 0; k < L; ++k) out[k] = singular[k] != 0.0 ? 0.0 : product[k];
+/// The fixed transform E (12 elements, kSplat copies each) times v, plus E's translation for a
+/// point (for a direction + 0.0, as the kernel always did: the same bits, -0.0 included).
+/// Element i of a fixed transform (kSplat copies).
+template <typename V>
+MCWS_KERNEL_INLINE const typename Loose<V>::type& element(const double* E, int i) {
+  return *reinterpret_cast<const typename Loose<V>::type*>(E + kSplat * i);
 }
 
-/// Manipulability of each lane's Jacobian J[column][row][lane] (n columns, the tool frame) as
+template <bool kPoint, typename V>
+MCWS_KERNEL_INLINE void transform(const double* E, V* v) {
+  V zero;
+  splat(0.0, zero);
+  const V x = v[0], y = v[1], z = v[2];
+  v[0] = element<V>(E, 0) * x + element<V>(E, 1) * y + element<V>(E, 2) * z +
+         (kPoint ? V(element<V>(E, 3)) : zero);
+  v[1] = element<V>(E, 4) * x + element<V>(E, 5) * y + element<V>(E, 6) * z +
+         (kPoint ? V(element<V>(E, 7)) : zero);
+  v[2] = element<V>(E, 8) * x + element<V>(E, 9) * y + element<V>(E, 10) * z +
+         (kPoint ? V(element<V>(E, 11)) : zero);
+}
+
+/// Product of the diagonal of the Cholesky factor of the M x M Gram matrix G (lower triangle,
+/// G[a][b] for b <= a, overwritten); 0 for a lane whose matrix is not positive definite.
+template <int M, typename V>
+MCWS_KERNEL_INLINE void choleskyDiagonalProduct(V (*G)[8], V& out) {
+  using Mask = decltype(V{} > V{});
+  V zero, one;
+  splat(0.0, zero);
+  splat(1.0, one);
+  V product = one;
+  Mask singular = zero > one;  // all false
+  for (int j = 0; j < M; ++j) {
+    V d = G[j][j];
+    for (int r = 0; r < j; ++r) d = d - G[j][r] * G[j][r];
+    const Mask positive = d > zero;
+    singular = singular | ~positive;
+    V root;
+    select(positive, d, one, root);
+    for (int i = 0; i < kWidth<V>; ++i) root[i] = std::sqrt(root[i]);
+    product = product * root;
+    const V inverse = one / root;
+    for (int i = j + 1; i < M; ++i) {
+      V v = G[i][j];
+      for (int r = 0; r < j; ++r) v = v - G[i][r] * G[j][r];
+      G[i][j] = v * inverse;
+    }
+  }
+  select(singular, zero, product, out);
+}
+
+/// Manipulability of the lanes' Jacobians J[column][row] (n columns, the tool frame) as
 /// mcws::manipulability() measures it with `quality`: the rows the task measures, velocity rows
-/// scaled by 1 / L for the full twist (in place), then sqrt det of J^T J or J J^T.
-void manipulabilities(double (*J)[6][L], int n, const QualityOptions& quality,
-                      double* manipulability) {
-  // The rows the task measures, velocity rows scaled by 1 / L for the full twist.
+/// scaled by 1 / L for the full twist (in place), then sqrt det of J^T J or J J^T, each sum
+/// accumulated from 0 in row (column) order.
+template <typename V>
+MCWS_KERNEL_INLINE void manipulabilityOf(V (*J)[6], int n, const QualityOptions& quality, V& w) {
   const int rows = quality.task == QualityTask::kPosition ? 3 : 6;
   if (rows == 6) {
-    const double scale = 1.0 / quality.characteristic_length;
+    V scale;
+    splat(1.0 / quality.characteristic_length, scale);
     for (int j = 0; j < n; ++j) {
-      for (int r = 0; r < 3; ++r) {
-        for (int k = 0; k < L; ++k) J[j][r][k] *= scale;
-      }
+      for (int r = 0; r < 3; ++r) J[j][r] = J[j][r] * scale;
     }
   }
   const int m = std::min(rows, n);
-  double G[8 * 8 * L];
+  V G[8][8], zero;
+  splat(0.0, zero);
+  if (n == 6 && rows == 6) {  // the six-joint arm's square Jacobian: column a in registers
+    for (int a = 0; a < 6; ++a) {
+      const V c0 = J[a][0], c1 = J[a][1], c2 = J[a][2], c3 = J[a][3], c4 = J[a][4], c5 = J[a][5];
+      for (int b = 0; b <= a; ++b) {
+        const V* o = J[b];
+        G[a][b] = zero + c0 * o[0] + c1 * o[1] + c2 * o[2] + c3 * o[3] + c4 * o[4] + c5 * o[5];
+      }
+    }
+    return choleskyDiagonalProduct<6>(G, w);
+  }
   for (int a = 0; a < m; ++a) {
     for (int b = 0; b <= a; ++b) {
-      double* g = G + (a * m + b) * L;
-      for (int k = 0; k < L; ++k) g[k] = 0.0;
+      V g = zero;
       if (n <= rows) {  // J^T J: columns a and b
-        for (int r = 0; r < rows; ++r) {
-#pragma omp simd
-          for (int k = 0; k < L; ++k) g[k] += J[a][r][k] * J[b][r][k];
-        }
+        for (int r = 0; r < rows; ++r) g = g + J[a][r] * J[b][r];
       } else {  // J J^T: rows a and b
-        for (int j = 0; j < n; ++j) {
-#pragma omp simd
-          for (int k = 0; k < L; ++k) g[k] += J[j][a][k] * J[j][b][k];
+        for (int j = 0; j < n; ++j) g = g + J[j][a] * J[j][b];
+      }
+      G[a][b] = g;
+    }
+  }
+  switch (m) {
+    case 1:
+      return choleskyDiagonalProduct<1>(G, w);
+    case 2:
+      return choleskyDiagonalProduct<2>(G, w);
+    case 3:
+      return choleskyDiagonalProduct<3>(G, w);
+    case 4:
+      return choleskyDiagonalProduct<4>(G, w);
+    case 5:
+      return choleskyDiagonalProduct<5>(G, w);
+    default:
+      return choleskyDiagonalProduct<6>(G, w);  // m = min(rows, n) <= 6
+  }
+}
+
+/// The kernel for the lanes [lane, lane + width) of the batch's arrays: the tool point, the axes
+/// it needs (the approach; the x axis with kXAxis; all three with kQuality) and, with kQuality,
+/// the Jacobian's columns and the manipulability.
+template <typename V, bool kQuality, bool kXAxis>
+MCWS_KERNEL_INLINE void lanes(const Chain& chain, const double* q, const double* c, const double* s,
+                              int lane, double* p, double* approach, double* x_axis,
+                              const QualityOptions* quality, double* manipulability) {
+  constexpr bool kAxis0 = kQuality || kXAxis, kAxis1 = kQuality;  // the approach always
+  const int n = chain.n;
+  V P[3], R[3][3];  // the tool point; R[c][a]: component a of the tool's axis c
+  V J[8][6];        // column j, row r: the Jacobian in the tool frame
+  for (int a = 0; a < 3; ++a) {
+    splat(chain.p_last[a], P[a]);
+    for (int axis = 0; axis < 3; ++axis) splat(chain.R_last[3 * axis + a], R[axis][a]);
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    if (chain.revolute[i]) {
+      V ci, si;
+      load(c + i * L + lane, ci);
+      load(s + i * L + lane, si);
+      turn(ci, si, P);
+      if (kAxis0) turn(ci, si, R[0]);
+      if (kAxis1) turn(ci, si, R[1]);
+      turn(ci, si, R[2]);
+      if (kQuality) {
+        // z x p = (-p_y, p_x, 0); in the tool frame R^T (z x p), and z is R^T z (row 2 of R).
+        for (int a = 0; a < 3; ++a) {
+          J[i][a] = -P[1] * R[a][0] + P[0] * R[a][1];
+          J[i][3 + a] = R[a][2];
+        }
+      }
+    } else {
+      V qi;
+      load(q + i * L + lane, qi);
+      P[2] = P[2] + qi;
+      if (kQuality) {
+        for (int a = 0; a < 3; ++a) {
+          J[i][a] = R[a][2];
+          splat(0.0, J[i][3 + a]);
         }
       }
     }
+    const double* E = chain.fixed + 12 * kSplat * i;
+    transform<true>(E, P);
+    if (kAxis0) transform<false>(E, R[0]);
+    if (kAxis1) transform<false>(E, R[1]);
+    transform<false>(E, R[2]);
   }
-  choleskyDiagonalProduct(G, m, manipulability);
+  for (int a = 0; a < 3; ++a) {
+    store(p + a * L + lane, P[a]);
+    store(approach + a * L + lane, R[2][a]);
+    if (kXAxis) store(x_axis + a * L + lane, R[0][a]);
+  }
+  if (kQuality) {
+    V w;
+    manipulabilityOf(J, n, *quality, w);
+    store(manipulability + lane, w);
+  }
 }
+
+/// Every lane of the batch, kWidth<V> at a time.
+template <typename V>
+MCWS_KERNEL_INLINE void allLanes(const Chain& chain, const double* q, const double* c,
+                                 const double* s, double* p, double* approach, double* x_axis,
+                                 const QualityOptions* quality, double* manipulability) {
+  for (int lane = 0; lane < L; lane += kWidth<V>) {
+    if (quality && x_axis) {
+      lanes<V, true, true>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+    } else if (quality) {
+      lanes<V, true, false>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+    } else if (x_axis) {
+      lanes<V, false, true>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+    } else {
+      lanes<V, false, false>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+    }
+  }
+}
+
+void narrowKernel(const Chain& chain, const double* q, const double* c, const double* s, double* p,
+                  double* approach, double* x_axis, const QualityOptions* quality,
+                  double* manipulability) {
+  allLanes<V2>(chain, q, c, s, p, approach, x_axis, quality, manipulability);
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+__attribute__((target("avx"))) void wideKernel(const Chain& chain, const double* q, const double* c,
+                                               const double* s, double* p, double* approach,
+                                               double* x_axis, const QualityOptions* quality,
+                                               double* manipulability) {
+  allLanes<V4>(chain, q, c, s, p, approach, x_axis, quality, manipulability);
+}
+
+bool processorHasAvx() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx");
+}
+#else
+void wideKernel(const Chain& chain, const double* q, const double* c, const double* s, double* p,
+                double* approach, double* x_axis, const QualityOptions* quality,
+                double* manipulability) {
+  narrowKernel(chain, q, c, s, p, approach, x_axis, quality, manipulability);
+}
+
+bool processorHasAvx() { return false; }
+#endif
 
 }  // namespace
 
-PoseBatch::PoseBatch(const Robot& robot) {
+PoseBatch::PoseBatch(const Robot& robot, bool wide) : wide_(wide && processorHasAvx()) {
   const int n = robot.dof();
   if (n > 8) throw Error(robot.source + ": more than 8 joints");
   refuseMimicJoints(robot, "the reach map's pose kernel");
@@ -126,11 +304,9 @@ PoseBatch::PoseBatch(const Robot& robot) {
     E.linear() = A_previous_inverse;
     E = (i == 0 ? robot.T_world_base : E) * joint.T_parent_joint;
     E.linear() = E.linear() * A;
-    std::array<double, 12> m{};
     for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 4; ++c) m[4 * r + c] = E.matrix()(r, c);
+      for (int c = 0; c < 4; ++c) fixed_.insert(fixed_.end(), kSplat, E.matrix()(r, c));
     }
-    fixed_.push_back(m);
     revolute_.push_back(joint.type == JointType::kRevolute);
     A_previous_inverse = A.transpose();
   }
@@ -142,59 +318,30 @@ PoseBatch::PoseBatch(const Robot& robot) {
   p_last_ = T_last_tool.translation();
 }
 
+void PoseBatch::cosinesAndSines(const double* angles, double* c, double* s) {
+  // Separate loops: together GCC would fuse them into a scalar sincos call first.
+#pragma omp simd
+  for (int k = 0; k < L; ++k) c[k] = std::cos(angles[k]);
+#pragma omp simd
+  for (int k = 0; k < L; ++k) s[k] = std::sin(angles[k]);
+}
+
 void PoseBatch::poses(const double* q, double* p, double* approach, double* x_axis,
                       const QualityOptions* quality, double* manipulability) const {
   const int n = dof();
-  // The tool point and the tool's three axes, each a 3-vector per lane.
-  double R[3][3 * L];
-  double J[8][6][L];  // column j, row r: the Jacobian in the tool frame
-  for (int k = 0; k < L; ++k) {
-    for (int a = 0; a < 3; ++a) {
-      p[a * L + k] = p_last_[a];
-      for (int c = 0; c < 3; ++c) R[c][a * L + k] = R_last_(a, c);
-    }
+  // Every joint's cosine and sine, 8 lanes at a time (libmvec's vector functions).
+  double c[8 * L], s[8 * L];
+  for (int i = 0; i < n; ++i) {
+    if (revolute_[i]) cosinesAndSines(q + i * L, c + i * L, s + i * L);
   }
-  for (int i = n - 1; i >= 0; --i) {
-    const double* qi = q + i * L;
-    if (revolute_[i]) {
-      double c[L], s[L];
-#pragma omp simd
-      for (int k = 0; k < L; ++k) c[k] = std::cos(qi[k]);
-#pragma omp simd
-      for (int k = 0; k < L; ++k) s[k] = std::sin(qi[k]);
-      turn(c, s, p);
-      for (auto& axis : R) turn(c, s, axis);
-      if (quality) {
-        // z x p = (-p_y, p_x, 0); in the tool frame R^T (z x p), and z is R^T z (row 2 of R).
-#pragma omp simd
-        for (int k = 0; k < L; ++k) {
-          for (int c3 = 0; c3 < 3; ++c3) {
-            J[i][c3][k] = -p[L + k] * R[c3][k] + p[k] * R[c3][L + k];
-            J[i][3 + c3][k] = R[c3][2 * L + k];
-          }
-        }
-      }
-    } else {
-#pragma omp simd
-      for (int k = 0; k < L; ++k) p[2 * L + k] += qi[k];
-      if (quality) {
-#pragma omp simd
-        for (int k = 0; k < L; ++k) {
-          for (int c3 = 0; c3 < 3; ++c3) {
-            J[i][c3][k] = R[c3][2 * L + k];
-            J[i][3 + c3][k] = 0.0;
-          }
-        }
-      }
-    }
-    transform(fixed_[i].data(), p, true);
-    for (auto& axis : R) transform(fixed_[i].data(), axis, false);
+  const Chain chain{fixed_.data(), revolute_.data(), n, p_last_.data(), R_last_.data()};
+  if (wide_) {
+    wideKernel(chain, q, c, s, p, approach, x_axis, quality, manipulability);
+  } else {
+    narrowKernel(chain, q, c, s, p, approach, x_axis, quality, manipulability);
   }
-  std::copy_n(R[2], 3 * L, approach);
-  std::copy_n(R[0], 3 * L, x_axis);
-  if (!quality) return;
-
-  manipulabilities(J, n, *quality, manipulability);
 }
 
 }  // namespace mcws
+
+#undef MCWS_KERNEL_INLINE

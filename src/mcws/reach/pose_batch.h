@@ -26,25 +26,40 @@ class PoseBatch {
  public:
   static constexpr int kLanes = 8;
 
+  /// \param wide four lanes at a time in AVX registers where the processor has them (the
+  ///   results are the same bits; false: two at a time in SSE2 registers, as the build targets).
   /// \throws mcws::Error for a robot with more than 8 joints.
-  explicit PoseBatch(const Robot& robot);
+  explicit PoseBatch(const Robot& robot, bool wide = true);
   int dof() const { return static_cast<int>(revolute_.size()); }
 
   /// \brief Tool poses of kLanes joint vectors.
   /// \param q q[j * kLanes + k] = joint j of sample k [rad | length unit].
   /// \param p p[a * kLanes + k] = coordinate a of sample k's tool point [length unit].
-  /// \param approach the tool's z axis, x_axis its x axis, laid out as p.
+  /// \param approach the tool's z axis, laid out as p.
+  /// \param x_axis the tool's x axis, laid out as p; nullptr when not wanted (not computed then).
   /// \param quality when not null, also writes manipulability[k] as mcws::manipulability() of
   ///   the sample's Jacobian would, with these options.
   /// \param manipulability kLanes values (used only with quality).
+  ///
+  /// Each lane's values are those of the straightforward per-sample formulas in the same order
+  /// (the point and axes turned and transformed joint by joint, the Jacobian's Gram matrix summed
+  /// from 0, its Cholesky factor), bit for bit: the same IEEE operations on two or four lanes at
+  /// once (no fused multiply-adds: the build does not enable them).
   void poses(const double* q, double* p, double* approach, double* x_axis,
              const QualityOptions* quality, double* manipulability) const;
 
+  /// \brief The cosines and sines of kLanes angles [rad] as poses() computes them (glibc's
+  /// vector functions where available, which may differ from std::cos and std::sin in the last
+  /// bit).
+  static void cosinesAndSines(const double* angles, double* c, double* s);
+
  private:
-  std::vector<std::array<double, 12>> fixed_;  ///< row-major 3x4 transform before joint i
+  /// Per joint its fixed transform (row-major 3x4), each element 4 times: a vector kernel's lanes.
+  std::vector<double> fixed_;
   std::vector<char> revolute_;
   Eigen::Matrix3d R_last_;  ///< the tool's axes in the frame after the last joint's motion
   Eigen::Vector3d p_last_;  ///< the tool point there
+  bool wide_{false};        ///< four lanes at a time (AVX)
 };
 
 }  // namespace mcws

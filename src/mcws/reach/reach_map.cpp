@@ -36,7 +36,7 @@ namespace {
 
 constexpr char kMagic[] = "MCWS-REACH-MAP 1";
 constexpr int kMaxBins = 65536;
-constexpr std::uint64_t kIndexBits = 21;
+constexpr std::uint64_t kIndexBits = ReachMap::kKeyBits;
 constexpr std::uint64_t kIndexMask = (std::uint64_t{1} << kIndexBits) - 1;
 
 /// Fibonacci hashing of a packed voxel index onto a table of 2^bits slots.
@@ -219,11 +219,41 @@ void ReachMap::sort() {
   rebuildIndex(keys_.size());
 }
 
-int ReachMap::reachedBins(std::size_t v) const {
-  int reached = 0;
-  for (int k = 0; k < words_; ++k) reached += __builtin_popcountll(bitsOf(v)[k]);
-  return reached;
+namespace {
+
+/// Set bits of words[0 .. n) by the bit-slicing sum (the build targets plain x86-64, where
+/// __builtin_popcountll is a call into libgcc).
+int setBitsPortable(const std::uint64_t* words, int n) {
+  int count = 0;
+  for (int k = 0; k < n; ++k) {
+    std::uint64_t x = words[k];
+    x -= (x >> 1) & 0x5555555555555555ull;
+    x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull);
+    x = (x + (x >> 4)) & 0x0F0F0F0F0F0F0F0Full;
+    count += static_cast<int>((x * 0x0101010101010101ull) >> 56);
+  }
+  return count;
 }
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+/// The same with the popcnt instruction, for processors that have it.
+__attribute__((target("popcnt"))) int setBitsPopcnt(const std::uint64_t* words, int n) {
+  int count = 0;
+  for (int k = 0; k < n; ++k) count += __builtin_popcountll(words[k]);
+  return count;
+}
+
+int setBits(const std::uint64_t* words, int n) {
+  static const bool popcnt = (__builtin_cpu_init(), __builtin_cpu_supports("popcnt"));
+  return popcnt ? setBitsPopcnt(words, n) : setBitsPortable(words, n);
+}
+#else
+int setBits(const std::uint64_t* words, int n) { return setBitsPortable(words, n); }
+#endif
+
+}  // namespace
+
+int ReachMap::reachedBins(std::size_t v) const { return setBits(bitsOf(v), words_); }
 
 double ReachMap::meanReachability() const {
   double sum = 0.0;

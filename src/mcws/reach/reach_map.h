@@ -69,6 +69,8 @@ class ReachMap {
   /// Voxel indices below -2^20 or at or above 2^20 cannot be stored (x / resolution beyond about
   /// one million).
   static constexpr std::int64_t kIndexLimit = 1 << 20;
+  /// Bits of each voxel index packed in a voxel's key.
+  static constexpr int kKeyBits = 21;
 
   ReachMap() = default;
   explicit ReachMap(const ReachGrid& grid);
@@ -143,6 +145,20 @@ class ReachMap {
   const std::uint64_t* bitsOf(std::size_t v) const { return records_.data() + v * stride_ + 2; }
   std::uint64_t keyOf(const Eigen::Vector3d& p) const;
   static std::uint64_t keyOf(const Eigen::Vector3i& index);
+  /// keyOf(p) for p = (p[0], p[stride], p[2 stride]) without Eigen or floor() calls (the same
+  /// key); false where p is beyond the grid's range (or NaN), where keyOf() throws.
+  bool keyInGrid(const double* p, int stride, std::uint64_t& key) const {
+    key = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double s = p[a * stride] * inverse_resolution_;
+      // floor(s) is within [-limit, limit) exactly when s is (the limits are whole numbers).
+      if (!(s >= -kIndexLimit && s < kIndexLimit)) return false;
+      auto i = static_cast<std::int64_t>(s);    // toward zero
+      i -= static_cast<double>(i) > s ? 1 : 0;  // floor
+      key = (key << kKeyBits) | static_cast<std::uint64_t>(i + kIndexLimit);
+    }
+    return true;
+  }
 
   ReachGrid grid_;
   OrientationBins bins_{1, 1};

@@ -354,13 +354,19 @@ class ReachMapBuilder {
         counted[k] = k < lanes && (!sampling_.collision ||
                                    sampling_.collision->label(sample_q, scratch) == kLabelFree);
       }
-      batch_.poses(q, p, a, x, quality_, w);
+      // The tool's x axis only for roll bins.
+      batch_.poses(q, p, a, empty_.bins().rolls() > 1 ? x : nullptr, quality_, w);
       empty_.bins().bins(a, x, kLanes, bins);
       for (int k = 0; k < kLanes; ++k) {
         if (!counted[k]) continue;
-        empty_.checkBin(bins[k]);
-        post(t, empty_.keyOf(Eigen::Vector3d(p[k], p[kLanes + k], p[2 * kLanes + k])), bins[k],
-             static_cast<float>(w[k]));
+        if (static_cast<unsigned>(bins[k]) >= static_cast<unsigned>(empty_.bins().size())) {
+          empty_.checkBin(bins[k]);  // throws
+        }
+        std::uint64_t key;
+        if (!empty_.keyInGrid(p + k, kLanes, key)) {
+          key = empty_.keyOf(Eigen::Vector3d(p[k], p[kLanes + k], p[2 * kLanes + k]));  // throws
+        }
+        post(t, key, bins[k], static_cast<float>(w[k]));
       }
     }
   }
