@@ -312,6 +312,19 @@ TEST(OutputSet, TwoSpellingsOfOneNewFileAreRefused) {
   fs::current_path(cwd);
 }
 
+TEST(AtomicFile, AReservedSizeIsNotTheFilesSize) {
+  // The place reserved for a file larger than what is written leaves it the bytes written.
+  test::TempDir dir;
+  {
+    io::AtomicFile file(dir.file("short"));
+    file.reserve(std::uint64_t{1} << 20);
+    file.write("ten bytes\n", 10);
+    file.commit();
+  }
+  EXPECT_EQ(test::readFile(dir.file("short")), "ten bytes\n");
+  EXPECT_EQ(fs::file_size(dir.file("short")), 10u);
+}
+
 TEST(AtomicFile, WritesAtOffsetsFromSeveralThreadsAfterWhatWriteAppended) {
   // The header through write(), then 64 pieces at their offsets, from 4 threads in reverse
   // order: the file is the pieces in place, whoever wrote them when.

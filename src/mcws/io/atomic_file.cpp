@@ -457,6 +457,11 @@ std::pair<std::uint64_t, std::uint64_t> AtomicFile::writebackRange(std::uint64_t
   return {std::exchange(writeback_to_, end), end};
 }
 
+void AtomicFile::reserve(std::uint64_t size) {
+  if (!file_ || write_through_ || size == 0) return;
+  ::fallocate(::fileno(file_), FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(size));
+}
+
 void AtomicFile::writeAt(std::uint64_t offset, const void* data, std::size_t size) {
   if (!file_) throw Error("cannot write '" + path_ + "': it is closed");
   if (!positional()) {

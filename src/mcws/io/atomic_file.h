@@ -78,6 +78,11 @@ class AtomicFile {
   std::FILE* stream() { return file_; }
   /// \brief Writes `size` bytes. \throws mcws::Error on a write error (disk full, ...).
   void write(const void* data, std::size_t size);
+  /// \brief Tells the file system the file will hold `size` bytes, so that it can give them their
+  /// place on the disk now rather than while the bytes are being written (fallocate, keeping the
+  /// file's size). A regular file only; does nothing where the file system cannot (the writes
+  /// then report what is wrong, such as a full disk).
+  void reserve(std::uint64_t size);
   /// \brief Whether writeAt() may be used: the bytes go to a file that can be written at offsets
   /// (a regular file, also the buffer of a device in an OutputSet), not straight to a device,
   /// FIFO or socket.

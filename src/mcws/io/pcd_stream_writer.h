@@ -109,6 +109,7 @@ class PcdStreamWriter {
     const std::string header = layout_.header(points, format, provenance);
     file_.write(header.data(), header.size());
     header_size_ = header.size();
+    if (format == PcdFormat::kBinary) file_.reserve(header_size_ + points * layout_.recordSize());
   }
 
   /// \brief Appends `count` points. \throws mcws::Error on a write error or too many points.
