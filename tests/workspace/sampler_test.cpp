@@ -436,6 +436,25 @@ TEST(WriteSamples, ReportsProgressOnTheCallingThreadUpToTheEnd) {
   EXPECT_EQ(done.back(), n);
 }
 
+TEST(WriteSamples, WhatProgressThrowsEndsTheRunWithoutAFile) {
+  // A cancellation thrown by the progress callback, on the calling thread inside the loop.
+  test::TempDir dir;
+  const ShapeSampler ball(Shape::kBall, 3);
+  for (int threads = 1; threads <= 3; ++threads) {
+    int calls = 0;
+    EXPECT_EQ(test::errorOf([&] {
+                writeSamples(ball, 700001, dir.file("ws.pcd"), io::PcdFormat::kBinary, threads,
+                             [&](std::size_t, std::size_t) {
+                               ++calls;
+                               throw Error("cancelled");
+                             });
+              }),
+              "cancelled");
+    EXPECT_EQ(calls, 1);
+    EXPECT_EQ(dir.fileCount(), 0u);
+  }
+}
+
 // A URDF with a continuous joint without limits (one turn, [-pi, pi)), one with limits [-1, 2),
 // and a mimic joint between them (x 0.5 of the first, issue 33 item 2): the sampler draws the two
 // free joints over those ranges, and each point is the FK of its joint values.

@@ -328,8 +328,13 @@ SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::u
       }
       const std::uint64_t now = done += count;
       if (progress && omp_get_thread_num() == 0 && now >= next_report && now < n) {
-        progress(static_cast<std::size_t>(now), static_cast<std::size_t>(n));
         next_report = (now / kChunk + 1) * kChunk;
+        try {  // what it throws (a cancellation) ends the loop too
+          progress(static_cast<std::size_t>(now), static_cast<std::size_t>(n));
+        } catch (...) {
+          error.record(static_cast<std::size_t>(block), std::current_exception());
+          turns.wake();
+        }
       }
     }
   }

@@ -189,7 +189,8 @@ enum class SinkOrder {
 /// depend on `threads`, nor does the summary.
 /// \param order kAnyOrder: `sink` must be safe on several threads at once.
 /// \param progress called on the calling thread now and then, and at the end, with (samples
-///   done, last - first); may be empty.
+///   done, last - first); may be empty. What it throws (a cancellation) ends the loop and is
+///   rethrown.
 /// PointT: WorkspacePoint or QualityPoint. Rethrows what `generator`, `encode` or `sink` throws
 /// (that of the lowest block) once every thread has stopped.
 template <typename PointT>
