@@ -191,13 +191,19 @@ TEST_F(SampleApp, DeicingPlaneCloudWithJson) {
   EXPECT_EQ(dir_.fileCount(), 1u);
 }
 
-TEST_F(SampleApp, SameFileForOneAndTwoThreads) {
+TEST_F(SampleApp, SameFileForOneTwoAndThreeThreadsAndThroughADescriptor) {
   const std::string robot = " --robot " + test::robotPath("ta1400") + " --samples 300001 --seed 9";
   ASSERT_EQ(test::run(kSample + robot + " --threads 1 --output " + dir_.file("a.pcd")).exit_code,
             0);
   ASSERT_EQ(test::run(kSample + robot + " --threads 2 --output " + dir_.file("b.pcd")).exit_code,
             0);
   EXPECT_EQ(test::readFile(dir_.file("a.pcd")), test::readFile(dir_.file("b.pcd")));
+  // Through a descriptor the blocks are written one after the other, not at their offsets.
+  ASSERT_EQ(test::run("(" + kSample + robot + " --threads 3 --output /dev/stdout > " +
+                      dir_.file("c.pcd") + ")")
+                .exit_code,
+            0);
+  EXPECT_EQ(test::readFile(dir_.file("a.pcd")), test::readFile(dir_.file("c.pcd")));
 }
 
 TEST_F(SampleApp, ReproducesTheReferenceCloudsByteForByte) {

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mcws/core/input_files.h"
@@ -309,6 +310,74 @@ TEST(OutputSet, TwoSpellingsOfOneNewFileAreRefused) {
   EXPECT_EQ(listing(dir.file("")), (std::set<std::string>{"real", "linked", "dangling"}));
   EXPECT_TRUE(listing(dir.file("real")).empty());
   fs::current_path(cwd);
+}
+
+TEST(AtomicFile, AReservedSizeIsNotTheFilesSize) {
+  // The place reserved for a file larger than what is written leaves it the bytes written.
+  test::TempDir dir;
+  {
+    io::AtomicFile file(dir.file("short"));
+    file.reserve(std::uint64_t{1} << 20);
+    file.write("ten bytes\n", 10);
+    file.commit();
+  }
+  EXPECT_EQ(test::readFile(dir.file("short")), "ten bytes\n");
+  EXPECT_EQ(fs::file_size(dir.file("short")), 10u);
+}
+
+TEST(AtomicFile, WritesAtOffsetsFromSeveralThreadsAfterWhatWriteAppended) {
+  // The header through write(), then 64 pieces at their offsets, from 4 threads in reverse
+  // order: the file is the pieces in place, whoever wrote them when.
+  test::TempDir dir;
+  const std::string head = "header\n";
+  std::string expected = head;
+  for (int k = 0; k < 64; ++k) expected += std::string(1000, static_cast<char>('A' + k % 26));
+  {
+    io::AtomicFile file(dir.file("pieces"));
+    ASSERT_TRUE(file.positional());
+    file.write(head.data(), head.size());
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t) {
+      threads.emplace_back([&, t] {
+        for (int k = 63 - t; k >= 0; k -= 4) {
+          const std::size_t at = head.size() + 1000 * static_cast<std::size_t>(k);
+          file.writeAt(at, expected.data() + at, 1000);
+        }
+      });
+    }
+    for (std::thread& thread : threads) thread.join();
+    file.commit();
+  }
+  EXPECT_EQ(test::readFile(dir.file("pieces")), expected);
+}
+
+TEST(AtomicFile, WritesAtOffsetsOnlyToAFileNotThroughToAFifo) {
+  test::TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  {
+    io::AtomicFile through(fifo);
+    EXPECT_FALSE(through.positional());
+    EXPECT_EQ(test::errorOf([&] { through.writeAt(0, "x", 1); }),
+              "cannot write '" + fifo + "' at an offset: it is not a regular file");
+  }
+  char buffer[64] = {};
+  {
+    // In an output set the FIFO's bytes wait in a file: that one is written at offsets.
+    io::OutputSet outputs;
+    io::AtomicFile held(fifo);
+    EXPECT_TRUE(held.positional());
+    held.write("ab", 2);
+    held.writeAt(4, "ef", 2);
+    held.writeAt(2, "cd", 2);
+    held.commit();
+    outputs.commit();
+  }
+  const ssize_t got = ::read(reader, buffer, sizeof buffer);
+  ::close(reader);
+  EXPECT_EQ(std::string(buffer, got > 0 ? got : 0), "abcdef");
 }
 
 TEST(AtomicFile, ADescriptorOfTheProcessIsWrittenThroughAndAppendsToAnAppendingFile) {

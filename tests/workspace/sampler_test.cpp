@@ -3,10 +3,18 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <pcl/common/common.h>
 #include <pcl/io/pcd_io.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <map>
+#include <thread>
 #include <vector>
 
 #include "mcws/core/error.h"
@@ -284,6 +292,167 @@ TEST(WriteSamples, StreamedFileEqualsTheCloudInMemory) {
   EXPECT_EQ(summary.points, n);
   EXPECT_FLOAT_EQ(summary.min.x(), min.x);
   EXPECT_FLOAT_EQ(summary.max.z(), max.z);
+}
+
+/// Samples whose x is 1 before sample `from` and +0 or -0 from it on, and whose z is -1 before it
+/// and the same zero: the bounds tie between zeros of both signs, first met at sample `from`.
+/// Labels cycle through 0..5 (the collision codes and two more). Throws for the samples from
+/// `failing` on, naming the first of them.
+class TieSampler : public PointGenerator {
+ public:
+  TieSampler(std::uint64_t from, bool negative_first, std::uint64_t failing = ~0ull)
+      : from_(from), flip_(negative_first), failing_(failing) {}
+  void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override {
+    if (first + count > failing_) {
+      throw Error("sample " + std::to_string(std::max(first, failing_)) + " failed");
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint64_t i = first + k;
+      const bool negative = ((((i - from_) * 2654435761u) >> 7) & 1) == 0 ? flip_ : !flip_;
+      out[k] = WorkspacePoint();
+      out[k].x = i < from_ ? 1.0f : (negative ? -0.0f : 0.0f);
+      out[k].y = static_cast<float>(i % 1000);
+      out[k].z = i < from_ ? -1.0f : (negative ? -0.0f : 0.0f);
+      out[k].label = static_cast<std::uint32_t>(i % 6);
+    }
+  }
+
+ private:
+  std::uint64_t from_;
+  bool flip_;
+  std::uint64_t failing_;
+};
+
+/// Writes nothing: streamSamples()'s summary only.
+SampleSummary summaryOf(const PointGenerator& generator, std::uint64_t n, int threads) {
+  return streamSamples<WorkspacePoint>(
+      generator, 0, n, threads,
+      [](const WorkspacePoint*, std::size_t, std::vector<char>& bytes) { bytes.clear(); },
+      [](std::uint64_t, const char*, std::size_t, std::size_t) {}, SinkOrder::kAnyOrder);
+}
+
+TEST(StreamSamples, SummaryIsTheScanInOrderForAnyThreads) {
+  // Oracle: the bounds as a scan of the samples in order finds them (Eigen's cwiseMin keeps the
+  // first of equal values: +0 or -0, whichever comes first), the labels counted one by one.
+  constexpr std::uint64_t n = 50001;  // 13 blocks of 4096, the last one partial
+  for (const bool negative_first : {false, true}) {
+    const TieSampler sampler(20000, negative_first);
+    const auto cloud = sampleCloud(sampler, n, 1);
+    Eigen::Vector3d min = Eigen::Vector3d::Constant(INFINITY), max = -min;
+    std::map<std::uint32_t, std::size_t> labels;
+    for (const WorkspacePoint& p : cloud) {
+      const Eigen::Vector3d v(p.x, p.y, p.z);
+      min = min.cwiseMin(v);
+      max = max.cwiseMax(v);
+      ++labels[p.label];
+    }
+    ASSERT_EQ(std::signbit(min.x()), negative_first);
+    ASSERT_EQ(std::signbit(max.z()), negative_first);
+    for (int threads = 1; threads <= 4; ++threads) {
+      for (int repeat = 0; repeat < 5; ++repeat) {  // the blocks go to other threads each time
+        const SampleSummary summary = summaryOf(sampler, n, threads);
+        EXPECT_EQ(summary.points, n);
+        EXPECT_EQ(std::memcmp(summary.min.data(), min.data(), sizeof(double) * 3), 0) << threads;
+        EXPECT_EQ(std::memcmp(summary.max.data(), max.data(), sizeof(double) * 3), 0) << threads;
+        EXPECT_EQ(summary.label_counts, labels);
+      }
+    }
+  }
+}
+
+TEST(WriteSamples, SameBytesForAnyThreadsAtOffsetsInOrderAndAsAscii) {
+  // Oracles: PCL's own binary writer, and for ASCII the writer given the whole cloud at once.
+  test::TempDir dir;
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  const RobotSampler sampler(robot, {});
+  constexpr std::size_t n = 100003;
+  const auto cloud = sampleCloud(sampler, n, 1);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(dir.file("pcl.pcd"), cloud), 0);
+  const std::string binary = test::readFile(dir.file("pcl.pcd"));
+  {
+    io::PcdStreamWriter<WorkspacePoint> whole(dir.file("whole.pcd"), n, io::PcdFormat::kAscii);
+    whole.write(cloud.data(), n);
+    whole.commit();
+  }
+  const std::string ascii = test::readFile(dir.file("whole.pcd"));
+  for (int threads = 1; threads <= 3; ++threads) {
+    SCOPED_TRACE(threads);
+    writeSamples(sampler, n, dir.file("b.pcd"), io::PcdFormat::kBinary, threads);
+    EXPECT_EQ(test::readFile(dir.file("b.pcd")), binary);
+    writeSamples(sampler, n, dir.file("a.pcd"), io::PcdFormat::kAscii, threads);
+    EXPECT_EQ(test::readFile(dir.file("a.pcd")), ascii);
+    // A FIFO takes the blocks in order (a second writer keeps the reader from an early EOF).
+    const std::string fifo = dir.file("pipe");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+    const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    const int keeper = ::open(fifo.c_str(), O_WRONLY);
+    ASSERT_GE(reader, 0);
+    ASSERT_GE(keeper, 0);
+    ::fcntl(reader, F_SETFL, 0);
+    std::string piped;
+    std::thread drain([&] {
+      char buffer[1 << 16];
+      for (ssize_t got; (got = ::read(reader, buffer, sizeof buffer)) > 0;)
+        piped.append(buffer, got);
+    });
+    writeSamples(sampler, n, fifo, io::PcdFormat::kBinary, threads);
+    ::close(keeper);
+    drain.join();
+    ::close(reader);
+    std::filesystem::remove(fifo);
+    EXPECT_EQ(piped, binary);
+  }
+}
+
+TEST(WriteSamples, AFailingSampleLeavesNoFileAndTheErrorOfTheLowestBlock) {
+  constexpr std::uint64_t n = 60000, failing = 30000;  // later blocks fail too
+  const TieSampler sampler(0, false, failing);
+  for (const io::PcdFormat format : {io::PcdFormat::kBinary, io::PcdFormat::kAscii}) {
+    for (int threads = 1; threads <= 4; ++threads) {
+      test::TempDir dir;
+      EXPECT_EQ(
+          test::errorOf([&] { writeSamples(sampler, n, dir.file("ws.pcd"), format, threads); }),
+          "sample 30000 failed");
+      EXPECT_EQ(dir.fileCount(), 0u);
+    }
+  }
+}
+
+TEST(WriteSamples, ReportsProgressOnTheCallingThreadUpToTheEnd) {
+  test::TempDir dir;
+  const ShapeSampler ball(Shape::kBall, 3);
+  constexpr std::size_t n = 700001;
+  std::vector<std::size_t> done;
+  const std::thread::id caller = std::this_thread::get_id();
+  bool elsewhere = false;
+  writeSamples(ball, n, dir.file("ws.pcd"), io::PcdFormat::kBinary, 3,
+               [&](std::size_t points, std::size_t total) {
+                 elsewhere |= std::this_thread::get_id() != caller || total != n;
+                 done.push_back(points);
+               });
+  EXPECT_FALSE(elsewhere);
+  ASSERT_FALSE(done.empty());
+  EXPECT_TRUE(std::is_sorted(done.begin(), done.end()));
+  EXPECT_EQ(done.back(), n);
+}
+
+TEST(WriteSamples, WhatProgressThrowsEndsTheRunWithoutAFile) {
+  // A cancellation thrown by the progress callback, on the calling thread inside the loop.
+  test::TempDir dir;
+  const ShapeSampler ball(Shape::kBall, 3);
+  for (int threads = 1; threads <= 3; ++threads) {
+    int calls = 0;
+    EXPECT_EQ(test::errorOf([&] {
+                writeSamples(ball, 700001, dir.file("ws.pcd"), io::PcdFormat::kBinary, threads,
+                             [&](std::size_t, std::size_t) {
+                               ++calls;
+                               throw Error("cancelled");
+                             });
+              }),
+              "cancelled");
+    EXPECT_EQ(calls, 1);
+    EXPECT_EQ(dir.fileCount(), 0u);
+  }
 }
 
 // A URDF with a continuous joint without limits (one turn, [-pi, pi)), one with limits [-1, 2),

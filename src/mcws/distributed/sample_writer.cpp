@@ -1,6 +1,7 @@
 #include "mcws/distributed/sample_writer.h"
 
 #include <limits>
+#include <mutex>
 #include <vector>
 
 #include "mcws/core/error.h"
@@ -37,11 +38,18 @@ SampleSummary writeSamplesTogether(const Processes& processes,
     }
   }
   const Block block = blockOf(n, processes.rank(), processes.size());
+  std::mutex writing;  // SharedFile::writeAt() one thread at a time (MPI_THREAD_SERIALIZED)
   const SampleSummary own = streamSamples<PointT>(
       generator, block.begin, block.end, threads,
-      [&](std::uint64_t first, const PointT* points, std::size_t count) {
-        writePoints(prefix_size + first, points, count);
+      [&layout](const PointT* points, std::size_t count, std::vector<char>& out) {
+        out.resize(count * layout.recordSize());
+        layout.pack(points, count, out.data());
       },
+      [&](std::uint64_t first, const char* data, std::size_t size, std::size_t) {
+        const std::lock_guard<std::mutex> lock(writing);
+        file.writeAt(header.size() + (prefix_size + first) * record, data, size);
+      },
+      SinkOrder::kAnyOrder,
       processes.rank() == 0 ? progress : std::function<void(std::size_t, std::size_t)>());
   file.commit();
   return combineSummaries(processes, own);

@@ -12,6 +12,7 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <utility>
@@ -322,7 +323,31 @@ bool writeAll(int fd, const char* data, std::size_t size) {
 }
 }  // namespace
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+/// The ranges of a file writeAt() has written: its start [0, contiguous), all written, and the
+/// ranges written beyond it (a few: the threads write nearly in order).
+struct AtomicFile::Written {
+  std::mutex mutex;
+  std::uint64_t contiguous{0};
+  std::map<std::uint64_t, std::uint64_t> ahead;  ///< begin -> end
+
+  /// Adds [begin, end); returns the new `contiguous`.
+  std::uint64_t add(std::uint64_t begin, std::uint64_t end) {
+    if (begin > contiguous) {
+      std::uint64_t& known = ahead[begin];
+      known = std::max(known, end);
+      return contiguous;
+    }
+    contiguous = std::max(contiguous, end);
+    for (auto next = ahead.begin(); next != ahead.end() && next->first <= contiguous;) {
+      contiguous = std::max(contiguous, next->second);
+      next = ahead.erase(next);
+    }
+    return contiguous;
+  }
+};
+
+AtomicFile::AtomicFile(std::string path)
+    : path_(std::move(path)), written_(std::make_unique<Written>()) {
   const Destination destination = checkDestination(path_);
   target_ = destination.file;
   write_through_ = destination.write_through;
@@ -381,6 +406,9 @@ AtomicFile::AtomicFile(AtomicFile&& other) noexcept
       target_(std::move(other.target_)),
       temp_path_(std::move(other.temp_path_)),
       file_(std::exchange(other.file_, nullptr)),
+      appended_(other.appended_),
+      writeback_to_(other.writeback_to_),
+      written_(std::move(other.written_)),
       device_(std::exchange(other.device_, -1)),
       write_through_(other.write_through_),
       unnamed_(other.unnamed_),
@@ -408,12 +436,65 @@ void AtomicFile::write(const void* data, std::size_t size) {
   }
   // Every 8 MiB, the disk is asked to start writing what the file holds so far, without waiting
   // for it: the fdatasync() of finish() then finds a large file mostly written while the run was
-  // computing, instead of writing all of it at the end. A regular file only (not a FIFO or a
-  // device written through); a failure here shows again, and is reported, at finish().
-  unsynced_ += size;
-  if (unsynced_ >= (std::size_t{8} << 20) && !write_through_) {
-    unsynced_ = 0;
-    if (std::fflush(file_) == 0) ::sync_file_range(::fileno(file_), 0, 0, SYNC_FILE_RANGE_WRITE);
+  // computing, instead of writing all of it at the end. A failure here shows again, and is
+  // reported, at finish().
+  appended_ += size;
+  const auto [begin, end] = writebackRange(appended_);
+  if (end > begin && std::fflush(file_) == 0) {
+    ::sync_file_range(::fileno(file_), static_cast<off_t>(begin), static_cast<off_t>(end - begin),
+                      SYNC_FILE_RANGE_WRITE);
+  }
+}
+
+std::pair<std::uint64_t, std::uint64_t> AtomicFile::writebackRange(std::uint64_t written) {
+  constexpr std::uint64_t kWritebackBytes = std::uint64_t{8} << 20;
+  // Whole pages only: a page still being filled, written now, would be written again, and the
+  // write that fills it would wait for the disk.
+  constexpr std::uint64_t kPage = 4096;
+  const std::uint64_t end = written / kPage * kPage;
+  // A regular file only (not a FIFO or a device written through, nor its buffer).
+  if (write_through_ || end < writeback_to_ + kWritebackBytes) return {0, 0};
+  return {std::exchange(writeback_to_, end), end};
+}
+
+void AtomicFile::reserve(std::uint64_t size) {
+  if (!file_ || write_through_ || size == 0) return;
+  ::fallocate(::fileno(file_), FALLOC_FL_KEEP_SIZE, 0, static_cast<off_t>(size));
+}
+
+void AtomicFile::writeAt(std::uint64_t offset, const void* data, std::size_t size) {
+  if (!file_) throw Error("cannot write '" + path_ + "': it is closed");
+  if (!positional()) {
+    throw Error("cannot write '" + path_ + "' at an offset: it is not a regular file");
+  }
+  const int fd = ::fileno(file_);
+  // What write() left in the stream's buffer goes first (the header of a PcdStreamWriter);
+  // flushed once, it stays empty.
+  if (!stream_flushed_.exchange(true) && std::fflush(file_) != 0) {
+    throw Error("cannot write '" + path_ + "': " + std::strerror(errno));
+  }
+  const char* bytes = static_cast<const char*>(data);
+  for (std::size_t left = size; left > 0;) {
+    const ssize_t written =
+        ::pwrite(fd, bytes + (size - left), left, static_cast<off_t>(offset + (size - left)));
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      throw Error("cannot write '" + path_ +
+                  "': " + (written < 0 ? std::strerror(errno) : "nothing written"));
+    }
+    left -= static_cast<std::size_t>(written);
+  }
+  // The writeback of write(), over the start of the file written in full: the ranges beyond it
+  // wait for the threads still writing below them.
+  std::pair<std::uint64_t, std::uint64_t> range;
+  {
+    const std::lock_guard<std::mutex> lock(written_->mutex);
+    written_->contiguous = std::max(written_->contiguous, appended_);  // what write() took
+    range = writebackRange(written_->add(offset, offset + size));
+  }
+  if (range.second > range.first) {
+    ::sync_file_range(fd, static_cast<off_t>(range.first),
+                      static_cast<off_t>(range.second - range.first), SYNC_FILE_RANGE_WRITE);
   }
 }
 

@@ -5,9 +5,12 @@
 
 #include <sys/types.h>
 
+#include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mcws::io {
@@ -75,6 +78,20 @@ class AtomicFile {
   std::FILE* stream() { return file_; }
   /// \brief Writes `size` bytes. \throws mcws::Error on a write error (disk full, ...).
   void write(const void* data, std::size_t size);
+  /// \brief Tells the file system the file will hold `size` bytes, so that it can give them their
+  /// place on the disk now rather than while the bytes are being written (fallocate, keeping the
+  /// file's size). A regular file only; does nothing where the file system cannot (the writes
+  /// then report what is wrong, such as a full disk).
+  void reserve(std::uint64_t size);
+  /// \brief Whether writeAt() may be used: the bytes go to a file that can be written at offsets
+  /// (a regular file, also the buffer of a device in an OutputSet), not straight to a device,
+  /// FIFO or socket.
+  bool positional() const { return file_ && (!write_through_ || device_ >= 0); }
+  /// \brief Writes `size` bytes at byte `offset` of the file (pwrite), leaving what write()
+  /// appends where it was. Safe to call from several threads at once (on distinct ranges) once
+  /// the bytes write() takes are all written; write() must not be called after it.
+  /// \pre positional(). \throws mcws::Error on a write error (disk full, ...).
+  void writeAt(std::uint64_t offset, const void* data, std::size_t size);
   /// \brief Flushes, syncs, closes and gives the file the target's name, or, while an OutputSet
   /// is alive on this thread, hands it to that set. \throws mcws::Error on failure.
   void commit();
@@ -104,12 +121,22 @@ class AtomicFile {
   void linkTempFile();
   /// \brief Closes the file and removes the temporary name, if any.
   void discard();
+  /// \brief The bytes [begin, end) of the file to ask the disk to write now (sync_file_range,
+  /// without waiting): the whole pages of its written start [0, `written`) not asked for yet, once
+  /// they are 8 MiB or more. Empty for what is written through. Not thread-safe.
+  std::pair<std::uint64_t, std::uint64_t> writebackRange(std::uint64_t written);
 
-  std::string path_;           ///< as given
-  std::string target_;         ///< `path_` with its symbolic links followed
-  std::string temp_path_;      ///< the temporary name; empty while the file has none
-  std::FILE* file_{nullptr};   ///< open until commit() or destruction
-  std::size_t unsynced_{0};    ///< bytes write() took since the disk was last asked to write
+  /// The ranges writeAt() has written, to find the written start of the file.
+  struct Written;
+
+  std::string path_;                  ///< as given
+  std::string target_;                ///< `path_` with its symbolic links followed
+  std::string temp_path_;             ///< the temporary name; empty while the file has none
+  std::FILE* file_{nullptr};          ///< open until commit() or destruction
+  std::uint64_t appended_{0};         ///< bytes write() took
+  std::uint64_t writeback_to_{0};     ///< the disk was asked to write bytes [0, writeback_to_)
+  std::unique_ptr<Written> written_;  ///< made by the first writeAt()
+  std::atomic<bool> stream_flushed_{false};  ///< writeAt(): `file_`'s buffer has been flushed
   int device_{-1};             ///< a device whose bytes are buffered in `file_` (in an OutputSet)
   bool write_through_{false};  ///< the target is a device, FIFO, socket or descriptor
   bool unnamed_{false};        ///< made with O_TMPFILE and not linked yet

@@ -5,6 +5,7 @@
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_cloud.h>
 
+#include <atomic>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
@@ -107,22 +108,49 @@ class PcdStreamWriter {
     }
     const std::string header = layout_.header(points, format, provenance);
     file_.write(header.data(), header.size());
+    header_size_ = header.size();
+    if (format == PcdFormat::kBinary) file_.reserve(header_size_ + points * layout_.recordSize());
   }
 
   /// \brief Appends `count` points. \throws mcws::Error on a write error or too many points.
   void write(const PointT* points, std::size_t count) {
-    if (written_ + count > declared_) {
-      throw Error("cannot write '" + file_.path() + "': more points than the header declares");
-    }
-    buffer_.clear();
+    encode(points, count, buffer_);
+    writeEncoded(buffer_.data(), buffer_.size(), count);
+  }
+
+  /// \brief The bytes `count` points take in this file (binary records or ASCII lines), into
+  /// `out` (replacing what it held). Reads only the layout: safe on several threads at once.
+  /// \throws mcws::Error for a field type the ASCII writer does not handle.
+  void encode(const PointT* points, std::size_t count, std::vector<char>& out) const {
     if (format_ == PcdFormat::kBinary) {
-      buffer_.resize(count * layout_.recordSize());
-      layout_.pack(points, count, buffer_.data());
+      out.resize(count * layout_.recordSize());  // no clear(): pack() writes every byte
+      layout_.pack(points, count, out.data());
     } else {
+      out.clear();
       for (std::size_t i = 0; i < count; ++i)
-        appendAscii(reinterpret_cast<const char*>(&points[i]));
+        appendAscii(reinterpret_cast<const char*>(&points[i]), out);
     }
-    file_.write(buffer_.data(), buffer_.size());
+  }
+
+  /// \brief Appends what encode() made of the next `count` points (`size` bytes).
+  /// \throws mcws::Error on a write error or too many points.
+  void writeEncoded(const char* bytes, std::size_t size, std::size_t count) {
+    claim(written_, count);
+    file_.write(bytes, size);
+    written_ += count;
+  }
+
+  /// \brief Whether writeEncodedAt() may be used: binary records into a file that can be written
+  /// at offsets (AtomicFile::positional()).
+  bool positional() const { return format_ == PcdFormat::kBinary && file_.positional(); }
+
+  /// \brief Writes what encode() made of points first .. first+count-1 at their place in the
+  /// file. Safe on several threads at once and in any order, each point written once; not to be
+  /// mixed with write() or writeEncoded(). \pre positional().
+  /// \throws mcws::Error on a write error or a point beyond the declared number.
+  void writeEncodedAt(std::size_t first, const char* bytes, std::size_t count) {
+    claim(first, count);
+    file_.writeAt(header_size_ + first * layout_.recordSize(), bytes, count * layout_.recordSize());
     written_ += count;
   }
 
@@ -137,7 +165,14 @@ class PcdStreamWriter {
   }
 
  private:
-  void appendAscii(const char* point) {
+  /// Refuses points first .. first+count-1 beyond the declared number.
+  void claim(std::size_t first, std::size_t count) const {
+    if (first + count > declared_) {
+      throw Error("cannot write '" + file_.path() + "': more points than the header declares");
+    }
+  }
+
+  void appendAscii(const char* point, std::vector<char>& out) const {
     char text[64];
     bool first = true;
     for (const pcl::PCLPointField& field : layout_.fields()) {
@@ -174,18 +209,19 @@ class PcdStreamWriter {
             throw Error("cannot write '" + file_.path() + "': field '" + field.name +
                         "' has a type the ASCII writer does not handle");
         }
-        if (!first) buffer_.push_back(' ');
-        buffer_.insert(buffer_.end(), text, text + length);
+        if (!first) out.push_back(' ');
+        out.insert(out.end(), text, text + length);
         first = false;
       }
     }
-    buffer_.push_back('\n');
+    out.push_back('\n');
   }
 
   AtomicFile file_;
   PcdRecordLayout<PointT> layout_;
   std::size_t declared_{0};
-  std::size_t written_{0};
+  std::atomic<std::size_t> written_{0};
+  std::size_t header_size_{0};
   PcdFormat format_;
   std::vector<char> buffer_;
 };

@@ -3,13 +3,16 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <condition_variable>
 #include <filesystem>
-#include <future>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include "mcws/core/error.h"
+#include "mcws/core/first_error.h"
 
 namespace mcws {
 
@@ -25,7 +28,7 @@ io::CloudProvenance robotProvenance(const Robot& robot) {
 namespace {
 
 constexpr std::size_t kBlock = 4096;      ///< samples per parallel work item
-constexpr std::size_t kChunk = 1u << 18;  ///< samples per chunk (one write in writeSamples())
+constexpr std::size_t kChunk = 1u << 18;  ///< samples per chunk of generateInChunks()
 
 }  // namespace
 
@@ -183,46 +186,170 @@ pcl::PointCloud<WorkspacePoint> sampleCloud(const PointGenerator& generator, std
   return cloud;
 }
 
-template <typename PointT>
-SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
-                            std::uint64_t last, int threads, const ChunkSink<PointT>& sink,
-                            const std::function<void(std::size_t, std::size_t)>& progress) {
-  SampleSummary summary;
-  summary.min.setConstant(std::numeric_limits<double>::infinity());
-  summary.max.setConstant(-std::numeric_limits<double>::infinity());
-  const std::uint64_t n = last > first ? last - first : 0;
+namespace {
 
-  // Two buffers: the next chunk is computed while the previous one is being written.
-  std::vector<PointT, Eigen::aligned_allocator<PointT>> buffers[2];
-  std::future<void> pending;
-  for (std::uint64_t begin = first, chunk = 0; begin < last; begin += kChunk, ++chunk) {
-    const std::size_t count =
-        static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, last - begin));
-    auto& buffer = buffers[chunk % 2];
-    buffer.resize(count);
-    generateParallel(generator, begin, count, buffer.data(), threads);
-    std::size_t small_labels[4] = {0, 0, 0, 0};  // the collision codes, counted without the map
-    for (const PointT& p : buffer) {
-      const Eigen::Vector3d v(p.x, p.y, p.z);
-      summary.min = summary.min.cwiseMin(v);
-      summary.max = summary.max.cwiseMax(v);
+/// The bounding box and label counts of a thread's blocks. A bound that several samples share
+/// exactly (+0 and -0 compare equal) keeps the value of the sample of lowest index, as a scan of
+/// the samples in order would: the result does not depend on which thread drew which block.
+struct PartialSummary {
+  double min[3], max[3];
+  std::uint64_t min_block[3], max_block[3];     ///< the block each bound comes from
+  std::size_t small_labels[4] = {0, 0, 0, 0};   ///< the collision codes, counted without the map
+  std::map<std::uint32_t, std::size_t> labels;  ///< the other labels
+
+  PartialSummary() {
+    for (int a = 0; a < 3; ++a) {
+      min[a] = std::numeric_limits<double>::infinity();
+      max[a] = -std::numeric_limits<double>::infinity();
+      min_block[a] = max_block[a] = std::numeric_limits<std::uint64_t>::max();
+    }
+  }
+
+  /// Takes `value` of block `block` as the lower bound on axis `a` where it is lower, or equal
+  /// and from an earlier block.
+  void lower(int a, double value, std::uint64_t block) {
+    if (value < min[a] || (value == min[a] && block < min_block[a])) {
+      min[a] = value;
+      min_block[a] = block;
+    }
+  }
+  /// The same for the upper bound.
+  void upper(int a, double value, std::uint64_t block) {
+    if (value > max[a] || (value == max[a] && block < max_block[a])) {
+      max[a] = value;
+      max_block[a] = block;
+    }
+  }
+
+  template <typename PointT>
+  void add(const PointT* points, std::size_t count, std::uint64_t block) {
+    double low[3], high[3];
+    for (int a = 0; a < 3; ++a) {
+      low[a] = std::numeric_limits<double>::infinity();
+      high[a] = -std::numeric_limits<double>::infinity();
+    }
+    std::size_t codes[4] = {0, 0, 0, 0};
+    for (std::size_t i = 0; i < count; ++i) {
+      const PointT& p = points[i];
+      const double v[3] = {p.x, p.y, p.z};
+      for (int a = 0; a < 3; ++a) {
+        if (v[a] < low[a]) low[a] = v[a];  // the first of equal values stays, as in a scan
+        if (v[a] > high[a]) high[a] = v[a];
+      }
       if (p.label < 4) {
-        ++small_labels[p.label];
+        ++codes[p.label];
       } else {
-        ++summary.label_counts[p.label];
+        ++labels[p.label];
       }
     }
-    for (std::uint32_t label = 0; label < 4; ++label) {
-      if (small_labels[label] > 0) summary.label_counts[label] += small_labels[label];
+    for (int a = 0; a < 3; ++a) {
+      lower(a, low[a], block);
+      upper(a, high[a], block);
     }
-    if (pending.valid()) pending.get();  // rethrows a write error
-    pending = std::async(std::launch::async,
-                         [&sink, &buffer, begin, count] { sink(begin, buffer.data(), count); });
-    if (progress)
-      progress(static_cast<std::size_t>(begin - first + count), static_cast<std::size_t>(n));
+    for (int k = 0; k < 4; ++k) small_labels[k] += codes[k];
   }
-  if (pending.valid()) pending.get();
+
+  void merge(const PartialSummary& other) {
+    for (int a = 0; a < 3; ++a) {
+      lower(a, other.min[a], other.min_block[a]);
+      upper(a, other.max[a], other.max_block[a]);
+    }
+    for (int k = 0; k < 4; ++k) small_labels[k] += other.small_labels[k];
+    for (const auto& [label, count] : other.labels) labels[label] += count;
+  }
+};
+
+/// Hands the blocks of streamSamples() over in order: a thread waits for its block's turn.
+class Turns {
+ public:
+  /// Waits until block `block` is next; false when the loop failed meanwhile.
+  bool wait(std::uint64_t block, const FirstError& error) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [&] { return next_ == block || error.failed(); });
+    return next_ == block && !error.failed();
+  }
+  /// The next block's turn.
+  void pass() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++next_;
+    changed_.notify_all();
+  }
+  /// Wakes the waiting threads after a failure (recorded before: they see it under the lock).
+  void wake() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::uint64_t next_{0};
+};
+
+}  // namespace
+
+template <typename PointT>
+SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
+                            std::uint64_t last, int threads, const BlockEncoder<PointT>& encode,
+                            const EncodedSink& sink, SinkOrder order,
+                            const std::function<void(std::size_t, std::size_t)>& progress) {
+  const std::uint64_t n = last > first ? last - first : 0;
+  const std::uint64_t blocks = (n + kBlock - 1) / kBlock;
+  const int n_threads = threads > 0 ? threads : omp_get_num_procs();
+  std::vector<PartialSummary> partial(static_cast<std::size_t>(n_threads));
+  std::atomic<std::uint64_t> next_block{0}, done{0};
+  FirstError error;
+  Turns turns;
+#pragma omp parallel num_threads(n_threads)
+  {
+    PartialSummary& own = partial[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<PointT, Eigen::aligned_allocator<PointT>> points;
+    std::vector<char> bytes;
+    std::uint64_t next_report = kChunk;  // the calling thread reports every kChunk samples
+    // Blocks are taken in increasing order, so the lowest block not yet written is always being
+    // worked on: in order, a thread waits only for blocks under way.
+    for (std::uint64_t block; (block = next_block++) < blocks && !error.failed();) {
+      const std::uint64_t begin = first + block * kBlock;
+      const auto count = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, last - begin));
+      // Every block taken is drawn, also after another failed: the lowest failing block always
+      // runs, and its error is the one reported, whatever the threads.
+      try {
+        points.resize(count);
+        generator.generate(begin, count, points.data());
+        own.add(points.data(), count, block);
+        encode(points.data(), count, bytes);
+        if (order == SinkOrder::kAnyOrder || turns.wait(block, error)) {
+          sink(begin, bytes.data(), bytes.size(), count);
+          if (order == SinkOrder::kInOrder) turns.pass();
+        }
+      } catch (...) {
+        error.record(static_cast<std::size_t>(block), std::current_exception());
+        turns.wake();
+      }
+      const std::uint64_t now = done += count;
+      if (progress && omp_get_thread_num() == 0 && now >= next_report && now < n) {
+        next_report = (now / kChunk + 1) * kChunk;
+        try {  // what it throws (a cancellation) ends the loop too
+          progress(static_cast<std::size_t>(now), static_cast<std::size_t>(n));
+        } catch (...) {
+          error.record(static_cast<std::size_t>(block), std::current_exception());
+          turns.wake();
+        }
+      }
+    }
+  }
+  error.rethrow();
+  PartialSummary all;
+  for (const PartialSummary& part : partial) all.merge(part);
+  SampleSummary summary;
+  summary.min = Eigen::Vector3d(all.min[0], all.min[1], all.min[2]);
+  summary.max = Eigen::Vector3d(all.max[0], all.max[1], all.max[2]);
+  for (std::uint32_t label = 0; label < 4; ++label) {
+    if (all.small_labels[label] > 0) summary.label_counts[label] = all.small_labels[label];
+  }
+  for (const auto& [label, count] : all.labels) summary.label_counts[label] += count;
   summary.points = static_cast<std::size_t>(n);
+  if (progress && n > 0) progress(static_cast<std::size_t>(n), static_cast<std::size_t>(n));
   return summary;
 }
 
@@ -231,12 +358,26 @@ SampleSummary writeSamples(const BasicPointGenerator<PointT>& generator, std::si
                            const std::string& path, io::PcdFormat format, int threads,
                            const std::function<void(std::size_t, std::size_t)>& progress) {
   io::PcdStreamWriter<PointT> writer(path, n, format);
-  SampleSummary summary = streamSamples<PointT>(
-      generator, 0, n, threads,
-      [&writer](std::uint64_t, const PointT* points, std::size_t count) {
-        writer.write(points, count);
-      },
-      progress);
+  const BlockEncoder<PointT> encode = [&writer](const PointT* points, std::size_t count,
+                                                std::vector<char>& bytes) {
+    writer.encode(points, count, bytes);
+  };
+  SampleSummary summary;
+  if (writer.positional()) {  // binary records into a regular file: at their offsets
+    summary = streamSamples<PointT>(
+        generator, 0, n, threads, encode,
+        [&writer](std::uint64_t first, const char* bytes, std::size_t, std::size_t count) {
+          writer.writeEncodedAt(static_cast<std::size_t>(first), bytes, count);
+        },
+        SinkOrder::kAnyOrder, progress);
+  } else {  // ASCII, a FIFO, a device: one block after the other
+    summary = streamSamples<PointT>(
+        generator, 0, n, threads, encode,
+        [&writer](std::uint64_t, const char* bytes, std::size_t size, std::size_t count) {
+          writer.writeEncoded(bytes, size, count);
+        },
+        SinkOrder::kInOrder, progress);
+  }
   writer.commit();
   if (n == 0) summary.min = summary.max = Eigen::Vector3d::Zero();
   return summary;
@@ -247,10 +388,12 @@ template void generateParallel(const BasicPointGenerator<WorkspacePoint>&, std::
 template void generateParallel(const BasicPointGenerator<QualityPoint>&, std::uint64_t, std::size_t,
                                QualityPoint*, int);
 template SampleSummary streamSamples(const BasicPointGenerator<WorkspacePoint>&, std::uint64_t,
-                                     std::uint64_t, int, const ChunkSink<WorkspacePoint>&,
+                                     std::uint64_t, int, const BlockEncoder<WorkspacePoint>&,
+                                     const EncodedSink&, SinkOrder,
                                      const std::function<void(std::size_t, std::size_t)>&);
 template SampleSummary streamSamples(const BasicPointGenerator<QualityPoint>&, std::uint64_t,
-                                     std::uint64_t, int, const ChunkSink<QualityPoint>&,
+                                     std::uint64_t, int, const BlockEncoder<QualityPoint>&,
+                                     const EncodedSink&, SinkOrder,
                                      const std::function<void(std::size_t, std::size_t)>&);
 template SampleSummary writeSamples(const BasicPointGenerator<WorkspacePoint>&, std::size_t,
                                     const std::string&, io::PcdFormat, int,

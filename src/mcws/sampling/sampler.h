@@ -147,9 +147,9 @@ template <typename PointT>
 void generateParallel(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
                       std::size_t count, PointT* out, int threads);
 
-/// \brief Samples 0 .. n-1 into out[0 .. n), chunk by chunk (the chunks of writeSamples()), each
-/// chunk split across `threads` threads (0: all cores). The result does not depend on `threads`.
-/// \param progress called after each chunk with (points done, n); may be empty.
+/// \brief Samples 0 .. n-1 into out[0 .. n), chunk by chunk, each chunk split across `threads`
+/// threads (0: all cores). The result does not depend on `threads`. \param progress called after
+/// each chunk with (points done, n); may be empty.
 void generateInChunks(const PointGenerator& generator, std::size_t n, WorkspacePoint* out,
                       int threads,
                       const std::function<void(std::size_t, std::size_t)>& progress = {});
@@ -166,24 +166,43 @@ struct SampleSummary {
   std::map<std::uint32_t, std::size_t> label_counts;  ///< points per label value
 };
 
-/// \brief Receives the chunks of streamSamples(): (index of the chunk's first sample, its
-/// points, their number).
+/// \brief Turns a block of points into the bytes they take in an output: (points, their number,
+/// the bytes, replaced). Called on several threads at once.
 template <typename PointT>
-using ChunkSink = std::function<void(std::uint64_t, const PointT*, std::size_t)>;
+using BlockEncoder = std::function<void(const PointT*, std::size_t, std::vector<char>&)>;
 
-/// \brief Samples first .. last-1 chunk by chunk (memory: two chunks), each split across
-/// `threads` threads (0: all cores), handing each chunk to `sink` on a second thread while the
-/// next one is computed; returns their summary (with no points, a bounding box of +inf .. -inf).
-/// \param progress called after each chunk with (samples done, last - first); may be empty.
-/// PointT: WorkspacePoint or QualityPoint. Rethrows what `sink` throws.
+/// \brief Receives the blocks of streamSamples(): (index of the block's first sample, its bytes,
+/// their number, the block's number of samples).
+using EncodedSink = std::function<void(std::uint64_t, const char*, std::size_t, std::size_t)>;
+
+/// \brief How streamSamples() hands its blocks to the sink.
+enum class SinkOrder {
+  kInOrder,   ///< one at a time, in the order of their samples (a stream, an ASCII file)
+  kAnyOrder,  ///< as they are ready, on several threads at once (writes at offsets)
+};
+
+/// \brief Samples first .. last-1 in blocks of a few thousand, on `threads` threads (0: all
+/// cores), each thread drawing a block, encoding it with `encode` and handing the bytes to `sink`
+/// itself, so that writing one block overlaps computing the others without a writing thread or a
+/// second copy of the points; returns their summary (with no points, a bounding box of +inf ..
+/// -inf). Memory: a block of points and its bytes per thread. The blocks and their bytes do not
+/// depend on `threads`, nor does the summary.
+/// \param order kAnyOrder: `sink` must be safe on several threads at once.
+/// \param progress called on the calling thread now and then, and at the end, with (samples
+///   done, last - first); may be empty. What it throws (a cancellation) ends the loop and is
+///   rethrown.
+/// PointT: WorkspacePoint or QualityPoint. Rethrows what `generator`, `encode` or `sink` throws
+/// (that of the lowest block) once every thread has stopped.
 template <typename PointT>
 SampleSummary streamSamples(const BasicPointGenerator<PointT>& generator, std::uint64_t first,
-                            std::uint64_t last, int threads, const ChunkSink<PointT>& sink,
+                            std::uint64_t last, int threads, const BlockEncoder<PointT>& encode,
+                            const EncodedSink& sink, SinkOrder order,
                             const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-/// \brief Streams samples 0 .. n-1 into a PCD file chunk by chunk (memory: two chunks), so
-/// clouds larger than memory can be written; the file appears only when complete.
-/// \param progress called after each chunk with (points done, n); may be empty.
+/// \brief Streams samples 0 .. n-1 into a PCD file block by block (streamSamples(); binary records
+/// into a regular file are written at their offsets by the threads that compute them), so clouds
+/// larger than memory can be written; the file appears only when complete.
+/// \param progress called now and then, and at the end, with (points done, n); may be empty.
 /// PointT: WorkspacePoint or QualityPoint.
 /// \throws mcws::Error when the file cannot be written.
 template <typename PointT>
