@@ -102,7 +102,8 @@ Processes::Processes(int& argc, char**& argv) : launched_size_(announcedSize()) 
 #ifdef MCWS_HAVE_MPI
   if (launchedByMpi()) {
     int provided = 0;
-    // SERIALIZED: the sampler writes its chunks from a second thread while the first computes.
+    // SERIALIZED: the sampler's threads write their blocks into the shared file one at a time
+    // (SharedFile::writeAt holds a mutex).
     MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
     initialized_ = true;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
