@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -382,10 +384,16 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   if (options.phase) options.phase("exposed points");
   const std::vector<char> in_shell =
       shellPoints(points, D, spacing, alpha_factor, threads, options.cancel_check);
-  LeftOut<D> left_out(points, in_shell);
+  // The left-out points' tree is built while the shell is triangulated (on a thread of its own
+  // when there are several: a 3-D triangulation shares the cores with it, a 2-D one runs on one).
+  std::future<std::unique_ptr<LeftOut<D>>> building =
+      std::async(threads > 1 ? std::launch::async : std::launch::deferred,
+                 [&] { return std::make_unique<LeftOut<D>>(points, in_shell); });
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
   triangulate<D, Concurrency>(dt, points, in_shell, options.cancel_check);
+  const std::unique_ptr<LeftOut<D>> left_out_tree = building.get();
+  LeftOut<D>& left_out = *left_out_tree;
 
   if (options.phase) options.phase("alpha test");
   // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).
