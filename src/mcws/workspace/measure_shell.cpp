@@ -74,7 +74,16 @@ class LeftOut {
         1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])}));
     const std::array<float, 3> query{static_cast<float>(centre[0]), static_cast<float>(centre[1]),
                                      static_cast<float>(centre[2])};
-    Nearest nearest{removed_};
+    // The search reaches no farther than radius + slack (a little enlarged for the float
+    // rounding of the tree's distances): a point beyond that answers no (below). Where one point
+    // inside is enough, the first found clearly inside (below radius - slack) ends it.
+    const double reach = radius + slack;
+    const double bound = reach * reach * (1.0 + 1e-5);
+    Nearest nearest{removed_,
+                    bound < std::numeric_limits<float>::max()
+                        ? static_cast<float>(bound)
+                        : std::numeric_limits<float>::infinity(),
+                    !all && !found ? radius - slack : 0.0};
     tree_.findNeighbors(nearest, query.data(), nanoflann::SearchParams());
     if (!nearest.full()) return false;  // every left-out point has joined
     const double distance = std::sqrt(static_cast<double>(nearest.worstDist()));
@@ -84,7 +93,6 @@ class LeftOut {
       return true;
     }
     std::vector<std::pair<std::uint32_t, float>> near;
-    const double reach = radius + slack;
     tree_.radiusSearch(query.data(), static_cast<float>(reach * reach), near,
                        nanoflann::SearchParams(32, 0.0f, false));
     bool any = false;
@@ -120,20 +128,24 @@ class LeftOut {
       return false;
     }
   };
-  /// nanoflann result set: the nearest point not removed.
+  /// nanoflann result set: the nearest point not removed with a squared distance below `bound`,
+  /// or the first one found closer than `stop` (when positive; the search then ends).
   struct Nearest {
     using DistanceType = float;
     using IndexType = std::uint32_t;
     const std::vector<char>& removed;
+    float bound;
+    double stop;
     float best{std::numeric_limits<float>::max()};
     std::uint32_t slot{kNone};
     bool full() const { return slot != kNone; }
     std::size_t size() const { return full() ? 1 : 0; }
-    float worstDist() const { return best; }
+    float worstDist() const { return std::min(best, bound); }
     bool addPoint(float d2, std::uint32_t k) {
-      if (!removed[k] && d2 < best) {
+      if (!removed[k] && d2 < best && d2 < bound) {
         best = d2;
         slot = k;
+        if (stop > 0.0 && std::sqrt(static_cast<double>(d2)) < stop) return false;
       }
       return true;
     }
