@@ -104,6 +104,30 @@ TEST(KthNeighbour, SameResultForAnyThreadCount) {
   for (int threads : {2, 3}) EXPECT_EQ(kthNeighbourSquaredDistance(cloud, 3, 8, threads), one);
 }
 
+TEST(KthNeighbour, MatchesBruteForceOnLargerUniformBallsAndDisks) {
+  // Clouds large enough that most queries are settled by their cell's block of cells (a few by
+  // the wider block or the grid search): points inside, near the edge and on the bounding box's
+  // faces, with a cluster of copies, against brute force for every 37th point.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int dimensions : {2, 3}) {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    while (cloud.size() < 30000) {
+      const pcl::PointXYZ p(u(rng), u(rng), dimensions == 3 ? u(rng) : 0.0f);
+      const float r2 = p.x * p.x + p.y * p.y + p.z * p.z;
+      if (r2 <= 1.0f) cloud.push_back(p);
+    }
+    for (int i = 0; i < 12; ++i) cloud.push_back(cloud[100]);
+    for (int k : {1, 8}) {
+      const std::vector<float> d2 = kthNeighbourSquaredDistance(cloud, dimensions, k, 2);
+      for (std::size_t i = 0; i < cloud.size(); i += i < 100 || i > 29990 ? 1 : 37) {
+        ASSERT_EQ(d2[i], bruteForce(cloud, i, dimensions, k))
+            << "point " << i << ", D = " << dimensions << ", k = " << k;
+      }
+    }
+  }
+}
+
 TEST(KthNeighbour, RejectsBadArguments) {
   const auto cloud = randomCloud(10, 1);
   EXPECT_THROW(kthNeighbourSquaredDistance(cloud, 1, 8), Error);

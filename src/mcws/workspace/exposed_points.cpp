@@ -324,12 +324,16 @@ void markCovered(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
     erodeAlong(grid, axis, -element.box, element.box, covered, threads);
   }
   for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
-  for (const std::uint32_t i : members) {
+  std::size_t proven = 0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : proven)
+  for (std::int64_t m = 0; m < static_cast<std::int64_t>(members.size()); ++m) {
+    const std::uint32_t i = members[m];
     if (class_of[i] == j && covered[cellOf<D>(grid, cloud[i])]) {
       result.exposed[i] = 0;
-      --result.count;
+      ++proven;
     }
   }
+  result.count -= proven;
 }
 
 template <int D>
@@ -351,7 +355,8 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   // orders of magnitude: refined clouds).
   std::vector<int> class_of(points, -1);
   int classes = 0;
-  for (std::size_t i = 0; i < points; ++i) {
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : classes)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(points); ++i) {
     const double r = radius[i];
     if (!(r >= smallest && std::isfinite(r))) continue;
     class_of[i] = radiusClass(r, smallest);

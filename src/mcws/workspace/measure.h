@@ -91,7 +91,9 @@ struct MeasureOptions {
   /// Worker threads (OpenMP for the neighbour search and the edge correction, TBB for CGAL's
   /// parallel 3-D triangulation, which also stops at the core count); 0: OpenMP's default (all
   /// cores unless OMP_NUM_THREADS). The result does not depend on it. TBB's limit is process-wide
-  /// while the call runs (concurrent calls share the smallest).
+  /// while the call runs (concurrent calls share the smallest). With more than one, the shell's
+  /// (MeasureOptions::shell) search tree of its left-out points is built on a thread of its own
+  /// while the shell is triangulated.
   int threads{0};
   /// Triangulate only the points that an empty ball of alpha radius may touch (exposedPoints():
   /// a shell a few spacings deep along the region's edges, about 14 % of a 10^6-point ball, 3 % of

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -72,7 +74,16 @@ class LeftOut {
         1e-5 * (radius + std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])}));
     const std::array<float, 3> query{static_cast<float>(centre[0]), static_cast<float>(centre[1]),
                                      static_cast<float>(centre[2])};
-    Nearest nearest{removed_};
+    // The search reaches no farther than radius + slack (a little enlarged for the float
+    // rounding of the tree's distances): a point beyond that answers no (below). Where one point
+    // inside is enough, the first found clearly inside (below radius - slack) ends it.
+    const double reach = radius + slack;
+    const double bound = reach * reach * (1.0 + 1e-5);
+    Nearest nearest{removed_,
+                    bound < std::numeric_limits<float>::max()
+                        ? static_cast<float>(bound)
+                        : std::numeric_limits<float>::infinity(),
+                    !all && !found ? radius - slack : 0.0};
     tree_.findNeighbors(nearest, query.data(), nanoflann::SearchParams());
     if (!nearest.full()) return false;  // every left-out point has joined
     const double distance = std::sqrt(static_cast<double>(nearest.worstDist()));
@@ -82,7 +93,6 @@ class LeftOut {
       return true;
     }
     std::vector<std::pair<std::uint32_t, float>> near;
-    const double reach = radius + slack;
     tree_.radiusSearch(query.data(), static_cast<float>(reach * reach), near,
                        nanoflann::SearchParams(32, 0.0f, false));
     bool any = false;
@@ -118,20 +128,24 @@ class LeftOut {
       return false;
     }
   };
-  /// nanoflann result set: the nearest point not removed.
+  /// nanoflann result set: the nearest point not removed with a squared distance below `bound`,
+  /// or the first one found closer than `stop` (when positive; the search then ends).
   struct Nearest {
     using DistanceType = float;
     using IndexType = std::uint32_t;
     const std::vector<char>& removed;
+    float bound;
+    double stop;
     float best{std::numeric_limits<float>::max()};
     std::uint32_t slot{kNone};
     bool full() const { return slot != kNone; }
     std::size_t size() const { return full() ? 1 : 0; }
-    float worstDist() const { return best; }
+    float worstDist() const { return std::min(best, bound); }
     bool addPoint(float d2, std::uint32_t k) {
-      if (!removed[k] && d2 < best) {
+      if (!removed[k] && d2 < best && d2 < bound) {
         best = d2;
         slot = k;
+        if (stop > 0.0 && std::sqrt(static_cast<double>(d2)) < stop) return false;
       }
       return true;
     }
@@ -382,10 +396,16 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   if (options.phase) options.phase("exposed points");
   const std::vector<char> in_shell =
       shellPoints(points, D, spacing, alpha_factor, threads, options.cancel_check);
-  LeftOut<D> left_out(points, in_shell);
+  // The left-out points' tree is built while the shell is triangulated (on a thread of its own
+  // when there are several: a 3-D triangulation shares the cores with it, a 2-D one runs on one).
+  std::future<std::unique_ptr<LeftOut<D>>> building =
+      std::async(threads > 1 ? std::launch::async : std::launch::deferred,
+                 [&] { return std::make_unique<LeftOut<D>>(points, in_shell); });
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
   triangulate<D, Concurrency>(dt, points, in_shell, options.cancel_check);
+  const std::unique_ptr<LeftOut<D>> left_out_tree = building.get();
+  LeftOut<D>& left_out = *left_out_tree;
 
   if (options.phase) options.phase("alpha test");
   // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -79,12 +80,267 @@ std::vector<float> kthNeighbour(const pcl::PointCloud<pcl::PointXYZ>& cloud, int
 /// (a uniform cloud: 1 to 3; a cloud crowded into a small part of its bounding box: more).
 constexpr double kCrowdedCells = 16.0;
 
-/// The grid search (CellGrid, the boundary filter's): cells of about the expected distance to the
-/// `wanted`-th point of a cloud spread evenly over its bounding box, each query collecting the
-/// cells that meet a ball of that radius, twice as wide while too few points lie in it, up to
-/// four cells (the kd-tree answers the few that need more). Queries run in cell order, so
-/// neighbouring queries read the same cells. Same float distances as the kd-tree and the brute
-/// force. \return false (and leaves `result` alone) when the cloud is too crowded for the grid.
+/// The grid search (CellGrid, the boundary filter's) for the points `only`: cells of about the
+/// expected distance to the `wanted`-th point of a cloud spread evenly over its bounding box
+/// (`reach`), each query collecting the cells that meet a ball of that radius, twice as wide while
+/// too few points lie in it, up to four cells (the kd-tree answers the few that need more). Same
+/// float distances as the kd-tree and the brute force.
+template <int D>
+void gridKthOf(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, double reach,
+               const std::vector<pcl::index_t>& only, int threads, const CancelCheck& cancel_check,
+               std::vector<float>& result) {
+  const CellGrid grid(cloud, D, reach);
+  std::vector<pcl::index_t> declined;
+  FirstError error;  // running out of memory leaves the parallel region through it
+#pragma omp parallel num_threads(threads)
+  {
+    CellGridSearch search(grid, cloud, reach, 4.0 * grid.cellSize());
+    std::vector<pcl::index_t> own;
+    CancelPacer pacer = detail::callingThreadPacer(cancel_check, detail::kPointCancelStride);
+#pragma omp for schedule(dynamic, 4096)
+    for (std::int64_t k = 0; k < static_cast<std::int64_t>(only.size()); ++k) {
+      error.run(k, [&] {
+        pacer.step();
+        const pcl::index_t i = only[k];
+        const std::optional<float> d2 = search.kthDistance2(i, static_cast<int>(wanted), nullptr);
+        if (d2) {
+          result[i] = *d2;
+        } else {
+          own.push_back(i);
+        }
+      });
+    }
+#pragma omp critical
+    error.run(only.size(), [&] { declined.insert(declined.end(), own.begin(), own.end()); });
+  }
+  error.rethrow();
+  if (!declined.empty()) {
+    std::sort(declined.begin(), declined.end());  // the same tree queries for any thread count
+    const std::vector<float> tree =
+        kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, cancel_check, &declined);
+    for (std::size_t j = 0; j < declined.size(); ++j) result[declined[j]] = tree[j];
+  }
+}
+
+/// The candidates first selected from: those below this many times the previous answer (squared
+/// distances; 1.4 times the distance: about 25 points of a uniform cloud for k = 8).
+constexpr float kNearHint = 2.0f;
+
+/// The search most queries take: the points sorted into cells of the grid search's geometry
+/// (CellGrid's, edge `reach`), each cell's 3^D block of cells gathered once for the queries in
+/// it, then for the queries that block does not settle their 5^D block. A block settles a query
+/// when `wanted` of its points lie closer than the nearest cell outside it may (the squared
+/// distances, as CellGrid computes them, below that bound less a relative 1e-5 for their
+/// rounding, as CellGridSearch bounds its own): the `wanted`-th smallest of them is then that of
+/// the whole cloud, exact. Whatever neither block settles (clouds far from uniform) goes to the
+/// grid search.
+template <int D>
+class BlockSearch {
+ public:
+  BlockSearch(const pcl::PointCloud<pcl::PointXYZ>& cloud, double reach) {
+    const std::size_t n = cloud.size();
+    Eigen::Vector3d min = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+    Eigen::Vector3d max = -min;
+    for (const auto& p : cloud) {
+      min = min.cwiseMin(p.getVector3fMap().cast<double>());
+      max = max.cwiseMax(p.getVector3fMap().cast<double>());
+    }
+    // CellGrid's sizing: at most about 4 cells per point.
+    const Eigen::Vector3d extent = max - min;
+    cell_ = reach;
+    const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
+    for (;;) {
+      double cells = 1.0;
+      for (int a = 0; a < D; ++a) cells *= std::floor(extent[a] / cell_) + 1.0;
+      if (cells <= max_cells) break;
+      cell_ *= std::max(1.01, std::pow(cells / max_cells, 1.0 / D));
+    }
+    std::int64_t total = 1;
+    for (int a = 0; a < D; ++a) {
+      origin_[a] = min[a];
+      counts_[a] = static_cast<std::int64_t>(std::floor(extent[a] / cell_)) + 1;
+      total *= counts_[a];
+    }
+    // Counting sort of the points by cell.
+    std::vector<std::uint32_t> cell_of(n);
+    start_.assign(static_cast<std::size_t>(total) + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::int64_t c = 0;
+      for (int a = D - 1; a >= 0; --a) c = c * counts_[a] + cellAlong(cloud[i].data[a], a);
+      cell_of[i] = static_cast<std::uint32_t>(c);
+      ++start_[c + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    for (int a = 0; a < D; ++a) xyz_[a].resize(n);
+    index_.resize(n);
+    std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t slot = next[cell_of[i]]++;
+      for (int a = 0; a < D; ++a) xyz_[a][slot] = cloud[i].data[a];
+      index_[slot] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  std::size_t cells() const { return start_.size() - 1; }
+  /// The mean, over the points, of the number of points in their cell.
+  double crowding() const {
+    double sum = 0.0;
+    for (std::size_t c = 0; c + 1 < start_.size(); ++c) {
+      const double m = start_[c + 1] - start_[c];
+      sum += m * m;
+    }
+    return sum / static_cast<double>(index_.size());
+  }
+
+  /// One thread's working memory: a block's points (coordinates in parallel arrays) and their
+  /// squared distances from the query.
+  struct Scratch {
+    std::array<std::vector<float>, D> xyz;
+    std::vector<float> d2, near;
+    std::size_t size{0};
+    float hint{std::numeric_limits<float>::infinity()};  ///< the last answer
+  };
+
+  /// Settles the queries of cell `c` that its blocks settle (result by point index); appends the
+  /// others to `declined`.
+  void settleCell(std::size_t c, std::size_t wanted, Scratch& block, Scratch& wide,
+                  std::vector<float>& result, std::vector<pcl::index_t>& declined) const {
+    if (start_[c] == start_[c + 1]) return;
+    std::array<std::int64_t, 3> at{0, 0, 0};
+    std::size_t rest = c;
+    for (int a = 0; a < D; ++a) {
+      at[a] = static_cast<std::int64_t>(rest % static_cast<std::size_t>(counts_[a]));
+      rest /= static_cast<std::size_t>(counts_[a]);
+    }
+    gather(at, 1, block);
+    bool wide_gathered = false;
+    for (std::uint32_t slot = start_[c]; slot < start_[c + 1]; ++slot) {
+      std::optional<float> d2 = settle(slot, at, 1, wanted, block);
+      if (!d2) {
+        if (!wide_gathered) gather(at, 2, wide);
+        wide_gathered = true;
+        d2 = settle(slot, at, 2, wanted, wide);
+      }
+      if (d2) {
+        result[index_[slot]] = *d2;
+      } else {
+        declined.push_back(static_cast<pcl::index_t>(index_[slot]));
+      }
+    }
+  }
+
+ private:
+  std::int64_t cellAlong(float v, int a) const {
+    const double c = std::floor((static_cast<double>(v) - origin_[a]) / cell_);
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::max(c, -1.0)), 0,
+                                    counts_[a] - 1);
+  }
+
+  /// The points of the cells within `half` cells of cell `at` along every axis.
+  void gather(const std::array<std::int64_t, 3>& at, std::int64_t half, Scratch& out) const {
+    std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::max<std::int64_t>(at[a] - half, 0);
+      hi[a] = std::min<std::int64_t>(at[a] + half, counts_[a] - 1);
+    }
+    out.size = 0;
+    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const std::int64_t row = (z * counts_[1] + y) * counts_[0];
+        const std::uint32_t begin = start_[row + lo[0]], end = start_[row + hi[0] + 1];
+        const std::size_t base = out.size;
+        out.size += end - begin;
+        if (out.d2.size() < out.size) {
+          for (auto& v : out.xyz) v.resize(2 * out.size);
+          out.d2.resize(2 * out.size);
+          out.near.resize(2 * out.size);
+        }
+        for (int a = 0; a < D; ++a) {
+          std::copy(xyz_[a].begin() + begin, xyz_[a].begin() + end, out.xyz[a].begin() + base);
+        }
+      }
+    }
+  }
+
+  /// The `wanted`-th smallest squared distance from the point in `slot` (in cell `at`) when the
+  /// block of `half` cells around `at` (gathered in `block`) settles it.
+  std::optional<float> settle(std::uint32_t slot, const std::array<std::int64_t, 3>& at,
+                              std::int64_t half, std::size_t wanted, Scratch& block) const {
+    // How near a point outside the block may be: the distance to the nearest face of the block
+    // beyond which cells lie, less a little for the rounding of the points' cells.
+    double gap = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < D; ++a) {
+      const double v = xyz_[a][slot];
+      if (at[a] - half > 0) gap = std::min(gap, v - (origin_[a] + (at[a] - half) * cell_));
+      if (at[a] + half < counts_[a] - 1) {
+        gap = std::min(gap, origin_[a] + (at[a] + half + 1) * cell_ - v);
+      }
+    }
+    gap -= 1e-9 * cell_;
+    if (!(gap > 0.0)) return std::nullopt;
+    const float limit = std::isinf(gap)
+                            ? std::numeric_limits<float>::infinity()
+                            : static_cast<float>(std::min(gap * gap * (1.0 - 1e-5), 1e38));
+    const float px = xyz_[0][slot], py = xyz_[1][slot], pz = D == 3 ? xyz_[D - 1][slot] : 0.0f;
+    squaredDistances(block, px, py, pz);
+    // The candidates below the limit, packed in front; the wanted-th smallest of them. First
+    // those within a few times the previous query's answer (a neighbour's: a hint only, the
+    // answer does not depend on it), a short list to select from.
+    float* d2 = block.d2.data();
+    const float near = std::min(limit, kNearHint * block.hint);
+    std::size_t m = 0;
+    for (std::size_t k = 0; k < block.size; ++k) {
+      const float d = d2[k];
+      block.near[m] = d;
+      m += d < near;
+    }
+    if (m >= wanted) {
+      std::nth_element(block.near.begin(), block.near.begin() + (wanted - 1),
+                       block.near.begin() + m);
+      block.hint = block.near[wanted - 1];
+      return block.hint;
+    }
+    m = 0;
+    for (std::size_t k = 0; k < block.size; ++k) {
+      const float d = d2[k];
+      d2[m] = d;
+      m += d < limit;
+    }
+    if (m < wanted) return std::nullopt;
+    std::nth_element(d2, d2 + (wanted - 1), d2 + m);
+    block.hint = d2[wanted - 1];
+    return block.hint;
+  }
+
+  /// As CellGrid computes them: float, point minus query, summed x, y, z in that order.
+  static void squaredDistances(Scratch& block, float px, float py, float pz) {
+    const float* __restrict xs = block.xyz[0].data();
+    const float* __restrict ys = block.xyz[1].data();
+    const float* __restrict zs = block.xyz[D - 1].data();
+    float* __restrict d2 = block.d2.data();
+    for (std::size_t k = 0; k < block.size; ++k) {
+      const float dx = xs[k] - px, dy = ys[k] - py;
+      float d = dx * dx;
+      d += dy * dy;
+      if constexpr (D == 3) {
+        const float dz = zs[k] - pz;
+        d += dz * dz;
+      }
+      d2[k] = d;
+    }
+  }
+
+  double cell_{0.0};
+  std::array<double, 3> origin_{0.0, 0.0, 0.0};
+  std::array<std::int64_t, 3> counts_{1, 1, 1};
+  std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])
+  std::array<std::vector<float>, D> xyz_;
+  std::vector<std::uint32_t> index_;  // cloud index in cell order
+};
+
+/// The k-th neighbour distances on a grid: the block search (BlockSearch) for most points, the
+/// grid search (gridKthOf()) for the others. \return false (and leaves `result` alone) when the
+/// cloud is too crowded for a grid (its points share cells with kCrowdedCells others on average).
 template <int D>
 bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, int threads,
              const CancelCheck& cancel_check, std::vector<float>& result) {
@@ -99,39 +355,30 @@ bool gridKth(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, in
   // The radius of a ball (disk) that holds `wanted` points at the box's mean density.
   const double unit = D == 2 ? M_PI : 4.0 * M_PI / 3.0;
   const double reach = std::pow(volume * static_cast<double>(wanted) / (unit * n), 1.0 / D);
-  const CellGrid grid(cloud, D, reach);
-  double crowding = 0.0;
-  for (const auto& p : cloud) crowding += static_cast<double>(grid.population(p));
-  if (crowding / static_cast<double>(n) > kCrowdedCells) return false;
+  const BlockSearch<D> blocks(cloud, reach);
+  if (blocks.crowding() > kCrowdedCells) return false;
   result.assign(n, 0.0f);
   std::vector<pcl::index_t> declined;
-  FirstError error;  // running out of memory leaves the parallel region through it
+  FirstError error;  // running out of memory or cancelling leaves the parallel region through it
 #pragma omp parallel num_threads(threads)
   {
-    CellGridSearch search(grid, cloud, reach, 4.0 * grid.cellSize());
+    typename BlockSearch<D>::Scratch block, wide;
     std::vector<pcl::index_t> own;
-    CancelPacer pacer = detail::callingThreadPacer(cancel_check, detail::kPointCancelStride);
-#pragma omp for schedule(dynamic, 4096)
-    for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
-      error.run(k, [&] {
+    CancelPacer pacer = detail::callingThreadPacer(cancel_check, detail::kPointCancelStride / 4);
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t c = 0; c < static_cast<std::int64_t>(blocks.cells()); ++c) {
+      error.run(c, [&] {
         pacer.step();
-        const pcl::index_t i = grid.order()[k];
-        const std::optional<float> d2 = search.kthDistance2(i, static_cast<int>(wanted), nullptr);
-        if (d2) {
-          result[i] = *d2;
-        } else {
-          own.push_back(i);
-        }
+        blocks.settleCell(static_cast<std::size_t>(c), wanted, block, wide, result, own);
       });
     }
 #pragma omp critical
-    error.run(n, [&] { declined.insert(declined.end(), own.begin(), own.end()); });
+    error.run(blocks.cells(), [&] { declined.insert(declined.end(), own.begin(), own.end()); });
   }
   error.rethrow();
   if (!declined.empty()) {
-    const std::vector<float> tree =
-        kthNeighbour<D>(cloud, static_cast<int>(wanted) - 1, threads, cancel_check, &declined);
-    for (std::size_t j = 0; j < declined.size(); ++j) result[declined[j]] = tree[j];
+    std::sort(declined.begin(), declined.end());
+    gridKthOf<D>(cloud, wanted, reach, declined, threads, cancel_check, result);
   }
   return true;
 }
