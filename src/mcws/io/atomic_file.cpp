@@ -27,10 +27,47 @@ namespace {
 
 // Temporary names to remove if a signal ends the process. A fixed table: the handler may only
 // call async-signal-safe functions (unlink, signal, raise) and read lock-free atomics.
-constexpr int kMaxOpenFiles = 32;
 constexpr std::size_t kMaxPath = 4096;
-char g_temp_paths[kMaxOpenFiles][kMaxPath];
-std::atomic<bool> g_temp_used[kMaxOpenFiles];
+
+/// Paths the signal handler removes: fixed arrays (nothing to allocate in the handler), a flag per
+/// slot that the handler reads, slots taken under a mutex.
+template <int N>
+class SignalPathTable {
+ public:
+  /// \return the slot holding `path`; -1 when the path is too long or every slot is taken (that
+  /// path is then not removed on a signal).
+  int add(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (path.size() >= kMaxPath) return -1;
+    for (int k = 0; k < N; ++k) {
+      if (!used_[k].load()) {
+        std::memcpy(paths_[k], path.c_str(), path.size() + 1);
+        used_[k].store(true);
+        return k;
+      }
+    }
+    return -1;
+  }
+  /// Forgets a slot of add() (-1: nothing).
+  void remove(int slot) {
+    if (slot >= 0) used_[slot].store(false);
+  }
+  /// Calls `f` on each path held (async-signal-safe when `f` is).
+  template <class F>
+  void forEach(F f) const {
+    for (int k = 0; k < N; ++k) {
+      if (used_[k].load()) f(paths_[k]);
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  char paths_[N][kMaxPath]{};
+  std::atomic<bool> used_[N]{};
+};
+
+// Files being made by AtomicFile, unlinked on a signal.
+SignalPathTable<32> g_temp_files;
 
 /// Signals whose default action ends the process and that a handler can catch.
 constexpr int kCleanedSignals[] = {SIGINT,  SIGTERM, SIGHUP,  SIGPIPE,   SIGQUIT, SIGXFSZ,
@@ -44,9 +81,7 @@ constexpr std::size_t kMaxNamePrefix = 200;
 static_assert(1 + kMaxNamePrefix + 6 + 10 + 1 + 10 <= NAME_MAX);
 
 // Directories of files being made (registerTempDirectory()), emptied and removed on a signal.
-constexpr int kMaxDirectories = 4;
-char g_temp_dirs[kMaxDirectories][kMaxPath];
-std::atomic<bool> g_temp_dir_used[kMaxDirectories];
+SignalPathTable<4> g_temp_dirs;
 
 /// Removes the files of a flat directory and the directory, with system calls only (no
 /// allocation: readdir's DIR is malloc'd, so the entries are read with getdents64).
@@ -72,12 +107,8 @@ void removeFlatDirectory(const char* path) {
 }
 
 extern "C" void removeTempFilesAndReraise(int signal_number) {
-  for (int k = 0; k < kMaxOpenFiles; ++k) {
-    if (g_temp_used[k].load()) ::unlink(g_temp_paths[k]);
-  }
-  for (int k = 0; k < kMaxDirectories; ++k) {
-    if (g_temp_dir_used[k].load()) removeFlatDirectory(g_temp_dirs[k]);
-  }
+  g_temp_files.forEach([](const char* path) { ::unlink(path); });
+  g_temp_dirs.forEach(removeFlatDirectory);
   // The signal is blocked while its handler runs: raised again, it ends the process on return.
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);
@@ -101,44 +132,18 @@ void installSignalHandlers() {
   (void)installed;
 }
 
-int registerTempFile(const std::string& path) {
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (path.size() >= kMaxPath) return -1;
-  for (int k = 0; k < kMaxOpenFiles; ++k) {
-    if (!g_temp_used[k].load()) {
-      std::memcpy(g_temp_paths[k], path.c_str(), path.size() + 1);
-      g_temp_used[k].store(true);
-      return k;
-    }
-  }
-  return -1;  // more files open than the table holds: those are not cleaned up on a signal
-}
+int registerTempFile(const std::string& path) { return g_temp_files.add(path); }
 
-void unregisterTempFile(int slot) {
-  if (slot >= 0) g_temp_used[slot].store(false);
-}
+void unregisterTempFile(int slot) { g_temp_files.remove(slot); }
 
 }  // namespace
 
 int registerTempDirectory(const std::string& path) {
   installSignalHandlers();
-  static std::mutex mutex;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (path.size() >= kMaxPath) return -1;
-  for (int k = 0; k < kMaxDirectories; ++k) {
-    if (!g_temp_dir_used[k].load()) {
-      std::memcpy(g_temp_dirs[k], path.c_str(), path.size() + 1);
-      g_temp_dir_used[k].store(true);
-      return k;
-    }
-  }
-  return -1;
+  return g_temp_dirs.add(path);
 }
 
-void unregisterTempDirectory(int slot) {
-  if (slot >= 0) g_temp_dir_used[slot].store(false);
-}
+void unregisterTempDirectory(int slot) { g_temp_dirs.remove(slot); }
 
 namespace {
 
