@@ -1,7 +1,5 @@
 #include "mcws/io/provenance.h"
 
-#include <openssl/evp.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -319,37 +317,6 @@ CloudProvenance parseProvenanceComment(const std::string& line) {
     p.input = input;
   }
   return p;
-}
-
-std::string sha256OfFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot read the file to hash it");
-  const std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> context(EVP_MD_CTX_new(),
-                                                                   EVP_MD_CTX_free);
-  if (!context || EVP_DigestInit_ex(context.get(), EVP_sha256(), nullptr) != 1) {
-    throw Error(path + ": cannot hash the file (OpenSSL's SHA-256 failed to start)");
-  }
-  std::vector<char> buffer(1u << 16);
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    const auto count = static_cast<std::size_t>(in.gcount());
-    if (count > 0 && EVP_DigestUpdate(context.get(), buffer.data(), count) != 1) {
-      throw Error(path + ": cannot hash the file (OpenSSL's SHA-256 failed)");
-    }
-  }
-  if (in.bad()) throw Error(path + ": cannot read the file to hash it");
-  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-  unsigned int length = 0;
-  if (EVP_DigestFinal_ex(context.get(), digest.data(), &length) != 1 || length != 32) {
-    throw Error(path + ": cannot hash the file (OpenSSL's SHA-256 failed)");
-  }
-  std::string hex;
-  for (unsigned int k = 0; k < length; ++k) {
-    char byte[3];
-    std::snprintf(byte, sizeof byte, "%02x", digest[k]);
-    hex += byte;
-  }
-  return hex;
 }
 
 ScopedProvenance::ScopedProvenance(const CloudProvenance& provenance) : previous_(t_scoped) {

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "mcws/io/sha256.h"  // sha256OfFile(), whose digests the provenance records
+
 namespace mcws::io {
 
 /// \brief How a cloud's samples were drawn: what, besides the robot, decides where its points lie
@@ -116,10 +118,6 @@ bool isProvenanceComment(const std::string& line);
 ///   input_points, input_sha256 and boundary_points, or one of them malformed); the caller adds the
 ///   file and line.
 CloudProvenance parseProvenanceComment(const std::string& line);
-
-/// \brief SHA-256 of a file's bytes (OpenSSL's EVP interface), as 64 lowercase hex digits.
-/// \throws mcws::Error naming the file when it cannot be read.
-std::string sha256OfFile(const std::string& path);
 
 /// \brief Sets the provenance that every PcdStreamWriter constructed on this thread without one
 /// of its own records, while the object lives (the previous one is restored after): for writers

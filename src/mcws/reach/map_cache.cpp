@@ -1,6 +1,5 @@
 #include "mcws/reach/map_cache.h"
 
-#include <openssl/evp.h>
 #include <sys/stat.h>
 
 #include <array>
@@ -22,6 +21,7 @@
 
 #include "mcws/core/error.h"
 #include "mcws/io/atomic_file.h"
+#include "mcws/io/sha256.h"
 #include "mcws/reach/quality.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sampler.h"
@@ -33,17 +33,10 @@ namespace {
 /// The map file format the entries are written in (ReachMap::write()'s first line).
 constexpr char kCacheMapFormat[] = "MCWS-REACH-MAP 1";
 
-/// SHA-256 by OpenSSL's EVP interface, fed in pieces.
+/// SHA-256 of the map inputs, fed value by value.
 class CacheDigest {
  public:
-  CacheDigest() : context_(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-    if (!context_ || EVP_DigestInit_ex(context_.get(), EVP_sha256(), nullptr) != 1)
-      throw Error("map cache: OpenSSL's SHA-256 failed to start");
-  }
-  void add(const void* data, std::size_t size) {
-    if (size > 0 && EVP_DigestUpdate(context_.get(), data, size) != 1)
-      throw Error("map cache: OpenSSL's SHA-256 failed");
-  }
+  void add(const void* data, std::size_t size) { digest_.add(data, size); }
   template <typename T>
   void addValue(const T& value) {
     add(&value, sizeof value);
@@ -54,22 +47,10 @@ class CacheDigest {
     add(text.data(), text.size());
   }
   /// The digest as 64 lowercase hex digits.
-  std::string hex() {
-    std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
-    unsigned int length = 0;
-    if (EVP_DigestFinal_ex(context_.get(), digest.data(), &length) != 1 || length != 32)
-      throw Error("map cache: OpenSSL's SHA-256 failed");
-    std::string text;
-    for (unsigned int k = 0; k < length; ++k) {
-      char byte[3];
-      std::snprintf(byte, sizeof byte, "%02x", digest[k]);
-      text += byte;
-    }
-    return text;
-  }
+  std::string hex() { return digest_.hex(); }
 
  private:
-  std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> context_;
+  io::Sha256 digest_{"map cache"};
 };
 
 void addPose(CacheDigest& digest, const Eigen::Isometry3d& pose) {
