@@ -129,6 +129,8 @@ TEST(MapCache, EveryMapInputChangesTheKeyAndTheThreadCountDoesNot) {
   differs(m, &m.self, "the base pose");
   m = base, m.robot.T_flange_tool.translation().z() = 5.0;
   differs(m, &m.self, "the tool");
+  m = base, m.robot.name = "arm-\xe9";  // Latin-1, not UTF-8: a key all the same, no exception
+  differs(m, &m.self, "a name that is not UTF-8");
   m = base, m.sampling.threads = 1;
   EXPECT_EQ(mapCacheKey(m.robot, m.grid, m.sampling, &m.self), key) << "threads";
 }

@@ -1,5 +1,6 @@
 #include "mcws/reach/map_cache.h"
 
+#include <gnu/libc-version.h>
 #include <sys/stat.h>
 
 #include <array>
@@ -32,6 +33,12 @@ namespace {
 
 /// The map file format the entries are written in (ReachMap::write()'s first line).
 constexpr char kCacheMapFormat[] = "MCWS-REACH-MAP 1";
+
+/// A JSON value as one line; bytes that are not UTF-8 (a robot name or path in Latin-1) become
+/// U+FFFD instead of failing the run over its optional cache.
+std::string dumped(const nlohmann::json& value) {
+  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
 
 /// SHA-256 of the map inputs, fed value by value.
 class CacheDigest {
@@ -263,6 +270,9 @@ std::string mapCacheKey(const Robot& robot, const ReachGrid& grid, const ReachSa
   const nlohmann::json text{
       {"cache_version", kMapCacheVersion},
       {"map_format", kCacheMapFormat},
+      // glibc's libmvec computes the sines and cosines of the samples' joint values: another
+      // version may differ in a last bit, so a cache shared between machines does not mix them.
+      {"libc", gnu_get_libc_version()},
       {"robot",
        {{"name", robot.name},
         {"length_unit", unitName(robot.length_unit)},
@@ -281,8 +291,8 @@ std::string mapCacheKey(const Robot& robot, const ReachGrid& grid, const ReachSa
       {"self_collision", self_collision ? nlohmann::json(collisionModelDigest(*self_collision))
                                         : nlohmann::json(nullptr)}};
   CacheDigest digest;
-  const std::string dumped = text.dump();
-  digest.add(dumped.data(), dumped.size());
+  const std::string text_dumped = dumped(text);
+  digest.add(text_dumped.data(), text_dumped.size());
   return digest.hex();
 }
 
@@ -305,7 +315,7 @@ ReachMapCache::ReachMapCache(std::string directory, const Robot& robot, const Re
   header["self_collision"] = self_collision != nullptr;
   header["cache_version"] = kMapCacheVersion;
   header["cache_key"] = key_;
-  header_ = header.dump();
+  header_ = dumped(header);
 }
 
 ReachMap ReachMapCache::read(const std::string& path, const std::string& key, const ReachGrid& grid,
@@ -357,7 +367,7 @@ bool ReachMapCache::store(const ReachMap& map, double build_seconds, std::ostrea
     header["build_seconds"] = std::isfinite(build_seconds) ? build_seconds : 0.0;
     header["payload_sha256"] = recordDigest(map);
     io::AtomicFile file(path_);
-    writeMapTo(map, header.dump(),
+    writeMapTo(map, dumped(header),
                [&](const char* data, std::size_t size) { file.write(data, size); });
     file.commit();
     return true;

@@ -20,7 +20,9 @@ CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, 
 #pragma omp parallel num_threads(threads)
   {
     // Each thread's box, then their union: the same box in any order.
-    Eigen::Vector3d own_min = min, own_max = max;
+    // (from the constants, not min and max: another thread may already be writing those)
+    Eigen::Vector3d own_min = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+    Eigen::Vector3d own_max = -own_min;
 #pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) {
       own_min = own_min.cwiseMin(cloud[i].getVector3fMap().cast<double>());

@@ -1,5 +1,6 @@
 #include "mcws/workspace/detail/measure_shell.h"
 
+#include <omp.h>
 #include <nanoflann.hpp>
 
 #include <algorithm>
@@ -398,8 +399,10 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
       shellPoints(points, D, spacing, alpha_factor, threads, options.cancel_check);
   // The left-out points' tree is built while the shell is triangulated (on a thread of its own
   // when there are several: a 3-D triangulation shares the cores with it, a 2-D one runs on one).
+  // threads 0: OpenMP's default, all cores unless OMP_NUM_THREADS says otherwise.
+  const int workers = threads > 0 ? threads : omp_get_max_threads();
   std::future<std::unique_ptr<LeftOut<D>>> building =
-      std::async(threads > 1 ? std::launch::async : std::launch::deferred,
+      std::async(workers > 1 ? std::launch::async : std::launch::deferred,
                  [&] { return std::make_unique<LeftOut<D>>(points, in_shell); });
   if (options.phase) options.phase("triangulation");
   Delaunay dt;
