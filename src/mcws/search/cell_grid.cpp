@@ -11,6 +11,17 @@
 
 namespace mcws {
 
+double cellGridEdge(const Eigen::Vector3d& extent, int dimensions, double cell,
+                    std::size_t points) {
+  const double max_cells = 4.0 * static_cast<double>(points) + 16.0;
+  for (;;) {
+    double cells = 1.0;
+    for (int k = 0; k < dimensions; ++k) cells *= std::floor(extent[k] / cell) + 1.0;
+    if (cells <= max_cells) return cell;
+    cell *= std::max(1.01, std::pow(cells / max_cells, 1.0 / dimensions));
+  }
+}
+
 CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, double cell,
                    int threads)
     : dimensions_(dimensions), cell_(cell) {
@@ -38,14 +49,7 @@ CellGrid::CellGrid(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dimensions, 
   const Eigen::Vector3d extent = n > 0 ? Eigen::Vector3d(max - min) : Eigen::Vector3d::Zero();
   const double largest = extent.head(dimensions).maxCoeff();
   if (!(cell_ > 0.0) || !std::isfinite(cell_)) cell_ = largest > 0.0 ? largest : 1.0;
-  // At most about 4 cells per point: a sparse bounding box (outliers) must not exhaust memory.
-  const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
-  for (;;) {
-    double cells = 1.0;
-    for (int k = 0; k < dimensions; ++k) cells *= std::floor(extent[k] / cell_) + 1.0;
-    if (cells <= max_cells) break;
-    cell_ *= std::max(1.01, std::pow(cells / max_cells, 1.0 / dimensions));
-  }
+  cell_ = cellGridEdge(extent, dimensions, cell_, static_cast<std::size_t>(n));
   inverse_cell_ = 1.0 / cell_;
   std::int64_t total = 1;
   for (int k = 0; k < dimensions; ++k) {

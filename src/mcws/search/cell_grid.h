@@ -24,6 +24,12 @@ namespace mcws {
 /// the k-th nearest distance equals the largest of nearestKSearch's. Cells are visited only where
 /// they meet the search ball. CellGridSearch bounds how far a search may reach; one that would
 /// need more is declined, and the caller falls back to the tree (GridThenTreeSearch).
+/// \brief The cell edge CellGrid uses for `points` points spanning `extent` (in their first
+/// `dimensions` axes) when asked for `cell`: `cell`, widened until there are at most about 4 cells
+/// a point, so that a sparse bounding box (outliers) cannot exhaust memory. Lengths in the
+/// cloud's unit; `cell` must be positive and finite.
+double cellGridEdge(const Eigen::Vector3d& extent, int dimensions, double cell, std::size_t points);
+
 class CellGrid {
  public:
   /// \brief Buckets `cloud` (finite points; z ignored when `dimensions` == 2) into cells of side

@@ -145,16 +145,9 @@ class BlockSearch {
       min = min.cwiseMin(p.getVector3fMap().cast<double>());
       max = max.cwiseMax(p.getVector3fMap().cast<double>());
     }
-    // CellGrid's sizing: at most about 4 cells per point.
+    // CellGrid's sizing, so that a block holds the cells the grid search would visit.
     const Eigen::Vector3d extent = max - min;
-    cell_ = reach;
-    const double max_cells = 4.0 * static_cast<double>(n) + 16.0;
-    for (;;) {
-      double cells = 1.0;
-      for (int a = 0; a < D; ++a) cells *= std::floor(extent[a] / cell_) + 1.0;
-      if (cells <= max_cells) break;
-      cell_ *= std::max(1.01, std::pow(cells / max_cells, 1.0 / D));
-    }
+    cell_ = mcws::cellGridEdge(extent, D, reach, n);
     std::int64_t total = 1;
     for (int a = 0; a < D; ++a) {
       origin_[a] = min[a];
