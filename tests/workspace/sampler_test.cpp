@@ -10,10 +10,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -415,6 +417,44 @@ TEST(WriteSamples, AFailingSampleLeavesNoFileAndTheErrorOfTheLowestBlock) {
           "sample 30000 failed");
       EXPECT_EQ(dir.fileCount(), 0u);
     }
+  }
+}
+
+/// Samples at the origin; the block from sample `slow` waits 100 ms, every block from sample
+/// `failing` on throws at once.
+class SlowThenFailingSampler : public PointGenerator {
+ public:
+  SlowThenFailingSampler(std::uint64_t slow, std::uint64_t failing)
+      : slow_(slow), failing_(failing) {}
+  void generate(std::uint64_t first, std::size_t count, WorkspacePoint* out) const override {
+    if (first >= failing_) throw Error("sample " + std::to_string(first) + " failed");
+    if (first == slow_) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    std::fill(out, out + count, WorkspacePoint());
+  }
+
+ private:
+  std::uint64_t slow_, failing_;
+};
+
+TEST(StreamSamples, InOrderTheSinksErrorBelowAFailingBlockIsReportedForAnyThreads) {
+  // Block 2 is slow to draw and its sink fails; block 3 fails to draw at once. One thread meets
+  // the sink's failure first; so must two or four, which draw block 3 while block 2 sleeps.
+  constexpr std::uint64_t block = 4096;
+  const SlowThenFailingSampler sampler(2 * block, 3 * block);
+  for (int threads = 1; threads <= 4; ++threads) {
+    std::vector<std::uint64_t> written;
+    const std::string error = test::errorOf([&] {
+      streamSamples<WorkspacePoint>(
+          sampler, 0, 8 * block, threads,
+          [](const WorkspacePoint*, std::size_t, std::vector<char>& bytes) { bytes.clear(); },
+          [&](std::uint64_t first, const char*, std::size_t, std::size_t) {
+            if (first == 2 * block) throw Error("the sink refused sample " + std::to_string(first));
+            written.push_back(first);
+          },
+          SinkOrder::kInOrder);
+    });
+    EXPECT_EQ(error, "the sink refused sample 8192") << threads << " threads";
+    EXPECT_EQ(written, (std::vector<std::uint64_t>{0, block})) << threads << " threads";
   }
 }
 

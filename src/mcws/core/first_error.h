@@ -31,6 +31,13 @@ class FirstError {
   /// \brief Whether any item failed.
   bool failed() const { return failed_.load(std::memory_order_relaxed); }
 
+  /// \brief Whether an item below `item` failed (the one rethrow() would report comes first).
+  bool failedBefore(std::size_t item) const {
+    if (!failed()) return false;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return item_ < item;
+  }
+
   /// \brief Records item's failure as mcws::Error(message); the lowest item's is kept.
   void record(std::size_t item, const std::string& message) {
     record(item, std::make_exception_ptr(Error(message)));
@@ -66,7 +73,7 @@ class FirstError {
 
  private:
   std::atomic<bool> failed_{false};
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::size_t item_{0};
   std::exception_ptr thrown_;
 };

@@ -332,6 +332,7 @@ bool writeAll(int fd, const char* data, std::size_t size) {
 /// ranges written beyond it (a few: the threads write nearly in order).
 struct AtomicFile::Written {
   std::mutex mutex;
+  bool stream_flushed{false};  ///< `file_`'s buffer (what write() took) has been flushed
   std::uint64_t contiguous{0};
   std::map<std::uint64_t, std::uint64_t> ahead;  ///< begin -> end
 
@@ -472,11 +473,19 @@ void AtomicFile::writeAt(std::uint64_t offset, const void* data, std::size_t siz
   if (!positional()) {
     throw Error("cannot write '" + path_ + "' at an offset: it is not a regular file");
   }
-  const int fd = ::fileno(file_);
   // What write() left in the stream's buffer goes first (the header of a PcdStreamWriter);
-  // flushed once, it stays empty.
-  if (!stream_flushed_.exchange(true) && std::fflush(file_) != 0) {
-    throw Error("cannot write '" + path_ + "': " + std::strerror(errno));
+  // flushed once, it stays empty. Under the lock, so that no thread reads the stream (its
+  // descriptor) while another flushes it.
+  int fd = -1;
+  {
+    const std::lock_guard<std::mutex> lock(written_->mutex);
+    if (!written_->stream_flushed) {
+      if (std::fflush(file_) != 0) {
+        throw Error("cannot write '" + path_ + "': " + std::strerror(errno));
+      }
+      written_->stream_flushed = true;
+    }
+    fd = ::fileno(file_);
   }
   const char* bytes = static_cast<const char*>(data);
   for (std::size_t left = size; left > 0;) {

@@ -5,7 +5,6 @@
 
 #include <sys/types.h>
 
-#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -135,8 +134,7 @@ class AtomicFile {
   std::FILE* file_{nullptr};          ///< open until commit() or destruction
   std::uint64_t appended_{0};         ///< bytes write() took
   std::uint64_t writeback_to_{0};     ///< the disk was asked to write bytes [0, writeback_to_)
-  std::unique_ptr<Written> written_;  ///< made by the first writeAt()
-  std::atomic<bool> stream_flushed_{false};  ///< writeAt(): `file_`'s buffer has been flushed
+  std::unique_ptr<Written> written_;  ///< what writeAt() has written (made with the file)
   int device_{-1};             ///< a device whose bytes are buffered in `file_` (in an OutputSet)
   bool write_through_{false};  ///< the target is a device, FIFO, socket or descriptor
   bool unnamed_{false};        ///< made with O_TMPFILE and not linked yet

@@ -262,11 +262,13 @@ struct PartialSummary {
 /// Hands the blocks of streamSamples() over in order: a thread waits for its block's turn.
 class Turns {
  public:
-  /// Waits until block `block` is next; false when the loop failed meanwhile.
+  /// Waits until block `block` is next; false when a lower block failed meanwhile. A failure
+  /// of a higher block does not stop it: the lowest failing block, whose error is reported, is
+  /// then the same whatever the threads (a generator's failure above a block the sink refuses).
   bool wait(std::uint64_t block, const FirstError& error) {
     std::unique_lock<std::mutex> lock(mutex_);
-    changed_.wait(lock, [&] { return next_ == block || error.failed(); });
-    return next_ == block && !error.failed();
+    changed_.wait(lock, [&] { return next_ == block || error.failedBefore(block); });
+    return next_ == block && !error.failedBefore(block);
   }
   /// The next block's turn.
   void pass() {
