@@ -198,6 +198,7 @@ def place(
     collision: bool = True,
     quality_task: Optional[str] = None,
     length: Optional[_Length] = None,
+    map_cache: Union[None, bool, str, "os.PathLike[str]"] = None,
     progress: Any = None,
 ) -> Placement: ...
 

@@ -241,8 +241,10 @@ def _place(
     collision: bool,
     quality_task: Optional[str],
     length: Optional[float],
+    map_cache: str,
     progress: Any,
 ) -> _Placement: ...
+def _default_map_cache() -> str: ...
 
 class _Plan:
     def report(self) -> str: ...

@@ -5,7 +5,8 @@ import os as _os
 
 import numpy as _np
 
-from ._mcws import Robot, UsageError, _parse_length, _place, _reach_map, _reach_study, _ReachMap
+from ._mcws import (Robot, UsageError, _default_map_cache, _parse_length, _place, _reach_map,
+                    _reach_study, _ReachMap)
 from ._record import _Record
 
 
@@ -294,7 +295,7 @@ def reach_study(robot, targets, normals=None, *, standoff=0.0, approach_toleranc
 def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=None,
           resolution=None, samples=None, orientations=200, rolls=1, manipulability=True,
           confirm=0, confirm_margin=0.1, standoff=0.0, approach_tolerance=0.0, ik_starts=4, seed=0, threads=0,
-          collision=True, quality_task=None, length=None, progress=None):
+          collision=True, quality_task=None, length=None, map_cache=None, progress=None):
     """Where to put the robot's base so its arm reaches the targets, as mcws_place: the whole
     robot moved by every offset of line (x) x across (y) x up (z), the environment of its
     collision model staying in place; each position scored from a reachability map (the share
@@ -320,8 +321,16 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
         it is confirmed by IK; None: no margin.
     confirm: the best positions by the map confirmed besides: a number >= 0 (default 0, as
         --confirm) or None for all.
+    map_cache: for a map built here, a folder of maps kept between calls, as mcws_place
+        --map-cache: a map built from the same inputs (robot file and kinematics, collision
+        model with its meshes, grid, samples, seed, manipulability) is read from it instead of
+        being built again, and one built is stored in it; True: mcws_place's default folder
+        ($XDG_CACHE_HOME/mcws/reach-maps, else ~/.cache/mcws/reach-maps), which the tool then
+        shares; None (default): no cache, nothing written. A damaged entry is rebuilt with a
+        RuntimeWarning; so is a failure to store one (the call goes on). The summary then has
+        map_cache (directory, path, reused, stored) as the tool's --json.
     The summary's map.about names where the map came from: the file ReachMap.load read,
-    "reach_map()", or "built" (here).
+    "reach_map()", "built" (here) or "cache" (with built_utc).
 
     Returns a Placement (its summary with the candidates and the best, .points,
     .save(path)): the numbers and file of mcws_place with the same arguments (--map or
@@ -340,6 +349,7 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
     resolution = _length(resolution, "resolution", robot)
     standoff = _length(standoff, "standoff", robot, allow_zero=True)
     length = _length(length, "length", robot)
+    map_cache = _map_cache_folder(map_cache)
     core = _place(robot, _targets_argument(targets), normals,
                   [float(v) for v in _np.atleast_1d(line)],
                   [float(v) for v in _np.atleast_1d(across)],
@@ -348,5 +358,22 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
                   None if map is None else map._map,
                   resolution, 0 if samples is None else samples, orientations, rolls,
                   manipulability, standoff, approach_tolerance, ik_starts, seed, threads,
-                  collision, quality_task, length, progress)
+                  collision, quality_task, length, map_cache, progress)
     return Placement(core)
+
+
+def _map_cache_folder(map_cache):
+    """place()'s map_cache as the folder the C++ part takes ("": none)."""
+    if map_cache is None or map_cache is False:
+        return ""
+    if map_cache is True:
+        folder = _default_map_cache()
+        if not folder:
+            raise UsageError("map_cache=True: neither XDG_CACHE_HOME nor HOME is set")
+        return folder
+    if not isinstance(map_cache, (str, _os.PathLike)):
+        raise UsageError(f"map_cache: {type(map_cache).__name__} is not a folder, True or None")
+    folder = _os.fspath(map_cache)
+    if not folder:
+        raise UsageError("map_cache: empty (a folder, True or None)")
+    return folder

@@ -26,8 +26,6 @@
 
 namespace mcws::python {
 
-namespace {
-
 ReachGrid mapGrid(const MapArguments& a) {
   ReachGrid grid;
   grid.resolution = a.resolution;
@@ -47,12 +45,8 @@ ReachGrid mapGrid(const MapArguments& a) {
   return grid;
 }
 
-}  // namespace
-
-std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a,
-                                    const CollisionChecker* checker, Checkpoint& checkpoint) {
-  const Robot& robot = loaded.robot;
-  const ReachGrid grid = mapGrid(a);
+ReachSampling mapSampling(const Robot& robot, const MapArguments& a,
+                          const CollisionChecker* checker) {
   if (a.samples < 1) throw UsageError("samples: " + std::to_string(a.samples) + " is not >= 1");
   ReachSampling sampling;
   sampling.samples = static_cast<std::uint64_t>(a.samples);
@@ -64,6 +58,14 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
   }
   sampling.quality = qualityOptions(robot, a.quality_task, a.length);
   sampling.collision = checker;
+  return sampling;
+}
+
+std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArguments& a,
+                                    const CollisionChecker* checker, Checkpoint& checkpoint) {
+  const Robot& robot = loaded.robot;
+  const ReachGrid grid = mapGrid(a);
+  const ReachSampling sampling = mapSampling(robot, a, checker);
   const io::CloudProvenance provenance = robotProvenance(robot);
   auto result = std::make_unique<MapResult>();
   {

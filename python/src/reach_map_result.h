@@ -33,6 +33,14 @@ struct MapArguments {
   std::optional<double> length;
 };
 
+/// \brief The grid of `a`, checked. \throws UsageError naming a bad argument.
+ReachGrid mapGrid(const MapArguments& a);
+
+/// \brief The sampling of `a`, checked, counting the samples `checker` finds free (nullptr: all).
+/// \throws UsageError naming a bad argument.
+ReachSampling mapSampling(const Robot& robot, const MapArguments& a,
+                          const CollisionChecker* checker);
+
 /// \brief The map of `a`, as mcws_reach builds it, its file header and summary; `checker`: count
 /// only the samples it finds free (nullptr: all). The GIL is released; `checkpoint` after each
 /// chunk of samples (Ctrl-C, progress).

@@ -9,14 +9,19 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
+#include <string>
 
 #include "bindings.h"
 #include "loaded_robot.h"
 #include "mcws/collision/collision_checker.h"
+#include "mcws/collision/robot_bodies.h"
 #include "mcws/core/decimal.h"
+#include "mcws/core/stopwatch.h"
 #include "mcws/io/atomic_file.h"
 #include "mcws/io/pcd_stream_writer.h"
 #include "mcws/reach/base_placement.h"
+#include "mcws/reach/map_cache.h"
 #include "mcws/reach/placement_map.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/reach/reach_study.h"
@@ -160,19 +165,89 @@ std::unique_ptr<StudyResult> reachStudy(const LoadedRobot& loaded, const py::han
 }
 
 /// The map a placement scores from, as mcws_place's: a given ReachMap (its header checked as
-/// --map's) or one built here (`build` set), whose samples count when free of self-collision.
+/// --map's) or one built here (`build` set), whose samples count when free of self-collision,
+/// taken from and stored in the map cache `cache` (a folder; empty: none) as mcws_place does.
 struct PlaceMap {
   py::object given;  ///< a _ReachMap, or None
   std::optional<MapArguments> build;
+  std::string cache;
 };
+
+/// What the cache wrote on its log (an entry it ignored, one it could not store), as a Python
+/// RuntimeWarning; call with the GIL held.
+void warnOf(const std::ostringstream& log) {
+  std::istringstream lines(log.str());
+  for (std::string line; std::getline(lines, line);) {
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, line.c_str(), 1) != 0) throw py::error_already_set();
+  }
+}
+
+/// A map built here for `source`, from the map cache when it holds it (else stored there);
+/// `cache_json` receives what the cache did (as mcws_place --json's "map_cache").
+const ReachMap& builtMap(const LoadedRobot& loaded, const PlaceMap& source, const StudyArguments& a,
+                         std::unique_ptr<MapResult>& built, nlohmann::json& about,
+                         nlohmann::json& cache_json) {
+  const Robot& robot = loaded.robot;
+  // The self-collision model (the links and the tool, not the environment): part of the key.
+  std::optional<CollisionModel> self;
+  if (a.collision) {
+    self = robotBodiesOnly(loadCollisionModel(robot, loaded.path));
+    if (!hasGeometry(*self)) self.reset();
+  }
+  const std::unique_ptr<CollisionChecker> checker =
+      self ? std::make_unique<CollisionChecker>(robot, *self) : nullptr;
+  const ReachMapCache cache(source.cache, robot, mapGrid(*source.build),
+                            mapSampling(robot, *source.build, checker.get()),
+                            self ? &*self : nullptr);
+  std::ostringstream log;
+  if (cache.enabled()) {
+    cache_json = {{"directory", cache.directory()},
+                  {"path", cache.path()},
+                  {"reused", false},
+                  {"stored", false}};
+    CachedMapInfo info;
+    std::optional<ReachMap> cached;
+    {
+      py::gil_scoped_release release;
+      cached = cache.load(log, "mcws.place", &info);
+    }
+    warnOf(log);
+    if (cached) {
+      cache_json["reused"] = true;
+      about = {{"source", "cache"},
+               {"samples", info.samples},
+               {"self_collision", info.self_collision},
+               {"built_utc", info.built_utc}};
+      built = std::make_unique<MapResult>();
+      built->map = std::move(*cached);
+      return built->map;
+    }
+  }
+  Checkpoint checkpoint(a.progress, "mcws.place", "map samples");
+  const Stopwatch clock;
+  built = buildMap(loaded, *source.build, checker.get(), checkpoint);
+  if (cache.enabled()) {
+    {
+      py::gil_scoped_release release;
+      cache_json["stored"] = cache.store(built->map, clock.seconds(), log, "mcws.place");
+    }
+    warnOf(log);
+  }
+  about = {{"source", "built"},
+           {"samples", static_cast<std::uint64_t>(source.build->samples)},
+           {"self_collision", checker != nullptr}};
+  return built->map;
+}
 
 /// The map of `source`, held in `built` when built here; its "about" for the summary.
 const ReachMap& placementMap(const LoadedRobot& loaded, const PlaceMap& source,
                              const StudyArguments& a, const ReachStudyOptions& options,
-                             std::unique_ptr<MapResult>& built, nlohmann::json& about) {
+                             std::unique_ptr<MapResult>& built, nlohmann::json& about,
+                             nlohmann::json& cache_json) {
   const Robot& robot = loaded.robot;
   if (!source.given.is_none()) {
     if (source.build) throw UsageError("resolution is for a map built here, not with map");
+    if (!source.cache.empty()) throw UsageError("map_cache is for a map built here, not with map");
     if (!py::isinstance<MapResult>(source.given)) {
       throw UsageError("map: " + std::string(py::str(py::type::of(source.given).attr("__name__"))) +
                        " is not an mcws.ReachMap");
@@ -185,14 +260,7 @@ const ReachMap& placementMap(const LoadedRobot& loaded, const PlaceMap& source,
     return given.map;
   }
   if (!source.build) throw UsageError("give map (an mcws.ReachMap) or resolution and samples");
-  const std::unique_ptr<CollisionChecker> self =
-      a.collision ? collisionCheckerIfModelled(loaded, false) : nullptr;
-  Checkpoint checkpoint(a.progress, "mcws.place", "map samples");
-  built = buildMap(loaded, *source.build, self.get(), checkpoint);
-  about = {{"source", "built"},
-           {"samples", static_cast<std::uint64_t>(source.build->samples)},
-           {"self_collision", self != nullptr}};
-  return built->map;
+  return builtMap(loaded, source, a, built, about, cache_json);
 }
 
 std::vector<Eigen::Vector3d> offsetsOf(const std::vector<double>& xs, const std::vector<double>& ys,
@@ -229,9 +297,9 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
   placement.confirm = confirm;
   placement.confirm_margin = confirm_margin;
   placement.approach_tolerance = options.approach_tolerance;
-  nlohmann::json about;
+  nlohmann::json about, cache_json;
   std::unique_ptr<MapResult> built;
-  const ReachMap& map = placementMap(loaded, source, a, options, built, about);
+  const ReachMap& map = placementMap(loaded, source, a, options, built, about, cache_json);
   const std::unique_ptr<CollisionChecker> checker =
       a.collision ? collisionCheckerIfModelled(loaded, true) : nullptr;
   Checkpoint checkpoint(a.progress, "mcws.place", "positions confirmed");
@@ -247,6 +315,7 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
       placementSummary(robot, targets.size(), map, about, options, checker != nullptr, candidates,
                        bestCandidate(candidates));
   summary["confirmation"] = confirmationJson(placement, candidates);
+  if (!cache_json.is_null()) summary["map_cache"] = cache_json;  // as mcws_place --map-cache
   addRobotNames(summary, robot);  // "robot" and "tip", as mcws_place --json
   result->summary = summary.dump();
   result->picture = [candidates, name = robot.name, unit = unitName(robot.length_unit)] {
@@ -304,6 +373,9 @@ void bindReachStudy(py::module_& m) {
       py::arg("ik_starts"), py::arg("seed"), py::arg("threads"), py::arg("collision"),
       py::arg("quality_task").none(true), py::arg("length").none(true), py::arg("progress"));
   m.def(
+      "_default_map_cache", &defaultMapCacheDirectory,
+      "mcws_place's default map cache folder (\"\" when neither XDG_CACHE_HOME nor HOME is set).");
+  m.def(
       "_place",
       [](const LoadedRobot& robot, const py::handle& targets, const py::handle& normals,
          const std::vector<double>& line, const std::vector<double>& across,
@@ -312,8 +384,8 @@ void bindReachStudy(py::module_& m) {
          int orientations, int rolls, bool manipulability, double standoff,
          double approach_tolerance, int ik_starts, std::int64_t seed, int threads, bool collision,
          const std::optional<std::string>& quality_task, const std::optional<double>& length,
-         const py::object& progress) {
-        PlaceMap source{map, std::nullopt};
+         const std::string& map_cache, const py::object& progress) {
+        PlaceMap source{map, std::nullopt, map_cache};
         if (resolution) {
           source.build =
               MapArguments{*resolution, samples,        seed,         threads, orientations,
@@ -331,7 +403,7 @@ void bindReachStudy(py::module_& m) {
       py::arg("rolls"), py::arg("manipulability"), py::arg("standoff"),
       py::arg("approach_tolerance"), py::arg("ik_starts"), py::arg("seed"), py::arg("threads"),
       py::arg("collision"), py::arg("quality_task").none(true), py::arg("length").none(true),
-      py::arg("progress"));
+      py::arg("map_cache"), py::arg("progress"));
 }
 
 }  // namespace mcws::python

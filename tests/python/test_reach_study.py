@@ -102,6 +102,41 @@ def test_place_is_mcws_place(planar2, targets, tmp_path):
     assert result.best is not None and result.map["about"]["source"] == str(map_file)
 
 
+def test_place_shares_the_tools_map_cache(planar2, targets, tmp_path):
+    # The key is the tool's: a map place() stores, mcws_place reuses, and the other way round;
+    # the results are those of a map built afresh.
+    _, _, path = targets
+    cache = tmp_path / "cache"
+    kwargs = dict(resolution=5, samples=30000, quality_task="position", seed=2)
+    fresh = mcws.place(planar2, path, [-20, 0, 20], **kwargs)
+    assert "map_cache" not in fresh and not cache.exists()  # None: no cache, nothing written
+    stored = mcws.place(planar2, path, [-20, 0, 20], map_cache=cache, **kwargs)
+    entries = list(cache.iterdir())
+    assert len(entries) == 1
+    assert stored.map_cache == {"directory": str(cache), "path": str(entries[0]),
+                                "reused": False, "stored": True}
+    assert without(dict(stored), "map_cache") == dict(fresh)
+    tool = tool_json("place", "--robot", robot_path("planar2.yaml"), "--targets", path,
+                     "--quality-task", "position", "--seed", 2, "--along", "-20 20 20",
+                     "--resolution", 5, "--samples", 30000, "--map-cache", cache,
+                     "--output", tmp_path / "bases.pcd")
+    assert tool["map_cache"]["reused"] is True and tool["map"]["about"]["source"] == "cache"
+    assert tool["candidates"] == fresh.candidates
+    reused = mcws.place(planar2, path, [-20, 0, 20], map_cache=str(cache), **kwargs)
+    assert reused.map_cache["reused"] is True and reused.map_cache["stored"] is False
+    assert reused.map["about"] == tool["map"]["about"]
+    assert without(dict(reused), "map_cache", "map") == without(dict(fresh), "map")
+    # A damaged entry is rebuilt, with a warning naming it, and stored again.
+    entries[0].write_bytes(entries[0].read_bytes()[:100])
+    with pytest.warns(RuntimeWarning, match="ignoring the cached map"):
+        rebuilt = mcws.place(planar2, path, [-20, 0, 20], map_cache=cache, **kwargs)
+    assert rebuilt.map_cache["stored"] is True and rebuilt.candidates == fresh.candidates
+    with pytest.raises(mcws.UsageError, match="map_cache is for a map built here"):
+        mcws.place(planar2, path, [0.0], map=mcws.ReachMap.load(entries[0]), map_cache=cache)
+    with pytest.raises(mcws.UsageError, match="map_cache: int is not a folder"):
+        mcws.place(planar2, path, [0.0], map_cache=3, **kwargs)
+
+
 def test_robot_and_tip_of_a_urdf_chain_are_the_tools(tmp_path):
     # The inspection arm's chain to link6 (not its flange, the whole tree's leaf): both tools and
     # both functions name that chain's tip, as --tip link6 does.
