@@ -7,10 +7,10 @@
 # Usage: scripts/run_fuzzers.sh [SECONDS per target (default 30)] [NAME...]
 #        scripts/run_fuzzers.sh --build-only   (builds them and stops; run_tests.sh does this at
 #        low priority while the sanitizer tests run)
-#   NAME: robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh (default all)
+#   NAME: robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh study (default all)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-all=(robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh)
+all=(robot_yaml robot_urdf pcd scenario behavior_model fault_script mesh study)
 build_only=0
 if [[ ${1:-} == --build-only ]]; then
   build_only=1

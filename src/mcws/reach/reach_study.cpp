@@ -13,7 +13,6 @@
 #include "mcws/core/first_error.h"
 #include "mcws/kinematics/forward_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
-#include "mcws/reach/orientation_bins.h"
 
 namespace mcws {
 
@@ -46,23 +45,6 @@ bool better(const TargetReach& b, const TargetReach& a) {
 }
 
 }  // namespace
-
-ReachTarget targetFromNormal(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
-  if (!point.allFinite()) throw Error("target point is not finite");
-  const double length = normal.norm();
-  if (!std::isfinite(length) || !(length > 0.0)) {
-    std::ostringstream msg;
-    msg << "target normal (" << normal.transpose() << ") is not a non-zero finite vector";
-    throw Error(msg.str());
-  }
-  const Eigen::Vector3d approach = -normal / length;
-  const Eigen::Vector3d x = OrientationBins::rollReference(approach);
-  ReachTarget target;
-  target.pose.linear() << x, approach.cross(x), approach;
-  target.pose.translation() = point;
-  target.free_roll = true;
-  return target;
-}
 
 void ReachStudyOptions::check() const {
   std::ostringstream msg;

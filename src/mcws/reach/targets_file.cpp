@@ -13,6 +13,7 @@
 #include "mcws/core/text_file.h"
 #include "mcws/io/cloud_io.h"
 #include "mcws/kinematics/robot.h"
+#include "mcws/reach/orientation_bins.h"
 
 namespace mcws {
 
@@ -134,6 +135,25 @@ void applyStandoff(std::vector<ReachTarget>& targets, double standoff) {
   for (ReachTarget& target : targets) {
     target.pose.translation() -= standoff * target.pose.linear().col(2);
   }
+}
+
+// Declared in reach_study.h, with ReachTarget; here with the readers that make targets of points
+// and normals (also what the study reader needs, without the IK).
+ReachTarget targetFromNormal(const Eigen::Vector3d& point, const Eigen::Vector3d& normal) {
+  if (!point.allFinite()) throw Error("target point is not finite");
+  const double length = normal.norm();
+  if (!std::isfinite(length) || !(length > 0.0)) {
+    std::ostringstream msg;
+    msg << "target normal (" << normal.transpose() << ") is not a non-zero finite vector";
+    throw Error(msg.str());
+  }
+  const Eigen::Vector3d approach = -normal / length;
+  const Eigen::Vector3d x = OrientationBins::rollReference(approach);
+  ReachTarget target;
+  target.pose.linear() << x, approach.cross(x), approach;
+  target.pose.translation() = point;
+  target.free_roll = true;
+  return target;
 }
 
 }  // namespace mcws
