@@ -189,7 +189,8 @@ class BlockSearch {
   /// squared distances from the query.
   struct Scratch {
     std::array<std::vector<float>, D> xyz;
-    std::vector<float> d2, near;
+    std::vector<float> d2;
+    std::vector<float> best;  ///< kthBelow()'s smallest so far
     std::size_t size{0};
     float hint{std::numeric_limits<float>::infinity()};  ///< the last answer
   };
@@ -246,7 +247,6 @@ class BlockSearch {
         if (out.d2.size() < out.size) {
           for (auto& v : out.xyz) v.resize(2 * out.size);
           out.d2.resize(2 * out.size);
-          out.near.resize(2 * out.size);
         }
         for (int a = 0; a < D; ++a) {
           std::copy(xyz_[a].begin() + begin, xyz_[a].begin() + end, out.xyz[a].begin() + base);
@@ -276,33 +276,35 @@ class BlockSearch {
                             : static_cast<float>(std::min(gap * gap * (1.0 - 1e-5), 1e38));
     const float px = xyz_[0][slot], py = xyz_[1][slot], pz = D == 3 ? xyz_[D - 1][slot] : 0.0f;
     squaredDistances(block, px, py, pz);
-    // The candidates below the limit, packed in front; the wanted-th smallest of them. First
-    // those within a few times the previous query's answer (a neighbour's: a hint only, the
-    // answer does not depend on it), a short list to select from.
-    float* d2 = block.d2.data();
+    // The wanted-th smallest below the limit. First below a few times the previous query's
+    // answer (a neighbour's: a hint only, the answer does not depend on it), which far fewer
+    // candidates pass.
     const float near = std::min(limit, kNearHint * block.hint);
-    std::size_t m = 0;
+    std::optional<float> d2 = kthBelow(block, wanted, near);
+    if (!d2 && near < limit) d2 = kthBelow(block, wanted, limit);
+    if (d2) block.hint = *d2;
+    return d2;
+  }
+
+  /// The `wanted`-th smallest of the block's squared distances below `bar` (none when fewer lie
+  /// below it): one pass that keeps the smallest found so far sorted (`block.best`), each next
+  /// candidate compared with the largest of them once there are `wanted`. The same value as
+  /// selecting among all below `bar`.
+  static std::optional<float> kthBelow(Scratch& block, std::size_t wanted, float bar) {
+    if (block.best.size() < wanted) block.best.resize(wanted);
+    float* best = block.best.data();
+    const float* d2 = block.d2.data();
+    std::size_t count = 0;
     for (std::size_t k = 0; k < block.size; ++k) {
       const float d = d2[k];
-      block.near[m] = d;
-      m += d < near;
+      if (!(d < bar)) continue;
+      std::size_t j = count < wanted ? count++ : wanted - 1;
+      for (; j > 0 && best[j - 1] > d; --j) best[j] = best[j - 1];
+      best[j] = d;
+      if (count == wanted) bar = best[wanted - 1];
     }
-    if (m >= wanted) {
-      std::nth_element(block.near.begin(), block.near.begin() + (wanted - 1),
-                       block.near.begin() + m);
-      block.hint = block.near[wanted - 1];
-      return block.hint;
-    }
-    m = 0;
-    for (std::size_t k = 0; k < block.size; ++k) {
-      const float d = d2[k];
-      d2[m] = d;
-      m += d < limit;
-    }
-    if (m < wanted) return std::nullopt;
-    std::nth_element(d2, d2 + (wanted - 1), d2 + m);
-    block.hint = d2[wanted - 1];
-    return block.hint;
+    if (count < wanted) return std::nullopt;
+    return best[wanted - 1];
   }
 
   /// As CellGrid computes them: float, point minus query, summed x, y, z in that order.
