@@ -63,7 +63,13 @@ template <int D, typename Simplex>
 auto canonicalPoints(const Simplex& s) {
   std::array<std::pair<std::uint32_t, int>, D + 1> order;
   for (int k = 0; k <= D; ++k) order[k] = {s->vertex(k)->info(), k};
-  std::sort(order.begin(), order.end());
+  // Insertion sort: D + 1 pairs, all different (by k), so the order std::sort would give.
+  for (int a = 1; a <= D; ++a) {
+    const auto next = order[a];
+    int b = a;
+    for (; b > 0 && next < order[b - 1]; --b) order[b] = order[b - 1];
+    order[b] = next;
+  }
   std::array<typename std::decay_t<decltype(s->vertex(0)->point())>, D + 1> p;
   for (int k = 0; k <= D; ++k) p[k] = s->vertex(order[k].second)->point();
   return p;
