@@ -161,16 +161,6 @@ class LeftOut {
   Tree tree_;
 };
 
-/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
-template <int D, typename Delaunay>
-struct SimplexOf {
-  using Handle = typename Delaunay::Face_handle;
-};
-template <typename Delaunay>
-struct SimplexOf<3, Delaunay> {
-  using Handle = typename Delaunay::Cell_handle;
-};
-
 /// The finite simplices around vertex v, and the infinite ones with `infinite` (read-only, so
 /// threads may call it at once).
 template <int D, typename Delaunay>
@@ -184,7 +174,7 @@ void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
       out.push_back(f);
     } while (++f != done);
   } else {
-    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+    starCells(dt, v, out);
   }
   if (!infinite) {
     out.erase(

@@ -166,6 +166,16 @@ struct Simplices<3, Concurrency> {
       CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
 };
 
+/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
+template <int D, typename Delaunay>
+struct SimplexOf {
+  using Handle = typename Delaunay::Face_handle;
+};
+template <typename Delaunay>
+struct SimplexOf<3, Delaunay> {
+  using Handle = typename Delaunay::Cell_handle;
+};
+
 /// Every triangle (D = 2) or tetrahedron (D = 3) of `dt`, the infinite ones included.
 template <int D, typename Delaunay>
 auto allSimplices(const Delaunay& dt) {
@@ -186,18 +196,48 @@ auto finiteSimplices(const Delaunay& dt) {
   }
 }
 
-/// The vertices that share an edge with v, the infinite one included. Read-only (in 3-D without
-/// CGAL's visit flags), so threads may call it at once.
-template <int D, typename Delaunay>
+/// The cells around vertex v of a 3-D triangulation, the infinite ones included: the cells CGAL's
+/// incident_cells_threadsafe() lists (in another order), found by a walk from v's cell across the
+/// facets through v, each cell reached looked up among those found (a star has a few dozen
+/// cells: no hash set to allocate, as CGAL's has). Read-only, so threads may call it at once.
+template <typename Delaunay>
+void starCells(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+               std::vector<typename Delaunay::Cell_handle>& out) {
+  out.clear();
+  if (dt.dimension() < 3) {
+    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+    return;
+  }
+  out.push_back(v->cell());
+  for (std::size_t head = 0; head < out.size(); ++head) {
+    const auto c = out[head];
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v) continue;  // the facet opposite v leaves the star
+      const auto next = c->neighbor(i);
+      if (std::find(out.begin(), out.end(), next) == out.end()) out.push_back(next);
+    }
+  }
+}
+
+/// The vertices that share an edge with v, the infinite one included, appended to `out` (in 3-D
+/// from v's star cells, found into `cells`). Read-only, so threads may call it at once.
+template <int D, typename Delaunay, typename Cells>
 void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
-                      std::vector<typename Delaunay::Vertex_handle>& out) {
+                      std::vector<typename Delaunay::Vertex_handle>& out, Cells& cells) {
   if constexpr (D == 2) {
     auto u = dt.incident_vertices(v), done = u;
     do {
       out.push_back(u);
     } while (++u != done);
   } else {
-    dt.adjacent_vertices_threadsafe(v, std::back_inserter(out));
+    starCells(dt, v, cells);
+    const std::size_t first = out.size();
+    for (const auto& c : cells) {
+      for (int k = 0; k < 4; ++k) {
+        const auto u = c->vertex(k);
+        if (u != v && std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+      }
+    }
   }
 }
 
@@ -359,6 +399,7 @@ std::size_t outsideByStar(const Delaunay& dt,
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<typename Delaunay::Vertex_handle> neighbours;
+    std::vector<typename SimplexOf<D, Delaunay>::Handle> cells;  // 3-D: the star's
     std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
     CancelPacer pacer = callingThreadPacer(cancel_check, kStarCancelStride);
 #pragma omp for schedule(dynamic, 256)
@@ -367,7 +408,7 @@ std::size_t outsideByStar(const Delaunay& dt,
         pacer.step();
         const auto v = boundary[i];
         neighbours.clear();
-        adjacentVertices<D>(dt, v, neighbours);
+        adjacentVertices<D>(dt, v, neighbours, cells);
         if (std::any_of(neighbours.begin(), neighbours.end(),
                         [&](const auto& u) { return dt.is_infinite(u); })) {
           ++outside;  // on the convex hull
