@@ -198,8 +198,10 @@ auto finiteSimplices(const Delaunay& dt) {
 
 /// The cells around vertex v of a 3-D triangulation, the infinite ones included: the cells CGAL's
 /// incident_cells_threadsafe() lists (in another order), found by a walk from v's cell across the
-/// facets through v, each cell reached looked up among those found (a star has a few dozen
-/// cells: no hash set to allocate, as CGAL's has). Read-only, so threads may call it at once.
+/// facets through v, each cell reached looked up among those found: in a small table on the
+/// stack (open addressing) while the star has at most kStarTable / 2 cells (a star has a few
+/// dozen), else in `out` itself; no hash set to allocate, as CGAL's has. Read-only, so threads
+/// may call it at once.
 template <typename Delaunay>
 void starCells(const Delaunay& dt, typename Delaunay::Vertex_handle v,
                std::vector<typename Delaunay::Cell_handle>& out) {
@@ -208,13 +210,28 @@ void starCells(const Delaunay& dt, typename Delaunay::Vertex_handle v,
     dt.incident_cells_threadsafe(v, std::back_inserter(out));
     return;
   }
+  constexpr std::size_t kStarTable = 256;  // 2^8: the top 8 bits of the hash below
+  std::array<const void*, kStarTable> table{};
+  // Whether c was found before; records it when not.
+  const auto seen = [&](const typename Delaunay::Cell_handle& c) {
+    const void* key = &*c;
+    if (out.size() > kStarTable / 2) return std::find(out.begin(), out.end(), c) != out.end();
+    auto slot = static_cast<std::size_t>(
+        (reinterpret_cast<std::uintptr_t>(key) >> 4) * 0x9E3779B97F4A7C15ull >> 56);
+    for (; table[slot] != nullptr; slot = (slot + 1) % kStarTable) {
+      if (table[slot] == key) return true;
+    }
+    table[slot] = key;
+    return false;
+  };
+  seen(v->cell());
   out.push_back(v->cell());
   for (std::size_t head = 0; head < out.size(); ++head) {
     const auto c = out[head];
     for (int i = 0; i < 4; ++i) {
       if (c->vertex(i) == v) continue;  // the facet opposite v leaves the star
       const auto next = c->neighbor(i);
-      if (std::find(out.begin(), out.end(), next) == out.end()) out.push_back(next);
+      if (!seen(next)) out.push_back(next);
     }
   }
 }
