@@ -7,10 +7,12 @@
 
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/detail/radius_classes.h"
 #include "workspace/shape_cloud.h"
 
 namespace mcws {
@@ -119,6 +121,31 @@ TEST(ExposedPoints, TwoDimensionsIgnoreZAndRejectBadArguments) {
   EXPECT_GT(centre_covered, 0.9 * centre);
   EXPECT_THROW(exposedPoints(cloud, 4, std::vector<double>(cloud.size(), 1.0)), Error);
   EXPECT_THROW(exposedPoints(cloud, 2, std::vector<double>(3, 1.0)), Error);
+}
+
+TEST(RadiusClasses, SameClassAsTheLogarithmForEveryRadius) {
+  // The table's bisection against radiusClass() (the logarithm, then down while above), at each
+  // class's lower radius, a float step and a relative 1e-9 either side of it, and in between.
+  std::mt19937 rng(3);
+  for (const double smallest : {0.0137, 1.0, 0.1, 3.3e-5, 7.0e4}) {
+    const double largest = smallest * std::pow(detail::kClassRatio, 60.5);
+    const detail::RadiusClasses class_for(smallest, largest);
+    std::vector<double> radii{smallest, largest};
+    for (int j = 0; j <= 60; ++j) {
+      const double lower = smallest * std::pow(detail::kClassRatio, j);
+      for (const double r :
+           {lower, std::nextafter(lower, 0.0), std::nextafter(lower, 1e300), lower * (1.0 - 1e-9),
+            lower * (1.0 + 1e-9), lower * (1.0 + 2e-9), lower * (1.0 + 1e-12)}) {
+        if (r >= smallest && r <= largest) radii.push_back(r);
+      }
+      std::uniform_real_distribution<double> within(lower, lower * detail::kClassRatio);
+      for (int k = 0; k < 20; ++k) radii.push_back(std::min(within(rng), largest));
+    }
+    for (const double r : radii) {
+      ASSERT_EQ(class_for(r), detail::radiusClass(r, smallest))
+          << "radius " << r << ", smallest " << smallest;
+    }
+  }
 }
 
 }  // namespace

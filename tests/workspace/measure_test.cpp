@@ -8,11 +8,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
+#include "mcws/workspace/detail/alpha_triangulation.h"
 #include "test_support.h"
 #include "workspace/shape_cloud.h"
 
@@ -452,6 +454,45 @@ TEST(DelaunayMeasure, RejectsNonFiniteCoordinates) {
   cloud[7].z = 0.0f;  // ignored in 2-D
   cloud[9].x = std::numeric_limits<float>::infinity();
   EXPECT_THAT(measureError(cloud, 2), HasSubstr("point 9 has a non-finite coordinate"));
+}
+
+TEST(StarWalk, SameCellsAndNeighboursAsCgal) {
+  // starCells() and adjacentVertices() (a walk without CGAL's hash set) against CGAL's
+  // incident_cells_threadsafe() and adjacent_vertices_threadsafe(), as sets, for every vertex and
+  // the infinite one, on random points and on a lattice (cospherical points, flat cells).
+  using Delaunay = detail::Simplices<3>::Delaunay;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Delaunay::Point> random, lattice;
+  for (int i = 0; i < 3000; ++i) random.emplace_back(u(rng), u(rng), u(rng));
+  for (int x = 0; x < 8; ++x)
+    for (int y = 0; y < 8; ++y)
+      for (int z = 0; z < 8; ++z) lattice.emplace_back(x, y, z);
+  for (const auto* points : {&random, &lattice}) {
+    const Delaunay dt(points->begin(), points->end());
+    ASSERT_EQ(dt.dimension(), 3);
+    std::vector<Delaunay::Vertex_handle> vertices{dt.infinite_vertex()};
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+      vertices.push_back(v);
+    }
+    std::vector<Delaunay::Cell_handle> cells, expected_cells;
+    std::vector<Delaunay::Vertex_handle> neighbours, expected_neighbours;
+    for (const auto v : vertices) {
+      detail::starCells(dt, v, cells);
+      expected_cells.clear();
+      dt.incident_cells_threadsafe(v, std::back_inserter(expected_cells));
+      std::sort(cells.begin(), cells.end());
+      std::sort(expected_cells.begin(), expected_cells.end());
+      ASSERT_EQ(cells, expected_cells);
+      neighbours.clear();
+      detail::adjacentVertices<3>(dt, v, neighbours, cells);
+      expected_neighbours.clear();
+      dt.adjacent_vertices_threadsafe(v, std::back_inserter(expected_neighbours));
+      std::sort(neighbours.begin(), neighbours.end());
+      std::sort(expected_neighbours.begin(), expected_neighbours.end());
+      ASSERT_EQ(neighbours, expected_neighbours);
+    }
+  }
 }
 
 }  // namespace

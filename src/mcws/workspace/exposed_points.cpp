@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mcws/core/error.h"
+#include "mcws/workspace/detail/radius_classes.h"
 
 namespace mcws {
 namespace {
@@ -24,10 +25,11 @@ constexpr double kCellsPerPoint = 4.0;
 /// smallest radius sets the cell edge, and a few unusually close neighbours should not make the
 /// grid finer for all.
 constexpr double kBelowSmallestClass = 0.01;
-/// Ratio of consecutive radius classes, and how many classes share a grid (their radii span a
-/// factor 2.4).
-constexpr double kClassRatio = 1.25;
+/// How many radius classes (ratio detail::kClassRatio) share a grid (their radii span a factor
+/// 2.4).
 constexpr int kClassesPerGrid = 4;
+using detail::kClassRatio;
+using detail::RadiusClasses;
 /// Share of the points below which a grid's classes are not proven (they stay exposed).
 constexpr double kFewestOnAGrid = 0.02;
 /// Cells per smallest radius: finer cells bound the distance to the nearest point more tightly,
@@ -263,14 +265,6 @@ std::optional<double> smallestClassRadius(const std::vector<double>& radius) {
   return finite[rank];
 }
 
-/// The class of radius r (>= smallest): the largest j with smallest * kClassRatio^j <= r.
-int radiusClass(double r, double smallest) {
-  int j = static_cast<int>(std::floor(std::log(r / smallest) / std::log(kClassRatio)));
-  // The rounding of the logarithm must not put a radius in a class above it.
-  while (j > 0 && smallest * std::pow(kClassRatio, j) > r) --j;
-  return j;
-}
-
 /// The box that spans the balls of radius `high` around the points `members` (lo, hi; the third
 /// axis 0 in 2-D).
 template <int D>
@@ -354,12 +348,17 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   // grid: a grid's cells are half its smallest class's radius (a cloud's density may vary by
   // orders of magnitude: refined clouds).
   std::vector<int> class_of(points, -1);
+  double largest = smallest;
+  for (const double r : radius) {
+    if (std::isfinite(r)) largest = std::max(largest, r);
+  }
+  const RadiusClasses class_for(smallest, largest);
   int classes = 0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : classes)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(points); ++i) {
     const double r = radius[i];
     if (!(r >= smallest && std::isfinite(r))) continue;
-    class_of[i] = radiusClass(r, smallest);
+    class_of[i] = class_for(r);
     classes = std::max(classes, class_of[i] + 1);
   }
   const int grids = (classes + kClassesPerGrid - 1) / kClassesPerGrid;

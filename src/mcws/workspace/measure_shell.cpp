@@ -161,16 +161,6 @@ class LeftOut {
   Tree tree_;
 };
 
-/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
-template <int D, typename Delaunay>
-struct SimplexOf {
-  using Handle = typename Delaunay::Face_handle;
-};
-template <typename Delaunay>
-struct SimplexOf<3, Delaunay> {
-  using Handle = typename Delaunay::Cell_handle;
-};
-
 /// The finite simplices around vertex v, and the infinite ones with `infinite` (read-only, so
 /// threads may call it at once).
 template <int D, typename Delaunay>
@@ -184,7 +174,7 @@ void incidentSimplices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
       out.push_back(f);
     } while (++f != done);
   } else {
-    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+    starCells(dt, v, out);
   }
   if (!infinite) {
     out.erase(
@@ -245,13 +235,28 @@ std::vector<typename SimplexOf<D, Delaunay>::Handle> keptStars(
   return stars;
 }
 
+/// Drops the repeats of `simplices`, each first one staying in its place: a simplex is marked
+/// (kListed, in its info beside the flags there) as it is first met, the marks cleared after.
+template <typename Simplex>
+void dropRepeats(std::vector<Simplex>& simplices) {
+  constexpr char kListed = 0x40;  // above every flag the info holds (0 to 3)
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < simplices.size(); ++i) {
+    const Simplex s = simplices[i];
+    if (s->info() & kListed) continue;
+    s->info() = static_cast<char>(s->info() | kListed);
+    simplices[kept++] = s;
+  }
+  simplices.resize(kept);
+  for (const Simplex s : simplices) s->info() = static_cast<char>(s->info() & ~kListed);
+}
+
 /// The left-out points in the circumspheres of `stars` (searched on all threads), sorted, each
-/// once. `stars` is sorted and its repeats dropped first.
+/// once. The repeats of `stars` are dropped first.
 template <int D, typename Delaunay, typename Simplex>
 std::vector<std::uint32_t> leftOutInStars(const Delaunay& dt, std::vector<Simplex>& stars,
                                           const LeftOut<D>& left_out, int threads) {
-  std::sort(stars.begin(), stars.end());
-  stars.erase(std::unique(stars.begin(), stars.end()), stars.end());
+  dropRepeats(stars);
   std::vector<std::uint32_t> joining;
   FirstError error;  // running out of memory leaves the parallel region through it
 #pragma omp parallel num_threads(threads)

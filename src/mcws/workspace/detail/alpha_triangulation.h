@@ -63,7 +63,13 @@ template <int D, typename Simplex>
 auto canonicalPoints(const Simplex& s) {
   std::array<std::pair<std::uint32_t, int>, D + 1> order;
   for (int k = 0; k <= D; ++k) order[k] = {s->vertex(k)->info(), k};
-  std::sort(order.begin(), order.end());
+  // Insertion sort: D + 1 pairs, all different (by k), so the order std::sort would give.
+  for (int a = 1; a <= D; ++a) {
+    const auto next = order[a];
+    int b = a;
+    for (; b > 0 && next < order[b - 1]; --b) order[b] = order[b - 1];
+    order[b] = next;
+  }
   std::array<typename std::decay_t<decltype(s->vertex(0)->point())>, D + 1> p;
   for (int k = 0; k <= D; ++k) p[k] = s->vertex(order[k].second)->point();
   return p;
@@ -160,6 +166,16 @@ struct Simplices<3, Concurrency> {
       CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
 };
 
+/// A handle of a triangle (D = 2) or tetrahedron (D = 3) of a triangulation.
+template <int D, typename Delaunay>
+struct SimplexOf {
+  using Handle = typename Delaunay::Face_handle;
+};
+template <typename Delaunay>
+struct SimplexOf<3, Delaunay> {
+  using Handle = typename Delaunay::Cell_handle;
+};
+
 /// Every triangle (D = 2) or tetrahedron (D = 3) of `dt`, the infinite ones included.
 template <int D, typename Delaunay>
 auto allSimplices(const Delaunay& dt) {
@@ -180,18 +196,65 @@ auto finiteSimplices(const Delaunay& dt) {
   }
 }
 
-/// The vertices that share an edge with v, the infinite one included. Read-only (in 3-D without
-/// CGAL's visit flags), so threads may call it at once.
-template <int D, typename Delaunay>
+/// The cells around vertex v of a 3-D triangulation, the infinite ones included: the cells CGAL's
+/// incident_cells_threadsafe() lists (in another order), found by a walk from v's cell across the
+/// facets through v, each cell reached looked up among those found: in a small table on the
+/// stack (open addressing) while the star has at most kStarTable / 2 cells (a star has a few
+/// dozen), else in `out` itself; no hash set to allocate, as CGAL's has. Read-only, so threads
+/// may call it at once.
+template <typename Delaunay>
+void starCells(const Delaunay& dt, typename Delaunay::Vertex_handle v,
+               std::vector<typename Delaunay::Cell_handle>& out) {
+  out.clear();
+  if (dt.dimension() < 3) {
+    dt.incident_cells_threadsafe(v, std::back_inserter(out));
+    return;
+  }
+  constexpr std::size_t kStarTable = 256;  // 2^8: the top 8 bits of the hash below
+  std::array<const void*, kStarTable> table{};
+  // Whether c was found before; records it when not.
+  const auto seen = [&](const typename Delaunay::Cell_handle& c) {
+    const void* key = &*c;
+    if (out.size() > kStarTable / 2) return std::find(out.begin(), out.end(), c) != out.end();
+    auto slot = static_cast<std::size_t>(
+        (reinterpret_cast<std::uintptr_t>(key) >> 4) * 0x9E3779B97F4A7C15ull >> 56);
+    for (; table[slot] != nullptr; slot = (slot + 1) % kStarTable) {
+      if (table[slot] == key) return true;
+    }
+    table[slot] = key;
+    return false;
+  };
+  seen(v->cell());
+  out.push_back(v->cell());
+  for (std::size_t head = 0; head < out.size(); ++head) {
+    const auto c = out[head];
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v) continue;  // the facet opposite v leaves the star
+      const auto next = c->neighbor(i);
+      if (!seen(next)) out.push_back(next);
+    }
+  }
+}
+
+/// The vertices that share an edge with v, the infinite one included, appended to `out` (in 3-D
+/// from v's star cells, found into `cells`). Read-only, so threads may call it at once.
+template <int D, typename Delaunay, typename Cells>
 void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
-                      std::vector<typename Delaunay::Vertex_handle>& out) {
+                      std::vector<typename Delaunay::Vertex_handle>& out, Cells& cells) {
   if constexpr (D == 2) {
     auto u = dt.incident_vertices(v), done = u;
     do {
       out.push_back(u);
     } while (++u != done);
   } else {
-    dt.adjacent_vertices_threadsafe(v, std::back_inserter(out));
+    starCells(dt, v, cells);
+    const std::size_t first = out.size();
+    for (const auto& c : cells) {
+      for (int k = 0; k < 4; ++k) {
+        const auto u = c->vertex(k);
+        if (u != v && std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+      }
+    }
   }
 }
 
@@ -353,6 +416,7 @@ std::size_t outsideByStar(const Delaunay& dt,
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<typename Delaunay::Vertex_handle> neighbours;
+    std::vector<typename SimplexOf<D, Delaunay>::Handle> cells;  // 3-D: the star's
     std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
     CancelPacer pacer = callingThreadPacer(cancel_check, kStarCancelStride);
 #pragma omp for schedule(dynamic, 256)
@@ -361,7 +425,7 @@ std::size_t outsideByStar(const Delaunay& dt,
         pacer.step();
         const auto v = boundary[i];
         neighbours.clear();
-        adjacentVertices<D>(dt, v, neighbours);
+        adjacentVertices<D>(dt, v, neighbours, cells);
         if (std::any_of(neighbours.begin(), neighbours.end(),
                         [&](const auto& u) { return dt.is_infinite(u); })) {
           ++outside;  // on the convex hull
