@@ -99,6 +99,25 @@ inline unsigned signMasks(__m128 v) {
 }
 #endif
 
+#if defined(__SSE2__)
+/// \brief A 3 x 3 float matrix E by columns, for E * v four lanes at a time with the very
+/// rounding of Eigen's E * Eigen::Vector3f (for row i, E(i,0) x + (E(i,1) y + E(i,2) z): its
+/// unrolled sum of three products, no fused multiply-add).
+struct FrameColumns {
+  explicit FrameColumns(const Eigen::Matrix3f& E)
+      : c0(_mm_setr_ps(E(0, 0), E(1, 0), E(2, 0), 0.0f)),
+        c1(_mm_setr_ps(E(0, 1), E(1, 1), E(2, 1), 0.0f)),
+        c2(_mm_setr_ps(E(0, 2), E(1, 2), E(2, 2), 0.0f)) {}
+  /// \brief E * (x, y, z) of v = (x, y, z, anything) in lanes 0-2 (lane 3: 0 for finite v).
+  __m128 times(__m128 v) const {
+    const __m128 x = _mm_shuffle_ps(v, v, 0x00), y = _mm_shuffle_ps(v, v, 0x55);
+    const __m128 z = _mm_shuffle_ps(v, v, 0xAA);
+    return _mm_add_ps(_mm_mul_ps(c0, x), _mm_add_ps(_mm_mul_ps(c1, y), _mm_mul_ps(c2, z)));
+  }
+  __m128 c0, c1, c2;
+};
+#endif
+
 /// \brief The rows of the outward frame for the unit outward direction n: in 2-D, n bisects the
 /// first quadrant; in 3-D, e_k = n / sqrt(3) + sqrt(2/3) (cos t_k a + sin t_k b), t_k = 0, 120,
 /// 240 degrees, an orthonormal frame whose first octant has n as its diagonal.
@@ -172,15 +191,26 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
   if (!(length > 1e-6f * std::sqrt(size2))) return false;
   n /= length;
   const Eigen::Matrix3f E = outwardFrame(n, dimensions);
-  unsigned outward_mask = 0;
-  for (const auto& q : neighbours) {
-    const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+  // The neighbours come in the search's cell order, a sweep through the neighbourhood: visited
+  // `stride` apart, the first few spread over every side of p, so that an interior point fills
+  // the orthants (and stops) after a few dozen of them. The mask does not depend on the order.
+  const std::size_t size = neighbours.size();
+  const std::size_t stride = 1 + size / 16;
 #if defined(__SSE2__)
-    outward_mask |= by_masks[signMasks(_mm_setr_ps(w.x(), w.y(), w.z(), 0.0f))];
-#else
-    outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+  const FrameColumns columns(E);
 #endif
-    if (outward_mask == full) return false;
+  unsigned outward_mask = 0;
+  for (std::size_t first = 0; first < stride; ++first) {
+    for (std::size_t k = first; k < size; k += stride) {
+      const Neighbour& q = neighbours[k];
+#if defined(__SSE2__)
+      outward_mask |= by_masks[signMasks(columns.times(_mm_loadu_ps(&q.x)))];
+#else
+      const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+      outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+#endif
+      if (outward_mask == full) return false;
+    }
   }
   return true;
 }
