@@ -16,52 +16,56 @@ namespace {
 TEST(CellKernels, RowDistancesAreThePlainOnesBitForBit) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  const std::size_t n = 64;
+  const std::uint32_t n = 200;
   std::vector<float> x(n + kKernelSlack), y(n + kKernelSlack), z(n + kKernelSlack);
   for (std::size_t k = 0; k < n; ++k) x[k] = u(rng), y[k] = u(rng), z[k] = rng() % 5 ? u(rng) : 0;
   int near_total = 0;
-  for (std::uint32_t offset = 0; offset < 9; ++offset) {
-    for (std::uint32_t length = 0; offset + length <= n; ++length) {
-      const float px = x[offset], py = u(rng), pz = rng() % 2 ? 0.0f : u(rng);
-      // A bound equal to one of the distances (a tie at the bound is not near), or 1.
-      float bound = 1.0f;
-      if (length > 2 && offset % 2 == 0) {
-        const std::uint32_t k = offset + length / 2;
-        const float dx = x[k] - px, dy = y[k] - py, dz = z[k] - pz;
-        bound = dx * dx;
-        bound += dy * dy;
-        bound += dz * dz;
-      }
-      std::vector<float> d2[2], near_d2[2];
-      std::vector<std::uint32_t> slot[2], near_slot[2];
-      std::size_t near[2];
-      for (int form = 0; form < 2; ++form) {
-        d2[form].assign(length + kKernelSlack, -1.0f);
-        slot[form].assign(length + kKernelSlack, 0);
-        near_d2[form].assign(length + kKernelSlack, -1.0f);
-        near_slot[form].assign(length + kKernelSlack, 0);
-        auto kernel = form == 0 ? plain::rowDistances : rowDistances;
-        near[form] = kernel(x.data() + offset, y.data() + offset, z.data() + offset, length, px, py,
-                            pz, 100 + offset, bound, d2[form].data(), slot[form].data(),
-                            near_d2[form].data(), near_slot[form].data());
-      }
-      ASSERT_EQ(near[0], near[1]) << offset << " " << length;
-      ASSERT_EQ(0, std::memcmp(d2[0].data(), d2[1].data(), length * sizeof(float)));
-      for (std::uint32_t k = 0; k < length; ++k) {
-        const float dx = x[offset + k] - px, dy = y[offset + k] - py, dz = z[offset + k] - pz;
-        float d = dx * dx;
-        d += dy * dy;
-        d += dz * dz;
-        ASSERT_EQ(d2[1][k], d);
-        ASSERT_EQ(slot[1][k], 100 + offset + k);
-      }
-      ASSERT_EQ(0, std::memcmp(near_d2[0].data(), near_d2[1].data(), near[0] * sizeof(float)));
-      ASSERT_EQ(0, std::memcmp(near_slot[0].data(), near_slot[1].data(),
-                               near[0] * sizeof(std::uint32_t)));
-      near_total += static_cast<int>(near[0]);
+  for (int trial = 0; trial < 2000; ++trial) {
+    // Up to 6 rows of 0 to 30 points anywhere (the last ones reaching the end of the arrays).
+    std::vector<RowSpan> rows(rng() % 7);
+    std::vector<std::uint32_t> expected_slots;
+    for (auto& row : rows) {
+      const std::uint32_t length = rng() % 31;
+      row.begin = trial % 5 == 0 ? n - length : static_cast<std::uint32_t>(rng() % (n - length));
+      row.end = row.begin + length;
+      for (std::uint32_t k = row.begin; k < row.end; ++k) expected_slots.push_back(k);
     }
+    const std::size_t total = expected_slots.size();
+    const float px = u(rng), py = u(rng), pz = rng() % 2 ? 0.0f : u(rng);
+    std::vector<float> expected_d2;
+    for (const std::uint32_t k : expected_slots) {
+      const float dx = x[k] - px, dy = y[k] - py, dz = z[k] - pz;
+      float d = dx * dx;
+      d += dy * dy;
+      d += dz * dz;
+      expected_d2.push_back(d);
+    }
+    // A bound equal to one of the distances (a tie at the bound is not near), or 1.
+    const float bound = total > 0 && trial % 2 ? expected_d2[total / 2] : 1.0f;
+    std::vector<float> expected_near_d2;
+    std::vector<std::uint32_t> expected_near_slot;
+    for (std::size_t j = 0; j < total; ++j) {
+      if (expected_d2[j] < bound) {
+        expected_near_d2.push_back(expected_d2[j]);
+        expected_near_slot.push_back(expected_slots[j]);
+      }
+    }
+    for (auto kernel : {plain::rowDistances, rowDistances}) {
+      std::vector<float> d2(total + kKernelSlack), near_d2(total + kKernelSlack);
+      std::vector<std::uint32_t> slot(total + kKernelSlack), near_slot(total + kKernelSlack);
+      const std::size_t near =
+          kernel(x.data(), y.data(), z.data(), rows.data(), rows.size(), px, py, pz, bound,
+                 d2.data(), slot.data(), near_d2.data(), near_slot.data());
+      ASSERT_EQ(near, expected_near_d2.size()) << trial;
+      ASSERT_EQ(0, std::memcmp(d2.data(), expected_d2.data(), total * sizeof(float))) << trial;
+      ASSERT_EQ(std::vector<std::uint32_t>(slot.begin(), slot.begin() + total), expected_slots);
+      ASSERT_EQ(0, std::memcmp(near_d2.data(), expected_near_d2.data(), near * sizeof(float)));
+      ASSERT_EQ(std::vector<std::uint32_t>(near_slot.begin(), near_slot.begin() + near),
+                expected_near_slot);
+    }
+    near_total += static_cast<int>(expected_near_d2.size());
   }
-  EXPECT_GT(near_total, 1000);
+  EXPECT_GT(near_total, 5000);
 }
 
 TEST(CellKernels, ValuesBelowKeepsTheOrderAndLeavesTies) {

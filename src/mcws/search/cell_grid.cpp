@@ -126,15 +126,17 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
   };
   auto gapTo = [&](std::int64_t c, int axis) {  // distance from q to cell c's slab
     const double lo = origin_[axis] + c * cell_, hi = lo + cell_;
-    return q[axis] < lo ? lo - q[axis] : (q[axis] > hi ? q[axis] - hi : 0.0);
+    // (without branches; only its square is used, so a -0 is as good as 0)
+    return std::max(std::max(lo - q[axis], q[axis] - hi), 0.0);
   };
   std::int64_t lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (int k = 0; k < dimensions_; ++k) {
     lo[k] = cellAt(q[k] - r, k);
     hi[k] = cellAt(q[k] + r, k);
   }
-  // In 2-D, z is 0 - 0 and adds nothing to the squared distances.
-  const float px = p.x, py = p.y, pz = dimensions_ == 3 ? p.z : 0.0f;
+  // The rows of cells that meet the ball, then their points in one pass.
+  out.rows.clear();
+  std::size_t total = 0;
   for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz) {
     const double gz = dimensions_ == 3 ? gapTo(cz, 2) : 0.0;
     const double slab = r * r - gz * gz;
@@ -145,23 +147,25 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
       const double w = std::sqrt(left);
       const std::int64_t x0 = cellAt(q.x() - w, 0), x1 = cellAt(q.x() + w, 0);
       const std::int64_t row = (cz * counts_[1] + cy) * counts_[0];
-      const std::uint32_t begin = start_[row + x0], end = start_[row + x1 + 1];
-      const std::size_t base = out.size;
-      out.size += end - begin;
-      // Room for the row and the up to 7 entries rowDistances() may write past it.
-      if (out.d2.size() < out.size + detail::kKernelSlack) {
-        const std::size_t room = 2 * (out.size + detail::kKernelSlack);
-        out.d2.resize(room);
-        out.slot.resize(room);
-        out.near_d2.resize(room);
-        out.near_slot.resize(room);
-      }
-      out.near_size += detail::rowDistances(
-          x_.data() + begin, y_.data() + begin, z_.data() + begin, end - begin, px, py, pz, begin,
-          near_bound, out.d2.data() + base, out.slot.data() + base,
-          out.near_d2.data() + out.near_size, out.near_slot.data() + out.near_size);
+      const detail::RowSpan span{start_[row + x0], start_[row + x1 + 1]};
+      total += span.end - span.begin;
+      out.rows.push_back(span);
     }
   }
+  // Room for the rows and the entries the kernel may write past them.
+  if (out.d2.size() < total + detail::kKernelSlack) {
+    const std::size_t room = 2 * (total + detail::kKernelSlack);
+    out.d2.resize(room);
+    out.slot.resize(room);
+    out.near_d2.resize(room);
+    out.near_slot.resize(room);
+  }
+  out.size = total;
+  // In 2-D, z is 0 - 0 and adds nothing to the squared distances.
+  const float px = p.x, py = p.y, pz = dimensions_ == 3 ? p.z : 0.0f;
+  out.near_size = detail::rowDistances(x_.data(), y_.data(), z_.data(), out.rows.data(),
+                                       out.rows.size(), px, py, pz, near_bound, out.d2.data(),
+                                       out.slot.data(), out.near_d2.data(), out.near_slot.data());
 }
 
 bool CellGridSearch::gather(pcl::index_t i, double reach, float near_bound) {

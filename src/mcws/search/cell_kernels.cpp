@@ -12,20 +12,22 @@ namespace mcws::detail {
 namespace {
 
 std::size_t rowDistancesPlain(const float* xs, const float* ys, const float* zs,
-                              std::uint32_t length, float px, float py, float pz,
-                              std::uint32_t first, float bound, float* d2, std::uint32_t* slot,
-                              float* near_d2, std::uint32_t* near_slot) {
-  std::size_t m = 0;
-  for (std::uint32_t k = 0; k < length; ++k) {
-    const float dx = xs[k] - px, dy = ys[k] - py, dz = zs[k] - pz;
-    float d = dx * dx;
-    d += dy * dy;
-    d += dz * dz;
-    d2[k] = d;
-    slot[k] = first + k;
-    near_d2[m] = d;
-    near_slot[m] = first + k;
-    m += d < bound;
+                              const RowSpan* rows, std::size_t row_count, float px, float py,
+                              float pz, float bound, float* d2, std::uint32_t* slot, float* near_d2,
+                              std::uint32_t* near_slot) {
+  std::size_t m = 0, base = 0;
+  for (std::size_t r = 0; r < row_count; ++r) {
+    for (std::uint32_t k = rows[r].begin; k < rows[r].end; ++k, ++base) {
+      const float dx = xs[k] - px, dy = ys[k] - py, dz = zs[k] - pz;
+      float d = dx * dx;
+      d += dy * dy;
+      d += dz * dz;
+      d2[base] = d;
+      slot[base] = k;
+      near_d2[m] = d;
+      near_slot[m] = k;
+      m += d < bound;
+    }
   }
   return m;
 }
@@ -62,48 +64,53 @@ const LaneTable kLanes;
 /// The AVX2 registers of rowDistancesAvx2(): the query, the bound, the next group's slots.
 struct RowQuery {
   __m256 qx, qy, qz, limit;
-  __m256i slots;
+  __m256i iota;  ///< 0, 1, ..., 7
 };
 
-/// One group of 8 points of rowDistancesAvx2() from point k on (lanes outside `valid` are never
-/// near); returns how many are near.
+/// One group of 8 points of rowDistancesAvx2(), from point k of the arrays on, into d2 and slot
+/// (lanes outside `valid` are never near); returns how many are near.
 __attribute__((target("avx2"), always_inline)) inline std::size_t rowGroupAvx2(
-    const float* xs, const float* ys, const float* zs, std::uint32_t k, unsigned valid, RowQuery& q,
-    float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
+    const float* xs, const float* ys, const float* zs, std::uint32_t k, unsigned valid,
+    const RowQuery& q, float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
   const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(xs + k), q.qx);
   const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(ys + k), q.qy);
   const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(zs + k), q.qz);
   const __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
                                  _mm256_mul_ps(dz, dz));
-  _mm256_storeu_ps(d2 + k, d);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot + k), q.slots);
+  const __m256i slots = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(k)), q.iota);
+  _mm256_storeu_ps(d2, d);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot), slots);
   const unsigned mask =
       static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d, q.limit, _CMP_LT_OQ))) & valid;
   const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
   _mm256_storeu_ps(near_d2, _mm256_permutevar8x32_ps(d, lanes));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(near_slot),
-                      _mm256_permutevar8x32_epi32(q.slots, lanes));
-  q.slots = _mm256_add_epi32(q.slots, _mm256_set1_epi32(8));
+                      _mm256_permutevar8x32_epi32(slots, lanes));
   return kLanes.count[mask];
 }
 
 /// rowDistancesPlain() 8 at a time (AVX2, no FMA: the same roundings), the near ones left-packed
-/// by a permutation from kLanes.
+/// by a permutation from kLanes. A row's last group may read up to 7 points past it (and write
+/// as many entries past the row's), which the next row's overwrite.
 __attribute__((target("avx2"))) std::size_t rowDistancesAvx2(
-    const float* xs, const float* ys, const float* zs, std::uint32_t length, float px, float py,
-    float pz, std::uint32_t first, float bound, float* d2, std::uint32_t* slot, float* near_d2,
+    const float* xs, const float* ys, const float* zs, const RowSpan* rows, std::size_t row_count,
+    float px, float py, float pz, float bound, float* d2, std::uint32_t* slot, float* near_d2,
     std::uint32_t* near_slot) {
-  RowQuery q{_mm256_set1_ps(px), _mm256_set1_ps(py), _mm256_set1_ps(pz), _mm256_set1_ps(bound),
-             _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(first)),
-                              _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7))};
-  std::size_t m = 0;
-  std::uint32_t k = 0;
-  for (; k + 8 <= length; k += 8) {
-    m += rowGroupAvx2(xs, ys, zs, k, 0xFFu, q, d2, slot, near_d2 + m, near_slot + m);
-  }
-  if (k < length) {
-    m += rowGroupAvx2(xs, ys, zs, k, (1u << (length - k)) - 1u, q, d2, slot, near_d2 + m,
-                      near_slot + m);
+  const RowQuery q{_mm256_set1_ps(px), _mm256_set1_ps(py), _mm256_set1_ps(pz),
+                   _mm256_set1_ps(bound), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)};
+  std::size_t m = 0, base = 0;
+  for (std::size_t r = 0; r < row_count; ++r) {
+    const std::uint32_t end = rows[r].end;
+    std::uint32_t k = rows[r].begin;
+    for (; k + 8 <= end; k += 8, base += 8) {
+      m +=
+          rowGroupAvx2(xs, ys, zs, k, 0xFFu, q, d2 + base, slot + base, near_d2 + m, near_slot + m);
+    }
+    if (k < end) {
+      m += rowGroupAvx2(xs, ys, zs, k, (1u << (end - k)) - 1u, q, d2 + base, slot + base,
+                        near_d2 + m, near_slot + m);
+      base += end - k;
+    }
   }
   return m;
 }
@@ -176,10 +183,10 @@ const Kernels kKernels;
 
 }  // namespace
 
-std::size_t rowDistances(const float* xs, const float* ys, const float* zs, std::uint32_t length,
-                         float px, float py, float pz, std::uint32_t first, float bound, float* d2,
-                         std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
-  return kKernels.row_distances(xs, ys, zs, length, px, py, pz, first, bound, d2, slot, near_d2,
+std::size_t rowDistances(const float* xs, const float* ys, const float* zs, const RowSpan* rows,
+                         std::size_t row_count, float px, float py, float pz, float bound,
+                         float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
+  return kKernels.row_distances(xs, ys, zs, rows, row_count, px, py, pz, bound, d2, slot, near_d2,
                                 near_slot);
 }
 
@@ -224,10 +231,10 @@ std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out) 
 float kthSmallest(float* v, std::size_t m, int count) { return kKernels.kth_smallest(v, m, count); }
 
 namespace plain {
-std::size_t rowDistances(const float* xs, const float* ys, const float* zs, std::uint32_t length,
-                         float px, float py, float pz, std::uint32_t first, float bound, float* d2,
-                         std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
-  return rowDistancesPlain(xs, ys, zs, length, px, py, pz, first, bound, d2, slot, near_d2,
+std::size_t rowDistances(const float* xs, const float* ys, const float* zs, const RowSpan* rows,
+                         std::size_t row_count, float px, float py, float pz, float bound,
+                         float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
+  return rowDistancesPlain(xs, ys, zs, rows, row_count, px, py, pz, bound, d2, slot, near_d2,
                            near_slot);
 }
 std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out) {

@@ -13,14 +13,21 @@ namespace mcws::detail {
 /// outputs it may write: the callers leave that much room.
 constexpr std::size_t kKernelSlack = 8;
 
-/// \brief One row of candidates: the squared distances from (px, py, pz) of `length` points in
-/// parallel arrays into d2[0, length), their slots `first`, `first` + 1, ... into slot[0,
-/// length), and those with d^2 < `bound` (d2 and slot, in order) into near_d2 and near_slot;
-/// returns how many of those. Distances as FLANN's L2_Simple computes them (float, point minus
-/// query, summed x, y, z in that order, IEEE operations without fused multiply-adds).
-std::size_t rowDistances(const float* xs, const float* ys, const float* zs, std::uint32_t length,
-                         float px, float py, float pz, std::uint32_t first, float bound, float* d2,
-                         std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot);
+/// \brief A run of points [begin, end) in the grid's arrays: the cells of one row that a search
+/// visits.
+struct RowSpan {
+  std::uint32_t begin, end;
+};
+
+/// \brief The candidates of a search, row after row: the squared distances from (px, py, pz) of
+/// the points of `rows` (coordinates in the parallel arrays xs, ys, zs) into d2, their slots
+/// (places in those arrays) into slot, and those with d^2 < `bound` (d2 and slot, in order) into
+/// near_d2 and near_slot; returns how many of those. Distances as FLANN's L2_Simple computes them
+/// (float, point minus query, summed x, y, z in that order, IEEE operations without fused
+/// multiply-adds).
+std::size_t rowDistances(const float* xs, const float* ys, const float* zs, const RowSpan* rows,
+                         std::size_t row_count, float px, float py, float pz, float bound,
+                         float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot);
 
 /// \brief The places k (in order) of the values with v[k] < bound into `out`; returns how many.
 std::size_t placesBelow(const float* v, std::size_t n, float bound, std::uint32_t* out);
@@ -35,9 +42,9 @@ float kthSmallest(float* v, std::size_t m, int count);
 /// \brief The kernels above without vector instructions (what a processor without AVX2 runs),
 /// for tests that compare the two.
 namespace plain {
-std::size_t rowDistances(const float* xs, const float* ys, const float* zs, std::uint32_t length,
-                         float px, float py, float pz, std::uint32_t first, float bound, float* d2,
-                         std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot);
+std::size_t rowDistances(const float* xs, const float* ys, const float* zs, const RowSpan* rows,
+                         std::size_t row_count, float px, float py, float pz, float bound,
+                         float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot);
 std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out);
 float kthSmallest(float* v, std::size_t m, int count);
 }  // namespace plain

@@ -90,6 +90,30 @@ inline const std::uint8_t* orthantBitsByMasks(int dimensions) {
   return table.bit[dimensions - 2];
 }
 
+/// \brief orthantBitsByMasks() indexed by laneMasks(): bits 0-3 say lanes 0-3 > 0, bits 4-7
+/// lanes 0-3 < 0; the fourth lane's bits are ignored.
+inline const std::uint8_t* orthantBitsByLaneMasks(int dimensions) {
+  struct Table {
+    std::uint8_t bit[2][256];
+    Table() : bit{} {
+      for (int d = 0; d < 2; ++d) {
+        for (unsigned lanes = 0; lanes < 256; ++lanes) {
+          bit[d][lanes] = orthantBitsByMasks(d + 2)[(lanes & 7u) | ((lanes >> 4) & 7u) << 3];
+        }
+      }
+    }
+  };
+  static const Table table;
+  return table.bit[dimensions - 2];
+}
+
+/// \brief The masks of the four lanes of `v` > 0 (bits 0-3) and < 0 (bits 4-7).
+inline unsigned laneMasks(__m128 v) {
+  const __m128 zero = _mm_setzero_ps();
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(v, zero))) |
+         static_cast<unsigned>(_mm_movemask_ps(_mm_cmplt_ps(v, zero))) << 4;
+}
+
 /// \brief The sign masks of lanes x, y, z of `v` (the fourth is ignored): bits 0-2 > 0, bits 3-5
 /// < 0, as signCode() tells them apart (0 and -0 neither).
 inline unsigned signMasks(__m128 v) {
@@ -159,17 +183,22 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
 #if defined(__SSE2__)
   // The same sums and bits, x and y summed side by side in one register (each lane the same
   // double additions in the same order), the signs of x, y, z compared at once.
+  // z summed beside d2 (unused) likewise, and the largest d2 kept in the fourth lane.
   const std::uint8_t* by_masks = orthantBitsByMasks(dimensions);
-  __m128d sxy = _mm_setzero_pd();
+  const std::uint8_t* by_lanes = orthantBitsByLaneMasks(dimensions);
+  __m128d sxy = _mm_setzero_pd(), szd = _mm_setzero_pd();
+  __m128 largest = _mm_setzero_ps();
   for (const auto& q : neighbours) {
     const __m128 v = _mm_loadu_ps(&q.x);  // x, y, z, d2
-    axis_mask |= by_masks[signMasks(v)];
+    axis_mask |= by_lanes[laneMasks(v)];
     sxy = _mm_add_pd(sxy, _mm_cvtps_pd(v));
-    sz += q.z;
-    size2 = std::max(size2, q.d2);
+    szd = _mm_add_pd(szd, _mm_cvtps_pd(_mm_movehl_ps(v, v)));
+    largest = _mm_max_ps(largest, v);
   }
   sx = _mm_cvtsd_f64(sxy);
   sy = _mm_cvtsd_f64(_mm_unpackhi_pd(sxy, sxy));
+  sz = _mm_cvtsd_f64(szd);
+  size2 = _mm_cvtss_f32(_mm_shuffle_ps(largest, largest, 0xFF));
 #else
   const std::uint8_t* bits = orthantBits(dimensions);
   for (const auto& q : neighbours) {
