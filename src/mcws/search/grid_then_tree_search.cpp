@@ -16,8 +16,10 @@ double cellPerRadius(int dimensions) { return dimensions == 2 ? 0.55 : 0.85; }
 /// A lonely point at the rim of a uniform cloud needs 4 or 5 cells in 2-D.
 double maxReachInCells(int dimensions) { return dimensions == 2 ? 8.0 : 4.0; }
 /// A k-nearest search first collects this many times the typical radius, so that the radius
-/// searches after it reuse its candidates.
-constexpr double kFirstReach = 1.15;
+/// searches after it mostly reuse its candidates (1e6-point ball: 1.05 collects 4 % fewer
+/// instructions than 1.15, where the few points whose radius reaches farther collect again;
+/// the disk is the same at either).
+constexpr double kFirstReach = 1.05;
 /// A cell holding this many times the expected number of points sends its points to the tree,
 /// which copes better with density far above the mean.
 constexpr double kCrowdedCell = 16.0;
