@@ -48,6 +48,8 @@ class CellGrid {
   void renumberInCellOrder() {
     for (std::size_t k = 0; k < index_.size(); ++k) index_[k] = static_cast<pcl::index_t>(k);
   }
+  /// \brief The cells' runs of slots: cell c holds slots [cellStarts()[c], cellStarts()[c + 1]).
+  const std::vector<std::uint32_t>& cellStarts() const { return start_; }
   /// \brief Number of points in the cell holding `p`.
   std::size_t population(const pcl::PointXYZ& p) const;
 

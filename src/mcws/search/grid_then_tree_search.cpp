@@ -57,7 +57,15 @@ GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& position
   grid_.renumberInCellOrder();
   const double expected = mean_spacing > 0.0 ? std::pow(grid_.cellSize() / mean_spacing, dimensions)
                                              : static_cast<double>(n);
-  crowded_ = static_cast<std::size_t>(kCrowdedCell * std::max(1.0, expected));
+  const auto crowded = static_cast<std::size_t>(kCrowdedCell * std::max(1.0, expected));
+  // In cell order, the points of cell c are those in its slots.
+  served_.assign(n, use_grid ? 1 : 0);
+  const std::vector<std::uint32_t>& starts = grid_.cellStarts();
+  for (std::size_t c = 0; use_grid && c + 1 < starts.size(); ++c) {
+    if (starts[c + 1] - starts[c] > crowded) {
+      std::fill(served_.begin() + starts[c], served_.begin() + starts[c + 1], 0);
+    }
+  }
 }
 
 const pcl::KdTreeFLANN<pcl::PointXYZ>& GridThenTreeSearch::tree() {
