@@ -83,10 +83,16 @@ TEST(CellKernels, ValuesBelowKeepsTheOrderAndLeavesTies) {
       const std::size_t m = kernel(v.data(), n, bound, out.data());
       ASSERT_EQ(std::vector<float>(out.begin(), out.begin() + m), expected) << n;
     }
-    std::vector<std::uint32_t> places(n + kKernelSlack);
-    const std::size_t m = placesBelow(v.data(), n, bound, places.data());
-    ASSERT_EQ(m, expected.size());
-    for (std::size_t j = 0; j < m; ++j) ASSERT_EQ(v[places[j]], expected[j]);
+    for (auto kernel : {plain::placesBelow, placesBelow}) {
+      std::vector<std::uint32_t> places(n + kKernelSlack);
+      const std::size_t m = kernel(v.data(), n, bound, places.data());
+      ASSERT_EQ(m, expected.size());
+      for (std::size_t j = 0; j < m; ++j) {
+        ASSERT_LT(places[j], n);
+        ASSERT_TRUE(j == 0 || places[j] > places[j - 1]);
+        ASSERT_EQ(v[places[j]], expected[j]);
+      }
+    }
   }
 }
 

@@ -1,5 +1,8 @@
 #include "mcws/search/cell_kernels.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define MCWS_CELL_KERNELS_AVX2 1
@@ -39,6 +42,41 @@ std::size_t valuesBelowPlain(const float* v, std::size_t n, float bound, float* 
     m += v[k] < bound;
   }
   return m;
+}
+
+/// The places of the values below `bound`: with SSE2 four at a time.
+std::size_t placesBelowPlain(const float* v, std::size_t n, float bound, std::uint32_t* out) {
+  std::size_t kept = 0, k = 0;
+#if defined(__SSE2__)
+  // Four at a time: the lanes below the bound as a 4-bit mask, their places from a table of the
+  // 16 masks, stored whole and advanced by the mask's count (no byte shuffle needed).
+  struct Table {
+    alignas(16) std::uint32_t lanes[16][4];
+    std::uint8_t count[16];
+    Table() : lanes{}, count{} {
+      for (unsigned mask = 0; mask < 16; ++mask) {
+        for (unsigned lane = 0; lane < 4; ++lane) {
+          if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
+        }
+      }
+    }
+  };
+  static const Table table;
+  const __m128 limit = _mm_set1_ps(bound);
+  for (; k + 4 <= n; k += 4) {
+    const int mask = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(v + k), limit));
+    const __m128i places =
+        _mm_add_epi32(_mm_set1_epi32(static_cast<int>(k)),
+                      _mm_load_si128(reinterpret_cast<const __m128i*>(table.lanes[mask])));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + kept), places);
+    kept += table.count[mask];
+  }
+#endif
+  for (; k < n; ++k) {
+    out[kept] = static_cast<std::uint32_t>(k);
+    kept += v[k] < bound;
+  }
+  return kept;
 }
 
 float kthSmallestPlain(float* v, std::size_t m, int count) {
@@ -132,6 +170,24 @@ __attribute__((target("avx2"))) std::size_t valuesBelowAvx2(const float* v, std:
   return m;
 }
 
+/// placesBelowPlain() 8 at a time.
+__attribute__((target("avx2"))) std::size_t placesBelowAvx2(const float* v, std::size_t n,
+                                                            float bound, std::uint32_t* out) {
+  const __m256 limit = _mm256_set1_ps(bound);
+  std::size_t m = 0;
+  for (std::size_t k = 0; k < n; k += 8) {
+    const __m256 x = _mm256_loadu_ps(v + k);
+    const unsigned valid = n - k >= 8 ? 0xFFu : (1u << (n - k)) - 1u;
+    const unsigned mask =
+        static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LT_OQ))) & valid;
+    const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m),
+                        _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
+    m += kLanes.count[mask];
+  }
+  return m;
+}
+
 /// The longest list kthSmallestAvx2() ranks; longer ones go to std::nth_element.
 constexpr std::size_t kRankedAtMost = 48;
 
@@ -166,6 +222,7 @@ __attribute__((target("avx2"))) float kthSmallestAvx2(float* v, std::size_t m, i
 struct Kernels {
   decltype(&rowDistancesPlain) row_distances = rowDistancesPlain;
   decltype(&valuesBelowPlain) values_below = valuesBelowPlain;
+  decltype(&placesBelowPlain) places_below = placesBelowPlain;
   decltype(&kthSmallestPlain) kth_smallest = kthSmallestPlain;
   Kernels() {
 #if MCWS_CELL_KERNELS_AVX2
@@ -173,6 +230,7 @@ struct Kernels {
     if (__builtin_cpu_supports("avx2")) {
       row_distances = rowDistancesAvx2;
       values_below = valuesBelowAvx2;
+      places_below = placesBelowAvx2;
       kth_smallest = kthSmallestAvx2;
     }
 #endif
@@ -191,37 +249,7 @@ std::size_t rowDistances(const float* xs, const float* ys, const float* zs, cons
 }
 
 std::size_t placesBelow(const float* v, std::size_t n, float bound, std::uint32_t* out) {
-  std::size_t kept = 0, k = 0;
-#if defined(__SSE2__)
-  // Four at a time: the lanes below the bound as a 4-bit mask, their places from a table of the
-  // 16 masks, stored whole and advanced by the mask's count (no byte shuffle needed).
-  struct Table {
-    alignas(16) std::uint32_t lanes[16][4];
-    std::uint8_t count[16];
-    Table() : lanes{}, count{} {
-      for (unsigned mask = 0; mask < 16; ++mask) {
-        for (unsigned lane = 0; lane < 4; ++lane) {
-          if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
-        }
-      }
-    }
-  };
-  static const Table table;
-  const __m128 limit = _mm_set1_ps(bound);
-  for (; k + 4 <= n; k += 4) {
-    const int mask = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(v + k), limit));
-    const __m128i places =
-        _mm_add_epi32(_mm_set1_epi32(static_cast<int>(k)),
-                      _mm_load_si128(reinterpret_cast<const __m128i*>(table.lanes[mask])));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + kept), places);
-    kept += table.count[mask];
-  }
-#endif
-  for (; k < n; ++k) {
-    out[kept] = static_cast<std::uint32_t>(k);
-    kept += v[k] < bound;
-  }
-  return kept;
+  return kKernels.places_below(v, n, bound, out);
 }
 
 std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out) {
@@ -239,6 +267,9 @@ std::size_t rowDistances(const float* xs, const float* ys, const float* zs, cons
 }
 std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out) {
   return valuesBelowPlain(v, n, bound, out);
+}
+std::size_t placesBelow(const float* v, std::size_t n, float bound, std::uint32_t* out) {
+  return placesBelowPlain(v, n, bound, out);
 }
 float kthSmallest(float* v, std::size_t m, int count) { return kthSmallestPlain(v, m, count); }
 }  // namespace plain

@@ -46,6 +46,7 @@ std::size_t rowDistances(const float* xs, const float* ys, const float* zs, cons
                          std::size_t row_count, float px, float py, float pz, float bound,
                          float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot);
 std::size_t valuesBelow(const float* v, std::size_t n, float bound, float* out);
+std::size_t placesBelow(const float* v, std::size_t n, float bound, std::uint32_t* out);
 float kthSmallest(float* v, std::size_t m, int count);
 }  // namespace plain
 
