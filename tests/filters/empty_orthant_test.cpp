@@ -89,5 +89,37 @@ TEST(EmptyOrthant, SameAnswerAsThePerCoordinateForm) {
   EXPECT_LT(boundary, cases - cases / 10);
 }
 
+#if defined(__SSE2__)
+TEST(EmptyOrthant, FrameColumnsRoundAsEigensProduct) {
+  // The outward frame applied four lanes at a time must give Eigen's E * v bit for bit: a sign
+  // that flips at a last-bit difference would change an answer.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int differ_by_order = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Eigen::Vector3f n(u(rng), u(rng), trial % 2 ? u(rng) : 0.0f);
+    if (!(n.norm() > 1e-3f)) continue;
+    n.normalize();
+    const Eigen::Matrix3f E = outwardFrame(n, 2 + trial % 2);
+    const FrameColumns columns(E);
+    for (int k = 0; k < 8; ++k) {
+      const Eigen::Vector3f v(coordinate(rng), coordinate(rng), coordinate(rng));
+      const Eigen::Vector3f expected = E * v;
+      alignas(16) float lanes[4];
+      _mm_store_ps(lanes, columns.times(_mm_setr_ps(v.x(), v.y(), v.z(), 0.5f)));
+      for (int axis = 0; axis < 3; ++axis) {
+        ASSERT_EQ(std::signbit(lanes[axis]), std::signbit(expected[axis])) << trial;
+        ASSERT_EQ(lanes[axis], expected[axis]) << "trial " << trial << ", axis " << axis;
+        // The other order of the sum, (E(i,0) x + E(i,1) y) + E(i,2) z, often differs: the
+        // comparison tells the orders apart.
+        const float other = (E(axis, 0) * v.x() + E(axis, 1) * v.y()) + E(axis, 2) * v.z();
+        differ_by_order += other != expected[axis];
+      }
+    }
+  }
+  EXPECT_GT(differ_by_order, 1000);
+}
+#endif
+
 }  // namespace
 }  // namespace mcws::orthant

@@ -11,6 +11,7 @@
 #include <limits>
 #include <vector>
 
+#include "mcws/search/cell_kernels.h"
 #include "mcws/search/neighbour_search.h"
 
 namespace mcws {
@@ -47,20 +48,30 @@ class CellGrid {
   void renumberInCellOrder() {
     for (std::size_t k = 0; k < index_.size(); ++k) index_[k] = static_cast<pcl::index_t>(k);
   }
+  /// \brief The cells' runs of slots: cell c holds slots [cellStarts()[c], cellStarts()[c + 1]).
+  const std::vector<std::uint32_t>& cellStarts() const { return start_; }
   /// \brief Number of points in the cell holding `p`.
   std::size_t population(const pcl::PointXYZ& p) const;
 
   /// \brief Candidates of a search: slots (positions in cell order) and squared distances, in
-  /// parallel arrays of which the first `size` entries are in use (the arrays only grow).
+  /// parallel arrays of which the first `size` entries are in use (the arrays only grow); and of
+  /// them, in the same order, the near ones, those with d^2 < near_bound (first near_size
+  /// entries of near_d2 and near_slot).
   struct Candidates {
     std::vector<std::uint32_t> slot;
     std::vector<float> d2;
     std::size_t size{0};
+    std::vector<float> near_d2;
+    std::vector<std::uint32_t> near_slot;
+    std::size_t near_size{0};
+    float near_bound{0.0f};
+    std::vector<detail::RowSpan> rows;  ///< the rows of cells collected (scratch)
   };
 
   /// \brief Every point of the cells that meet the ball of radius `reach` [length unit] around p
-  /// (so at least every point within `reach`), with its squared distance.
-  void collect(const pcl::PointXYZ& p, double reach, Candidates& out) const;
+  /// (so at least every point within `reach`), with its squared distance; and the near ones, with
+  /// d^2 < `near_bound` [length unit^2].
+  void collect(const pcl::PointXYZ& p, double reach, float near_bound, Candidates& out) const;
 
   /// \brief The point in `slot` as a neighbour of p (its squared distance from p is `d2`).
   Neighbour neighbour(std::uint32_t slot, const pcl::PointXYZ& p, float d2) const {
@@ -105,12 +116,16 @@ class CellGridSearch : public NeighbourSearch {
                       std::vector<Neighbour>& subset) override;
 
  private:
-  /// Candidates of point i up to `reach` (false beyond max_reach_), kept for the next search.
-  bool gather(pcl::index_t i, double reach);
+  /// Candidates of point i up to `reach` (false beyond max_reach_), kept for the next search,
+  /// with their near ones below at least `near_bound`.
+  bool gather(pcl::index_t i, double reach, float near_bound);
   /// The candidates with d^2 < `limit`, as neighbours of point i, into `out`; returns how many
-  /// candidates have d^2 < `count_below`.
+  /// candidates have d^2 < `count_below`. Both bounds at most the near bound.
   std::size_t within(pcl::index_t i, float limit, std::vector<Neighbour>& out,
                      float count_below = 0.0f);
+  /// The `count` nearest of point i, whose count-th squared distance is d2, into `out`: those
+  /// closer, then ties, in the candidates' order.
+  void nearestOf(pcl::index_t i, int count, float d2, std::vector<Neighbour>& out);
 
   const CellGrid& grid_;
   const pcl::PointCloud<pcl::PointXYZ>& cloud_;
@@ -121,13 +136,6 @@ class CellGridSearch : public NeighbourSearch {
   std::vector<float> smallest_;
   std::vector<std::uint32_t> kept_;
   float hint_{std::numeric_limits<float>::infinity()};
-  /// The candidates of the last k-nearest search's point with d^2 < near_bound_ (their places in
-  /// candidates_, in order; the first near_count_ entries): a radius search after it that reaches
-  /// no farther filters these instead of every candidate. None when the candidates were
-  /// collected anew.
-  std::vector<std::uint32_t> near_;
-  std::size_t near_count_{0};
-  float near_bound_{0.0f};
 };
 
 }  // namespace mcws

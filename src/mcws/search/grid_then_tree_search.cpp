@@ -16,8 +16,10 @@ double cellPerRadius(int dimensions) { return dimensions == 2 ? 0.55 : 0.85; }
 /// A lonely point at the rim of a uniform cloud needs 4 or 5 cells in 2-D.
 double maxReachInCells(int dimensions) { return dimensions == 2 ? 8.0 : 4.0; }
 /// A k-nearest search first collects this many times the typical radius, so that the radius
-/// searches after it reuse its candidates.
-constexpr double kFirstReach = 1.15;
+/// searches after it mostly reuse its candidates (1e6-point ball: 1.05 collects 4 % fewer
+/// instructions than 1.15, where the few points whose radius reaches farther collect again;
+/// the disk is the same at either).
+constexpr double kFirstReach = 1.05;
 /// A cell holding this many times the expected number of points sends its points to the tree,
 /// which copes better with density far above the mean.
 constexpr double kCrowdedCell = 16.0;
@@ -55,7 +57,15 @@ GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& position
   grid_.renumberInCellOrder();
   const double expected = mean_spacing > 0.0 ? std::pow(grid_.cellSize() / mean_spacing, dimensions)
                                              : static_cast<double>(n);
-  crowded_ = static_cast<std::size_t>(kCrowdedCell * std::max(1.0, expected));
+  const auto crowded = static_cast<std::size_t>(kCrowdedCell * std::max(1.0, expected));
+  // In cell order, the points of cell c are those in its slots.
+  served_.assign(n, use_grid ? 1 : 0);
+  const std::vector<std::uint32_t>& starts = grid_.cellStarts();
+  for (std::size_t c = 0; use_grid && c + 1 < starts.size(); ++c) {
+    if (starts[c + 1] - starts[c] > crowded) {
+      std::fill(served_.begin() + starts[c], served_.begin() + starts[c + 1], 0);
+    }
+  }
 }
 
 const pcl::KdTreeFLANN<pcl::PointXYZ>& GridThenTreeSearch::tree() {

@@ -90,9 +90,7 @@ class GridThenTreeSearch {
   }
 
  private:
-  bool servedByGrid(pcl::index_t i) const {
-    return use_grid_ && grid_.population((*positions_)[i]) <= crowded_;
-  }
+  bool servedByGrid(pcl::index_t i) const { return served_[i] != 0; }
   /// The tree, built on the first call (not thread-safe: call it outside parallel regions).
   const pcl::KdTreeFLANN<pcl::PointXYZ>& tree();
 
@@ -100,7 +98,9 @@ class GridThenTreeSearch {
   CellGrid grid_;
   bool use_grid_;
   double first_reach_, max_reach_;
-  std::size_t crowded_;
+  /// Per point: the grid serves it (the grid is on and its cell holds at most a crowded cell's
+  /// population).
+  std::vector<char> served_;
   std::unique_ptr<pcl::KdTreeFLANN<pcl::PointXYZ>> tree_;
 };
 

@@ -6,6 +6,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define MCWS_ORTHANT_AVX2 1
+#endif
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -90,12 +94,151 @@ inline const std::uint8_t* orthantBitsByMasks(int dimensions) {
   return table.bit[dimensions - 2];
 }
 
+/// \brief orthantBitsByMasks() indexed by laneMasks(): bits 0-3 say lanes 0-3 > 0, bits 4-7
+/// lanes 0-3 < 0; the fourth lane's bits are ignored.
+inline const std::uint8_t* orthantBitsByLaneMasks(int dimensions) {
+  struct Table {
+    std::uint8_t bit[2][256];
+    Table() : bit{} {
+      for (int d = 0; d < 2; ++d) {
+        for (unsigned lanes = 0; lanes < 256; ++lanes) {
+          bit[d][lanes] = orthantBitsByMasks(d + 2)[(lanes & 7u) | ((lanes >> 4) & 7u) << 3];
+        }
+      }
+    }
+  };
+  static const Table table;
+  return table.bit[dimensions - 2];
+}
+
+/// \brief The masks of the four lanes of `v` > 0 (bits 0-3) and < 0 (bits 4-7).
+inline unsigned laneMasks(__m128 v) {
+  const __m128 zero = _mm_setzero_ps();
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(v, zero))) |
+         static_cast<unsigned>(_mm_movemask_ps(_mm_cmplt_ps(v, zero))) << 4;
+}
+
 /// \brief The sign masks of lanes x, y, z of `v` (the fourth is ignored): bits 0-2 > 0, bits 3-5
 /// < 0, as signCode() tells them apart (0 and -0 neither).
 inline unsigned signMasks(__m128 v) {
   const __m128 zero = _mm_setzero_ps();
   return (static_cast<unsigned>(_mm_movemask_ps(_mm_cmpgt_ps(v, zero))) & 7u) |
          (static_cast<unsigned>(_mm_movemask_ps(_mm_cmplt_ps(v, zero))) & 7u) << 3;
+}
+#endif
+
+#if defined(__SSE2__)
+/// \brief A 3 x 3 float matrix E by columns, for E * v four lanes at a time with the very
+/// rounding of Eigen's E * Eigen::Vector3f (for row i, E(i,0) x + (E(i,1) y + E(i,2) z): its
+/// unrolled sum of three products, no fused multiply-add).
+struct FrameColumns {
+  explicit FrameColumns(const Eigen::Matrix3f& E)
+      : c0(_mm_setr_ps(E(0, 0), E(1, 0), E(2, 0), 0.0f)),
+        c1(_mm_setr_ps(E(0, 1), E(1, 1), E(2, 1), 0.0f)),
+        c2(_mm_setr_ps(E(0, 2), E(1, 2), E(2, 2), 0.0f)) {}
+  /// \brief E * (x, y, z) of v = (x, y, z, anything) in lanes 0-2 (lane 3: 0 for finite v).
+  __m128 times(__m128 v) const {
+    const __m128 x = _mm_shuffle_ps(v, v, 0x00), y = _mm_shuffle_ps(v, v, 0x55);
+    const __m128 z = _mm_shuffle_ps(v, v, 0xAA);
+    return _mm_add_ps(_mm_mul_ps(c0, x), _mm_add_ps(_mm_mul_ps(c1, y), _mm_mul_ps(c2, z)));
+  }
+  __m128 c0, c1, c2;
+};
+#endif
+
+#if MCWS_ORTHANT_AVX2
+/// \brief What hasEmptyOrthant()'s first pass finds: the axis frame's orthants (bits), the sums
+/// of the offsets (in double, added in the neighbours' order) and the largest d^2.
+struct AxisPass {
+  unsigned mask;
+  double sx, sy, sz;
+  float size2;
+};
+
+/// \brief The orthants of four offsets, transposed (x, y, z of the four in v[0], v[1], v[2]), as
+/// lane masks OR-ed into acc[orthant]: quadrant() and octant() (the origin in none).
+__attribute__((target("avx2"), always_inline)) inline void orthantLanes(const __m128 (&v)[4],
+                                                                        int dimensions,
+                                                                        __m128 (&acc)[8]) {
+  const __m128 zero = _mm_setzero_ps();
+  const __m128 gx = _mm_cmpgt_ps(v[0], zero), lx = _mm_cmplt_ps(v[0], zero);
+  const __m128 gy = _mm_cmpgt_ps(v[1], zero), ly = _mm_cmplt_ps(v[1], zero);
+  // quadrant(): [0, 90), [90, 180), [180, 270), the rest.
+  const __m128 q0 = _mm_andnot_ps(ly, gx), q1 = _mm_andnot_ps(gx, gy), q2 = _mm_andnot_ps(gy, lx);
+  const __m128 in_plane = _mm_or_ps(_mm_or_ps(gx, lx), _mm_or_ps(gy, ly));
+  const __m128 first3 = _mm_or_ps(_mm_or_ps(q0, q1), q2);
+  if (dimensions == 2) {
+    acc[0] = _mm_or_ps(acc[0], q0);
+    acc[1] = _mm_or_ps(acc[1], q1);
+    acc[2] = _mm_or_ps(acc[2], q2);
+    acc[3] = _mm_or_ps(acc[3], _mm_andnot_ps(first3, in_plane));
+    return;
+  }
+  const __m128 gz = _mm_cmpgt_ps(v[2], zero), lz = _mm_cmplt_ps(v[2], zero);
+  const __m128 gzlz = _mm_or_ps(gz, lz);
+  const __m128 q3 = _mm_andnot_ps(first3, _mm_or_ps(in_plane, gzlz));
+  // octant(): up when z > 0, or z == 0 in an even quadrant.
+  const __m128 up = _mm_or_ps(gz, _mm_andnot_ps(gzlz, _mm_or_ps(q0, q2)));
+  acc[0] = _mm_or_ps(acc[0], _mm_andnot_ps(up, q0));
+  acc[1] = _mm_or_ps(acc[1], _mm_andnot_ps(up, q1));
+  acc[2] = _mm_or_ps(acc[2], _mm_andnot_ps(up, q2));
+  acc[3] = _mm_or_ps(acc[3], _mm_andnot_ps(up, q3));
+  acc[4] = _mm_or_ps(acc[4], _mm_and_ps(up, q0));
+  acc[5] = _mm_or_ps(acc[5], _mm_and_ps(up, q1));
+  acc[6] = _mm_or_ps(acc[6], _mm_and_ps(up, q2));
+  acc[7] = _mm_or_ps(acc[7], _mm_and_ps(up, q3));
+}
+
+/// \brief The first pass with AVX2: each neighbour's x, y, z, d2 summed in one four-lane double
+/// register (each lane the same additions in the same order as one by one), and the orthants of
+/// four neighbours at a time (orthantLanes(); a last group padded with the origin, in none).
+__attribute__((target("avx2"))) inline AxisPass axisPassAvx2(
+    const std::vector<Neighbour>& neighbours, int dimensions) {
+  const __m128 zero = _mm_setzero_ps();
+  __m256d sums = _mm256_setzero_pd();
+  __m128 largest = zero;
+  __m128 acc[8] = {zero, zero, zero, zero, zero, zero, zero, zero};
+  const std::size_t n = neighbours.size();
+  const Neighbour* q = neighbours.data();
+  std::size_t k = 0;
+  for (; k + 4 <= n; k += 4) {
+    __m128 v[4] = {_mm_loadu_ps(&q[k].x), _mm_loadu_ps(&q[k + 1].x), _mm_loadu_ps(&q[k + 2].x),
+                   _mm_loadu_ps(&q[k + 3].x)};  // x, y, z, d2
+    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[0]));
+    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[1]));
+    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[2]));
+    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[3]));
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+    largest = _mm_max_ps(largest, v[3]);
+    orthantLanes(v, dimensions, acc);
+  }
+  if (k < n) {
+    __m128 v[4] = {zero, zero, zero, zero};
+    for (std::size_t j = 0; k + j < n; ++j) {
+      v[j] = _mm_loadu_ps(&q[k + j].x);
+      sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[j]));
+    }
+    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
+    largest = _mm_max_ps(largest, v[3]);
+    orthantLanes(v, dimensions, acc);
+  }
+  AxisPass out{0u, 0.0, 0.0, 0.0, 0.0f};
+  for (unsigned o = 0; o < 8; ++o) out.mask |= unsigned{_mm_movemask_ps(acc[o]) != 0} << o;
+  alignas(32) double s[4];
+  _mm256_store_pd(s, sums);
+  out.sx = s[0];
+  out.sy = s[1];
+  out.sz = s[2];
+  largest = _mm_max_ps(largest, _mm_movehl_ps(largest, largest));
+  largest = _mm_max_ps(largest, _mm_shuffle_ps(largest, largest, 0x55));
+  out.size2 = _mm_cvtss_f32(largest);
+  return out;
+}
+
+/// \brief Whether this processor runs axisPassAvx2().
+inline bool axisPassHasAvx2() {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
 }
 #endif
 
@@ -138,29 +281,44 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
   double sx = 0.0, sy = 0.0, sz = 0.0;
   float size2 = 0.0f;
 #if defined(__SSE2__)
-  // The same sums and bits, x and y summed side by side in one register (each lane the same
-  // double additions in the same order), the signs of x, y, z compared at once.
   const std::uint8_t* by_masks = orthantBitsByMasks(dimensions);
-  __m128d sxy = _mm_setzero_pd();
-  for (const auto& q : neighbours) {
-    const __m128 v = _mm_loadu_ps(&q.x);  // x, y, z, d2
-    axis_mask |= by_masks[signMasks(v)];
-    sxy = _mm_add_pd(sxy, _mm_cvtps_pd(v));
-    sz += q.z;
-    size2 = std::max(size2, q.d2);
-  }
-  sx = _mm_cvtsd_f64(sxy);
-  sy = _mm_cvtsd_f64(_mm_unpackhi_pd(sxy, sxy));
-#else
-  const std::uint8_t* bits = orthantBits(dimensions);
-  for (const auto& q : neighbours) {
-    axis_mask |= bits[signCode(q.x, q.y, q.z)];
-    sx += q.x;
-    sy += q.y;
-    sz += q.z;
-    size2 = std::max(size2, q.d2);
-  }
 #endif
+#if MCWS_ORTHANT_AVX2
+  if (axisPassHasAvx2()) {
+    const AxisPass pass = axisPassAvx2(neighbours, dimensions);
+    axis_mask = pass.mask, sx = pass.sx, sy = pass.sy, sz = pass.sz, size2 = pass.size2;
+  } else
+#endif
+  {
+#if defined(__SSE2__)
+    // The same sums and bits, x and y summed side by side in one register (each lane the same
+    // double additions in the same order), the signs of x, y, z compared at once.
+    // z summed beside d2 (unused) likewise, and the largest d2 kept in the fourth lane.
+    const std::uint8_t* by_lanes = orthantBitsByLaneMasks(dimensions);
+    __m128d sxy = _mm_setzero_pd(), szd = _mm_setzero_pd();
+    __m128 largest = _mm_setzero_ps();
+    for (const auto& q : neighbours) {
+      const __m128 v = _mm_loadu_ps(&q.x);  // x, y, z, d2
+      axis_mask |= by_lanes[laneMasks(v)];
+      sxy = _mm_add_pd(sxy, _mm_cvtps_pd(v));
+      szd = _mm_add_pd(szd, _mm_cvtps_pd(_mm_movehl_ps(v, v)));
+      largest = _mm_max_ps(largest, v);
+    }
+    sx = _mm_cvtsd_f64(sxy);
+    sy = _mm_cvtsd_f64(_mm_unpackhi_pd(sxy, sxy));
+    sz = _mm_cvtsd_f64(szd);
+    size2 = _mm_cvtss_f32(_mm_shuffle_ps(largest, largest, 0xFF));
+#else
+    const std::uint8_t* bits = orthantBits(dimensions);
+    for (const auto& q : neighbours) {
+      axis_mask |= bits[signCode(q.x, q.y, q.z)];
+      sx += q.x;
+      sy += q.y;
+      sz += q.z;
+      size2 = std::max(size2, q.d2);
+    }
+#endif
+  }
   if (axis_mask == 0) return true;
   if (frames.has(OrthantFrame::kAxis) && axis_mask != full) return true;
   if (!frames.has(OrthantFrame::kOutward)) return false;
@@ -172,15 +330,26 @@ inline bool hasEmptyOrthant(const std::vector<Neighbour>& neighbours, int dimens
   if (!(length > 1e-6f * std::sqrt(size2))) return false;
   n /= length;
   const Eigen::Matrix3f E = outwardFrame(n, dimensions);
-  unsigned outward_mask = 0;
-  for (const auto& q : neighbours) {
-    const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+  // The neighbours come in the search's cell order, a sweep through the neighbourhood: visited
+  // `stride` apart, the first few spread over every side of p, so that an interior point fills
+  // the orthants (and stops) after a few dozen of them. The mask does not depend on the order.
+  const std::size_t size = neighbours.size();
+  const std::size_t stride = 1 + size / 16;
 #if defined(__SSE2__)
-    outward_mask |= by_masks[signMasks(_mm_setr_ps(w.x(), w.y(), w.z(), 0.0f))];
-#else
-    outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+  const FrameColumns columns(E);
 #endif
-    if (outward_mask == full) return false;
+  unsigned outward_mask = 0;
+  for (std::size_t first = 0; first < stride; ++first) {
+    for (std::size_t k = first; k < size; k += stride) {
+      const Neighbour& q = neighbours[k];
+#if defined(__SSE2__)
+      outward_mask |= by_masks[signMasks(columns.times(_mm_loadu_ps(&q.x)))];
+#else
+      const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
+      outward_mask |= bits[signCode(w.x(), w.y(), w.z())];
+#endif
+      if (outward_mask == full) return false;
+    }
   }
   return true;
 }
