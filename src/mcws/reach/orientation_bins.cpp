@@ -80,18 +80,23 @@ int SpherePartition::zoneOfZ(double z) const {
 }
 
 void SpherePartition::regions(const double* d, int lanes, int* out) const {
-  double x[8], y[8], phi[8];
-  for (int k = 0; k < 8; ++k) {
-    x[k] = d[k < lanes ? k : 0];
-    y[k] = d[lanes + (k < lanes ? k : 0)];
-  }
+  // Eight lanes at a time: each lane's longitude does not depend on the others'.
+  for (int first = 0; first < lanes; first += 8) {
+    const int last = std::min(lanes, first + 8);
+    double x[8], y[8], phi[8];
+    for (int k = 0; k < 8; ++k) {
+      const int lane = first + k < last ? first + k : first;
+      x[k] = d[lane];
+      y[k] = d[lanes + lane];
+    }
 #pragma omp simd
-  for (int k = 0; k < 8; ++k) phi[k] = std::atan2(y[k], x[k]);
-  for (int k = 0; k < lanes; ++k) {
-    const int zone = zoneOfZ(d[2 * lanes + k]);
-    const int count = zone_first_[zone + 1] - zone_first_[zone];
-    const double angle = phi[k] < 0.0 ? phi[k] + kTwoPi : phi[k];
-    out[k] = zone_first_[zone] + (count == 1 ? 0 : sectorOf(angle, count));
+    for (int k = 0; k < 8; ++k) phi[k] = std::atan2(y[k], x[k]);
+    for (int k = first; k < last; ++k) {
+      const int zone = zoneOfZ(d[2 * lanes + k]);
+      const int count = zone_first_[zone + 1] - zone_first_[zone];
+      const double angle = phi[k - first] < 0.0 ? phi[k - first] + kTwoPi : phi[k - first];
+      out[k] = zone_first_[zone] + (count == 1 ? 0 : sectorOf(angle, count));
+    }
   }
 }
 

@@ -34,7 +34,7 @@ class SpherePartition {
   /// \brief region() of `lanes` unit directions at once, laid out d[a * lanes + k] (the
   /// longitudes from glibc's vector atan2; equal to region() except, at most, for a direction
   /// within about 1e-16 rad of a sector edge).
-  /// \param lanes at most 8.
+  /// \param lanes any number (eight at a time).
   void regions(const double* d, int lanes, int* out) const;
 
   /// \brief A region's centre: the direction at its mid colatitude and mid longitude (a pole for
