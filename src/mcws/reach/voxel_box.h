@@ -121,15 +121,17 @@ std::unique_ptr<VoxelBox> reachBox(const Robot& robot, double radius, double res
 ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
                             const ReachSampling& sampling, double radius);
 
-/// \brief A part of a VoxelBox: the blocks of 2^kBlockBits voxels whose number is `part` modulo
-/// `parts` (so the parts share the work whatever the shape of the reach).
+/// \brief A part of a VoxelBox: the blocks of 2^kBlockBits voxels whose number hashes to `part`
+/// of `parts` (so the parts share the work whatever the shape of the reach).
 class BoxPart : public Part {
  public:
   static constexpr int kBlockBits = 12;
   explicit BoxPart(VoxelBox& box) : box_(box) {}
-  /// \brief The part holding a box index.
+  /// \brief The part holding a box index: Fibonacci hashing of its block (a multiply, where a
+  /// modulo would divide).
   static int partOf(std::uint64_t index, int parts) {
-    return static_cast<int>((index >> kBlockBits) % static_cast<unsigned>(parts));
+    const auto hash = static_cast<std::uint32_t>((index >> kBlockBits) * 0x9E3779B9u);
+    return static_cast<int>((std::uint64_t{hash} * static_cast<unsigned>(parts)) >> 32);
   }
 
  private:
