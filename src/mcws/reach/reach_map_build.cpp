@@ -203,7 +203,7 @@ class ReachMapBuilder {
                                      grid.resolution, empty_.stride_, sampling.dense_bytes);
     for (int t = 0; t < threads_; ++t) {
       if (box_) {
-        owned_parts_.push_back(std::make_unique<BoxPart>(*box_));
+        owned_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_));
         parts_.push_back(owned_parts_.back().get());
       } else {
         tables_.push_back(std::make_unique<SlotTable>(empty_.words_, threads_));

@@ -34,7 +34,7 @@ bool Part::tryRecord() {
   }
   record(batches);
   const std::lock_guard<std::mutex> lock(inbox_mutex_);
-  due_at_ = cached() ? 1 : kPending;
+  due_at_ = cached() ? 1 : pending();
   return true;
 }
 

@@ -4,6 +4,7 @@
 /// being filled that receive them, and the dense box of voxels that holds the map when the arm's
 /// reach fits in memory (reach_map_build.cpp). Not a public interface.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -59,6 +60,8 @@ class Part {
   static constexpr std::size_t kCached = std::size_t{4} << 20;
   virtual void record(const std::vector<std::vector<PendingSample>>& batches) = 0;
   virtual bool cached() const = 0;
+  /// Samples recorded at once when the part is not cached().
+  virtual std::size_t pending() const { return kPending; }
 
  private:
   std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_
@@ -126,7 +129,8 @@ ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
 class BoxPart : public Part {
  public:
   static constexpr int kBlockBits = 12;
-  explicit BoxPart(VoxelBox& box) : box_(box) {}
+  /// A part of `box` split in `parts`.
+  BoxPart(VoxelBox& box, int parts) : box_(box), parts_(parts) {}
   /// \brief The part holding a box index: Fibonacci hashing of its block (a multiply, where a
   /// modulo would divide).
   static int partOf(std::uint64_t index, int parts) {
@@ -137,7 +141,13 @@ class BoxPart : public Part {
  private:
   void record(const std::vector<std::vector<PendingSample>>& batches) override;
   bool cached() const override { return box_.bytes() <= kCached; }
+  /// 2^23 samples over all parts, 2^20 at least: with few parts, fewer sweeps of the box (each
+  /// sweep's traffic is its touched lines, read and written back).
+  std::size_t pending() const override {
+    return std::max(kPending, (std::size_t{1} << 23) / static_cast<unsigned>(parts_));
+  }
   VoxelBox& box_;
+  int parts_;
   std::vector<PendingSample> sorted_;
 };
 
