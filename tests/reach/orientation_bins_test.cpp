@@ -189,6 +189,52 @@ TEST(SpherePartition, RegionAgreesWithTheBoundsOnRandomDirections) {
   }
 }
 
+TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
+  // regions() finds most longitudes' sectors without atan2; regionsByAtan2() is its reference,
+  // bit for bit: random directions, directions on and within 1e-7 .. 1e-15 rad of every sector
+  // edge of every collar (where regions() must fall back), the axes and signed zeros, in
+  // batches of 1 to 16.
+  std::mt19937_64 rng(64);
+  for (int n : kSizes) {
+    const SpherePartition sphere(n);
+    std::vector<Eigen::Vector3d> directions;
+    for (int i = 0; i < 4000; ++i) directions.push_back(randomDirection(rng));
+    for (int region = 0; region < n; ++region) {
+      double theta0, theta1, phi0, phi1;
+      sphere.bounds(region, theta0, theta1, phi0, phi1);
+      const double theta = 0.5 * (theta0 + theta1);
+      for (const double offset : {0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, -1e-9, 1e-7, -1e-7}) {
+        const double phi = phi0 + offset;
+        directions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                std::cos(theta));
+      }
+    }
+    for (const double z : {0.0, -0.0, 0.6}) {
+      for (const double x : {1.0, -1.0, 0.0, -0.0}) {
+        for (const double y : {1.0, -1.0, 0.0, -0.0}) directions.emplace_back(x, y, z);
+      }
+    }
+    for (std::size_t first = 0; first < directions.size();) {
+      const int lanes =
+          static_cast<int>(std::min<std::size_t>(1 + rng() % 16, directions.size() - first));
+      double d[48];
+      for (int k = 0; k < lanes; ++k) {
+        for (int a = 0; a < 3; ++a) d[a * lanes + k] = directions[first + k][a];
+      }
+      int out[16], expected[16];
+      sphere.regions(d, lanes, out);
+      for (int k = 0; k < lanes; k += 8) {
+        sphere.regionsByAtan2(d + k, lanes, std::min(8, lanes - k), expected + k);
+      }
+      for (int k = 0; k < lanes; ++k) {
+        ASSERT_EQ(out[k], expected[k])
+            << "N = " << n << ", d = " << directions[first + k].transpose();
+      }
+      first += static_cast<std::size_t>(lanes);
+    }
+  }
+}
+
 TEST(SpherePartition, BatchedRegionsAgreeWithRegion) {
   // regions() reads up to 8 unit directions laid out d[a * lanes + k]; a partial batch leaves the
   // lanes past `lanes` alone.

@@ -31,11 +31,15 @@ class SpherePartition {
   /// \param direction any non-zero vector (need not be unit).
   int region(const Eigen::Vector3d& direction) const;
 
-  /// \brief region() of `lanes` unit directions at once, laid out d[a * lanes + k] (the
-  /// longitudes from glibc's vector atan2; equal to region() except, at most, for a direction
-  /// within about 1e-16 rad of a sector edge).
-  /// \param lanes at most 8.
+  /// \brief region() of `lanes` unit directions at once, laid out d[a * lanes + k]: the
+  /// regions of regionsByAtan2(), found without atan2 where the longitude is clearly inside a
+  /// sector (nearly always).
+  /// \param lanes any number (eight at a time).
   void regions(const double* d, int lanes, int* out) const;
+  /// \brief The reference of regions(): region() of up to 8 unit directions, laid out
+  /// d[a * stride + k], with the longitudes from glibc's vector atan2 (equal to region() except,
+  /// at most, for a direction within about 1e-16 rad of a sector edge).
+  void regionsByAtan2(const double* d, int stride, int lanes, int* out) const;
 
   /// \brief A region's centre: the direction at its mid colatitude and mid longitude (a pole for
   /// a polar cap). region(centre(i)) == i.

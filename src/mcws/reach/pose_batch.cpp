@@ -100,41 +100,52 @@ MCWS_KERNEL_INLINE void transform(const double* E, V* v) {
          (kPoint ? V(element<V>(E, 11)) : zero);
 }
 
-/// Product of the diagonal of the Cholesky factor of the M x M Gram matrix G (lower triangle,
-/// G[a][b] for b <= a, overwritten); 0 for a lane whose matrix is not positive definite.
-template <int M, typename V>
-MCWS_KERNEL_INLINE void choleskyDiagonalProduct(V (*G)[8], V& out) {
+/// Product of the diagonal of the Cholesky factor of the M x M Gram matrices G[k] of K lane
+/// groups (lower triangle, G[k][a][b] for b <= a, overwritten); 0 for a lane whose matrix is not
+/// positive definite. The groups go step by step together: each step's square root and division
+/// of one group wait for the step before, so the other groups' fill that latency.
+template <int M, int K, typename V>
+MCWS_KERNEL_INLINE void choleskyDiagonalProducts(V (*G)[8][8], V* out) {
   using Mask = decltype(V{} > V{});
   V zero, one;
   splat(0.0, zero);
   splat(1.0, one);
-  V product = one;
-  Mask singular = zero > one;  // all false
+  V product[K];
+  Mask singular[K];
+  for (int k = 0; k < K; ++k) {
+    product[k] = one;
+    singular[k] = zero > one;  // all false
+  }
   for (int j = 0; j < M; ++j) {
-    V d = G[j][j];
-    for (int r = 0; r < j; ++r) d = d - G[j][r] * G[j][r];
-    const Mask positive = d > zero;
-    singular = singular | ~positive;
-    V root;
-    select(positive, d, one, root);
-    for (int i = 0; i < kWidth<V>; ++i) root[i] = std::sqrt(root[i]);
-    product = product * root;
-    const V inverse = one / root;
+    V inverse[K];
+    for (int k = 0; k < K; ++k) {
+      V d = G[k][j][j];
+      for (int r = 0; r < j; ++r) d = d - G[k][j][r] * G[k][j][r];
+      const Mask positive = d > zero;
+      singular[k] = singular[k] | ~positive;
+      V root;
+      select(positive, d, one, root);
+      for (int i = 0; i < kWidth<V>; ++i) root[i] = std::sqrt(root[i]);
+      product[k] = product[k] * root;
+      inverse[k] = one / root;
+    }
     for (int i = j + 1; i < M; ++i) {
-      V v = G[i][j];
-      for (int r = 0; r < j; ++r) v = v - G[i][r] * G[j][r];
-      G[i][j] = v * inverse;
+      for (int k = 0; k < K; ++k) {
+        V v = G[k][i][j];
+        for (int r = 0; r < j; ++r) v = v - G[k][i][r] * G[k][j][r];
+        G[k][i][j] = v * inverse[k];
+      }
     }
   }
-  select(singular, zero, product, out);
+  for (int k = 0; k < K; ++k) select(singular[k], zero, product[k], out[k]);
 }
 
-/// Manipulability of the lanes' Jacobians J[column][row] (n columns, the tool frame) as
-/// mcws::manipulability() measures it with `quality`: the rows the task measures, velocity rows
-/// scaled by 1 / L for the full twist (in place), then sqrt det of J^T J or J J^T, each sum
-/// accumulated from 0 in row (column) order.
+/// The Gram matrix G (lower triangle) of the lanes' Jacobians J[column][row] (n columns, the
+/// tool frame) that mcws::manipulability() factors with `quality`: the rows the task measures,
+/// velocity rows scaled by 1 / L for the full twist (in place), then J^T J or J J^T, each sum
+/// accumulated from 0 in row (column) order. Returns its size, min(rows, n).
 template <typename V>
-MCWS_KERNEL_INLINE void manipulabilityOf(V (*J)[6], int n, const QualityOptions& quality, V& w) {
+MCWS_KERNEL_INLINE int gramOf(V (*J)[6], int n, const QualityOptions& quality, V (*G)[8]) {
   const int rows = quality.task == QualityTask::kPosition ? 3 : 6;
   if (rows == 6) {
     V scale;
@@ -144,7 +155,7 @@ MCWS_KERNEL_INLINE void manipulabilityOf(V (*J)[6], int n, const QualityOptions&
     }
   }
   const int m = std::min(rows, n);
-  V G[8][8], zero;
+  V zero;
   splat(0.0, zero);
   if (n == 6 && rows == 6) {  // the six-joint arm's square Jacobian: column a in registers
     for (int a = 0; a < 6; ++a) {
@@ -154,7 +165,7 @@ MCWS_KERNEL_INLINE void manipulabilityOf(V (*J)[6], int n, const QualityOptions&
         G[a][b] = zero + c0 * o[0] + c1 * o[1] + c2 * o[2] + c3 * o[3] + c4 * o[4] + c5 * o[5];
       }
     }
-    return choleskyDiagonalProduct<6>(G, w);
+    return m;
   }
   for (int a = 0; a < m; ++a) {
     for (int b = 0; b <= a; ++b) {
@@ -167,29 +178,35 @@ MCWS_KERNEL_INLINE void manipulabilityOf(V (*J)[6], int n, const QualityOptions&
       G[a][b] = g;
     }
   }
+  return m;
+}
+
+/// The manipulability of K lane groups from their Gram matrices of size m (1 to 6).
+template <int K, typename V>
+MCWS_KERNEL_INLINE void manipulabilities(V (*G)[8][8], int m, V* w) {
   switch (m) {
     case 1:
-      return choleskyDiagonalProduct<1>(G, w);
+      return choleskyDiagonalProducts<1, K>(G, w);
     case 2:
-      return choleskyDiagonalProduct<2>(G, w);
+      return choleskyDiagonalProducts<2, K>(G, w);
     case 3:
-      return choleskyDiagonalProduct<3>(G, w);
+      return choleskyDiagonalProducts<3, K>(G, w);
     case 4:
-      return choleskyDiagonalProduct<4>(G, w);
+      return choleskyDiagonalProducts<4, K>(G, w);
     case 5:
-      return choleskyDiagonalProduct<5>(G, w);
+      return choleskyDiagonalProducts<5, K>(G, w);
     default:
-      return choleskyDiagonalProduct<6>(G, w);  // m = min(rows, n) <= 6
+      return choleskyDiagonalProducts<6, K>(G, w);  // m = min(rows, n) <= 6
   }
 }
 
 /// The kernel for the lanes [lane, lane + width) of the batch's arrays: the tool point, the axes
 /// it needs (the approach; the x axis with kXAxis; all three with kQuality) and, with kQuality,
-/// the Jacobian's columns and the manipulability.
+/// the Jacobian's columns and their Gram matrix G (returns its size).
 template <typename V, bool kQuality, bool kXAxis>
-MCWS_KERNEL_INLINE void lanes(const Chain& chain, const double* q, const double* c, const double* s,
-                              int lane, double* p, double* approach, double* x_axis,
-                              const QualityOptions* quality, double* manipulability) {
+MCWS_KERNEL_INLINE int lanes(const Chain& chain, const double* q, const double* c, const double* s,
+                             int lane, double* p, double* approach, double* x_axis,
+                             const QualityOptions* quality, V (*G)[8]) {
   constexpr bool kAxis0 = kQuality || kXAxis, kAxis1 = kQuality;  // the approach always
   const int n = chain.n;
   V P[3], R[3][3];  // the tool point; R[c][a]: component a of the tool's axis c
@@ -236,29 +253,33 @@ MCWS_KERNEL_INLINE void lanes(const Chain& chain, const double* q, const double*
     store(approach + a * L + lane, R[2][a]);
     if (kXAxis) store(x_axis + a * L + lane, R[0][a]);
   }
-  if (kQuality) {
-    V w;
-    manipulabilityOf(J, n, *quality, w);
-    store(manipulability + lane, w);
-  }
+  return kQuality ? gramOf(J, n, *quality, G) : 0;
 }
 
-/// Every lane of the batch, kWidth<V> at a time.
+/// Every lane of the batch, kWidth<V> at a time, then the manipulability of all at once.
 template <typename V>
 MCWS_KERNEL_INLINE void allLanes(const Chain& chain, const double* q, const double* c,
                                  const double* s, double* p, double* approach, double* x_axis,
                                  const QualityOptions* quality, double* manipulability) {
-  for (int lane = 0; lane < L; lane += kWidth<V>) {
+  constexpr int K = L / kWidth<V>;
+  V G[K][8][8];
+  int m = 0;
+  for (int k = 0; k < K; ++k) {
+    const int lane = k * kWidth<V>;
     if (quality && x_axis) {
-      lanes<V, true, true>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+      m = lanes<V, true, true>(chain, q, c, s, lane, p, approach, x_axis, quality, G[k]);
     } else if (quality) {
-      lanes<V, true, false>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+      m = lanes<V, true, false>(chain, q, c, s, lane, p, approach, x_axis, quality, G[k]);
     } else if (x_axis) {
-      lanes<V, false, true>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+      lanes<V, false, true>(chain, q, c, s, lane, p, approach, x_axis, quality, G[k]);
     } else {
-      lanes<V, false, false>(chain, q, c, s, lane, p, approach, x_axis, quality, manipulability);
+      lanes<V, false, false>(chain, q, c, s, lane, p, approach, x_axis, quality, G[k]);
     }
   }
+  if (!quality) return;
+  V w[K];
+  manipulabilities<K>(G, m, w);
+  for (int k = 0; k < K; ++k) store(manipulability + k * kWidth<V>, w[k]);
 }
 
 void narrowKernel(const Chain& chain, const double* q, const double* c, const double* s, double* p,

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// \brief Tool poses and Jacobians of eight joint vectors at once: the kernel of the
+/// \brief Tool poses and Jacobians of sixteen joint vectors at once: the kernel of the
 /// reachability map.
 
 #include <Eigen/Geometry>
@@ -24,7 +24,7 @@ namespace mcws {
 /// manipulability(), unchanged.
 class PoseBatch {
  public:
-  static constexpr int kLanes = 8;
+  static constexpr int kLanes = 16;
 
   /// \param wide four lanes at a time in AVX registers where the processor has them (the
   ///   results are the same bits; false: two at a time in SSE2 registers, as the build targets).

@@ -143,15 +143,48 @@ long ReachMap::lookup(std::uint64_t key) const {
   }
 }
 
-void ReachMap::rebuildIndex(std::size_t voxels) {
+void ReachMap::rebuildIndex(std::size_t voxels, int threads) {
   std::size_t capacity = 1024;
   while (capacity < 2 * voxels) capacity *= 2;  // load at most one half
-  table_.assign(capacity, Entry{0, 0});
   index_bits_ = __builtin_ctzll(capacity);
-  for (std::size_t v = 0; v < keys_.size(); ++v) {
-    std::size_t s = hashSlot(keys_[v], index_bits_);
-    while (table_[s].key_plus_one != 0) s = (s + 1) & (capacity - 1);
-    table_[s] = Entry{keys_[v] + 1, v};
+  if (threads <= 1 || keys_.size() < (std::size_t{1} << 16)) {
+    table_.assign(capacity, Entry{0, 0});
+    for (std::size_t v = 0; v < keys_.size(); ++v) {
+      std::size_t s = hashSlot(keys_[v], index_bits_);
+      while (table_[s].key_plus_one != 0) s = (s + 1) & (capacity - 1);
+      table_[s] = Entry{keys_[v] + 1, v};
+    }
+    return;
+  }
+  // Each thread clears and fills its own range of slots with the voxels whose home slot is in it;
+  // a voxel that would probe past the range's end waits, and is placed after them all in the
+  // first empty slot from its home. Every voxel then lies at the end of a run of full slots from
+  // its home, as lookup() expects (slots are only ever filled); where it lies does not matter.
+  table_.clear();
+  table_.resize(capacity);  // uninitialised (HugePageAllocator): the threads clear their slots
+  std::vector<std::vector<std::size_t>> waiting(static_cast<std::size_t>(threads));
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+  for (int t = 0; t < threads; ++t) {
+    const std::size_t begin = capacity / threads * t, end = capacity / threads * (t + 1);
+    const std::size_t last = t + 1 == threads ? capacity : end;
+    std::fill(table_.begin() + begin, table_.begin() + last, Entry{0, 0});
+    for (std::size_t v = 0; v < keys_.size(); ++v) {
+      std::size_t s = hashSlot(keys_[v], index_bits_);
+      if (s < begin || s >= last) continue;
+      while (s < last && table_[s].key_plus_one != 0) ++s;
+      if (s == last) {
+        waiting[t].push_back(v);
+      } else {
+        table_[s] = Entry{keys_[v] + 1, v};
+      }
+    }
+  }
+  for (const auto& list : waiting) {
+    for (const std::size_t v : list) {
+      std::size_t s = hashSlot(keys_[v], index_bits_);
+      while (table_[s].key_plus_one != 0) s = (s + 1) & (capacity - 1);
+      table_[s] = Entry{keys_[v] + 1, v};
+    }
   }
 }
 

@@ -47,6 +47,16 @@ struct HugePageAllocator {
   HugePageAllocator(const HugePageAllocator<U>&) {}
   T* allocate(std::size_t n);
   void deallocate(T* p, std::size_t) { std::free(p); }
+  /// Elements added without a value are default-initialised (left as they are, for the
+  /// map's integers), so a large array can be filled in parallel without a serial clearing first.
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
   template <typename U>
   bool operator==(const HugePageAllocator<U>&) const {
     return true;
@@ -136,7 +146,8 @@ class ReachMap {
   };
   std::size_t slotFor(std::uint64_t key);
   long lookup(std::uint64_t key) const;
-  void rebuildIndex(std::size_t voxels);  ///< an index for `voxels` at load one half at most
+  /// An index for `voxels` at load one half at most (built by `threads` threads).
+  void rebuildIndex(std::size_t voxels, int threads = 1);
   void checkBin(int bin) const;
   bool inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const;
   void record(std::size_t v, int bin, float manipulability);
@@ -184,6 +195,10 @@ struct ReachSampling {
   QualityOptions quality;     ///< how manipulability is measured
   /// Only collision-free samples count (nullptr: all). Must outlive the call.
   const CollisionChecker* collision{nullptr};
+  /// Largest memory [bytes] for the map as a dense box of voxels around the arm's reach (its
+  /// records at computed places, fastest to fill); beyond it (0: always) a hash table of the
+  /// voxels reached. The map is the same either way.
+  std::uint64_t dense_bytes{std::uint64_t{1} << 30};
 };
 
 /// \brief Fills a map with joint samples first .. first+samples-1: joint values uniform within the

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstring>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <utility>
 
@@ -13,28 +14,19 @@
 #include "mcws/core/first_error.h"
 #include "mcws/core/stopwatch.h"
 #include "mcws/reach/pose_batch.h"
+#include "mcws/reach/voxel_box.h"
 #include "mcws/sampling/sampler.h"
 
 namespace mcws {
 
-// Named rather than anonymous: ReachMapBuilder (a friend of ReachMap, so not file-local) holds
-// these, and GCC warns (-Wsubobject-linkage) when a unity build compiles the file in a batch.
 namespace reach_map_build {
-
-/// A sample waiting to be recorded: its voxel's key (ReachMap's packing), orientation bin and
-/// manipulability.
-struct PendingSample {
-  std::uint64_t key;
-  int bin;
-  float manipulability;
-};
 
 /// One part of the map being filled: open addressing with each voxel's record inside its slot
 /// ([key + 1 (0: empty), count, best manipulability's float bits, bit set], padded to 4 or 8
 /// words), so a sample touches one cache line where ReachMap's index and records touch two.
 /// The voxels are split between the parts by their hash, so no voxel is stored twice. Any
 /// thread posts samples to a part; whichever thread finds a part due records its samples.
-class SlotTable {
+class SlotTable : public Part {
  public:
   /// A table of voxels with `words` words of bits, one of `parts`.
   SlotTable(int words, int parts)
@@ -45,35 +37,6 @@ class SlotTable {
   /// The part holding a key's voxel.
   static int partOf(std::uint64_t key, int parts) {
     return static_cast<int>(scaled(key, parts) >> 64);
-  }
-
-  /// Hands over samples of this part (thread-safe).
-  void post(std::vector<PendingSample>&& samples) {
-    const std::lock_guard<std::mutex> lock(inbox_mutex_);
-    inbox_size_ += samples.size();
-    inbox_.push_back(std::move(samples));
-  }
-  /// Whether enough samples wait to be recorded together: many for a table swept in order,
-  /// any for one that fits in the cache.
-  bool due() {
-    const std::lock_guard<std::mutex> lock(inbox_mutex_);
-    return inbox_size_ >= due_at_;
-  }
-
-  /// Records the samples posted, unless another thread is recording this part (then false).
-  bool tryRecord() {
-    const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
-    if (!recording.owns_lock()) return false;
-    std::vector<std::vector<PendingSample>> batches;
-    {
-      const std::lock_guard<std::mutex> lock(inbox_mutex_);
-      batches.swap(inbox_);
-      inbox_size_ = 0;
-    }
-    record(batches);
-    const std::lock_guard<std::mutex> lock(inbox_mutex_);
-    due_at_ = cached() ? 1 : kPending;
-    return true;
   }
 
   /// Voxels in the table.
@@ -93,7 +56,7 @@ class SlotTable {
   /// counting pass), they sweep the table in one direction, so its pages and lines are fetched
   /// ahead instead of at random (a random slot per sample cost about one memory latency each,
   /// prefetched or not, on this machine).
-  void record(const std::vector<std::vector<PendingSample>>& batches) {
+  void record(const std::vector<std::vector<PendingSample>>& batches) override {
     // Voxels already in the table first; then room for the new ones at once and those: growing
     // while part of the hash range is in would pack it into the front of the table (one cluster).
     fresh_.clear();
@@ -147,7 +110,9 @@ class SlotTable {
     for (const PendingSample& f : fresh_) apply(slot(f.key, true), f);
   }
 
-  bool cached() const { return capacity_ * slot_words_ * sizeof(std::uint64_t) <= kCached; }
+  bool cached() const override {
+    return capacity_ * slot_words_ * sizeof(std::uint64_t) <= kCached;
+  }
 
   /// Fibonacci hashing: the product's leading bits choose the part, the bits after them (the
   /// fraction) the slot within it, mapped onto [0, capacity) by a multiply (capacities grow by
@@ -179,11 +144,7 @@ class SlotTable {
   }
 
   static void apply(std::uint64_t* r, const PendingSample& s) {
-    ++r[1];
-    float best;
-    std::memcpy(&best, &r[2], sizeof best);
-    if (s.manipulability > best) std::memcpy(&r[2], &s.manipulability, sizeof best);
-    r[3 + s.bin / 64] |= std::uint64_t{1} << (s.bin % 64);
+    recordSample(r + 1, s.bin, s.manipulability);
   }
 
   void grow(std::size_t capacity) {
@@ -203,31 +164,33 @@ class SlotTable {
   int slot_words_;
   std::size_t capacity_{0}, used_{0};
   std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> table_;
-  static constexpr std::size_t kPending = std::size_t{1} << 20;  ///< samples swept at once
-  static constexpr std::size_t kCached = std::size_t{4} << 20;   ///< table bytes not swept
   int parts_;
-  std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_
-  std::mutex record_mutex_;  ///< held by the thread recording into the table
-  std::vector<std::vector<PendingSample>> inbox_;
-  std::size_t inbox_size_{0}, due_at_{1};
   std::vector<PendingSample> sorted_, fresh_;
 };
 
 }  // namespace reach_map_build
 
+using reach_map_build::BoxPart;
+using reach_map_build::Part;
 using reach_map_build::PendingSample;
 using reach_map_build::SlotTable;
+using reach_map_build::VoxelBox;
 
-/// buildReachMap's steps: blocks of samples drawn and mapped to voxel keys and orientation bins
-/// in parallel, posted to the SlotTable of each voxel's part; then each table's voxels sorted by
-/// key and merged into the map, which comes out in its final order.
+/// buildReachMap's steps: blocks of samples drawn and mapped to voxels and orientation bins in
+/// parallel, posted to the part of the map holding each voxel. Where the arm's reach fits in
+/// memory (ReachSampling::dense_bytes) the parts are blocks of one VoxelBox, whose voxels come
+/// out in the map's order by a sweep; otherwise SlotTables, whose voxels are sorted by key and
+/// merged into the map.
 class ReachMapBuilder {
  public:
   using Progress = std::function<void(std::uint64_t, std::uint64_t)>;
   /// A voxel's key and its record in a table.
   using Voxel = std::pair<std::uint64_t, const std::uint64_t*>;
 
-  ReachMapBuilder(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling)
+  /// \param radius the bound on the tool point's distance from the base for the dense box
+  ///   (negative: chainLengthScale()).
+  ReachMapBuilder(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
+                  double radius)
       : empty_(grid),
         sampling_(sampling),
         sampler_(robot, samplerOptions(sampling)),
@@ -236,11 +199,24 @@ class ReachMapBuilder {
         quality_(sampling.manipulability ? &sampling.quality : nullptr) {
     if (quality_) quality_->check();
     threads_ = sampling.threads > 0 ? sampling.threads : omp_get_num_procs();
-    for (int t = 0; t < threads_; ++t) tables_.emplace_back(empty_.words_, threads_);
+    box_ = reach_map_build::reachBox(robot, radius < 0.0 ? chainLengthScale(robot) : radius,
+                                     grid.resolution, empty_.stride_, sampling.dense_bytes);
+    for (int t = 0; t < threads_; ++t) {
+      if (box_) {
+        owned_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_));
+        parts_.push_back(owned_parts_.back().get());
+      } else {
+        tables_.push_back(std::make_unique<SlotTable>(empty_.words_, threads_));
+      }
+      spill_.emplace_back(grid);
+    }
+    if (!box_) {
+      for (const auto& table : tables_) parts_.push_back(table.get());
+    }
     outgoing_.assign(threads_, std::vector<std::vector<PendingSample>>(threads_));
   }
 
-  /// Records every sample in the tables, a chunk at a time (progress after each). The first chunk
+  /// Records every sample in the parts, a chunk at a time (progress after each). The first chunk
   /// is a few hundred samples per thread, so its time gives an early estimate of the whole run;
   /// each next chunk is sized from the rate so far to last about kChunkSeconds, so progress comes
   /// every second or so even when a sample is slow (a mesh robot's self-collision check). The map
@@ -261,8 +237,8 @@ class ReachMapBuilder {
         error.run(static_cast<std::size_t>(b), [&] {
           const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * block;
           sampleBlock(first, std::min(end, first + block), omp_get_thread_num());
-          for (SlotTable& table : tables_) {
-            if (table.due()) table.tryRecord();
+          for (Part* part : parts_) {
+            if (part->due()) part->tryRecord();
           }
         });
       }
@@ -275,20 +251,55 @@ class ReachMapBuilder {
     }
   }
 
-  /// The voxels of each table after the samples still on their way are recorded, sorted by key
-  /// (a thread each).
-  std::vector<std::vector<Voxel>> sortedVoxels() {
-    for (int t = 0; t < threads_; ++t) {
-      for (int u = 0; u < threads_; ++u) tables_[u].post(std::move(outgoing_[t][u]));
+  /// The map of every sample recorded.
+  ReachMap map() {
+    finish();
+    ReachMap map = box_ ? boxMap() : merge(sortedVoxels());
+    bool spilled = false;
+    for (const ReachMap& spill : spill_) {
+      if (spill.size() == 0) continue;
+      map.merge(spill);
+      spilled = true;
     }
+    if (spilled) map.sort();
+    return map;
+  }
+
+ private:
+  static constexpr int kLanes = PoseBatch::kLanes;
+  static constexpr std::size_t kPost = std::size_t{1} << 16;  ///< samples handed to a part at once
+  /// Samples a thread draws at once; the largest chunk; the first chunk's samples per thread.
+  static constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22, kFirstChunkPerThread = 256;
+  static constexpr double kChunkSeconds = 1.0;  ///< a chunk's time after the first [s]
+
+  static RobotSamplerOptions samplerOptions(const ReachSampling& sampling) {
+    RobotSamplerOptions options;
+    options.seed = sampling.seed;
+    return options;
+  }
+
+  /// The samples still on their way recorded (a part per thread).
+  void finish() {
+    for (int t = 0; t < threads_; ++t) {
+      for (int u = 0; u < threads_; ++u) parts_[u]->post(std::move(outgoing_[t][u]));
+    }
+    FirstError error;
+#pragma omp parallel for schedule(static, 1) num_threads(threads_)
+    for (int t = 0; t < threads_; ++t) {
+      error.run(static_cast<std::size_t>(t), [&] { parts_[t]->tryRecord(); });
+    }
+    error.rethrow();
+  }
+
+  /// The voxels of each table, sorted by key (a thread each).
+  std::vector<std::vector<Voxel>> sortedVoxels() {
     std::vector<std::vector<Voxel>> lists(threads_);
     FirstError error;
 #pragma omp parallel for schedule(static, 1) num_threads(threads_)
     for (int t = 0; t < threads_; ++t) {
       error.run(static_cast<std::size_t>(t), [&] {
-        tables_[t].tryRecord();
-        lists[t].reserve(tables_[t].size());
-        tables_[t].forEach([&](std::uint64_t key, const std::uint64_t* record) {
+        lists[t].reserve(tables_[t]->size());
+        tables_[t]->forEach([&](std::uint64_t key, const std::uint64_t* record) {
           lists[t].emplace_back(key, record);
         });
         std::sort(lists[t].begin(), lists[t].end(),
@@ -320,21 +331,39 @@ class ReachMapBuilder {
       map.keys_.push_back(key);
       map.records_.insert(map.records_.end(), record, record + map.stride_);
     }
-    map.rebuildIndex(map.keys_.size());
+    map.rebuildIndex(map.keys_.size(), threads_);
     return map;
   }
 
- private:
-  static constexpr int kLanes = PoseBatch::kLanes;
-  static constexpr std::size_t kPost = std::size_t{1} << 16;  ///< samples handed to a part at once
-  /// Samples a thread draws at once; the largest chunk; the first chunk's samples per thread.
-  static constexpr std::uint64_t kBlock = 1 << 14, kChunk = 1 << 22, kFirstChunkPerThread = 256;
-  static constexpr double kChunkSeconds = 1.0;  ///< a chunk's time after the first [s]
-
-  static RobotSamplerOptions samplerOptions(const ReachSampling& sampling) {
-    RobotSamplerOptions options;
-    options.seed = sampling.seed;
-    return options;
+  /// The map of the box's reached voxels, in the box's order (the keys'), a slice per thread.
+  ReachMap boxMap() const {
+    const std::size_t voxels = box_->voxels();
+    const int stride = empty_.stride_;
+    std::vector<std::size_t> begin(threads_ + 1), reached(threads_ + 1, 0);
+    for (int t = 0; t <= threads_; ++t)
+      begin[t] = voxels / threads_ * t + voxels % threads_ * t / threads_;
+#pragma omp parallel for schedule(static, 1) num_threads(threads_)
+    for (int t = 0; t < threads_; ++t) {
+      for (std::size_t i = begin[t]; i < begin[t + 1]; ++i)
+        reached[t + 1] += box_->record(i)[0] != 0;
+    }
+    for (int t = 0; t < threads_; ++t) reached[t + 1] += reached[t];
+    ReachMap map(empty_.grid());
+    map.keys_.resize(reached[threads_]);
+    map.records_.resize(reached[threads_] * stride);
+#pragma omp parallel for schedule(static, 1) num_threads(threads_)
+    for (int t = 0; t < threads_; ++t) {
+      std::size_t v = reached[t];
+      for (std::size_t i = begin[t]; i < begin[t + 1]; ++i) {
+        const std::uint64_t* record = box_->record(i);
+        if (record[0] == 0) continue;
+        map.keys_[v] = box_->keyOf(i);
+        std::copy_n(record, stride, map.records_.data() + v * stride);
+        ++v;
+      }
+    }
+    map.rebuildIndex(map.keys_.size(), threads_);
+    return map;
   }
 
   /// Samples [first, last) mapped to their voxels and bins, posted from thread t.
@@ -366,18 +395,25 @@ class ReachMapBuilder {
         if (!empty_.keyInGrid(p + k, kLanes, key)) {
           key = empty_.keyOf(Eigen::Vector3d(p[k], p[kLanes + k], p[2 * kLanes + k]));  // throws
         }
-        post(t, key, bins[k], static_cast<float>(w[k]));
+        const auto manipulability = static_cast<float>(w[k]);
+        if (!box_) {
+          post(t, SlotTable::partOf(key, threads_), key, bins[k], manipulability);
+        } else if (std::uint64_t index; box_->indexOf(key, index)) {
+          post(t, BoxPart::partOf(index, threads_), index, bins[k], manipulability);
+        } else {  // beyond the reach's bound (only by a rounding error, if ever)
+          ReachMap& spill = spill_[t];
+          spill.record(spill.slotFor(key), bins[k], manipulability);
+        }
       }
     }
   }
 
-  /// Adds a sample to thread t's batch for its voxel's part, handing the batch over when full.
-  void post(int t, std::uint64_t key, int bin, float manipulability) {
-    const int part = SlotTable::partOf(key, threads_);
+  /// Adds a sample to thread t's batch for a part, handing the batch over when full.
+  void post(int t, int part, std::uint64_t key, int bin, float manipulability) {
     auto& out = outgoing_[t][part];
     out.push_back({key, bin, manipulability});
     if (out.size() >= kPost) {
-      tables_[part].post(std::move(out));
+      parts_[part]->post(std::move(out));
       out = {};
       out.reserve(kPost);
     }
@@ -390,16 +426,31 @@ class ReachMapBuilder {
   const PoseBatch batch_;
   const QualityOptions* quality_;
   int threads_{1};
-  std::deque<SlotTable> tables_;
+  std::unique_ptr<VoxelBox> box_;  ///< the dense map, or null: hash tables
+  std::vector<std::unique_ptr<Part>> owned_parts_;
+  std::vector<std::unique_ptr<SlotTable>> tables_;
+  std::vector<Part*> parts_;
+  std::deque<ReachMap> spill_;  ///< per thread: samples outside the box
   /// outgoing_[t][u]: thread t's samples for part u.
   std::vector<std::vector<std::vector<PendingSample>>> outgoing_;
 };
 
 ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,
                        const std::function<void(std::uint64_t, std::uint64_t)>& progress) {
-  ReachMapBuilder builder(robot, grid, sampling);
+  ReachMapBuilder builder(robot, grid, sampling, -1.0);
   builder.fill(progress);
-  return builder.merge(builder.sortedVoxels());
+  return builder.map();
 }
+
+namespace reach_map_build {
+
+ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
+                            const ReachSampling& sampling, double radius) {
+  ReachMapBuilder builder(robot, grid, sampling, radius);
+  builder.fill({});
+  return builder.map();
+}
+
+}  // namespace reach_map_build
 
 }  // namespace mcws

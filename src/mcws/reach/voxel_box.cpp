@@ -1,0 +1,124 @@
+#include "mcws/reach/voxel_box.h"
+
+#include <sys/mman.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <new>
+
+#include "mcws/reach/reach_map.h"
+
+namespace mcws {
+namespace reach_map_build {
+
+void Part::post(std::vector<PendingSample>&& samples) {
+  const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  inbox_size_ += samples.size();
+  inbox_.push_back(std::move(samples));
+}
+
+bool Part::due() {
+  const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  return inbox_size_ >= due_at_;
+}
+
+bool Part::tryRecord() {
+  const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
+  if (!recording.owns_lock()) return false;
+  std::vector<std::vector<PendingSample>> batches;
+  {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    batches.swap(inbox_);
+    inbox_size_ = 0;
+  }
+  record(batches);
+  const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  due_at_ = cached() ? 1 : pending();
+  return true;
+}
+
+VoxelBox::VoxelBox(const std::int64_t low[3], const std::int64_t size[3], int stride)
+    : stride_(stride) {
+  voxels_ = 1;
+  for (int a = 0; a < 3; ++a) {
+    low_[a] = static_cast<std::uint64_t>(low[a] + ReachMap::kIndexLimit);
+    size_[a] = static_cast<std::uint64_t>(size[a]);
+    voxels_ *= size_[a];
+  }
+  // Anonymous memory: zero pages from the kernel where first touched, 2 MB aligned and advised
+  // as transparent huge pages (the records are swept in order, but millions of them).
+  constexpr std::size_t kHuge = std::size_t{2} << 20;
+  mapped_ = (bytes() + kHuge - 1) / kHuge * kHuge + kHuge;
+  void* p = mmap(nullptr, mapped_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (p == MAP_FAILED) throw std::bad_alloc();
+  const auto address = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t aligned = (address + kHuge - 1) / kHuge * kHuge;
+  madvise(reinterpret_cast<void*>(aligned), mapped_ - kHuge, MADV_HUGEPAGE);  // advice only
+  base_ = p;
+  data_ = reinterpret_cast<std::uint64_t*>(aligned);
+}
+
+VoxelBox::~VoxelBox() { munmap(base_, mapped_); }
+
+std::uint64_t VoxelBox::keyOf(std::size_t index) const {
+  const std::uint64_t z = index % size_[2], rest = index / size_[2];
+  const std::uint64_t y = rest % size_[1], x = rest / size_[1];
+  return ((x + low_[0]) << 42) | ((y + low_[1]) << 21) | (z + low_[2]);
+}
+
+std::unique_ptr<VoxelBox> reachBox(const Robot& robot, double radius, double resolution, int stride,
+                                   std::uint64_t max_bytes) {
+  const Eigen::Vector3d centre = robot.T_world_base.translation();
+  std::int64_t low[3], size[3];
+  double voxels = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double first = std::floor((centre[a] - radius) / resolution) - 1.0;
+    const double last = std::floor((centre[a] + radius) / resolution) + 1.0;
+    if (!(first >= -ReachMap::kIndexLimit && last < ReachMap::kIndexLimit)) return nullptr;
+    low[a] = static_cast<std::int64_t>(first);
+    size[a] = static_cast<std::int64_t>(last - first) + 1;
+    voxels *= static_cast<double>(size[a]);
+  }
+  if (!(voxels * stride * sizeof(std::uint64_t) <= static_cast<double>(max_bytes))) return nullptr;
+  try {
+    return std::make_unique<VoxelBox>(low, size, stride);
+  } catch (const std::bad_alloc&) {
+    return nullptr;  // the hash table then, which grows with the voxels reached only
+  }
+}
+
+void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
+  const int stride = box_.stride();
+  std::uint64_t* data = box_.record(0);
+  if (cached()) {
+    for (const auto& batch : batches) {
+      for (const PendingSample& s : batch)
+        recordSample(data + s.key * stride, s.bin, s.manipulability);
+    }
+    return;
+  }
+  // Sorted by their index's leading bits (one counting pass), the samples sweep the box in one
+  // direction, so its pages and lines are fetched ahead instead of at random.
+  constexpr int kBucketBits = 11;
+  int shift = 0;
+  while ((box_.voxels() - 1) >> shift >= (std::size_t{1} << kBucketBits)) ++shift;
+  std::array<std::size_t, (1 << kBucketBits) + 1> start{};
+  for (const auto& batch : batches) {
+    for (const PendingSample& s : batch) ++start[(s.key >> shift) + 1];
+  }
+  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+  sorted_.resize(start.back());
+  for (const auto& batch : batches) {
+    for (const PendingSample& s : batch) sorted_[start[s.key >> shift]++] = s;
+  }
+  constexpr std::size_t kAhead = 16;  // records fetched ahead of their sample
+  for (std::size_t i = 0; i < sorted_.size(); ++i) {
+    if (i + kAhead < sorted_.size()) __builtin_prefetch(data + sorted_[i + kAhead].key * stride, 1);
+    const PendingSample& s = sorted_[i];
+    recordSample(data + s.key * stride, s.bin, s.manipulability);
+  }
+}
+
+}  // namespace reach_map_build
+}  // namespace mcws

@@ -1,0 +1,155 @@
+#pragma once
+/// \file
+/// \brief buildReachMap's internals: the samples waiting to be recorded, the parts of the map
+/// being filled that receive them, and the dense box of voxels that holds the map when the arm's
+/// reach fits in memory (reach_map_build.cpp). Not a public interface.
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "mcws/kinematics/robot.h"
+#include "mcws/reach/reach_map.h"
+
+namespace mcws {
+
+// Named rather than anonymous: ReachMapBuilder (a friend of ReachMap, so not file-local) holds
+// these, and GCC warns (-Wsubobject-linkage) when a unity build compiles the file in a batch.
+namespace reach_map_build {
+
+/// \brief A sample waiting to be recorded: its voxel (a packed key of ReachMap, or a VoxelBox
+/// index), orientation bin and manipulability.
+struct PendingSample {
+  std::uint64_t key;
+  int bin;
+  float manipulability;
+};
+
+/// \brief Adds a sample to a voxel's record as ReachMap stores it: count, the best
+/// manipulability's float bits, the bit set of the bins reached. What a record holds does not
+/// depend on the order its samples arrive in.
+inline void recordSample(std::uint64_t* record, int bin, float manipulability) {
+  ++record[0];
+  float best;
+  std::memcpy(&best, &record[1], sizeof best);
+  if (manipulability > best) std::memcpy(&record[1], &manipulability, sizeof best);
+  record[2 + bin / 64] |= std::uint64_t{1} << (bin % 64);
+}
+
+/// \brief One part of the map being filled: any thread posts samples to it; whichever thread
+/// finds it due records them (one thread at a time).
+class Part {
+ public:
+  virtual ~Part() = default;
+  /// \brief Hands over samples of this part (thread-safe).
+  void post(std::vector<PendingSample>&& samples);
+  /// \brief Whether enough samples wait to be recorded together: many for a part swept in
+  /// order, any for one that fits in the cache.
+  bool due();
+  /// \brief Records the samples posted, unless another thread is recording this part (false).
+  bool tryRecord();
+
+ protected:
+  /// Samples recorded at once into a part larger than the cache: its memory is swept in order.
+  static constexpr std::size_t kPending = std::size_t{1} << 20;
+  /// Bytes of a part's records up to which samples are recorded as they come.
+  static constexpr std::size_t kCached = std::size_t{4} << 20;
+  virtual void record(const std::vector<std::vector<PendingSample>>& batches) = 0;
+  virtual bool cached() const = 0;
+  /// Samples recorded at once when the part is not cached().
+  virtual std::size_t pending() const { return kPending; }
+
+ private:
+  std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_
+  std::mutex record_mutex_;  ///< held by the thread recording into the part
+  std::vector<std::vector<PendingSample>> inbox_;
+  std::size_t inbox_size_{0}, due_at_{1};
+};
+
+/// \brief A box of voxels stored densely: every voxel's record (ReachMap's layout) at an index
+/// computed from its voxel indices, z fastest, then y, then x, which is also the order of the
+/// packed keys. Memory comes zeroed from the kernel as it is first touched, so a voxel never
+/// reached (the box's corners beyond the reach) costs address space only.
+class VoxelBox {
+ public:
+  /// \brief A box of size[a] voxels along axis a from voxel index low[a] (within ReachMap's
+  /// range), records of `stride` words. \throws std::bad_alloc when it cannot be mapped.
+  VoxelBox(const std::int64_t low[3], const std::int64_t size[3], int stride);
+  ~VoxelBox();
+  VoxelBox(const VoxelBox&) = delete;
+  VoxelBox& operator=(const VoxelBox&) = delete;
+
+  std::size_t voxels() const { return voxels_; }
+  std::size_t bytes() const { return voxels_ * stride_ * sizeof(std::uint64_t); }
+  int stride() const { return stride_; }
+  /// \brief The index of the voxel of a packed key (ReachMap::keyOf); false outside the box.
+  bool indexOf(std::uint64_t key, std::uint64_t& index) const {
+    std::uint64_t at[3];
+    for (int a = 0; a < 3; ++a) {
+      at[a] = ((key >> (42 - 21 * a)) & kFieldMask) - low_[a];  // wraps when below the box
+      if (at[a] >= size_[a]) return false;
+    }
+    index = (at[0] * size_[1] + at[1]) * size_[2] + at[2];
+    return true;
+  }
+  /// \brief The packed key of the voxel at an index.
+  std::uint64_t keyOf(std::size_t index) const;
+  std::uint64_t* record(std::size_t index) { return data_ + index * stride_; }
+  const std::uint64_t* record(std::size_t index) const { return data_ + index * stride_; }
+
+ private:
+  static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << 21) - 1;
+  std::uint64_t low_[3]{};   ///< the first voxel's packed fields (index + 2^20)
+  std::uint64_t size_[3]{};  ///< voxels along each axis
+  std::size_t voxels_{0};
+  int stride_;
+  void* base_{nullptr};           ///< the mapping
+  std::size_t mapped_{0};         ///< its bytes
+  std::uint64_t* data_{nullptr};  ///< the records: base_ rounded up to 2 MB
+};
+
+/// \brief The box of the voxels of a grid of edge `resolution` [length unit] within `radius`
+/// [length unit] of the robot's base (chainLengthScale() bounds the tool point's distance), and a
+/// voxel more on each side for rounding, records of `stride` words; nullptr when they would take
+/// more than `max_bytes` or cannot be mapped.
+std::unique_ptr<VoxelBox> reachBox(const Robot& robot, double radius, double resolution, int stride,
+                                   std::uint64_t max_bytes);
+
+/// \brief buildReachMap() with the dense box sized for `radius` [length unit] instead of the
+/// chain's bound: for tests, where a radius too small makes samples fall outside the box.
+ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
+                            const ReachSampling& sampling, double radius);
+
+/// \brief A part of a VoxelBox: the blocks of 2^kBlockBits voxels whose number hashes to `part`
+/// of `parts` (so the parts share the work whatever the shape of the reach).
+class BoxPart : public Part {
+ public:
+  static constexpr int kBlockBits = 12;
+  /// A part of `box` split in `parts`.
+  BoxPart(VoxelBox& box, int parts) : box_(box), parts_(parts) {}
+  /// \brief The part holding a box index: Fibonacci hashing of its block (a multiply, where a
+  /// modulo would divide).
+  static int partOf(std::uint64_t index, int parts) {
+    const auto hash = static_cast<std::uint32_t>((index >> kBlockBits) * 0x9E3779B9u);
+    return static_cast<int>((std::uint64_t{hash} * static_cast<unsigned>(parts)) >> 32);
+  }
+
+ private:
+  void record(const std::vector<std::vector<PendingSample>>& batches) override;
+  bool cached() const override { return box_.bytes() <= kCached; }
+  /// 2^23 samples over all parts, 2^20 at least: with few parts, fewer sweeps of the box (each
+  /// sweep's traffic is its touched lines, read and written back).
+  std::size_t pending() const override {
+    return std::max(kPending, (std::size_t{1} << 23) / static_cast<unsigned>(parts_));
+  }
+  VoxelBox& box_;
+  int parts_;
+  std::vector<PendingSample> sorted_;
+};
+
+}  // namespace reach_map_build
+}  // namespace mcws

@@ -1,0 +1,147 @@
+// buildReachMap's dense box of voxels (mcws::reach_map_build::VoxelBox) against the hash tables
+// it replaces where the reach fits in memory: the same map, byte for byte, on the planar arm and
+// the inspection arm, with any thread count, records swept sorted or as they come, and with
+// samples outside a box made too small on purpose; the box's indices against brute force; the
+// index of a map built by threads finding every voxel.
+#include "mcws/reach/voxel_box.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+
+#include "mcws/kinematics/robot_yaml.h"
+#include "mcws/reach/reach_map.h"
+#include "reach/planar2.h"
+#include "test_support.h"
+
+namespace mcws {
+namespace {
+
+using reach_map_build::VoxelBox;
+
+std::string boxMapBytes(const ReachMap& map) {
+  std::ostringstream out(std::ios::binary);
+  map.write(out, "{}");
+  return out.str();
+}
+
+/// ReachMap's packed key of a voxel index, written out.
+std::uint64_t boxTestKey(std::int64_t x, std::int64_t y, std::int64_t z) {
+  const auto field = [](std::int64_t i) {
+    return static_cast<std::uint64_t>(i + ReachMap::kIndexLimit);
+  };
+  return (field(x) << 42) | (field(y) << 21) | field(z);
+}
+
+ReachSampling boxSampling(std::uint64_t samples, int threads, const Robot& robot) {
+  ReachSampling s;
+  s.samples = samples;
+  s.seed = 3;
+  s.threads = threads;
+  s.quality = defaultQualityOptions(robot);
+  return s;
+}
+
+ReachGrid boxGrid(double resolution, int directions, int rolls) {
+  ReachGrid g;
+  g.resolution = resolution;
+  g.directions = directions;
+  g.rolls = rolls;
+  return g;
+}
+
+TEST(VoxelBox, IndicesRunZFastestAndKeysRoundTrip) {
+  const std::int64_t low[3] = {-3, 5, -1}, size[3] = {4, 3, 5};
+  VoxelBox box(low, size, 3);
+  ASSERT_EQ(box.voxels(), 60u);
+  std::size_t expected = 0;
+  for (std::int64_t x = -5; x < 3; ++x) {
+    for (std::int64_t y = 3; y < 10; ++y) {
+      for (std::int64_t z = -3; z < 6; ++z) {
+        const bool inside = x >= -3 && x < 1 && y >= 5 && y < 8 && z >= -1 && z < 4;
+        std::uint64_t index = 0;
+        ASSERT_EQ(box.indexOf(boxTestKey(x, y, z), index), inside) << x << " " << y << " " << z;
+        if (!inside) continue;
+        ASSERT_EQ(index, expected++);
+        ASSERT_EQ(box.keyOf(index), boxTestKey(x, y, z));
+        for (int w = 0; w < 3; ++w) ASSERT_EQ(box.record(index)[w], 0u);  // zeroed memory
+      }
+    }
+  }
+  EXPECT_EQ(expected, 60u);
+}
+
+TEST(VoxelBox, TheReachBoxIsRefusedWhenTooLargeOrBeyondTheIndexRange) {
+  const Robot robot = test::planar2();  // 70 cm of reach
+  // 1 cm voxels: 143 per axis, 4 words each.
+  ASSERT_NE(reach_map_build::reachBox(robot, 70.0, 1.0, 4, 100u << 20), nullptr);
+  EXPECT_EQ(reach_map_build::reachBox(robot, 70.0, 1.0, 4, 1u << 20), nullptr);
+  EXPECT_EQ(reach_map_build::reachBox(robot, 70.0, 1e-5, 4, ~std::uint64_t{0}), nullptr);
+}
+
+TEST(BuildReachMap, TheDenseBoxGivesTheHashTablesMap) {
+  const Robot robot = test::planar2();
+  // 2 cm: a 12 MB box swept in sorted order; 10 cm: one recorded as samples come.
+  for (const double resolution : {2.0, 10.0}) {
+    ReachSampling hash = boxSampling(150001, 1, robot);
+    hash.dense_bytes = 0;
+    const std::string expected =
+        boxMapBytes(buildReachMap(robot, boxGrid(resolution, 20, 6), hash));
+    for (const int threads : {1, 2, 3}) {
+      EXPECT_EQ(boxMapBytes(buildReachMap(robot, boxGrid(resolution, 20, 6),
+                                          boxSampling(150001, threads, robot))),
+                expected)
+          << resolution << " " << threads;
+    }
+  }
+}
+
+TEST(BuildReachMap, TheInspectionArmsDenseMapIsItsHashMapWithAndWithoutManipulability) {
+  const Robot robot = loadRobot(test::robotPath("inspection6"));  // mm, 1655 mm of reach
+  ASSERT_NE(reach_map_build::reachBox(robot, chainLengthScale(robot), 50.0, 6, 1u << 30), nullptr);
+  for (const bool manipulability : {true, false}) {
+    ReachSampling hash = boxSampling(200003, 2, robot);
+    hash.manipulability = manipulability;
+    ReachSampling dense = hash;
+    hash.dense_bytes = 0;
+    const ReachMap map = buildReachMap(robot, boxGrid(50.0, 200, 1), dense);
+    EXPECT_EQ(boxMapBytes(map), boxMapBytes(buildReachMap(robot, boxGrid(50.0, 200, 1), hash)));
+    EXPECT_GT(map.size(), 10000u);
+  }
+}
+
+TEST(BuildReachMap, SamplesOutsideTheBoxCountAsInTheHashTables) {
+  // A box for 30 cm or 0 cm of the planar arm's 70: most samples fall outside it.
+  const Robot robot = test::planar2();
+  ReachSampling hash = boxSampling(100003, 1, robot);
+  hash.dense_bytes = 0;
+  const std::string expected = boxMapBytes(buildReachMap(robot, boxGrid(2.0, 20, 6), hash));
+  for (const double radius : {30.0, 0.0}) {
+    for (const int threads : {1, 2}) {
+      EXPECT_EQ(boxMapBytes(reach_map_build::buildReachMapInBox(
+                    robot, boxGrid(2.0, 20, 6), boxSampling(100003, threads, robot), radius)),
+                expected)
+          << radius << " " << threads;
+    }
+  }
+}
+
+TEST(BuildReachMap, TheIndexBuiltByThreadsFindsEveryVoxel) {
+  // Over 65536 voxels: the index is built by both threads, for the box and the hash tables.
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  for (const std::uint64_t dense_bytes : {std::uint64_t{1} << 30, std::uint64_t{0}}) {
+    ReachSampling s = boxSampling(200003, 2, robot);
+    s.manipulability = false;
+    s.dense_bytes = dense_bytes;
+    const ReachMap map = buildReachMap(robot, boxGrid(20.0, 20, 1), s);
+    ASSERT_GT(map.size(), 65536u);
+    for (std::size_t v = 0; v < map.size(); ++v) {
+      ASSERT_EQ(map.find(map.voxelCentre(map.voxel(v))), static_cast<long>(v)) << v;
+    }
+    EXPECT_EQ(map.find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
+  }
+}
+
+}  // namespace
+}  // namespace mcws
