@@ -153,6 +153,13 @@ __attribute__((target("avx2"))) std::size_t rowDistancesAvx2(
   return m;
 }
 
+/// Which of the (up to) 8 values at v[k] (of n) lie below `limit`, as a bit mask.
+__attribute__((target("avx2"))) inline unsigned maskBelow(__m256 x, std::size_t n, std::size_t k,
+                                                          __m256 limit) {
+  const unsigned valid = n - k >= 8 ? 0xFFu : (1u << (n - k)) - 1u;
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LT_OQ))) & valid;
+}
+
 /// valuesBelowPlain() 8 at a time.
 __attribute__((target("avx2"))) std::size_t valuesBelowAvx2(const float* v, std::size_t n,
                                                             float bound, float* out) {
@@ -160,9 +167,7 @@ __attribute__((target("avx2"))) std::size_t valuesBelowAvx2(const float* v, std:
   std::size_t m = 0;
   for (std::size_t k = 0; k < n; k += 8) {
     const __m256 x = _mm256_loadu_ps(v + k);
-    const unsigned valid = n - k >= 8 ? 0xFFu : (1u << (n - k)) - 1u;
-    const unsigned mask =
-        static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LT_OQ))) & valid;
+    const unsigned mask = maskBelow(x, n, k, limit);
     const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
     _mm256_storeu_ps(out + m, _mm256_permutevar8x32_ps(x, lanes));
     m += kLanes.count[mask];
@@ -177,9 +182,7 @@ __attribute__((target("avx2"))) std::size_t placesBelowAvx2(const float* v, std:
   std::size_t m = 0;
   for (std::size_t k = 0; k < n; k += 8) {
     const __m256 x = _mm256_loadu_ps(v + k);
-    const unsigned valid = n - k >= 8 ? 0xFFu : (1u << (n - k)) - 1u;
-    const unsigned mask =
-        static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LT_OQ))) & valid;
+    const unsigned mask = maskBelow(x, n, k, limit);
     const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m),
                         _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));

@@ -299,15 +299,20 @@ class BlockSearch {
     const float* d2 = block.d2.data();
     std::size_t count = 0;
     for (std::size_t k = 0; k < block.size; ++k) {
-      const float d = d2[k];
-      if (!(d < bar)) continue;
-      std::size_t j = count < wanted ? count++ : wanted - 1;
-      for (; j > 0 && best[j - 1] > d; --j) best[j] = best[j - 1];
-      best[j] = d;
-      if (count == wanted) bar = best[wanted - 1];
+      if (d2[k] < bar) insertBelow(d2[k], best, count, wanted, bar);
     }
     if (count < wanted) return std::nullopt;
     return best[wanted - 1];
+  }
+
+  /// Puts `d` (below `bar`) into the ascending list best[0, count) of at most `wanted` values,
+  /// dropping the largest when full; once full, `bar` is the largest kept.
+  static void insertBelow(float d, float* best, std::size_t& count, std::size_t wanted,
+                          float& bar) {
+    std::size_t j = count < wanted ? count++ : wanted - 1;
+    for (; j > 0 && best[j - 1] > d; --j) best[j] = best[j - 1];
+    best[j] = d;
+    if (count == wanted) bar = best[wanted - 1];
   }
 
   /// squaredDistances() then kthBelow(), in one pass four points at a time where SSE2 is there:
@@ -324,12 +329,7 @@ class BlockSearch {
     const float* zs = block.xyz[D - 1].data();
     float* d2 = block.d2.data();
     std::size_t count = 0;
-    const auto insert = [&](float d) {
-      std::size_t j = count < wanted ? count++ : wanted - 1;
-      for (; j > 0 && best[j - 1] > d; --j) best[j] = best[j - 1];
-      best[j] = d;
-      if (count == wanted) bar = best[wanted - 1];
-    };
+    const auto insert = [&](float d) { insertBelow(d, best, count, wanted, bar); };
     const __m128 qx = _mm_set1_ps(px), qy = _mm_set1_ps(py), qz = _mm_set1_ps(pz);
     std::size_t k = 0;
     for (; k + 4 <= block.size; k += 4) {
@@ -348,13 +348,7 @@ class BlockSearch {
       }
     }
     for (; k < block.size; ++k) {
-      const float dx = xs[k] - px, dy = ys[k] - py;
-      float d = dx * dx;
-      d += dy * dy;
-      if constexpr (D == 3) {
-        const float dz = zs[k] - pz;
-        d += dz * dz;
-      }
+      const float d = squaredDistance(xs, ys, zs, k, px, py, pz);
       d2[k] = d;
       if (d < bar) insert(d);
     }
@@ -372,16 +366,20 @@ class BlockSearch {
     const float* __restrict ys = block.xyz[1].data();
     const float* __restrict zs = block.xyz[D - 1].data();
     float* __restrict d2 = block.d2.data();
-    for (std::size_t k = 0; k < block.size; ++k) {
-      const float dx = xs[k] - px, dy = ys[k] - py;
-      float d = dx * dx;
-      d += dy * dy;
-      if constexpr (D == 3) {
-        const float dz = zs[k] - pz;
-        d += dz * dz;
-      }
-      d2[k] = d;
+    for (std::size_t k = 0; k < block.size; ++k) d2[k] = squaredDistance(xs, ys, zs, k, px, py, pz);
+  }
+
+  /// Point k's squared distance from (px, py, pz), as CellGrid computes it (see above).
+  static float squaredDistance(const float* xs, const float* ys, const float* zs, std::size_t k,
+                               float px, float py, float pz) {
+    const float dx = xs[k] - px, dy = ys[k] - py;
+    float d = dx * dx;
+    d += dy * dy;
+    if constexpr (D == 3) {
+      const float dz = zs[k] - pz;
+      d += dz * dz;
     }
+    return d;
   }
 
   double cell_{0.0};
