@@ -2,7 +2,8 @@
 // it replaces where the reach fits in memory: the same map, byte for byte, on the planar arm and
 // the inspection arm, with any thread count, records swept sorted or as they come, and with
 // samples outside a box made too small on purpose; the box's indices against brute force; the
-// index of a map built by threads finding every voxel.
+// index of a map built by threads finding every voxel; a part's recorded batches handed back
+// empty with their memory.
 #include "mcws/reach/voxel_box.h"
 
 #include <gtest/gtest.h>
@@ -18,7 +19,20 @@
 namespace mcws {
 namespace {
 
+using reach_map_build::PendingSample;
 using reach_map_build::VoxelBox;
+
+/// A part that keeps the samples it records, in order.
+class ListPart : public reach_map_build::Part {
+ public:
+  std::vector<PendingSample> recorded;
+
+ private:
+  void record(const std::vector<std::vector<PendingSample>>& batches) override {
+    for (const auto& batch : batches) recorded.insert(recorded.end(), batch.begin(), batch.end());
+  }
+  bool cached() const override { return true; }
+};
 
 std::string boxMapBytes(const ReachMap& map) {
   std::ostringstream out(std::ios::binary);
@@ -141,6 +155,44 @@ TEST(BuildReachMap, TheIndexBuiltByThreadsFindsEveryVoxel) {
     }
     EXPECT_EQ(map.find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
   }
+}
+
+TEST(BuildReachMap, APartHandsBackTheBatchesItRecordedEmptyWithTheirMemory) {
+  ListPart part;
+  std::vector<PendingSample> first;
+  first.reserve(100);
+  for (int i = 0; i < 100; ++i) first.push_back({std::uint64_t(i), i % 7, 0.5f * i});
+  const PendingSample* memory = first.data();
+  // Nothing recorded yet: a new batch.
+  std::vector<PendingSample> second = part.exchange(std::move(first), 100);
+  EXPECT_TRUE(second.empty());
+  EXPECT_GE(second.capacity(), 100u);
+  EXPECT_NE(second.data(), memory);
+  EXPECT_TRUE(part.due());
+  ASSERT_TRUE(part.tryRecord());
+  ASSERT_EQ(part.recorded.size(), 100u);
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(part.recorded[i].key, std::uint64_t(i));
+    EXPECT_EQ(part.recorded[i].bin, i % 7);
+    EXPECT_EQ(part.recorded[i].manipulability, 0.5f * i);
+  }
+  // The first batch recorded: handed back empty, its memory kept.
+  second.push_back({1000, 3, 2.0f});
+  std::vector<PendingSample> third = part.exchange(std::move(second), 100);
+  EXPECT_TRUE(third.empty());
+  EXPECT_EQ(third.data(), memory);
+  EXPECT_GE(third.capacity(), 100u);
+  ASSERT_TRUE(part.tryRecord());
+  ASSERT_EQ(part.recorded.size(), 101u);
+  EXPECT_EQ(part.recorded.back().key, 1000u);
+  // Spares dropped: a new batch again (not the one still waiting).
+  part.dropSpares();
+  third.push_back({1001, 4, 1.0f});
+  const PendingSample* waiting = third.data();
+  const std::vector<PendingSample> fourth = part.exchange(std::move(third), 10);
+  EXPECT_TRUE(fourth.empty());
+  EXPECT_GE(fourth.capacity(), 10u);
+  EXPECT_NE(fourth.data(), waiting);
 }
 
 }  // namespace

@@ -213,7 +213,7 @@ class ReachMapBuilder {
     if (!box_) {
       for (const auto& table : tables_) parts_.push_back(table.get());
     }
-    outgoing_.assign(threads_, std::vector<std::vector<PendingSample>>(threads_));
+    outgoing_.assign(threads_, std::vector<Outgoing>(threads_));
   }
 
   /// Records every sample in the parts, a chunk at a time (progress after each). The first chunk
@@ -281,12 +281,15 @@ class ReachMapBuilder {
   /// The samples still on their way recorded (a part per thread).
   void finish() {
     for (int t = 0; t < threads_; ++t) {
-      for (int u = 0; u < threads_; ++u) parts_[u]->post(std::move(outgoing_[t][u]));
+      for (int u = 0; u < threads_; ++u) parts_[u]->post(std::move(outgoing_[t][u].samples));
     }
     FirstError error;
 #pragma omp parallel for schedule(static, 1) num_threads(threads_)
     for (int t = 0; t < threads_; ++t) {
-      error.run(static_cast<std::size_t>(t), [&] { parts_[t]->tryRecord(); });
+      error.run(static_cast<std::size_t>(t), [&] {
+        parts_[t]->tryRecord();
+        parts_[t]->dropSpares();  // their memory before the map's
+      });
     }
     error.rethrow();
   }
@@ -410,13 +413,9 @@ class ReachMapBuilder {
 
   /// Adds a sample to thread t's batch for a part, handing the batch over when full.
   void post(int t, int part, std::uint64_t key, int bin, float manipulability) {
-    auto& out = outgoing_[t][part];
+    auto& out = outgoing_[t][part].samples;
     out.push_back({key, bin, manipulability});
-    if (out.size() >= kPost) {
-      parts_[part]->post(std::move(out));
-      out = {};
-      out.reserve(kPost);
-    }
+    if (out.size() >= kPost) out = parts_[part]->exchange(std::move(out), kPost);
   }
 
   const ReachMap empty_;  ///< the grid's map: bins, keys
@@ -431,8 +430,13 @@ class ReachMapBuilder {
   std::vector<std::unique_ptr<SlotTable>> tables_;
   std::vector<Part*> parts_;
   std::deque<ReachMap> spill_;  ///< per thread: samples outside the box
+  /// A thread's samples for a part, on a cache line of its own: the threads' batches (their
+  /// ends written at every sample) would otherwise share lines.
+  struct alignas(64) Outgoing {
+    std::vector<PendingSample> samples;
+  };
   /// outgoing_[t][u]: thread t's samples for part u.
-  std::vector<std::vector<std::vector<PendingSample>>> outgoing_;
+  std::vector<std::vector<Outgoing>> outgoing_;
 };
 
 ReachMap buildReachMap(const Robot& robot, const ReachGrid& grid, const ReachSampling& sampling,

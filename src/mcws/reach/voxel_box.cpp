@@ -18,6 +18,26 @@ void Part::post(std::vector<PendingSample>&& samples) {
   inbox_.push_back(std::move(samples));
 }
 
+std::vector<PendingSample> Part::exchange(std::vector<PendingSample>&& samples, std::size_t room) {
+  std::vector<PendingSample> next;
+  {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    inbox_size_ += samples.size();
+    inbox_.push_back(std::move(samples));
+    if (!spare_.empty()) {
+      next.swap(spare_.back());
+      spare_.pop_back();
+    }
+  }
+  next.reserve(room);
+  return next;
+}
+
+void Part::dropSpares() {
+  const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  spare_ = {};
+}
+
 bool Part::due() {
   const std::lock_guard<std::mutex> lock(inbox_mutex_);
   return inbox_size_ >= due_at_;
@@ -33,7 +53,11 @@ bool Part::tryRecord() {
     inbox_size_ = 0;
   }
   record(batches);
+  for (auto& batch : batches) batch.clear();  // capacity kept
   const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  for (auto& batch : batches) {
+    if (batch.capacity() > 0) spare_.push_back(std::move(batch));
+  }
   due_at_ = cached() ? 1 : pending();
   return true;
 }

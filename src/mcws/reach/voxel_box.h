@@ -47,9 +47,15 @@ class Part {
   virtual ~Part() = default;
   /// \brief Hands over samples of this part (thread-safe).
   void post(std::vector<PendingSample>&& samples);
+  /// \brief Hands over samples of this part (thread-safe) and returns an empty batch with room
+  /// for `room` samples to fill next: one this part has recorded, its memory kept (a new
+  /// batch's memory is faulted in page by page, and a freed one's unmapped again), or a new one.
+  std::vector<PendingSample> exchange(std::vector<PendingSample>&& samples, std::size_t room);
   /// \brief Whether enough samples wait to be recorded together: many for a part swept in
   /// order, any for one that fits in the cache.
   bool due();
+  /// \brief Frees the recorded batches kept for exchange() (when no more samples come).
+  void dropSpares();
   /// \brief Records the samples posted, unless another thread is recording this part (false).
   bool tryRecord();
 
@@ -64,9 +70,10 @@ class Part {
   virtual std::size_t pending() const { return kPending; }
 
  private:
-  std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_
+  std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_, spare_
   std::mutex record_mutex_;  ///< held by the thread recording into the part
   std::vector<std::vector<PendingSample>> inbox_;
+  std::vector<std::vector<PendingSample>> spare_;  ///< recorded batches, emptied, for reuse
   std::size_t inbox_size_{0}, due_at_{1};
 };
 
