@@ -12,6 +12,7 @@
 
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
+#include "mcws/reach/voxel_box.h"  // PendingSample
 
 namespace mcws {
 
@@ -32,6 +33,7 @@ T* HugePageAllocator<T>::allocate(std::size_t n) {
 }
 template struct HugePageAllocator<std::uint64_t>;
 template struct HugePageAllocator<ReachMap::Entry>;
+template struct HugePageAllocator<reach_map_build::PendingSample>;
 namespace {
 
 constexpr char kMagic[] = "MCWS-REACH-MAP 1";

@@ -165,7 +165,8 @@ class SlotTable : public Part {
   std::size_t capacity_{0}, used_{0};
   std::vector<std::uint64_t, HugePageAllocator<std::uint64_t>> table_;
   int parts_;
-  std::vector<PendingSample> sorted_, fresh_;
+  std::vector<PendingSample, HugePageAllocator<PendingSample>> sorted_;  ///< see BoxPart's
+  std::vector<PendingSample> fresh_;
 };
 
 }  // namespace reach_map_build

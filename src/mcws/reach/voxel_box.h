@@ -155,7 +155,9 @@ class BoxPart : public Part {
   }
   VoxelBox& box_;
   int parts_;
-  std::vector<PendingSample> sorted_;
+  /// The samples sorted; huge pages, as its 2^11 buckets are written at random (and resize
+  /// leaves it unset: every element is written).
+  std::vector<PendingSample, HugePageAllocator<PendingSample>> sorted_;
 };
 
 }  // namespace reach_map_build
