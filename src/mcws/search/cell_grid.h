@@ -65,7 +65,7 @@ class CellGrid {
     std::vector<std::uint32_t> near_slot;
     std::size_t near_size{0};
     float near_bound{0.0f};
-    std::vector<detail::RowSpan> rows;  ///< the rows of cells collected (scratch)
+    std::vector<detail::RowSpan> rows;  ///< the rows of cells collected (scratch; only grows)
   };
 
   /// \brief Every point of the cells that meet the ball of radius `reach` [length unit] around p
