@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "mcws/filters/orthant/empty_orthant.h"
@@ -88,6 +89,43 @@ TEST(EmptyOrthant, SameAnswerAsThePerCoordinateForm) {
   EXPECT_GT(boundary, cases / 10);
   EXPECT_LT(boundary, cases - cases / 10);
 }
+
+#if MCWS_ORTHANT_AVX2
+TEST(EmptyOrthant, AxisPassAsOneByOne) {
+  // The AVX2 first pass (eight neighbours at a time, the last group padded) against the same
+  // quantities one neighbour at a time: the mask, the double sums bit for bit (their order
+  // decides the outward frame), the largest d^2; lists of every length from 0 to 99.
+  if (!axisPassHasAvx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  std::mt19937 rng(13);
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int dimensions = 2 + trial % 2;
+    std::vector<Neighbour> neighbours(static_cast<std::size_t>(trial / 2 % 100));
+    for (auto& q : neighbours) {
+      const float x = coordinate(rng), y = coordinate(rng);
+      const float z = dimensions == 3 ? coordinate(rng) : 0.0f;
+      q = Neighbour(x, y, z, x * x + y * y + z * z, 0);
+    }
+    const std::uint8_t* bits = orthantBits(dimensions);
+    unsigned mask = 0;
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    float size2 = 0.0f;
+    for (const auto& q : neighbours) {
+      mask |= bits[signCode(q.x, q.y, q.z)];
+      sx += q.x;
+      sy += q.y;
+      sz += q.z;
+      size2 = std::max(size2, q.d2);
+    }
+    const AxisPass pass = axisPassAvx2(neighbours, dimensions);
+    ASSERT_EQ(pass.mask, mask) << "trial " << trial;
+    for (const auto& [got, expected] : {std::pair{pass.sx, sx}, {pass.sy, sy}, {pass.sz, sz}}) {
+      ASSERT_EQ(got, expected) << "trial " << trial;
+      ASSERT_EQ(std::signbit(got), std::signbit(expected)) << "trial " << trial;
+    }
+    ASSERT_EQ(pass.size2, size2) << "trial " << trial;
+  }
+}
+#endif
 
 #if defined(__SSE2__)
 TEST(EmptyOrthant, FrameColumnsRoundAsEigensProduct) {

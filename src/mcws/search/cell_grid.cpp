@@ -118,11 +118,14 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
   const double r = reach * (1.0 + 1e-6) + cell_ * 1e-6;
   const Eigen::Vector3d q(p.x, p.y, dimensions_ == 3 ? p.z : 0.0f);
   const double inverse = inverse_cell_;
+  const double last[3] = {static_cast<double>(counts_[0] - 1), static_cast<double>(counts_[1] - 1),
+                          static_cast<double>(counts_[2] - 1)};
   auto cellAt = [&](double v, int axis) {
-    // Truncation is floor at and above 0, and below 0 both clamp to cell 0: the same cell
-    // without std::floor, which the x86-64 baseline (no SSE4.1) computes in a dozen instructions.
-    const double c = std::clamp((v - origin_[axis]) * inverse, -1.0, 1e15);
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>(c), 0, counts_[axis] - 1);
+    // Clamped to [0, last cell] in double (minsd, maxsd: no branches), then truncated, which is
+    // floor at and above 0: the same cell without std::floor, which the x86-64 baseline (no
+    // SSE4.1) computes in a dozen instructions.
+    const double c = std::min(std::max((v - origin_[axis]) * inverse, 0.0), last[axis]);
+    return static_cast<std::int64_t>(c);
   };
   auto gapTo = [&](std::int64_t c, int axis) {  // distance from q to cell c's slab
     const double lo = origin_[axis] + c * cell_, hi = lo + cell_;
@@ -135,8 +138,10 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
     hi[k] = cellAt(q[k] + r, k);
   }
   // The rows of cells that meet the ball, then their points in one pass.
-  out.rows.clear();
-  std::size_t total = 0;
+  const auto most = static_cast<std::size_t>((hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1));
+  if (out.rows.size() < most) out.rows.resize(2 * most);
+  detail::RowSpan* rows = out.rows.data();
+  std::size_t row_count = 0, total = 0;
   for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz) {
     const double gz = dimensions_ == 3 ? gapTo(cz, 2) : 0.0;
     const double slab = r * r - gz * gz;
@@ -147,9 +152,11 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
       const double w = std::sqrt(left);
       const std::int64_t x0 = cellAt(q.x() - w, 0), x1 = cellAt(q.x() + w, 0);
       const std::int64_t row = (cz * counts_[1] + cy) * counts_[0];
-      const detail::RowSpan span{start_[row + x0], start_[row + x1 + 1]};
-      total += span.end - span.begin;
-      out.rows.push_back(span);
+      const std::uint32_t begin = start_[row + x0], end = start_[row + x1 + 1];
+      total += end - begin;
+      rows[row_count].begin = begin;
+      rows[row_count].end = end;
+      ++row_count;
     }
   }
   // Room for the rows and the entries the kernel may write past them.
@@ -163,9 +170,9 @@ void CellGrid::collect(const pcl::PointXYZ& p, double reach, float near_bound,
   out.size = total;
   // In 2-D, z is 0 - 0 and adds nothing to the squared distances.
   const float px = p.x, py = p.y, pz = dimensions_ == 3 ? p.z : 0.0f;
-  out.near_size = detail::rowDistances(x_.data(), y_.data(), z_.data(), out.rows.data(),
-                                       out.rows.size(), px, py, pz, near_bound, out.d2.data(),
-                                       out.slot.data(), out.near_d2.data(), out.near_slot.data());
+  out.near_size = detail::rowDistances(x_.data(), y_.data(), z_.data(), rows, row_count, px, py, pz,
+                                       near_bound, out.d2.data(), out.slot.data(),
+                                       out.near_d2.data(), out.near_slot.data());
 }
 
 bool CellGridSearch::gather(pcl::index_t i, double reach, float near_bound) {

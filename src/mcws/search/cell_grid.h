@@ -47,6 +47,7 @@ class CellGrid {
   /// order()[k] of the old one), renumbers the grid to match without rebuilding it.
   void renumberInCellOrder() {
     for (std::size_t k = 0; k < index_.size(); ++k) index_[k] = static_cast<pcl::index_t>(k);
+    slot_is_index_ = true;
   }
   /// \brief The cells' runs of slots: cell c holds slots [cellStarts()[c], cellStarts()[c + 1]).
   const std::vector<std::uint32_t>& cellStarts() const { return start_; }
@@ -65,7 +66,7 @@ class CellGrid {
     std::vector<std::uint32_t> near_slot;
     std::size_t near_size{0};
     float near_bound{0.0f};
-    std::vector<detail::RowSpan> rows;  ///< the rows of cells collected (scratch)
+    std::vector<detail::RowSpan> rows;  ///< the rows of cells collected (scratch; only grows)
   };
 
   /// \brief Every point of the cells that meet the ball of radius `reach` [length unit] around p
@@ -77,7 +78,9 @@ class CellGrid {
   Neighbour neighbour(std::uint32_t slot, const pcl::PointXYZ& p, float d2) const {
     // q - p is exactly -(p - q): these are the offsets whose squares collect() summed.
     const float pz = dimensions_ == 3 ? p.z : 0.0f;
-    return {x_[slot] - p.x, y_[slot] - p.y, z_[slot] - pz, d2, index_[slot]};
+    // (after renumberInCellOrder() the index is the slot: one load fewer)
+    const auto index = slot_is_index_ ? static_cast<pcl::index_t>(slot) : index_[slot];
+    return {x_[slot] - p.x, y_[slot] - p.y, z_[slot] - pz, d2, index};
   }
 
  private:
@@ -91,6 +94,7 @@ class CellGrid {
   std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])
   std::vector<float> x_, y_, z_;      // coordinates in cell order
   std::vector<pcl::index_t> index_;   // cloud index in cell order
+  bool slot_is_index_{false};         // index_[slot] == slot for every slot
 };
 
 /// \brief The NeighbourSearch of one thread on a CellGrid. It remembers the candidates it

@@ -99,23 +99,26 @@ struct LaneTable {
 };
 const LaneTable kLanes;
 
-/// The AVX2 registers of rowDistancesAvx2(): the query, the bound, the next group's slots.
+/// The AVX2 registers of rowDistancesAvx2(): the query, the bound, and the slots of the next
+/// group (advanced by 8 a group, set anew at each row's start).
 struct RowQuery {
   __m256 qx, qy, qz, limit;
-  __m256i iota;  ///< 0, 1, ..., 7
+  __m256i slots;
 };
 
-/// One group of 8 points of rowDistancesAvx2(), from point k of the arrays on, into d2 and slot
-/// (lanes outside `valid` are never near); returns how many are near.
-__attribute__((target("avx2"), always_inline)) inline std::size_t rowGroupAvx2(
-    const float* xs, const float* ys, const float* zs, std::uint32_t k, unsigned valid,
-    const RowQuery& q, float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
+/// One group of 8 points of rowDistancesAvx2(), from point k of the arrays on (q.slots holds k,
+/// k + 1, ..., k + 7, and is advanced by 8), into d2 and slot (lanes outside `valid` are never
+/// near); returns how many are near (a population count: AVX2 processors have POPCNT).
+__attribute__((target("avx2,popcnt"), always_inline)) inline std::size_t rowGroupAvx2(
+    const float* xs, const float* ys, const float* zs, std::uint32_t k, unsigned valid, RowQuery& q,
+    float* d2, std::uint32_t* slot, float* near_d2, std::uint32_t* near_slot) {
   const __m256 dx = _mm256_sub_ps(_mm256_loadu_ps(xs + k), q.qx);
   const __m256 dy = _mm256_sub_ps(_mm256_loadu_ps(ys + k), q.qy);
   const __m256 dz = _mm256_sub_ps(_mm256_loadu_ps(zs + k), q.qz);
   const __m256 d = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(dx, dx), _mm256_mul_ps(dy, dy)),
                                  _mm256_mul_ps(dz, dz));
-  const __m256i slots = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(k)), q.iota);
+  const __m256i slots = q.slots;
+  q.slots = _mm256_add_epi32(slots, _mm256_set1_epi32(8));
   _mm256_storeu_ps(d2, d);
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(slot), slots);
   const unsigned mask =
@@ -124,22 +127,24 @@ __attribute__((target("avx2"), always_inline)) inline std::size_t rowGroupAvx2(
   _mm256_storeu_ps(near_d2, _mm256_permutevar8x32_ps(d, lanes));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(near_slot),
                       _mm256_permutevar8x32_epi32(slots, lanes));
-  return kLanes.count[mask];
+  return static_cast<std::size_t>(__builtin_popcount(mask));
 }
 
 /// rowDistancesPlain() 8 at a time (AVX2, no FMA: the same roundings), the near ones left-packed
 /// by a permutation from kLanes. A row's last group may read up to 7 points past it (and write
 /// as many entries past the row's), which the next row's overwrite.
-__attribute__((target("avx2"))) std::size_t rowDistancesAvx2(
+__attribute__((target("avx2,popcnt"))) std::size_t rowDistancesAvx2(
     const float* xs, const float* ys, const float* zs, const RowSpan* rows, std::size_t row_count,
     float px, float py, float pz, float bound, float* d2, std::uint32_t* slot, float* near_d2,
     std::uint32_t* near_slot) {
-  const RowQuery q{_mm256_set1_ps(px), _mm256_set1_ps(py), _mm256_set1_ps(pz),
-                   _mm256_set1_ps(bound), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)};
+  const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  RowQuery q{_mm256_set1_ps(px), _mm256_set1_ps(py), _mm256_set1_ps(pz), _mm256_set1_ps(bound),
+             iota};
   std::size_t m = 0, base = 0;
   for (std::size_t r = 0; r < row_count; ++r) {
     const std::uint32_t end = rows[r].end;
     std::uint32_t k = rows[r].begin;
+    q.slots = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(k)), iota);
     for (; k + 8 <= end; k += 8, base += 8) {
       m +=
           rowGroupAvx2(xs, ys, zs, k, 0xFFu, q, d2 + base, slot + base, near_d2 + m, near_slot + m);
@@ -230,7 +235,7 @@ struct Kernels {
   Kernels() {
 #if MCWS_CELL_KERNELS_AVX2
     __builtin_cpu_init();  // this may run before the runtime's own initialisation
-    if (__builtin_cpu_supports("avx2")) {
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt")) {
       row_distances = rowDistancesAvx2;
       values_below = valuesBelowAvx2;
       places_below = placesBelowAvx2;

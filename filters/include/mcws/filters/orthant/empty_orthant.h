@@ -155,83 +155,99 @@ struct AxisPass {
   float size2;
 };
 
-/// \brief The orthants of four offsets, transposed (x, y, z of the four in v[0], v[1], v[2]), as
-/// lane masks OR-ed into acc[orthant]: quadrant() and octant() (the origin in none).
-__attribute__((target("avx2"), always_inline)) inline void orthantLanes(const __m128 (&v)[4],
+/// \brief The orthants of eight offsets, transposed (x, y, z of the eight in v[0], v[1], v[2]),
+/// as lane masks OR-ed into acc[orthant]: quadrant() and octant() (the origin in none).
+__attribute__((target("avx2"), always_inline)) inline void orthantLanes(const __m256 (&v)[3],
                                                                         int dimensions,
-                                                                        __m128 (&acc)[8]) {
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 gx = _mm_cmpgt_ps(v[0], zero), lx = _mm_cmplt_ps(v[0], zero);
-  const __m128 gy = _mm_cmpgt_ps(v[1], zero), ly = _mm_cmplt_ps(v[1], zero);
+                                                                        __m256 (&acc)[8]) {
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 gx = _mm256_cmp_ps(v[0], zero, _CMP_GT_OQ),
+               lx = _mm256_cmp_ps(v[0], zero, _CMP_LT_OQ);
+  const __m256 gy = _mm256_cmp_ps(v[1], zero, _CMP_GT_OQ),
+               ly = _mm256_cmp_ps(v[1], zero, _CMP_LT_OQ);
   // quadrant(): [0, 90), [90, 180), [180, 270), the rest.
-  const __m128 q0 = _mm_andnot_ps(ly, gx), q1 = _mm_andnot_ps(gx, gy), q2 = _mm_andnot_ps(gy, lx);
-  const __m128 in_plane = _mm_or_ps(_mm_or_ps(gx, lx), _mm_or_ps(gy, ly));
-  const __m128 first3 = _mm_or_ps(_mm_or_ps(q0, q1), q2);
+  const __m256 q0 = _mm256_andnot_ps(ly, gx), q1 = _mm256_andnot_ps(gx, gy);
+  const __m256 q2 = _mm256_andnot_ps(gy, lx);
+  const __m256 in_plane = _mm256_or_ps(_mm256_or_ps(gx, lx), _mm256_or_ps(gy, ly));
+  const __m256 first3 = _mm256_or_ps(_mm256_or_ps(q0, q1), q2);
   if (dimensions == 2) {
-    acc[0] = _mm_or_ps(acc[0], q0);
-    acc[1] = _mm_or_ps(acc[1], q1);
-    acc[2] = _mm_or_ps(acc[2], q2);
-    acc[3] = _mm_or_ps(acc[3], _mm_andnot_ps(first3, in_plane));
+    acc[0] = _mm256_or_ps(acc[0], q0);
+    acc[1] = _mm256_or_ps(acc[1], q1);
+    acc[2] = _mm256_or_ps(acc[2], q2);
+    acc[3] = _mm256_or_ps(acc[3], _mm256_andnot_ps(first3, in_plane));
     return;
   }
-  const __m128 gz = _mm_cmpgt_ps(v[2], zero), lz = _mm_cmplt_ps(v[2], zero);
-  const __m128 gzlz = _mm_or_ps(gz, lz);
-  const __m128 q3 = _mm_andnot_ps(first3, _mm_or_ps(in_plane, gzlz));
+  const __m256 gz = _mm256_cmp_ps(v[2], zero, _CMP_GT_OQ),
+               lz = _mm256_cmp_ps(v[2], zero, _CMP_LT_OQ);
+  const __m256 gzlz = _mm256_or_ps(gz, lz);
+  const __m256 q3 = _mm256_andnot_ps(first3, _mm256_or_ps(in_plane, gzlz));
   // octant(): up when z > 0, or z == 0 in an even quadrant.
-  const __m128 up = _mm_or_ps(gz, _mm_andnot_ps(gzlz, _mm_or_ps(q0, q2)));
-  acc[0] = _mm_or_ps(acc[0], _mm_andnot_ps(up, q0));
-  acc[1] = _mm_or_ps(acc[1], _mm_andnot_ps(up, q1));
-  acc[2] = _mm_or_ps(acc[2], _mm_andnot_ps(up, q2));
-  acc[3] = _mm_or_ps(acc[3], _mm_andnot_ps(up, q3));
-  acc[4] = _mm_or_ps(acc[4], _mm_and_ps(up, q0));
-  acc[5] = _mm_or_ps(acc[5], _mm_and_ps(up, q1));
-  acc[6] = _mm_or_ps(acc[6], _mm_and_ps(up, q2));
-  acc[7] = _mm_or_ps(acc[7], _mm_and_ps(up, q3));
+  const __m256 up = _mm256_or_ps(gz, _mm256_andnot_ps(gzlz, _mm256_or_ps(q0, q2)));
+  acc[0] = _mm256_or_ps(acc[0], _mm256_andnot_ps(up, q0));
+  acc[1] = _mm256_or_ps(acc[1], _mm256_andnot_ps(up, q1));
+  acc[2] = _mm256_or_ps(acc[2], _mm256_andnot_ps(up, q2));
+  acc[3] = _mm256_or_ps(acc[3], _mm256_andnot_ps(up, q3));
+  acc[4] = _mm256_or_ps(acc[4], _mm256_and_ps(up, q0));
+  acc[5] = _mm256_or_ps(acc[5], _mm256_and_ps(up, q1));
+  acc[6] = _mm256_or_ps(acc[6], _mm256_and_ps(up, q2));
+  acc[7] = _mm256_or_ps(acc[7], _mm256_and_ps(up, q3));
+}
+
+/// \brief Eight neighbours (x, y, z, d2 each, in a[0..7]) into axisPassAvx2()'s registers: each
+/// one's x, y, z, d2 added to the four-lane double sums, in order; then, transposed to x, y, z
+/// and d2 of the eight, the largest d2 and the orthants (orthantLanes()).
+__attribute__((target("avx2"), always_inline)) inline void axisGroup(const __m128 (&a)[8],
+                                                                     int dimensions, __m256d& sums,
+                                                                     __m256& largest,
+                                                                     __m256 (&acc)[8]) {
+  for (int j = 0; j < 8; ++j) sums = _mm256_add_pd(sums, _mm256_cvtps_pd(a[j]));
+  // Rows j and j + 4 side by side, then the 4 x 4 transposition within each half.
+  const __m256 r0 = _mm256_set_m128(a[4], a[0]), r1 = _mm256_set_m128(a[5], a[1]);
+  const __m256 r2 = _mm256_set_m128(a[6], a[2]), r3 = _mm256_set_m128(a[7], a[3]);
+  const __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpackhi_ps(r0, r1);
+  const __m256 t2 = _mm256_unpacklo_ps(r2, r3), t3 = _mm256_unpackhi_ps(r2, r3);
+  const __m256 v[3] = {_mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t0, t2, 0xEE),
+                       _mm256_shuffle_ps(t1, t3, 0x44)};
+  largest = _mm256_max_ps(largest, _mm256_shuffle_ps(t1, t3, 0xEE));
+  orthantLanes(v, dimensions, acc);
 }
 
 /// \brief The first pass with AVX2: each neighbour's x, y, z, d2 summed in one four-lane double
 /// register (each lane the same additions in the same order as one by one), and the orthants of
-/// four neighbours at a time (orthantLanes(); a last group padded with the origin, in none).
+/// eight neighbours at a time (axisGroup(); a last group padded with the origin, in no orthant,
+/// whose zeros leave the sums as they were: they start at +0, so no sum is ever -0).
 __attribute__((target("avx2"))) inline AxisPass axisPassAvx2(
     const std::vector<Neighbour>& neighbours, int dimensions) {
-  const __m128 zero = _mm_setzero_ps();
+  const __m256 zero = _mm256_setzero_ps();
   __m256d sums = _mm256_setzero_pd();
-  __m128 largest = zero;
-  __m128 acc[8] = {zero, zero, zero, zero, zero, zero, zero, zero};
+  __m256 largest = zero;
+  __m256 acc[8] = {zero, zero, zero, zero, zero, zero, zero, zero};
   const std::size_t n = neighbours.size();
   const Neighbour* q = neighbours.data();
   std::size_t k = 0;
-  for (; k + 4 <= n; k += 4) {
-    __m128 v[4] = {_mm_loadu_ps(&q[k].x), _mm_loadu_ps(&q[k + 1].x), _mm_loadu_ps(&q[k + 2].x),
-                   _mm_loadu_ps(&q[k + 3].x)};  // x, y, z, d2
-    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[0]));
-    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[1]));
-    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[2]));
-    sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[3]));
-    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
-    largest = _mm_max_ps(largest, v[3]);
-    orthantLanes(v, dimensions, acc);
+  for (; k + 8 <= n; k += 8) {
+    __m128 a[8];
+    for (int j = 0; j < 8; ++j) a[j] = _mm_loadu_ps(&q[k + j].x);  // x, y, z, d2
+    axisGroup(a, dimensions, sums, largest, acc);
   }
   if (k < n) {
-    __m128 v[4] = {zero, zero, zero, zero};
-    for (std::size_t j = 0; k + j < n; ++j) {
-      v[j] = _mm_loadu_ps(&q[k + j].x);
-      sums = _mm256_add_pd(sums, _mm256_cvtps_pd(v[j]));
-    }
-    _MM_TRANSPOSE4_PS(v[0], v[1], v[2], v[3]);
-    largest = _mm_max_ps(largest, v[3]);
-    orthantLanes(v, dimensions, acc);
+    // Padded with zeros: adding +0 to a sum that starts at +0 leaves it as it was.
+    __m128 a[8];
+    for (std::size_t j = 0; j < 8; ++j)
+      a[j] = k + j < n ? _mm_loadu_ps(&q[k + j].x) : _mm_setzero_ps();
+    axisGroup(a, dimensions, sums, largest, acc);
   }
   AxisPass out{0u, 0.0, 0.0, 0.0, 0.0f};
-  for (unsigned o = 0; o < 8; ++o) out.mask |= unsigned{_mm_movemask_ps(acc[o]) != 0} << o;
+  for (unsigned o = 0; o < 8; ++o) out.mask |= unsigned{_mm256_movemask_ps(acc[o]) != 0} << o;
   alignas(32) double s[4];
   _mm256_store_pd(s, sums);
   out.sx = s[0];
   out.sy = s[1];
   out.sz = s[2];
-  largest = _mm_max_ps(largest, _mm_movehl_ps(largest, largest));
-  largest = _mm_max_ps(largest, _mm_shuffle_ps(largest, largest, 0x55));
-  out.size2 = _mm_cvtss_f32(largest);
+  __m128 most = _mm_max_ps(_mm256_castps256_ps128(largest), _mm256_extractf128_ps(largest, 1));
+  most = _mm_max_ps(most, _mm_movehl_ps(most, most));
+  most = _mm_max_ps(most, _mm_shuffle_ps(most, most, 0x55));
+  out.size2 = _mm_cvtss_f32(most);
   return out;
 }
 
