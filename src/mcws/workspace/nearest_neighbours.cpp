@@ -126,6 +126,9 @@ void gridKthOf(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, 
 /// The candidates first selected from: those below this many times the previous answer (squared
 /// distances; 1.4 times the distance: about 25 points of a uniform cloud for k = 8).
 constexpr float kNearHint = 2.0f;
+/// Of those, the ones ranked first: below this many times the previous answer (1.14 times the
+/// distance: about 13 points of a uniform cloud for k = 8).
+constexpr float kFirstHint = 1.3f;
 
 /// The search most queries take: the points sorted into cells of the grid search's geometry
 /// (CellGrid's, edge `reach`), each cell's 3^D block of cells gathered once for the queries in
@@ -290,6 +293,16 @@ class BlockSearch {
         xyz_[0][slot], xyz_[1][slot], xyz_[2][slot], near, block.d2.data(), block.slot.data(),
         block.near_d2.data(), block.near_slot.data());
     float* values = block.near_d2.data();
+    // Of those, the ones below kFirstHint times the previous answer, when `wanted` are: a shorter
+    // list to rank, the same wanted-th smallest.
+    const float first = std::min(limit, kFirstHint * block.hint);
+    if (m >= wanted && first < near) {
+      const std::size_t f = detail::valuesBelow(values, m, first, block.smallest.data());
+      if (f >= wanted) {
+        values = block.smallest.data();
+        m = f;
+      }
+    }
     if (m < wanted && near < limit) {
       m = detail::valuesBelow(block.d2.data(), block.size, limit, block.smallest.data());
       values = block.smallest.data();
