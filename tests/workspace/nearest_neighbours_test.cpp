@@ -128,6 +128,28 @@ TEST(KthNeighbour, MatchesBruteForceOnLargerUniformBallsAndDisks) {
   }
 }
 
+TEST(KthNeighbour, MatchesBruteForceOnLatticesWhereDistancesTie) {
+  // An integer lattice (every inner point has 4 or 6 neighbours at distance 1, then 4 or 12 at
+  // sqrt 2, exactly in float): the k-th smallest must count the ties (k = 5 and 8 fall among
+  // them), as brute force.
+  for (int dimensions : {2, 3}) {
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    const int side = dimensions == 3 ? 18 : 70;
+    for (int z = 0; z < (dimensions == 3 ? side : 1); ++z)
+      for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+          cloud.push_back(
+              pcl::PointXYZ(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)));
+    for (int k : {1, 5, 8}) {
+      const std::vector<float> d2 = kthNeighbourSquaredDistance(cloud, dimensions, k, 2);
+      for (std::size_t i = 0; i < cloud.size(); i += 3) {
+        ASSERT_EQ(d2[i], bruteForce(cloud, i, dimensions, k))
+            << "point " << i << ", D = " << dimensions << ", k = " << k;
+      }
+    }
+  }
+}
+
 TEST(KthNeighbour, RejectsBadArguments) {
   const auto cloud = randomCloud(10, 1);
   EXPECT_THROW(kthNeighbourSquaredDistance(cloud, 1, 8), Error);

@@ -23,10 +23,56 @@
 namespace mcws::detail {
 namespace {
 
+/// Bits per axis of the coarse Morton order of the left-out points (3-D: 2^18 cells, 2-D the same).
+constexpr int kOrderBits3 = 6, kOrderBits2 = 9;
+
+/// The points `members` of `points` in the coarse Morton (Z) order of the cells of a 2^bits per
+/// axis grid over their bounding box, in index order within a cell (a counting sort).
+template <int D>
+std::vector<std::uint32_t> mortonOrder(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                       const std::vector<std::uint32_t>& members) {
+  constexpr int bits = D == 3 ? kOrderBits3 : kOrderBits2;
+  constexpr std::uint32_t side = 1u << bits;
+  std::array<double, 3> lo{0.0, 0.0, 0.0}, hi{0.0, 0.0, 0.0}, scale{0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) {
+    lo[a] = std::numeric_limits<double>::infinity();
+    hi[a] = -lo[a];
+  }
+  for (const std::uint32_t i : members) {
+    for (int a = 0; a < D; ++a) {
+      lo[a] = std::min<double>(lo[a], points[i].data[a]);
+      hi[a] = std::max<double>(hi[a], points[i].data[a]);
+    }
+  }
+  for (int a = 0; a < D; ++a) scale[a] = hi[a] > lo[a] ? side / (hi[a] - lo[a]) : 0.0;
+  // A cell index's bits spread D apart (bit b to bit b D).
+  std::array<std::uint32_t, side> spread{};
+  for (std::uint32_t q = 0; q < side; ++q) {
+    for (int b = 0; b < bits; ++b) spread[q] |= ((q >> b) & 1u) << (b * D);
+  }
+  std::vector<std::uint32_t> code(members.size()), start((std::size_t{1} << (D * bits)) + 1, 0);
+  for (std::size_t j = 0; j < members.size(); ++j) {
+    std::uint32_t c = 0;
+    for (int a = 0; a < D; ++a) {
+      const double t = (points[members[j]].data[a] - lo[a]) * scale[a];
+      c |= spread[static_cast<std::uint32_t>(std::clamp(t, 0.0, side - 1.0))] << a;
+    }
+    code[j] = c;
+    ++start[c + 1];
+  }
+  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  std::vector<std::uint32_t> order(members.size());
+  for (std::size_t j = 0; j < members.size(); ++j) order[start[code[j]]++] = members[j];
+  return order;
+}
+
 /// The points left out of a shell triangulation (MeasureOptions::shell), in a kd-tree (nanoflann),
 /// to tell the shell's simplices that are simplices of every point's triangulation (no left-out
 /// point inside their circumsphere) from those that fill in for the left-out points. Points that
-/// join the shell later are removed from the searches, not from the tree.
+/// join the shell later are removed from the searches, not from the tree. The tree holds them in
+/// a coarse Morton order (nearby points at nearby places, which its build and searches read
+/// faster than the cloud's order); what inside() answers does not depend on that order (whether
+/// there is a point, or the set of them).
 template <int D>
 class LeftOut {
  public:
@@ -34,11 +80,16 @@ class LeftOut {
       : slot_of_(points.size(), kNone),
         adaptor_{coordinates_},
         tree_(D, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    std::vector<std::uint32_t> members;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      if (in_shell[i]) continue;
-      slot_of_[i] = static_cast<std::uint32_t>(index_.size());
+      if (!in_shell[i]) members.push_back(static_cast<std::uint32_t>(i));
+    }
+    index_ = mortonOrder<D>(points, members);
+    members = {};
+    coordinates_.reserve(index_.size());
+    for (const std::uint32_t i : index_) {
+      slot_of_[i] = static_cast<std::uint32_t>(coordinates_.size());
       coordinates_.push_back({points[i].x, points[i].y, points[i].z});
-      index_.push_back(static_cast<std::uint32_t>(i));
     }
     removed_.assign(index_.size(), 0);
     tree_.buildIndex();

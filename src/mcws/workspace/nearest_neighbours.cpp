@@ -14,13 +14,10 @@
 #include <optional>
 #include <string>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
 #include "mcws/search/cell_grid.h"
+#include "mcws/search/cell_kernels.h"
 #include "mcws/workspace/detail/cancel_pacing.h"
 
 namespace mcws {
@@ -129,6 +126,9 @@ void gridKthOf(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t wanted, 
 /// The candidates first selected from: those below this many times the previous answer (squared
 /// distances; 1.4 times the distance: about 25 points of a uniform cloud for k = 8).
 constexpr float kNearHint = 2.0f;
+/// Of those, the ones ranked first: below this many times the previous answer (1.14 times the
+/// distance: about 13 points of a uniform cloud for k = 8).
+constexpr float kFirstHint = 1.3f;
 
 /// The search most queries take: the points sorted into cells of the grid search's geometry
 /// (CellGrid's, edge `reach`), each cell's 3^D block of cells gathered once for the queries in
@@ -168,7 +168,9 @@ class BlockSearch {
       ++start_[c + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    for (int a = 0; a < D; ++a) xyz_[a].resize(n);
+    // Three arrays (z 0 in 2-D, where it adds 0 - 0 to the distances), padded (zeros) for
+    // rowDistances(), which may read past the last row.
+    for (auto& v : xyz_) v.assign(n + detail::kKernelSlack, 0.0f);
     index_.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
@@ -189,13 +191,13 @@ class BlockSearch {
     return sum / static_cast<double>(index_.size());
   }
 
-  /// One thread's working memory: a block's points (coordinates in parallel arrays) and their
-  /// squared distances from the query.
+  /// One thread's working memory: a block's rows of cells (runs of points in the grid's arrays)
+  /// and rowDistances()'s and valuesBelow()'s outputs.
   struct Scratch {
-    std::array<std::vector<float>, D> xyz;
-    std::vector<float> d2;
-    std::vector<float> best;  ///< kthBelow()'s smallest so far
-    std::size_t size{0};
+    std::vector<detail::RowSpan> rows;
+    std::size_t size{0};  ///< the block's points
+    std::vector<float> d2, near_d2, smallest;
+    std::vector<std::uint32_t> slot, near_slot;
     float hint{std::numeric_limits<float>::infinity()};  ///< the last answer
   };
 
@@ -234,28 +236,30 @@ class BlockSearch {
                                     counts_[a] - 1);
   }
 
-  /// The points of the cells within `half` cells of cell `at` along every axis.
+  /// The rows of the cells within `half` cells of cell `at` along every axis (each a run of
+  /// points in the grid's arrays), and room for the kernels' outputs.
   void gather(const std::array<std::int64_t, 3>& at, std::int64_t half, Scratch& out) const {
     std::array<std::int64_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
     for (int a = 0; a < D; ++a) {
       lo[a] = std::max<std::int64_t>(at[a] - half, 0);
       hi[a] = std::min<std::int64_t>(at[a] + half, counts_[a] - 1);
     }
+    out.rows.clear();
     out.size = 0;
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
         const std::int64_t row = (z * counts_[1] + y) * counts_[0];
-        const std::uint32_t begin = start_[row + lo[0]], end = start_[row + hi[0] + 1];
-        const std::size_t base = out.size;
-        out.size += end - begin;
-        if (out.d2.size() < out.size) {
-          for (auto& v : out.xyz) v.resize(2 * out.size);
-          out.d2.resize(2 * out.size);
-        }
-        for (int a = 0; a < D; ++a) {
-          std::copy(xyz_[a].begin() + begin, xyz_[a].begin() + end, out.xyz[a].begin() + base);
-        }
+        const detail::RowSpan span{start_[row + lo[0]], start_[row + hi[0] + 1]};
+        if (span.begin == span.end) continue;
+        out.rows.push_back(span);
+        out.size += span.end - span.begin;
       }
+    }
+    // Room for the points and the entries the kernels may write past them.
+    if (out.d2.size() < out.size + detail::kKernelSlack) {
+      const std::size_t room = 2 * (out.size + detail::kKernelSlack);
+      for (auto* v : {&out.d2, &out.near_d2, &out.smallest}) v->resize(room);
+      for (auto* v : {&out.slot, &out.near_slot}) v->resize(room);
     }
   }
 
@@ -278,116 +282,42 @@ class BlockSearch {
     const float limit = std::isinf(gap)
                             ? std::numeric_limits<float>::infinity()
                             : static_cast<float>(std::min(gap * gap * (1.0 - 1e-5), 1e38));
-    const float px = xyz_[0][slot], py = xyz_[1][slot], pz = D == 3 ? xyz_[D - 1][slot] : 0.0f;
     // The wanted-th smallest below the limit. First below a few times the previous query's
     // answer (a neighbour's: a hint only, the answer does not depend on it), which far fewer
-    // candidates pass.
+    // candidates pass: if `wanted` of them do, the wanted-th smallest of those is that of all
+    // below the limit. The distances as CellGrid computes them (the search's kernels).
     const float near = std::min(limit, kNearHint * block.hint);
-    std::optional<float> d2 = distancesAndKthBelow(block, px, py, pz, wanted, near);
-    if (!d2 && near < limit) d2 = kthBelow(block, wanted, limit);
-    if (d2) block.hint = *d2;
-    return d2;
-  }
-
-  /// The `wanted`-th smallest of the block's squared distances below `bar` (none when fewer lie
-  /// below it): one pass that keeps the smallest found so far sorted (`block.best`), each next
-  /// candidate compared with the largest of them once there are `wanted`. The same value as
-  /// selecting among all below `bar`.
-  static std::optional<float> kthBelow(Scratch& block, std::size_t wanted, float bar) {
-    if (block.best.size() < wanted) block.best.resize(wanted);
-    float* best = block.best.data();
-    const float* d2 = block.d2.data();
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < block.size; ++k) {
-      if (d2[k] < bar) insertBelow(d2[k], best, count, wanted, bar);
-    }
-    if (count < wanted) return std::nullopt;
-    return best[wanted - 1];
-  }
-
-  /// Puts `d` (below `bar`) into the ascending list best[0, count) of at most `wanted` values,
-  /// dropping the largest when full; once full, `bar` is the largest kept.
-  static void insertBelow(float d, float* best, std::size_t& count, std::size_t wanted,
-                          float& bar) {
-    std::size_t j = count < wanted ? count++ : wanted - 1;
-    for (; j > 0 && best[j - 1] > d; --j) best[j] = best[j - 1];
-    best[j] = d;
-    if (count == wanted) bar = best[wanted - 1];
-  }
-
-  /// squaredDistances() then kthBelow(), in one pass four points at a time where SSE2 is there:
-  /// the four distances (the same float operations in the same order, so the same values) are
-  /// stored and compared with the bar together, and only those below it go on to kthBelow()'s
-  /// ordered insertion, in their order: the same value.
-  static std::optional<float> distancesAndKthBelow(Scratch& block, float px, float py, float pz,
-                                                   std::size_t wanted, float bar) {
-#if defined(__SSE2__)
-    if (block.best.size() < wanted) block.best.resize(wanted);
-    float* best = block.best.data();
-    const float* xs = block.xyz[0].data();
-    const float* ys = block.xyz[1].data();
-    const float* zs = block.xyz[D - 1].data();
-    float* d2 = block.d2.data();
-    std::size_t count = 0;
-    const auto insert = [&](float d) { insertBelow(d, best, count, wanted, bar); };
-    const __m128 qx = _mm_set1_ps(px), qy = _mm_set1_ps(py), qz = _mm_set1_ps(pz);
-    std::size_t k = 0;
-    for (; k + 4 <= block.size; k += 4) {
-      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(xs + k), qx);
-      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(ys + k), qy);
-      __m128 d = _mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy));
-      if constexpr (D == 3) {
-        const __m128 dz = _mm_sub_ps(_mm_loadu_ps(zs + k), qz);
-        d = _mm_add_ps(d, _mm_mul_ps(dz, dz));
-      }
-      _mm_storeu_ps(d2 + k, d);
-      for (int mask = _mm_movemask_ps(_mm_cmplt_ps(d, _mm_set1_ps(bar))); mask != 0;
-           mask &= mask - 1) {
-        const float v = d2[k + static_cast<std::size_t>(__builtin_ctz(mask))];
-        if (v < bar) insert(v);  // the bar may have come down within the four
+    const auto count = static_cast<int>(wanted);
+    std::size_t m = detail::rowDistances(
+        xyz_[0].data(), xyz_[1].data(), xyz_[2].data(), block.rows.data(), block.rows.size(),
+        xyz_[0][slot], xyz_[1][slot], xyz_[2][slot], near, block.d2.data(), block.slot.data(),
+        block.near_d2.data(), block.near_slot.data());
+    float* values = block.near_d2.data();
+    // Of those, the ones below kFirstHint times the previous answer, when `wanted` are: a shorter
+    // list to rank, the same wanted-th smallest.
+    const float first = std::min(limit, kFirstHint * block.hint);
+    if (m >= wanted && first < near) {
+      const std::size_t f = detail::valuesBelow(values, m, first, block.smallest.data());
+      if (f >= wanted) {
+        values = block.smallest.data();
+        m = f;
       }
     }
-    for (; k < block.size; ++k) {
-      const float d = squaredDistance(xs, ys, zs, k, px, py, pz);
-      d2[k] = d;
-      if (d < bar) insert(d);
+    if (m < wanted && near < limit) {
+      m = detail::valuesBelow(block.d2.data(), block.size, limit, block.smallest.data());
+      values = block.smallest.data();
     }
-    if (count < wanted) return std::nullopt;
-    return best[wanted - 1];
-#else
-    squaredDistances(block, px, py, pz);
-    return kthBelow(block, wanted, bar);
-#endif
-  }
-
-  /// As CellGrid computes them: float, point minus query, summed x, y, z in that order.
-  static void squaredDistances(Scratch& block, float px, float py, float pz) {
-    const float* __restrict xs = block.xyz[0].data();
-    const float* __restrict ys = block.xyz[1].data();
-    const float* __restrict zs = block.xyz[D - 1].data();
-    float* __restrict d2 = block.d2.data();
-    for (std::size_t k = 0; k < block.size; ++k) d2[k] = squaredDistance(xs, ys, zs, k, px, py, pz);
-  }
-
-  /// Point k's squared distance from (px, py, pz), as CellGrid computes it (see above).
-  static float squaredDistance(const float* xs, const float* ys, const float* zs, std::size_t k,
-                               float px, float py, float pz) {
-    const float dx = xs[k] - px, dy = ys[k] - py;
-    float d = dx * dx;
-    d += dy * dy;
-    if constexpr (D == 3) {
-      const float dz = zs[k] - pz;
-      d += dz * dz;
-    }
-    return d;
+    if (m < wanted) return std::nullopt;
+    block.hint = detail::kthSmallest(values, m, count);
+    return block.hint;
   }
 
   double cell_{0.0};
   std::array<double, 3> origin_{0.0, 0.0, 0.0};
   std::array<std::int64_t, 3> counts_{1, 1, 1};
-  std::vector<std::uint32_t> start_;  // points of cell c: [start_[c], start_[c + 1])
-  std::array<std::vector<float>, D> xyz_;
-  std::vector<std::uint32_t> index_;  // cloud index in cell order
+  std::vector<std::uint32_t> start_;       // points of cell c: [start_[c], start_[c + 1])
+  std::array<std::vector<float>, 3> xyz_;  // x, y, z (0 in 2-D) in cell order
+  std::vector<std::uint32_t> index_;       // cloud index in cell order
 };
 
 /// The k-th neighbour distances on a grid: the block search (BlockSearch) for most points, the
