@@ -44,24 +44,28 @@ std::size_t valuesBelowPlain(const float* v, std::size_t n, float bound, float* 
   return m;
 }
 
+/// For each N-bit mask, the lanes of its set bits in order (then zeros), and their count: what a
+/// vector compare's mask keeps, to pack those lanes in front.
+template <unsigned N>
+struct LaneTable {
+  alignas(4 * N) std::uint32_t lanes[1u << N][N];
+  std::uint8_t count[1u << N];
+  LaneTable() : lanes{}, count{} {
+    for (unsigned mask = 0; mask < (1u << N); ++mask) {
+      for (unsigned lane = 0; lane < N; ++lane) {
+        if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
+      }
+    }
+  }
+};
+
 /// The places of the values below `bound`: with SSE2 four at a time.
 std::size_t placesBelowPlain(const float* v, std::size_t n, float bound, std::uint32_t* out) {
   std::size_t kept = 0, k = 0;
 #if defined(__SSE2__)
   // Four at a time: the lanes below the bound as a 4-bit mask, their places from a table of the
   // 16 masks, stored whole and advanced by the mask's count (no byte shuffle needed).
-  struct Table {
-    alignas(16) std::uint32_t lanes[16][4];
-    std::uint8_t count[16];
-    Table() : lanes{}, count{} {
-      for (unsigned mask = 0; mask < 16; ++mask) {
-        for (unsigned lane = 0; lane < 4; ++lane) {
-          if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
-        }
-      }
-    }
-  };
-  static const Table table;
+  static const LaneTable<4> table;
   const __m128 limit = _mm_set1_ps(bound);
   for (; k + 4 <= n; k += 4) {
     const int mask = _mm_movemask_ps(_mm_cmplt_ps(_mm_loadu_ps(v + k), limit));
@@ -85,19 +89,7 @@ float kthSmallestPlain(float* v, std::size_t m, int count) {
 }
 
 #if MCWS_CELL_KERNELS_AVX2
-/// For each 8-bit mask, the lanes of its set bits in order (then zeros), and their count.
-struct LaneTable {
-  alignas(32) std::uint32_t lanes[256][8];
-  std::uint8_t count[256];
-  LaneTable() : lanes{}, count{} {
-    for (unsigned mask = 0; mask < 256; ++mask) {
-      for (unsigned lane = 0; lane < 8; ++lane) {
-        if (mask >> lane & 1u) lanes[mask][count[mask]++] = lane;
-      }
-    }
-  }
-};
-const LaneTable kLanes;
+const LaneTable<8> kLanes;
 
 /// The AVX2 registers of rowDistancesAvx2(): the query, the bound, and the slots of the next
 /// group (advanced by 8 a group, set anew at each row's start).
