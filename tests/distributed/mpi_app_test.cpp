@@ -181,7 +181,7 @@ TEST(MpiReach, KilledRunContinuesFromItsCheckpoints) {
   // of another seed refuses them.
   test::TempDir dir, scratch;
   const std::string args =
-      " --robot " + test::robotPath("inspection6") + " --resolution 10cm --samples 12000000";
+      " --robot " + test::robotPath("inspection6") + " --resolution 10cm --samples 60000000";
   const test::RunResult one =
       test::run(kReach + args + " --output " + dir.file("one.pcd") + " --map " +
                 dir.file("one.bin") + " --checkpoint " + dir.file("solo"));
