@@ -13,20 +13,31 @@
 namespace mcws::orthant {
 namespace {
 
+/// The axis pass as it was written before, one neighbour at a time: the orthants occupied
+/// (scalar sign codes), the three double sums in order and the largest squared distance.
+struct ScalarAxisPass {
+  unsigned mask{0};
+  double sx{0.0}, sy{0.0}, sz{0.0};
+  float size2{0.0f};
+};
+
+ScalarAxisPass scalarAxisPass(const std::vector<Neighbour>& neighbours, int dimensions) {
+  const std::uint8_t* bits = orthantBits(dimensions);
+  ScalarAxisPass pass;
+  for (const auto& q : neighbours) {
+    pass.mask |= bits[signCode(q.x, q.y, q.z)];
+    pass.sx += q.x;
+    pass.sy += q.y;
+    pass.sz += q.z;
+    pass.size2 = std::max(pass.size2, q.d2);
+  }
+  return pass;
+}
+
 /// hasEmptyOrthant() as it was written before (scalar sign codes, three double sums).
 bool reference(const std::vector<Neighbour>& neighbours, int dimensions, OrthantFrames frames) {
   const unsigned full = dimensions == 2 ? 0xFu : 0xFFu;
-  const std::uint8_t* bits = orthantBits(dimensions);
-  unsigned axis_mask = 0;
-  double sx = 0.0, sy = 0.0, sz = 0.0;
-  float size2 = 0.0f;
-  for (const auto& q : neighbours) {
-    axis_mask |= bits[signCode(q.x, q.y, q.z)];
-    sx += q.x;
-    sy += q.y;
-    sz += q.z;
-    size2 = std::max(size2, q.d2);
-  }
+  const auto [axis_mask, sx, sy, sz, size2] = scalarAxisPass(neighbours, dimensions);
   if (axis_mask == 0) return true;
   if (frames.has(OrthantFrame::kAxis) && axis_mask != full) return true;
   if (!frames.has(OrthantFrame::kOutward)) return false;
@@ -38,6 +49,7 @@ bool reference(const std::vector<Neighbour>& neighbours, int dimensions, Orthant
   if (!(length > 1e-6f * std::sqrt(size2))) return false;
   n /= length;
   const Eigen::Matrix3f E = outwardFrame(n, dimensions);
+  const std::uint8_t* bits = orthantBits(dimensions);
   unsigned outward_mask = 0;
   for (const auto& q : neighbours) {
     const Eigen::Vector3f w = E * Eigen::Vector3f(q.x, q.y, q.z);
@@ -105,17 +117,7 @@ TEST(EmptyOrthant, AxisPassAsOneByOne) {
       const float z = dimensions == 3 ? coordinate(rng) : 0.0f;
       q = Neighbour(x, y, z, x * x + y * y + z * z, 0);
     }
-    const std::uint8_t* bits = orthantBits(dimensions);
-    unsigned mask = 0;
-    double sx = 0.0, sy = 0.0, sz = 0.0;
-    float size2 = 0.0f;
-    for (const auto& q : neighbours) {
-      mask |= bits[signCode(q.x, q.y, q.z)];
-      sx += q.x;
-      sy += q.y;
-      sz += q.z;
-      size2 = std::max(size2, q.d2);
-    }
+    const auto [mask, sx, sy, sz, size2] = scalarAxisPass(neighbours, dimensions);
     const AxisPass pass = axisPassAvx2(neighbours, dimensions);
     ASSERT_EQ(pass.mask, mask) << "trial " << trial;
     for (const auto& [got, expected] : {std::pair{pass.sx, sx}, {pass.sy, sy}, {pass.sz, sz}}) {

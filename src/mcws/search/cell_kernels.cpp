@@ -157,35 +157,43 @@ __attribute__((target("avx2"))) inline unsigned maskBelow(__m256 x, std::size_t 
   return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(x, limit, _CMP_LT_OQ))) & valid;
 }
 
-/// valuesBelowPlain() 8 at a time.
-__attribute__((target("avx2"))) std::size_t valuesBelowAvx2(const float* v, std::size_t n,
-                                                            float bound, float* out) {
+/// The lanes of v[0, n) below `bound` packed in front of `out`, 8 at a time: `store(out + m, x,
+/// lanes, k)` writes the 8 values of v[k, k + 8) in `x` (or their places) in the order `lanes`
+/// gives, the lanes below the bound first; returns how many were kept.
+template <typename T, typename Store>
+__attribute__((target("avx2"))) inline std::size_t packBelowAvx2(const float* v, std::size_t n,
+                                                                 float bound, T* out, Store store) {
   const __m256 limit = _mm256_set1_ps(bound);
   std::size_t m = 0;
   for (std::size_t k = 0; k < n; k += 8) {
     const __m256 x = _mm256_loadu_ps(v + k);
     const unsigned mask = maskBelow(x, n, k, limit);
     const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
-    _mm256_storeu_ps(out + m, _mm256_permutevar8x32_ps(x, lanes));
+    store(out + m, x, lanes, k);
     m += kLanes.count[mask];
   }
   return m;
 }
 
+/// valuesBelowPlain() 8 at a time.
+__attribute__((target("avx2"))) std::size_t valuesBelowAvx2(const float* v, std::size_t n,
+                                                            float bound, float* out) {
+  return packBelowAvx2(
+      v, n, bound, out,
+      [](float* at, __m256 x, __m256i lanes, std::size_t) __attribute__((target("avx2"))) {
+        _mm256_storeu_ps(at, _mm256_permutevar8x32_ps(x, lanes));
+      });
+}
+
 /// placesBelowPlain() 8 at a time.
 __attribute__((target("avx2"))) std::size_t placesBelowAvx2(const float* v, std::size_t n,
                                                             float bound, std::uint32_t* out) {
-  const __m256 limit = _mm256_set1_ps(bound);
-  std::size_t m = 0;
-  for (std::size_t k = 0; k < n; k += 8) {
-    const __m256 x = _mm256_loadu_ps(v + k);
-    const unsigned mask = maskBelow(x, n, k, limit);
-    const __m256i lanes = _mm256_load_si256(reinterpret_cast<const __m256i*>(kLanes.lanes[mask]));
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + m),
-                        _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
-    m += kLanes.count[mask];
-  }
-  return m;
+  return packBelowAvx2(
+      v, n, bound, out,
+      [](std::uint32_t * at, __m256, __m256i lanes, std::size_t k) __attribute__((target("avx2"))) {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(at),
+                            _mm256_add_epi32(lanes, _mm256_set1_epi32(static_cast<int>(k))));
+      });
 }
 
 /// The longest list kthSmallestAvx2() ranks; longer ones go to std::nth_element.
