@@ -32,7 +32,6 @@ GridThenTreeSearch::GridThenTreeSearch(pcl::PointCloud<pcl::PointXYZ>&& position
                                        int threads)
     : positions_(std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(std::move(positions))),
       grid_(*positions_, dimensions, cellPerRadius(dimensions) * typical_radius, threads),
-      use_grid_(use_grid),
       first_reach_(kFirstReach * typical_radius),
       max_reach_(maxReachInCells(dimensions) * grid_.cellSize()) {
   const std::size_t n = positions_->size();

@@ -96,7 +96,6 @@ class GridThenTreeSearch {
 
   std::shared_ptr<pcl::PointCloud<pcl::PointXYZ>> positions_;
   CellGrid grid_;
-  bool use_grid_;
   double first_reach_, max_reach_;
   /// Per point: the grid serves it (the grid is on and its cell holds at most a crowded cell's
   /// population).
