@@ -28,7 +28,13 @@ generator=()
 if [[ ! -e $build/CMakeCache.txt && -z ${CMAKE_GENERATOR:-} ]] && command -v ninja >/dev/null; then
   generator=(-G Ninja)
 fi
-cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release "${cmake_args[@]}" \
+# Release unless the build directory already has a build type (a RelWithDebInfo sanitizer tree
+# keeps its own flags when this script runs again); a -DCMAKE_BUILD_TYPE argument wins either way.
+build_type=()
+if ! grep -qs '^CMAKE_BUILD_TYPE:STRING=.' "$build/CMakeCache.txt"; then
+  build_type=(-DCMAKE_BUILD_TYPE=Release)
+fi
+cmake -S "$root" -B "$build" "${generator[@]}" "${build_type[@]}" "${cmake_args[@]}" \
   >"$build.configure.log" 2>&1 || { cat "$build.configure.log" >&2; exit 1; }
 if ((${#targets[@]})); then
   cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
