@@ -13,34 +13,14 @@
 #include <vector>
 
 #include "mcws/core/error.h"
-#include "mcws/workspace/detail/nearest_point_field.h"
 #include "mcws/workspace/detail/radius_classes.h"
 
 namespace mcws {
 namespace {
 
-/// Cells of a grid per point in its box at most: the nearest-point transform keeps 4 bytes and
-/// the cover bound 1 byte per cell (a uniform ball's grid, at kCellsPerRadius, has about 2).
-constexpr double kCellsPerPoint = 16.0;
-/// Cells per smallest radius of a grid: finer cells bound the distance from a position to the
-/// nearest point more tightly (the test's own slack is about a cell, refined below it where a
-/// ball may reach out of the cloud), coarser ones cost less.
-constexpr double kCellsPerRadius = 2.0;
-/// Fine cells per coarse cell along each axis (the coarse cells prune the exact test).
-constexpr std::int64_t kCoarse = 2;
-/// Levels of halving of a fine cell in the exact test (a cell whose cover bound reaches the
-/// radius is split into 2^D parts, those that may meet the ball split again).
-constexpr int kSplitLevels = 3;
-using detail::candidatesOf;
-using detail::Field;
-using detail::Grid;
-using detail::kClassRatio;
-using detail::kCoverSteps;
-using detail::kNone;
-using detail::nearestPoints;
-using detail::RadiusClasses;
-/// Share of the points below which a grid's classes are not proven (they stay exposed).
-constexpr double kFewestOnAGrid = 0.02;
+/// Cells of a grid per point in its box at most (a uniform ball's grid has about 1.5; a cloud
+/// that fills little of its bounding box gets coarser cells, and more of its points stay exposed).
+constexpr double kCellsPerPoint = 4.0;
 /// Share of the points whose radius may lie below the smallest class (they stay exposed): the
 /// smallest radius sets the cell edge, and a few unusually close neighbours should not make the
 /// grid finer for all.
@@ -48,8 +28,30 @@ constexpr double kBelowSmallestClass = 0.01;
 /// How many radius classes (ratio detail::kClassRatio) share a grid (their radii span a factor
 /// 2.4).
 constexpr int kClassesPerGrid = 4;
-/// Relative margin on the radii, for the rounding of coordinates and distances.
+using detail::kClassRatio;
+using detail::RadiusClasses;
+/// Share of the points below which a grid's classes are not proven (they stay exposed).
+constexpr double kFewestOnAGrid = 0.02;
+/// Cells per smallest radius: finer cells bound the distance to the nearest point more tightly,
+/// but then a point's block of cells (kBlock) reaches less far; at 2 a uniform cloud's cell holds
+/// about 0.9 points.
+constexpr double kCellsPerRadius = 2.0;
+/// Relative margin on the cover radii, for the rounding of coordinates and distances.
 constexpr double kMargin = 1e-6;
+
+/// The grid: cells per axis (the third is 1 in 2-D), the cell edge and the low corner.
+struct Grid {
+  std::array<std::int64_t, 3> n{1, 1, 1};
+  double cell{0.0};
+  std::array<double, 3> lo{0.0, 0.0, 0.0};
+  std::size_t size() const { return static_cast<std::size_t>(n[0] * n[1] * n[2]); }
+  std::array<std::int64_t, 3> stride() const { return {1, n[0], n[0] * n[1]}; }
+  /// Index along axis `a` of the cell that holds p (clamped to the grid).
+  std::int64_t along(const pcl::PointXYZ& p, int a) const {
+    return std::clamp<std::int64_t>(
+        static_cast<std::int64_t>(std::floor((p.data[a] - lo[a]) / cell)), 0, n[a] - 1);
+  }
+};
 
 /// Replaces every cell by 1 when every cell of its line along `axis` within [a, b] of it is
 /// non-zero and within the grid, else by 0 (an erosion by a segment). Lines run on all threads.
@@ -178,6 +180,77 @@ std::int64_t cellOf(const Grid& grid, const pcl::PointXYZ& p) {
   return index;
 }
 
+/// Half-width of the block of cells each point bounds (2-D: 5 x 5; 3-D: 3 x 3 x 3): a block of a
+/// uniform cloud holds about 20 points, so it is empty once in millions.
+template <int D>
+constexpr int kBlock = D == 2 ? 2 : 1;
+
+/// For every cell, a bound on how far its positions may be from the nearest point, squared: the
+/// least, over the points in its block of cells (kBlock), of the squared distance from the point
+/// to the cell's farthest corner (infinite where the block is empty). Rounded up, so a bound
+/// still.
+template <int D>
+std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                               const std::vector<std::uint32_t>& points, const Grid& grid,
+                               int threads) {
+  constexpr int m = kBlock<D>;
+  std::vector<float> cover(grid.size(), std::numeric_limits<float>::infinity());
+  const auto stride = grid.stride();
+  auto bound = [&](const pcl::PointXYZ& p) {
+    std::array<std::int64_t, 3> k{0, 0, 0};
+    for (int a = 0; a < D; ++a) k[a] = grid.along(p, a);
+    // Per axis and neighbour offset: the squared distance to the cell's farther face.
+    std::array<std::array<double, 2 * m + 1>, 3> far2{};
+    for (int a = 0; a < D; ++a) {
+      for (int o = -m; o <= m; ++o) {
+        const double low = grid.lo[a] + static_cast<double>(k[a] + o) * grid.cell;
+        const double d = std::max(std::abs(p.data[a] - low), std::abs(low + grid.cell - p.data[a]));
+        far2[a][o + m] = d * d;
+      }
+    }
+    const int mz = D == 3 ? m : 0;
+    for (int dz = -mz; dz <= mz; ++dz) {
+      if (k[2] + dz < 0 || k[2] + dz >= grid.n[2]) continue;
+      for (int dy = -m; dy <= m; ++dy) {
+        if (k[1] + dy < 0 || k[1] + dy >= grid.n[1]) continue;
+        for (int dx = -m; dx <= m; ++dx) {
+          if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
+          const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
+          const auto b = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
+          float& c =
+              cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
+          c = std::min(c, b);
+        }
+      }
+    }
+  };
+  // The points by slab of cells along the last axis, slabs at least 2 m + 1 cells thick: a point
+  // changes cells of its own slab and the two next to it, so the even slabs run side by side,
+  // then the odd ones (a minimum does not depend on the order it is taken in).
+  const int axis = D - 1;
+  const std::int64_t thick =
+      std::max<std::int64_t>(2 * m + 1, (grid.n[axis] + 4 * threads - 1) / (4 * threads));
+  const std::int64_t slabs = (grid.n[axis] + thick - 1) / thick;
+  std::vector<std::uint32_t> start(slabs + 1, 0), order(points.size());
+  std::vector<std::uint32_t> slab_of(points.size());
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    slab_of[j] = static_cast<std::uint32_t>(grid.along(cloud[points[j]], axis) / thick);
+    ++start[slab_of[j] + 1];
+  }
+  for (std::int64_t k = 0; k < slabs; ++k) start[k + 1] += start[k];
+  {
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t j = 0; j < points.size(); ++j) order[next[slab_of[j]]++] = points[j];
+  }
+  for (const std::int64_t parity : {0, 1}) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::int64_t k = parity; k < slabs; k += 2) {
+      for (std::uint32_t j = start[k]; j < start[k + 1]; ++j) bound(cloud[order[j]]);
+    }
+  }
+  return cover;
+}
+
 /// The radius of the smallest class: of the finite positive radii, the one with a share
 /// kBelowSmallestClass of them below it; none when no radius is finite and positive.
 std::optional<double> smallestClassRadius(const std::vector<double>& radius) {
@@ -226,176 +299,30 @@ std::vector<std::uint32_t> pointsInBox(const pcl::PointCloud<pcl::PointXYZ>& clo
   return nearby;
 }
 
-/// A class's radius in cells of the grid: how far a ball reaches (rounded up) and how far the
-/// cover bounds must stay below (rounded down), and the cover bytes below which a cell is full.
-struct ClassTest {
-  double ball{0.0};
-  double cover{0.0};
-  int threshold{0};
-  /// A squared distance from a point of `Field::at` below it is below `cover` with the slack
-  /// and the rounding (-1 when none is).
-  double within{-1.0};
-};
-
-/// The gap between position u and the interval [low, low + size] (0 inside).
-inline double gapTo(double u, double low, double size) {
-  return std::max({low - u, u - low - size, 0.0});
-}
-
-/// True when every position of the box [low, low + size]^D (cell units) that the ball of
-/// `test.ball` around u reaches is nearer than `test.cover` to one of the points `candidates`
-/// (the first `count`); parts whose bound fails are halved up to kSplitLevels times.
+/// Marks not exposed the points of class j among `members` (by `class_of`) that a ball of radius r
+/// around them cannot reach out of the cloud: every cell of `grid` that may meet that ball is full
+/// (its cover radius, `cover`, below r).
 template <int D>
-bool partsCovered(const Field& field, const std::array<std::uint32_t, 7>& candidates, int count,
-                  const std::array<double, 3>& low, double size, const std::array<double, 3>& u,
-                  const ClassTest& test, int level) {
-  double gap2 = 0.0;
-  for (int a = 0; a < D; ++a) gap2 += gapTo(u[a], low[a], size) * gapTo(u[a], low[a], size);
-  if (gap2 > test.ball * test.ball) return true;
-  // The first point near enough ends it (test.within: the squared bound, rounded down).
-  for (int k = 0; k < count; ++k) {
-    if (field.farthest2<D>(candidates[k], low, size) < test.within) return true;
-  }
-  if (level == kSplitLevels) return false;
-  const double half = 0.5 * size;
-  for (int part = 0; part < (1 << D); ++part) {
-    std::array<double, 3> corner = low;
-    for (int a = 0; a < D; ++a) corner[a] += ((part >> a) & 1) * half;
-    if (!partsCovered<D>(field, candidates, count, corner, half, u, test, level + 1)) return false;
-  }
-  return true;
-}
-
-/// partsCovered() for cell c (at `at`), with the points carried by it and its face neighbours.
-template <int D>
-bool cellCovered(const Field& field, std::int64_t c, const std::array<std::int64_t, 3>& at,
-                 const std::array<double, 3>& u, const ClassTest& test) {
-  std::array<std::uint32_t, 7> candidates{};
-  const int count = candidatesOf<D>(field, c, at, candidates);
-  const std::array<double, 3> low{static_cast<double>(at[0]), static_cast<double>(at[1]),
-                                  static_cast<double>(at[2])};
-  return partsCovered<D>(field, candidates, count, low, 1.0, u, test, 0);
-}
-
-/// The exact test of a point at u (cell units): every cell that the closed ball of `test.ball`
-/// around it meets is full or, split (cellCovered()), covered where the ball reaches; the coarse
-/// cells whose fine cells are all full (`full`) are passed over whole.
-template <int D>
-bool provenCovered(const Field& field, const Grid& coarse, const std::vector<std::uint8_t>& full,
-                   const std::array<double, 3>& u, const ClassTest& test) {
-  const Grid& grid = field.grid;
-  std::array<std::int64_t, 3> first{0, 0, 0}, last{0, 0, 0};
-  std::array<double, 3> uc{0.0, 0.0, 0.0};
-  const double rc = test.ball / kCoarse;
-  for (int a = 0; a < D; ++a) {
-    // A ball that leaves the grid reaches positions no bound is known for.
-    if (std::floor(u[a] - test.ball) < 0.0 || std::floor(u[a] + test.ball) >= grid.n[a]) {
-      return false;
-    }
-    uc[a] = u[a] / kCoarse;
-    first[a] = std::max<std::int64_t>(static_cast<std::int64_t>(std::floor(uc[a] - rc)), 0);
-    last[a] =
-        std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(uc[a] + rc)), coarse.n[a] - 1);
-  }
-  const auto cs = coarse.stride(), fs = grid.stride();
-  for (std::int64_t z = first[2]; z <= last[2]; ++z) {
-    const double gz = D == 3 ? gapTo(uc[2], static_cast<double>(z), 1.0) : 0.0;
-    for (std::int64_t y = first[1]; y <= last[1]; ++y) {
-      const double gy = gapTo(uc[1], static_cast<double>(y), 1.0);
-      const double rest = rc * rc - gy * gy - gz * gz;
-      if (rest < 0.0) continue;
-      const double w = std::sqrt(rest);
-      const std::int64_t x0 = std::max(first[0], static_cast<std::int64_t>(std::floor(uc[0] - w)));
-      const std::int64_t x1 = std::min(last[0], static_cast<std::int64_t>(std::floor(uc[0] + w)));
-      for (std::int64_t x = x0; x <= x1; ++x) {
-        if (full[x + y * cs[1] + z * cs[2]]) continue;
-        const std::int64_t zs = D == 3 ? kCoarse : 1;
-        for (std::int64_t fz = z * zs; fz < std::min(z * zs + zs, grid.n[2]); ++fz)
-          for (std::int64_t fy = y * kCoarse; fy < std::min(y * kCoarse + kCoarse, grid.n[1]); ++fy)
-            for (std::int64_t fx = x * kCoarse; fx < std::min(x * kCoarse + kCoarse, grid.n[0]);
-                 ++fx) {
-              const std::int64_t c = fx + fy * fs[1] + fz * fs[2];
-              if (field.cover[c] < test.threshold) continue;
-              if (!cellCovered<D>(field, c, {fx, fy, fz}, u, test)) return false;
-            }
-      }
-    }
-  }
-  return true;
-}
-
-/// The coarse grid (kCoarse fine cells a side) over the fine one.
-template <int D>
-Grid coarseOver(const Grid& grid) {
-  Grid coarse = grid;
-  coarse.cell = grid.cell * kCoarse;
-  for (int a = 0; a < D; ++a) coarse.n[a] = (grid.n[a] + kCoarse - 1) / kCoarse;
-  return coarse;
-}
-
-/// Per coarse cell: 1 when its fine cells are all within the grid and full (cover bytes below
-/// `threshold`).
-template <int D>
-std::vector<std::uint8_t> coarseFull(const Field& field, const Grid& coarse, int threshold,
-                                     int threads) {
-  const Grid& grid = field.grid;
-  std::vector<std::uint8_t> full(coarse.size(), 1);
-  const std::int64_t planes = coarse.n[2] * coarse.n[1];
-  const std::int64_t zs = D == 3 ? kCoarse : 1;
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t plane = 0; plane < planes; ++plane) {
-    const std::int64_t y = plane % coarse.n[1], z = plane / coarse.n[1];
-    std::uint8_t* row = full.data() + plane * coarse.n[0];
-    if ((y + 1) * kCoarse > grid.n[1] || (z + 1) * zs > grid.n[2]) {
-      std::fill(row, row + coarse.n[0], 0);
-      continue;
-    }
-    if (coarse.n[0] * kCoarse > grid.n[0]) row[coarse.n[0] - 1] = 0;
-    for (std::int64_t fz = z * zs; fz < z * zs + zs; ++fz)
-      for (std::int64_t fy = y * kCoarse; fy < y * kCoarse + kCoarse; ++fy) {
-        const std::uint8_t* cover = field.cover.data() + (fy + fz * grid.n[1]) * grid.n[0];
-        for (std::int64_t fx = 0; fx < grid.n[0]; ++fx) {
-          if (cover[fx] >= threshold) row[fx / kCoarse] = 0;
-        }
-      }
-  }
-  return full;
-}
-
-/// Marks not exposed the points of class j among `members` (by `class_of`) that no empty ball of
-/// radius r touches: first those whose every coarse cell a ball may meet (the element, eroding
-/// the coarse full cells) is full, then those the exact test (provenCovered()) proves.
-template <int D>
-void markCovered(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Field& field, int j, double r,
+void markCovered(const pcl::PointCloud<pcl::PointXYZ>& cloud, const Grid& grid,
+                 const std::vector<float>& cover, int j, double r,
                  const std::vector<std::uint32_t>& members, const std::vector<int>& class_of,
                  int threads, ExposedPoints& result) {
-  const Grid& grid = field.grid;
-  ClassTest test;
-  test.ball = r * (1.0 + kMargin) / grid.cell;
-  test.cover = r * (1.0 - kMargin) / grid.cell;
-  test.threshold = static_cast<int>(std::min(std::ceil(test.cover * kCoverSteps), 255.0));
-  const double reach = (test.cover - field.slack) / (1.0 + 1e-12);
-  if (reach > 0.0) test.within = reach * reach * (1.0 - 1e-12);
-  const Grid coarse = coarseOver<D>(grid);
-  const std::vector<std::uint8_t> full = coarseFull<D>(field, coarse, test.threshold, threads);
-  std::vector<std::uint8_t> covered = full, scratch;
-  const Element element = elementFor<D>(test.ball / kCoarse);
+  // A cell is full when a ball of radius r centred anywhere in it holds a point: its cover
+  // radius is below r (that point is not the one the ball's sphere passes through, at r).
+  const auto r2 = static_cast<float>(r * r);
+  std::vector<std::uint8_t> covered(grid.size()), scratch;
+  for (std::size_t c = 0; c < covered.size(); ++c) covered[c] = cover[c] < r2;
+  // A point is covered when every cell that may meet the ball of radius r around it is full.
+  const Element element = elementFor<D>(r / grid.cell);
   for (int axis = 0; axis < D; ++axis) {
-    erodeAlong(coarse, axis, -element.box, element.box, covered, threads);
+    erodeAlong(grid, axis, -element.box, element.box, covered, threads);
   }
-  for (int k = 0; k < element.cross; ++k) erodeCross<D>(coarse, covered, scratch, threads);
+  for (int k = 0; k < element.cross; ++k) erodeCross<D>(grid, covered, scratch, threads);
   std::size_t proven = 0;
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : proven)
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : proven)
   for (std::int64_t m = 0; m < static_cast<std::int64_t>(members.size()); ++m) {
     const std::uint32_t i = members[m];
-    if (class_of[i] != j) continue;
-    bool sure = covered[cellOf<D>(coarse, cloud[i])];
-    if (!sure) {
-      std::array<double, 3> u{0.0, 0.0, 0.0};
-      for (int a = 0; a < D; ++a) u[a] = (cloud[i].data[a] - grid.lo[a]) / grid.cell;
-      sure = provenCovered<D>(field, coarse, full, u, test);
-    }
-    if (sure) {
+    if (class_of[i] == j && covered[cellOf<D>(grid, cloud[i])]) {
       result.exposed[i] = 0;
       ++proven;
     }
@@ -451,14 +378,13 @@ ExposedPoints exposed(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     const auto [lo, hi] = spanOfBalls<D>(cloud, members[g], high);
     const std::vector<std::uint32_t> nearby = pointsInBox<D>(cloud, lo, hi);
     const double cap = std::max(kCellsPerPoint * static_cast<double>(nearby.size()), 4096.0);
-    Field field;
-    field.grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
+    const Grid grid = gridOver<D>(lo, hi, low / kCellsPerRadius, cap);
     check();
-    nearestPoints<D>(cloud, nearby, field, threads);
+    const std::vector<float> cover = coverRadius<D>(cloud, nearby, grid, threads);
     for (int j = g * kClassesPerGrid; j < std::min(classes, (g + 1) * kClassesPerGrid); ++j) {
       check();
-      markCovered<D>(cloud, field, j, smallest * std::pow(kClassRatio, j), members[g], class_of,
-                     threads, result);
+      markCovered<D>(cloud, grid, cover, j, smallest * std::pow(kClassRatio, j), members[g],
+                     class_of, threads, result);
     }
   }
   return result;
