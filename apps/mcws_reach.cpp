@@ -148,10 +148,16 @@ void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const Reach
     map.write(bytes, mapFileHeader(robot, provenance.file, provenance.sha256, summary));
     io::writeWholeFile(cli.required("map"), bytes.str());
   }
-  const auto points = reachPoints(map);
-  io::PcdStreamWriter<ReachPoint> cloud(cli.required("output"), points.size(),
-                                        io::PcdFormat::kBinary, provenance);
-  cloud.write(points.data(), points.size());
+  // A part of the points at a time: a large map's points are never held whole.
+  io::PcdStreamWriter<ReachPoint> cloud(cli.required("output"), map.size(), io::PcdFormat::kBinary,
+                                        provenance);
+  std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> points(
+      std::min<std::size_t>(map.size(), std::size_t{1} << 16));
+  for (std::size_t first = 0; first < map.size(); first += points.size()) {
+    const std::size_t count = std::min(points.size(), map.size() - first);
+    reachPoints(map, first, count, points.data());
+    cloud.write(points.data(), count);
+  }
   cloud.commit();
   outputs.commit();
 }

@@ -117,8 +117,7 @@ void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
   std::uint64_t* data = box_.record(0);
   if (cached()) {
     for (const auto& batch : batches) {
-      for (const PendingSample& s : batch)
-        recordSample(data + s.key * stride, s.bin, s.manipulability);
+      for (const PendingSample& s : batch) add(data, stride, s);
     }
     return;
   }
@@ -139,8 +138,7 @@ void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
   constexpr std::size_t kAhead = 16;  // records fetched ahead of their sample
   for (std::size_t i = 0; i < sorted_.size(); ++i) {
     if (i + kAhead < sorted_.size()) __builtin_prefetch(data + sorted_[i + kAhead].key * stride, 1);
-    const PendingSample& s = sorted_[i];
-    recordSample(data + s.key * stride, s.bin, s.manipulability);
+    add(data, stride, sorted_[i]);
   }
 }
 
