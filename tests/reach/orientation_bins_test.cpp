@@ -191,9 +191,9 @@ TEST(SpherePartition, RegionAgreesWithTheBoundsOnRandomDirections) {
 
 TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
   // regions() finds most longitudes' sectors without atan2; regionsByAtan2() is its reference,
-  // bit for bit: random directions, directions on and within 1e-7 .. 1e-15 rad of every sector
-  // edge of every collar (where regions() must fall back), the axes and signed zeros, in
-  // batches of 1 to 16.
+  // bit for bit: random directions, directions on and within 2e-5 .. 1e-15 rad of every sector
+  // edge of every collar (where regions() must fall back, or decide by its rough longitude),
+  // the axes and signed zeros, in batches of 1 to 16.
   std::mt19937_64 rng(64);
   for (int n : kSizes) {
     const SpherePartition sphere(n);
@@ -203,7 +203,15 @@ TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
       double theta0, theta1, phi0, phi1;
       sphere.bounds(region, theta0, theta1, phi0, phi1);
       const double theta = 0.5 * (theta0 + theta1);
-      for (const double offset : {0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, -1e-9, 1e-7, -1e-7}) {
+      // Near the edges too, where the rough longitude (within 8.2e-7 rad) decides or leaves it
+      // to atan2 (within 2 pi 1e-6 rad of an edge), and at random up to 2e-5 rad off them.
+      std::vector<double> offsets = {0.0,     1e-15,  -1e-15,  1e-12, -1e-12, 1e-9,  -1e-9,
+                                     1e-7,    -1e-7,  1e-6,    -1e-6, 3e-6,   -3e-6, 6.2e-6,
+                                     -6.2e-6, 6.4e-6, -6.4e-6, 7e-6,  -7e-6,  1e-5,  -1e-5};
+      for (int i = 0; i < 8; ++i) {
+        offsets.push_back(std::uniform_real_distribution<double>(-2e-5, 2e-5)(rng));
+      }
+      for (const double offset : offsets) {
         const double phi = phi0 + offset;
         directions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                                 std::cos(theta));

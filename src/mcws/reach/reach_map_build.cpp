@@ -391,8 +391,9 @@ class ReachMapBuilder {
   /// Samples [first, last) mapped to their voxels and bins, posted from thread t.
   void sampleBlock(std::uint64_t first, std::uint64_t last, int t) {
     CollisionChecker::Scratch scratch;
+    // s: the tool points over the voxel edge (ReachMap::keyInGrid()'s products).
     double sample_q[kMaxJoints], q[kMaxJoints * kLanes], p[3 * kLanes], a[3 * kLanes],
-        x[3 * kLanes], w[kLanes] = {};
+        x[3 * kLanes], w[kLanes] = {}, s[3 * kLanes];
     bool counted[kLanes];
     int bins[kLanes];
     for (std::uint64_t i = first; i < last; i += kLanes) {
@@ -408,10 +409,16 @@ class ReachMapBuilder {
       // The tool's x axis only for roll bins.
       batch_.poses(q, p, a, empty_.bins().rolls() > 1 ? x : nullptr, quality_, w);
       empty_.bins().bins(a, x, kLanes, bins);
+      for (int c = 0; c < 3 * kLanes; ++c) s[c] = p[c] * empty_.inverse_resolution_;
       for (int k = 0; k < kLanes; ++k) {
         if (!counted[k]) continue;
         if (static_cast<unsigned>(bins[k]) >= static_cast<unsigned>(empty_.bins().size())) {
           empty_.checkBin(bins[k]);  // throws
+        }
+        // In the box: its index straight from the scaled point (the key's voxel).
+        if (std::uint64_t index; box_ && box_->indexOfScaled(s + k, kLanes, index)) {
+          post(t, BoxPart::partOf(index, threads_), index, bins[k], static_cast<float>(w[k]));
+          continue;
         }
         std::uint64_t key;
         if (!empty_.keyInGrid(p + k, kLanes, key)) {

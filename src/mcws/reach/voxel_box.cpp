@@ -68,6 +68,9 @@ VoxelBox::VoxelBox(const std::int64_t low[3], const std::int64_t size[3], int st
   for (int a = 0; a < 3; ++a) {
     low_[a] = static_cast<std::uint64_t>(low[a] + ReachMap::kIndexLimit);
     size_[a] = static_cast<std::uint64_t>(size[a]);
+    first_index_[a] = low[a];
+    first_[a] = static_cast<double>(low[a]);
+    end_[a] = static_cast<double>(low[a] + size[a]);
     voxels_ *= size_[a];
   }
   // Anonymous memory: zero pages from the kernel where first touched, 2 MB aligned and advised

@@ -105,6 +105,22 @@ class VoxelBox {
     index = (at[0] * size_[1] + at[1]) * size_[2] + at[2];
     return true;
   }
+  /// \brief The index of the voxel of a point given as its coordinates over the voxel edge, s[a *
+  /// stride] (what ReachMap::keyInGrid() computes from the point): the voxel of the same key,
+  /// floor(s) on each axis; false outside the box (or NaN), where nothing is written.
+  bool indexOfScaled(const double* s, int stride, std::uint64_t& index) const {
+    std::uint64_t at[3];
+    for (int a = 0; a < 3; ++a) {
+      const double v = s[a * stride];
+      // floor(v) within [first, end) exactly when v is (whole numbers, within ReachMap's range).
+      if (!(v >= first_[a] && v < end_[a])) return false;
+      auto i = static_cast<std::int64_t>(v);    // toward zero
+      i -= static_cast<double>(i) > v ? 1 : 0;  // floor
+      at[a] = static_cast<std::uint64_t>(i - first_index_[a]);
+    }
+    index = (at[0] * size_[1] + at[1]) * size_[2] + at[2];
+    return true;
+  }
   /// \brief The packed key of the voxel at an index.
   std::uint64_t keyOf(std::size_t index) const;
   std::uint64_t* record(std::size_t index) { return data_ + index * stride_; }
@@ -118,8 +134,10 @@ class VoxelBox {
 
  private:
   static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << 21) - 1;
-  std::uint64_t low_[3]{};   ///< the first voxel's packed fields (index + 2^20)
-  std::uint64_t size_[3]{};  ///< voxels along each axis
+  std::uint64_t low_[3]{};         ///< the first voxel's packed fields (index + 2^20)
+  std::uint64_t size_[3]{};        ///< voxels along each axis
+  std::int64_t first_index_[3]{};  ///< the first voxel's index
+  double first_[3]{}, end_[3]{};   ///< the first voxel's index and the last's + 1
   std::size_t voxels_{0};
   int stride_;
   void* base_{nullptr};           ///< the mapping
