@@ -1,14 +1,16 @@
 // buildReachMap's dense box of voxels (mcws::reach_map_build::VoxelBox) against the hash tables
 // it replaces where the reach fits in memory: the same map, byte for byte, on the planar arm and
 // the inspection arm, with any thread count, records swept sorted or as they come, and with
-// samples outside a box made too small on purpose; the box's indices against brute force; the
-// index of a map built by threads finding every voxel, also when it is built by the first of
-// several threads to look (and in a copy); the voxels a part counts in each block against its
-// records; a part's recorded batches handed back empty with their memory.
+// samples outside a box made too small on purpose; the box's indices (of keys and of scaled
+// points) against brute force; the index of a map built by threads finding every voxel, also
+// when it is built by the first of several threads to look (and in a copy); the voxels a part
+// counts in each block against its records; a part's recorded batches handed back empty with
+// their memory.
 #include "mcws/reach/voxel_box.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
@@ -157,6 +159,36 @@ TEST(BuildReachMap, TheIndexBuiltByThreadsFindsEveryVoxel) {
       ASSERT_EQ(map.find(map.voxelCentre(map.voxel(v))), static_cast<long>(v)) << v;
     }
     EXPECT_EQ(map.find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
+  }
+}
+
+TEST(VoxelBox, TheIndexOfAScaledPointIsThatOfItsFloorsKey) {
+  // Scaled coordinates on, just beside and between the box's voxel edges, beyond it and NaN:
+  // the index of the key of floor(s) (brute force), or false where that key is outside.
+  const std::int64_t low[3] = {-3, 5, -1}, size[3] = {4, 3, 5};
+  const VoxelBox box(low, size, 3);
+  std::vector<double> values;
+  for (int i = -6; i <= 10; ++i) {
+    for (const double d : {0.0, 0.5, 1e-12, -1e-12}) values.push_back(i + d);
+  }
+  values.push_back(std::nextafter(-3.0, -4.0));
+  values.push_back(std::nan(""));
+  for (const double x : values) {
+    for (const double y : values) {
+      for (const double z : {-1.0, -0.5, 3.999, 4.0, std::nan("")}) {
+        const double scaled[3] = {x, y, z};
+        std::uint64_t index = 7, expected = 7;
+        const bool inside = box.indexOfScaled(scaled, 1, index);
+        const bool finite = std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+        const bool key_inside =
+            finite && box.indexOf(boxTestKey(static_cast<std::int64_t>(std::floor(x)),
+                                             static_cast<std::int64_t>(std::floor(y)),
+                                             static_cast<std::int64_t>(std::floor(z))),
+                                  expected);
+        ASSERT_EQ(inside, key_inside) << x << " " << y << " " << z;
+        ASSERT_EQ(index, expected) << x << " " << y << " " << z;
+      }
+    }
   }
 }
 
