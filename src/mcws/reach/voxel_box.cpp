@@ -138,7 +138,7 @@ void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
   for (const auto& batch : batches) {
     for (const PendingSample& s : batch) sorted_[start[s.key >> shift]++] = s;
   }
-  constexpr std::size_t kAhead = 16;  // records fetched ahead of their sample
+  constexpr std::size_t kAhead = 40;  // records fetched ahead of their sample
   for (std::size_t i = 0; i < sorted_.size(); ++i) {
     if (i + kAhead < sorted_.size()) __builtin_prefetch(data + sorted_[i + kAhead].key * stride, 1);
     add(data, stride, sorted_[i]);
