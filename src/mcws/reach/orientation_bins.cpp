@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "mcws/core/error.h"
@@ -41,11 +42,13 @@ Pair choose(PairMask mask, Pair a, Pair b) {
 /// The longitudes of two points (x, y) in [0, 2 pi] within 8.2e-7 rad, without atan2: the angle
 /// of the smaller of |x|, |y| over the larger, 0 to 1, brought within tan(pi / 8) by atan r =
 /// pi / 4 + atan((r - 1) / (r + 1)), where the Taylor series to u^11 leaves at most |u|^13 / 13
-/// < 8.2e-7 (alternating, decreasing terms), then moved to its octant. Only for finite x, y not
-/// both 0.
+/// < 8.2e-7 (alternating, decreasing terms), then moved to its octant. -1 where the longitude
+/// is not defined here: x or y not finite, or both 0.
 Pair roughLongitudes(Pair x, Pair y) {
   const Pair zero = {0.0, 0.0};
   const Pair ax = choose(x < zero, -x, x), ay = choose(y < zero, -y, y);
+  const Pair largest = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  const PairMask defined = (ax <= largest) & (ay <= largest) & ((ax > zero) | (ay > zero));
   const PairMask y_larger = ay > ax;
   const Pair r = choose(y_larger, ax, ay) / choose(y_larger, ay, ax);
   const Pair one = {1.0, 1.0};
@@ -61,7 +64,8 @@ Pair roughLongitudes(Pair x, Pair y) {
   Pair a = choose(far, quarter, zero) + series;  // atan(min / max), 0 .. pi / 4
   a = choose(y_larger, half - a, a);
   a = choose(x < zero, pi - a, a);
-  return choose(y < zero, two_pi - a, a);
+  a = choose(y < zero, two_pi - a, a);
+  return choose(defined, a, Pair{-1.0, -1.0});
 }
 
 }  // namespace
@@ -152,9 +156,7 @@ void SpherePartition::regions(const double* d, int lanes, int* out) const {
         continue;
       }
       const double t = rough[k - first] * sectors.scale, margin = sectors.margin;
-      const double x = d[k], y = d[lanes + k];
-      bool clear =
-          std::isfinite(x) && std::isfinite(y) && (x != 0.0 || y != 0.0) && t >= 0.0 && t < count;
+      bool clear = t >= 0.0 && t < count;  // not where the longitude is undefined (-1)
       const int sector = clear ? static_cast<int>(t) : 0;  // floor
       clear = clear && t - sector > margin && sector + 1.0 - t > margin;
       certain = certain && clear;
