@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -222,6 +223,17 @@ TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
         for (const double y : {1.0, -1.0, 0.0, -0.0}) directions.emplace_back(x, y, z);
       }
     }
+    // Not unit, but regions() is defined for them: x and y subnormal or near the largest double
+    // (left to atan2), and infinite.
+    const double huge = std::numeric_limits<double>::max();
+    for (const double scale : {3e-320, 1e-310, 2.3e-308, 1e300, 0.2 * huge, 0.3 * huge, huge}) {
+      for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+               {1.0, 0.9}, {-1.0, 0.3}, {0.2, -1.0}, {-0.7, -0.75}, {1.0, 0.0}}) {
+        directions.emplace_back(scale * x, scale * y, 0.1);
+      }
+    }
+    directions.emplace_back(std::numeric_limits<double>::infinity(), 1.0, 0.0);
+    directions.emplace_back(-1.0, -std::numeric_limits<double>::infinity(), 0.0);
     for (std::size_t first = 0; first < directions.size();) {
       const int lanes =
           static_cast<int>(std::min<std::size_t>(1 + rng() % 16, directions.size() - first));

@@ -40,20 +40,24 @@ Pair choose(PairMask mask, Pair a, Pair b) {
 }
 
 /// The longitudes of two points (x, y) in [0, 2 pi] within 8.2e-7 rad, without atan2: the angle
-/// of the smaller of |x|, |y| over the larger, 0 to 1, brought within tan(pi / 8) by atan r =
-/// pi / 4 + atan((r - 1) / (r + 1)), where the Taylor series to u^11 leaves at most |u|^13 / 13
-/// < 8.2e-7 (alternating, decreasing terms), then moved to its octant. -1 where the longitude
-/// is not defined here: x or y not finite, or both 0.
+/// of the smaller of |x|, |y| over the larger, r = min / max in [0, 1], brought within
+/// tan(pi / 8) by atan r = pi / 4 + atan(u), u = (r - 1) / (r + 1) = (min - max) / (min + max)
+/// (one division either way), where the Taylor series to u^11 leaves at most |u|^13 / 13 <
+/// 8.2e-7 (alternating, decreasing terms), then moved to its octant. -1 where the longitude is
+/// not defined here: x or y not finite or beyond a quarter of the largest double (min + max
+/// must not overflow), or both below the smallest normal double (both 0, or where tan(pi / 8)
+/// max would round).
 Pair roughLongitudes(Pair x, Pair y) {
   const Pair zero = {0.0, 0.0};
   const Pair ax = choose(x < zero, -x, x), ay = choose(y < zero, -y, y);
-  const Pair largest = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  const PairMask defined = (ax <= largest) & (ay <= largest) & ((ax > zero) | (ay > zero));
   const PairMask y_larger = ay > ax;
-  const Pair r = choose(y_larger, ax, ay) / choose(y_larger, ay, ax);
-  const Pair one = {1.0, 1.0};
-  const PairMask far = r > Pair{0.41421356237309503, 0.41421356237309503};  // tan(pi / 8)
-  const Pair u = choose(far, (r - one) / (r + one), r), u2 = u * u;
+  const Pair low = choose(y_larger, ax, ay), high = choose(y_larger, ay, ax);
+  constexpr double kSmallest = std::numeric_limits<double>::min();
+  constexpr double kLargest = 0.25 * std::numeric_limits<double>::max();
+  const PairMask defined =
+      (high >= Pair{kSmallest, kSmallest}) & (high <= Pair{kLargest, kLargest}) & (low <= high);
+  const PairMask far = low > Pair{0.41421356237309503, 0.41421356237309503} * high;  // tan(pi/8)
+  const Pair u = choose(far, low - high, low) / choose(far, low + high, high), u2 = u * u;
   Pair series = Pair{-1.0 / 11, -1.0 / 11};
   for (const double c : {1.0 / 9, -1.0 / 7, 1.0 / 5, -1.0 / 3, 1.0}) {
     series = Pair{c, c} + u2 * series;
