@@ -258,6 +258,17 @@ TEST(BuildReachMap, ThreadsFindingVoxelsAtOnceInACopyOfAMapWithoutItsIndex) {
     EXPECT_EQ(wrong[1], 0u);
     EXPECT_EQ(m->find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
   }
+  // Its points made by two threads are those made by one.
+  const auto points = reachPoints(map);
+  std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> by_two(map.size());
+  reachPoints(map, 0, map.size(), by_two.data(), 2);
+  std::size_t differ = 0;
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    const ReachPoint &a = points[v], &b = by_two[v];
+    differ += a.x != b.x || a.y != b.y || a.z != b.z || a.reachability != b.reachability ||
+              a.manipulability != b.manipulability || a.count != b.count;
+  }
+  EXPECT_EQ(differ, 0u);
   // Bytes are those of the hash tables' map, whose index was built as it filled.
   ReachSampling hash = s;
   hash.dense_bytes = 0;

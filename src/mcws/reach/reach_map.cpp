@@ -1,5 +1,6 @@
 #include "mcws/reach/reach_map.h"
 
+#include <omp.h>
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -428,10 +429,15 @@ std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const 
   return points;
 }
 
-void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out) {
-  for (std::size_t v = first; v < first + count; ++v) {
+void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out,
+                 int threads) {
+  // Each point on its own: any thread's.
+  threads = threads > 0 ? threads : omp_get_num_procs();
+#pragma omp parallel for schedule(static) num_threads(threads) if (count >= 8192 && threads > 1)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
+    const std::size_t v = first + static_cast<std::size_t>(i);
     const Eigen::Vector3d c = map.voxelCentre(map.voxel(v));
-    ReachPoint& point = out[v - first];
+    ReachPoint& point = out[i];
     point.x = static_cast<float>(c.x());
     point.y = static_cast<float>(c.y());
     point.z = static_cast<float>(c.z());

@@ -251,8 +251,10 @@ struct EIGEN_ALIGN16 ReachPoint {
 /// \brief The map's voxels as points, in the map's order.
 std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const ReachMap& map);
 /// \brief Voxels first .. first + count - 1 of the map as points into out[0 .. count): a slice
-/// of reachPoints(), for writing a large map a part at a time.
-void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out);
+/// of reachPoints(), for writing a large map a part at a time, by `threads` threads (0: all
+/// cores).
+void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out,
+                 int threads = 1);
 
 }  // namespace mcws
 
