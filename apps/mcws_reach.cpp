@@ -133,9 +133,10 @@ void mergeOnFirst(distributed::Processes& processes, ReachMap& map) {
 }
 
 /// Every output rendered and written under a temporary name before any is renamed; the map
-/// file's header records what `summary` says of the run.
+/// file's header records what `summary` says of the run; the points made by `threads` threads.
 void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const ReachMap& map,
-                    const io::CloudProvenance& provenance, const nlohmann::json& summary) {
+                    const io::CloudProvenance& provenance, const nlohmann::json& summary,
+                    int threads) {
   const std::string unit = unitName(robot.length_unit);
   io::OutputSet outputs;
   if (cli.has("halfcut"))
@@ -148,10 +149,16 @@ void saveMapOutputs(const app::CommandLine& cli, const Robot& robot, const Reach
     map.write(bytes, mapFileHeader(robot, provenance.file, provenance.sha256, summary));
     io::writeWholeFile(cli.required("map"), bytes.str());
   }
-  const auto points = reachPoints(map);
-  io::PcdStreamWriter<ReachPoint> cloud(cli.required("output"), points.size(),
-                                        io::PcdFormat::kBinary, provenance);
-  cloud.write(points.data(), points.size());
+  // A part of the points at a time: a large map's points are never held whole.
+  io::PcdStreamWriter<ReachPoint> cloud(cli.required("output"), map.size(), io::PcdFormat::kBinary,
+                                        provenance);
+  std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> points(
+      std::min<std::size_t>(map.size(), std::size_t{1} << 16));
+  for (std::size_t first = 0; first < map.size(); first += points.size()) {
+    const std::size_t count = std::min(points.size(), map.size() - first);
+    reachPoints(map, first, count, points.data(), threads);
+    cloud.write(points.data(), count);
+  }
   cloud.commit();
   outputs.commit();
 }
@@ -211,7 +218,7 @@ void runMap(const app::CommandLine& cli, const Robot& robot, const io::CloudProv
   summary["output"] = output;
   summary["processes"] = processes.size();
   summary["resumed_samples"] = resumed_all[0];
-  saveMapOutputs(cli, robot, map, provenance, summary);
+  saveMapOutputs(cli, robot, map, provenance, summary, sampling.threads);
   removeCheckpoint();
   addRobotNames(summary, robot);  // after the map file, whose header names the chain's links
   summary["seconds"] = progress.seconds();

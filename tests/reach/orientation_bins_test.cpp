@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -191,9 +192,9 @@ TEST(SpherePartition, RegionAgreesWithTheBoundsOnRandomDirections) {
 
 TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
   // regions() finds most longitudes' sectors without atan2; regionsByAtan2() is its reference,
-  // bit for bit: random directions, directions on and within 1e-7 .. 1e-15 rad of every sector
-  // edge of every collar (where regions() must fall back), the axes and signed zeros, in
-  // batches of 1 to 16.
+  // bit for bit: random directions, directions on and within 2e-5 .. 1e-15 rad of every sector
+  // edge of every collar (where regions() must fall back, or decide by its rough longitude),
+  // the axes and signed zeros, in batches of 1 to 16.
   std::mt19937_64 rng(64);
   for (int n : kSizes) {
     const SpherePartition sphere(n);
@@ -203,7 +204,15 @@ TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
       double theta0, theta1, phi0, phi1;
       sphere.bounds(region, theta0, theta1, phi0, phi1);
       const double theta = 0.5 * (theta0 + theta1);
-      for (const double offset : {0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, -1e-9, 1e-7, -1e-7}) {
+      // Near the edges too, where the rough longitude (within 8.2e-7 rad) decides or leaves it
+      // to atan2 (within 2 pi 1e-6 rad of an edge), and at random up to 2e-5 rad off them.
+      std::vector<double> offsets = {0.0,     1e-15,  -1e-15,  1e-12, -1e-12, 1e-9,  -1e-9,
+                                     1e-7,    -1e-7,  1e-6,    -1e-6, 3e-6,   -3e-6, 6.2e-6,
+                                     -6.2e-6, 6.4e-6, -6.4e-6, 7e-6,  -7e-6,  1e-5,  -1e-5};
+      for (int i = 0; i < 8; ++i) {
+        offsets.push_back(std::uniform_real_distribution<double>(-2e-5, 2e-5)(rng));
+      }
+      for (const double offset : offsets) {
         const double phi = phi0 + offset;
         directions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
                                 std::cos(theta));
@@ -214,6 +223,17 @@ TEST(SpherePartition, RegionsWithoutAtan2AreThoseWithIt) {
         for (const double y : {1.0, -1.0, 0.0, -0.0}) directions.emplace_back(x, y, z);
       }
     }
+    // Not unit, but regions() is defined for them: x and y subnormal or near the largest double
+    // (left to atan2), and infinite.
+    const double huge = std::numeric_limits<double>::max();
+    for (const double scale : {3e-320, 1e-310, 2.3e-308, 1e300, 0.2 * huge, 0.3 * huge, huge}) {
+      for (const auto& [x, y] : std::vector<std::pair<double, double>>{
+               {1.0, 0.9}, {-1.0, 0.3}, {0.2, -1.0}, {-0.7, -0.75}, {1.0, 0.0}}) {
+        directions.emplace_back(scale * x, scale * y, 0.1);
+      }
+    }
+    directions.emplace_back(std::numeric_limits<double>::infinity(), 1.0, 0.0);
+    directions.emplace_back(-1.0, -std::numeric_limits<double>::infinity(), 0.0);
     for (std::size_t first = 0; first < directions.size();) {
       const int lanes =
           static_cast<int>(std::min<std::size_t>(1 + rng() % 16, directions.size() - first));

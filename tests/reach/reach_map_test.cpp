@@ -769,6 +769,19 @@ TEST(BuildReachMap, ABuiltMapRoundTripsThroughTheFile) {
     ASSERT_EQ(points[v].manipulability, map.bestManipulability(v));
     ASSERT_EQ(points[v].count, map.count(v));
   }
+  // A slice of the points, as mcws_reach writes them a part at a time: the same bytes.
+  ASSERT_GT(map.size(), 10u);
+  for (const std::size_t first : {std::size_t{0}, std::size_t{3}, map.size() - 7}) {
+    std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> slice(7);
+    reachPoints(map, first, 7, slice.data());
+    for (std::size_t i = 0; i < 7; ++i) {
+      const ReachPoint &a = slice[i], &b = points[first + i];
+      const float fa[] = {a.x, a.y, a.z, a.reachability, a.manipulability};
+      const float fb[] = {b.x, b.y, b.z, b.reachability, b.manipulability};
+      ASSERT_EQ(std::memcmp(fa, fb, sizeof fa), 0) << first + i;  // the same bits
+      ASSERT_EQ(a.count, b.count) << first + i;
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

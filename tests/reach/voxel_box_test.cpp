@@ -1,15 +1,20 @@
 // buildReachMap's dense box of voxels (mcws::reach_map_build::VoxelBox) against the hash tables
 // it replaces where the reach fits in memory: the same map, byte for byte, on the planar arm and
 // the inspection arm, with any thread count, records swept sorted or as they come, and with
-// samples outside a box made too small on purpose; the box's indices against brute force; the
-// index of a map built by threads finding every voxel; a part's recorded batches handed back
-// empty with their memory.
+// samples outside a box made too small on purpose; the box's indices (of keys and of scaled
+// points) against brute force; the index of a map built by threads finding every voxel, also
+// when it is built by the first of several threads to look (and in a copy); the voxels a part
+// counts in each block against its records; a part's recorded batches handed back empty with
+// their memory.
 #include "mcws/reach/voxel_box.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/reach/reach_map.h"
@@ -155,6 +160,119 @@ TEST(BuildReachMap, TheIndexBuiltByThreadsFindsEveryVoxel) {
     }
     EXPECT_EQ(map.find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
   }
+}
+
+TEST(VoxelBox, TheIndexOfAScaledPointIsThatOfItsFloorsKey) {
+  // Scaled coordinates on, just beside and between the box's voxel edges, beyond it and NaN:
+  // the index of the key of floor(s) (brute force), or false where that key is outside.
+  const std::int64_t low[3] = {-3, 5, -1}, size[3] = {4, 3, 5};
+  const VoxelBox box(low, size, 3);
+  std::vector<double> values;
+  for (int i = -6; i <= 10; ++i) {
+    for (const double d : {0.0, 0.5, 1e-12, -1e-12}) values.push_back(i + d);
+  }
+  values.push_back(std::nextafter(-3.0, -4.0));
+  values.push_back(std::nan(""));
+  for (const double x : values) {
+    for (const double y : values) {
+      for (const double z : {-1.0, -0.5, 3.999, 4.0, std::nan("")}) {
+        const double scaled[3] = {x, y, z};
+        std::uint64_t index = 7, expected = 7;
+        const bool inside = box.indexOfScaled(scaled, 1, index);
+        const bool finite = std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+        const bool key_inside =
+            finite && box.indexOf(boxTestKey(static_cast<std::int64_t>(std::floor(x)),
+                                             static_cast<std::int64_t>(std::floor(y)),
+                                             static_cast<std::int64_t>(std::floor(z))),
+                                  expected);
+        ASSERT_EQ(inside, key_inside) << x << " " << y << " " << z;
+        ASSERT_EQ(index, expected) << x << " " << y << " " << z;
+      }
+    }
+  }
+}
+
+TEST(VoxelBox, APartCountsTheVoxelsItReachesInEachOfItsBlocks) {
+  // 10^3 voxels of 3 words (cached, recorded as samples come) and 80^3 of 6 (24 MB: sorted):
+  // the counts against the records' own, block by block, over both parts.
+  for (const std::int64_t edge : {10, 80}) {
+    const std::int64_t low[3] = {-4, 0, 7}, size[3] = {edge, edge, edge};
+    const int stride = edge == 10 ? 3 : 6;
+    VoxelBox box(low, size, stride);
+    std::vector<std::unique_ptr<reach_map_build::BoxPart>> parts;
+    for (int p = 0; p < 2; ++p) parts.push_back(std::make_unique<reach_map_build::BoxPart>(box, 2));
+    std::mt19937_64 random(5);
+    for (int round = 0; round < 3; ++round) {
+      std::vector<std::vector<PendingSample>> batches(2);
+      for (int i = 0; i < 200000; ++i) {
+        // Squared: denser near the box's start, so some blocks stay empty.
+        const double u = std::uniform_real_distribution<double>(0.0, 1.0)(random);
+        const auto index = static_cast<std::uint64_t>(u * u * 0.7 * box.voxels());
+        batches[reach_map_build::BoxPart::partOf(index, 2)].push_back(
+            {index, i % (stride == 3 ? 64 : 200), 0.25f});
+      }
+      for (int p = 0; p < 2; ++p) {
+        parts[p]->post(std::move(batches[p]));
+        ASSERT_TRUE(parts[p]->tryRecord());
+      }
+    }
+    std::size_t empty_blocks = 0;
+    for (std::size_t b = 0; b < box.blocks(); ++b) {
+      std::uint32_t reached = 0;
+      for (std::size_t i = b * VoxelBox::kBlock;
+           i < std::min(box.voxels(), (b + 1) * VoxelBox::kBlock); ++i) {
+        reached += box.record(i)[0] != 0;
+      }
+      const int holder = reach_map_build::BoxPart::partOf(b * VoxelBox::kBlock, 2);
+      ASSERT_EQ(parts[holder]->reached()[b], reached) << edge << " " << b;
+      ASSERT_EQ(parts[1 - holder]->reached()[b], 0u) << edge << " " << b;
+      empty_blocks += reached == 0;
+    }
+    if (edge == 80) {
+      EXPECT_GT(empty_blocks, 0u);
+    }
+  }
+}
+
+TEST(BuildReachMap, ThreadsFindingVoxelsAtOnceInACopyOfAMapWithoutItsIndex) {
+  // The built map's index is left to the first lookup: two threads look up every voxel at once
+  // in the map and in a copy made before either looked (the copy builds its own).
+  const Robot robot = loadRobot(test::robotPath("inspection6"));
+  ReachSampling s = boxSampling(200003, 2, robot);
+  s.manipulability = false;
+  const ReachMap map = buildReachMap(robot, boxGrid(20.0, 20, 1), s);
+  const ReachMap copy = map;  // NOLINT(performance-unnecessary-copy-initialization): the test
+  ASSERT_GT(map.size(), 65536u);
+  for (const ReachMap* m : {&map, &copy}) {
+    std::vector<std::size_t> wrong(2, 0);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 2; ++t) {
+      threads.emplace_back([&, t] {
+        for (std::size_t v = 0; v < m->size(); ++v) {
+          wrong[t] += m->find(m->voxelCentre(m->voxel(v))) != static_cast<long>(v);
+        }
+      });
+    }
+    for (auto& thread : threads) thread.join();
+    EXPECT_EQ(wrong[0], 0u);
+    EXPECT_EQ(wrong[1], 0u);
+    EXPECT_EQ(m->find(Eigen::Vector3d(1e5, 0.0, 0.0)), -1);
+  }
+  // Its points made by two threads are those made by one.
+  const auto points = reachPoints(map);
+  std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> by_two(map.size());
+  reachPoints(map, 0, map.size(), by_two.data(), 2);
+  std::size_t differ = 0;
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    const ReachPoint &a = points[v], &b = by_two[v];
+    differ += a.x != b.x || a.y != b.y || a.z != b.z || a.reachability != b.reachability ||
+              a.manipulability != b.manipulability || a.count != b.count;
+  }
+  EXPECT_EQ(differ, 0u);
+  // Bytes are those of the hash tables' map, whose index was built as it filled.
+  ReachSampling hash = s;
+  hash.dense_bytes = 0;
+  EXPECT_EQ(boxMapBytes(copy), boxMapBytes(buildReachMap(robot, boxGrid(20.0, 20, 1), hash)));
 }
 
 TEST(BuildReachMap, APartHandsBackTheBatchesItRecordedEmptyWithTheirMemory) {

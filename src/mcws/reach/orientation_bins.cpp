@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "mcws/core/error.h"
@@ -38,20 +39,27 @@ Pair choose(PairMask mask, Pair a, Pair b) {
   return out;
 }
 
-/// The longitudes of two points (x, y) in [0, 2 pi] within 2e-8 rad, without atan2: the angle of
-/// the smaller of |x|, |y| over the larger, 0 to 1, brought within tan(pi / 8) by atan r = pi / 4
-/// + atan((r - 1) / (r + 1)), where the Taylor series to u^15 leaves at most |u|^17 / 17 < 1.8e-8
-/// (alternating, decreasing terms), then moved to its octant. Only for finite x, y not both 0.
+/// The longitudes of two points (x, y) in [0, 2 pi] within 8.2e-7 rad, without atan2: the angle
+/// of the smaller of |x|, |y| over the larger, r = min / max in [0, 1], brought within
+/// tan(pi / 8) by atan r = pi / 4 + atan(u), u = (r - 1) / (r + 1) = (min - max) / (min + max)
+/// (one division either way), where the Taylor series to u^11 leaves at most |u|^13 / 13 <
+/// 8.2e-7 (alternating, decreasing terms), then moved to its octant. -1 where the longitude is
+/// not defined here: x or y not finite or beyond a quarter of the largest double (min + max
+/// must not overflow), or both below the smallest normal double (both 0, or where tan(pi / 8)
+/// max would round).
 Pair roughLongitudes(Pair x, Pair y) {
   const Pair zero = {0.0, 0.0};
   const Pair ax = choose(x < zero, -x, x), ay = choose(y < zero, -y, y);
   const PairMask y_larger = ay > ax;
-  const Pair r = choose(y_larger, ax, ay) / choose(y_larger, ay, ax);
-  const Pair one = {1.0, 1.0};
-  const PairMask far = r > Pair{0.41421356237309503, 0.41421356237309503};  // tan(pi / 8)
-  const Pair u = choose(far, (r - one) / (r + one), r), u2 = u * u;
-  Pair series = Pair{-1.0 / 15, -1.0 / 15};
-  for (const double c : {1.0 / 13, -1.0 / 11, 1.0 / 9, -1.0 / 7, 1.0 / 5, -1.0 / 3, 1.0}) {
+  const Pair low = choose(y_larger, ax, ay), high = choose(y_larger, ay, ax);
+  constexpr double kSmallest = std::numeric_limits<double>::min();
+  constexpr double kLargest = 0.25 * std::numeric_limits<double>::max();
+  const PairMask defined =
+      (high >= Pair{kSmallest, kSmallest}) & (high <= Pair{kLargest, kLargest}) & (low <= high);
+  const PairMask far = low > Pair{0.41421356237309503, 0.41421356237309503} * high;  // tan(pi/8)
+  const Pair u = choose(far, low - high, low) / choose(far, low + high, high), u2 = u * u;
+  Pair series = Pair{-1.0 / 11, -1.0 / 11};
+  for (const double c : {1.0 / 9, -1.0 / 7, 1.0 / 5, -1.0 / 3, 1.0}) {
     series = Pair{c, c} + u2 * series;
   }
   series = u * series;
@@ -60,7 +68,8 @@ Pair roughLongitudes(Pair x, Pair y) {
   Pair a = choose(far, quarter, zero) + series;  // atan(min / max), 0 .. pi / 4
   a = choose(y_larger, half - a, a);
   a = choose(x < zero, pi - a, a);
-  return choose(y < zero, two_pi - a, a);
+  a = choose(y < zero, two_pi - a, a);
+  return choose(defined, a, Pair{-1.0, -1.0});
 }
 
 }  // namespace
@@ -103,6 +112,12 @@ SpherePartition::SpherePartition(int regions) : regions_(regions) {
     zone_top_z_.push_back(1.0 - 2.0 * zone_first_[j] / static_cast<double>(regions));
   }
   zone_top_z_.push_back(-1.0);
+  // Per zone, the factor from a longitude to its sector and the margin regions() keeps from a
+  // sector's edges, in sectors (as regions() computed them per direction).
+  for (std::size_t j = 0; j + 1 < zone_first_.size(); ++j) {
+    const int count = zone_first_[j + 1] - zone_first_[j];
+    zone_sectors_.push_back({count / kTwoPi, 1e-6 * count, count});
+  }
   // The zone of each whole number of regions' area above a direction.
   for (int above = 0, zone = 0; above <= regions_; ++above) {
     while (zone + 1 < zones() && above >= zone_first_[zone + 1]) ++zone;
@@ -121,7 +136,7 @@ int SpherePartition::zoneOfZ(double z) const {
 
 void SpherePartition::regions(const double* d, int lanes, int* out) const {
   // Eight lanes at a time. The longitude's sector from roughLongitudes() where that longitude is
-  // over 2 pi 1e-6 rad from the sector's edges, 300 times its error: the sector of glibc's atan2
+  // over 2 pi 1e-6 rad from the sector's edges, 7.6 times its error: the sector of glibc's atan2
   // too then (whose longitude and its scaling are within 1e-13 rad); otherwise, for the eight,
   // regionsByAtan2().
   for (int first = 0; first < lanes; first += 8) {
@@ -138,15 +153,14 @@ void SpherePartition::regions(const double* d, int lanes, int* out) const {
     bool certain = true;
     for (int k = first; k < last; ++k) {
       const int zone = zoneOfZ(d[2 * lanes + k]);
-      const int count = zone_first_[zone + 1] - zone_first_[zone];
+      const ZoneSectors& sectors = zone_sectors_[zone];
+      const int count = sectors.count;
       if (count == 1) {
         out[k] = zone_first_[zone];
         continue;
       }
-      const double t = rough[k - first] * (count / kTwoPi), margin = 1e-6 * count;
-      const double x = d[k], y = d[lanes + k];
-      bool clear =
-          std::isfinite(x) && std::isfinite(y) && (x != 0.0 || y != 0.0) && t >= 0.0 && t < count;
+      const double t = rough[k - first] * sectors.scale, margin = sectors.margin;
+      bool clear = t >= 0.0 && t < count;  // not where the longitude is undefined (-1)
       const int sector = clear ? static_cast<int>(t) : 0;  // floor
       clear = clear && t - sector > margin && sector + 1.0 - t > margin;
       certain = certain && clear;

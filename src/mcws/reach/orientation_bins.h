@@ -56,6 +56,13 @@ class SpherePartition {
   std::vector<double> zone_top_z_;  ///< z = cos(colatitude) of each zone's upper edge; last -1
   std::vector<int> zone_first_;     ///< first region of each zone; last entry regions_
   std::vector<int> zone_of_area_;   ///< [a]: the zone of a direction with a regions' area above it
+  /// A zone's sectors as regions() reads them.
+  struct ZoneSectors {
+    double scale;   ///< sectors per radian of longitude: count / (2 pi)
+    double margin;  ///< the distance from an edge [sectors] below which atan2 decides
+    int count;      ///< sectors
+  };
+  std::vector<ZoneSectors> zone_sectors_;
 };
 
 /// \brief The tool orientation as a bin: the approach direction (the tool's z axis, as in

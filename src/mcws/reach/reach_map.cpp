@@ -1,5 +1,6 @@
 #include "mcws/reach/reach_map.h"
 
+#include <omp.h>
 #include <sys/mman.h>
 
 #include <algorithm>
@@ -138,6 +139,7 @@ Eigen::Vector3i ReachMap::voxel(std::size_t v) const {
 }
 
 long ReachMap::lookup(std::uint64_t key) const {
+  if (deferred_.pending.load(std::memory_order_acquire)) buildDeferredIndex();
   if (table_.empty()) return -1;
   for (std::size_t s = hashSlot(key, index_bits_);; s = (s + 1) & (table_.size() - 1)) {
     if (table_[s].key_plus_one == 0) return -1;
@@ -145,7 +147,22 @@ long ReachMap::lookup(std::uint64_t key) const {
   }
 }
 
-void ReachMap::rebuildIndex(std::size_t voxels, int threads) {
+void ReachMap::deferIndex(int threads) {
+  table_ = {};
+  deferred_.threads = threads;
+  deferred_.pending.store(true, std::memory_order_release);
+}
+
+void ReachMap::buildDeferredIndex() const {
+  const std::lock_guard<std::mutex> lock(deferred_.mutex);
+  if (deferred_.pending.load(std::memory_order_relaxed)) {
+    rebuildIndex(keys_.size(), deferred_.threads);  // stores pending = false
+  }
+}
+
+void ReachMap::rebuildIndex(std::size_t voxels, int threads) const {
+  // The index built here is complete: nothing is left deferred (stored with release at each
+  // return: the slots before).
   std::size_t capacity = 1024;
   while (capacity < 2 * voxels) capacity *= 2;  // load at most one half
   index_bits_ = __builtin_ctzll(capacity);
@@ -156,6 +173,7 @@ void ReachMap::rebuildIndex(std::size_t voxels, int threads) {
       while (table_[s].key_plus_one != 0) s = (s + 1) & (capacity - 1);
       table_[s] = Entry{keys_[v] + 1, v};
     }
+    deferred_.pending.store(false, std::memory_order_release);
     return;
   }
   // Each thread clears and fills its own range of slots with the voxels whose home slot is in it;
@@ -188,6 +206,7 @@ void ReachMap::rebuildIndex(std::size_t voxels, int threads) {
       table_[s] = Entry{keys_[v] + 1, v};
     }
   }
+  deferred_.pending.store(false, std::memory_order_release);
 }
 
 std::size_t ReachMap::slotFor(std::uint64_t key) {
@@ -406,17 +425,27 @@ ReachMap ReachMap::read(std::istream& in, const std::string& source, std::string
 
 std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const ReachMap& map) {
   std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> points(map.size());
-  for (std::size_t v = 0; v < map.size(); ++v) {
+  reachPoints(map, 0, map.size(), points.data());
+  return points;
+}
+
+void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out,
+                 int threads) {
+  // Each point on its own: any thread's.
+  threads = threads > 0 ? threads : omp_get_num_procs();
+#pragma omp parallel for schedule(static) num_threads(threads) if (count >= 8192 && threads > 1)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(count); ++i) {
+    const std::size_t v = first + static_cast<std::size_t>(i);
     const Eigen::Vector3d c = map.voxelCentre(map.voxel(v));
-    points[v].x = static_cast<float>(c.x());
-    points[v].y = static_cast<float>(c.y());
-    points[v].z = static_cast<float>(c.z());
-    points[v].reachability = static_cast<float>(map.reachability(v));
-    points[v].manipulability = map.bestManipulability(v);
-    points[v].count = static_cast<std::uint32_t>(
+    ReachPoint& point = out[i];
+    point.x = static_cast<float>(c.x());
+    point.y = static_cast<float>(c.y());
+    point.z = static_cast<float>(c.z());
+    point.reachability = static_cast<float>(map.reachability(v));
+    point.manipulability = map.bestManipulability(v);
+    point.count = static_cast<std::uint32_t>(
         std::min<std::uint64_t>(map.count(v), std::numeric_limits<std::uint32_t>::max()));
   }
-  return points;
 }
 
 }  // namespace mcws

@@ -9,10 +9,12 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <functional>
 #include <iosfwd>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -147,7 +149,12 @@ class ReachMap {
   std::size_t slotFor(std::uint64_t key);
   long lookup(std::uint64_t key) const;
   /// An index for `voxels` at load one half at most (built by `threads` threads).
-  void rebuildIndex(std::size_t voxels, int threads = 1);
+  void rebuildIndex(std::size_t voxels, int threads = 1) const;
+  /// Leaves the index of the voxels to the first lookup() (built by `threads` threads then):
+  /// a map only written out never needs it.
+  void deferIndex(int threads);
+  /// Builds the index deferIndex() left (one thread at a time, the others wait).
+  void buildDeferredIndex() const;
   void checkBin(int bin) const;
   bool inGrid(const Eigen::Vector3d& p, Eigen::Vector3i& index) const;
   void record(std::size_t v, int bin, float manipulability);
@@ -173,15 +180,32 @@ class ReachMap {
 
   ReachGrid grid_;
   OrientationBins bins_{1, 1};
-  int words_{1};       ///< 64-bit words of one voxel's bit set
-  int stride_{3};      ///< words of one voxel's record: count, best manipulability, bits
-  int index_bits_{0};  ///< log2 of the index's size
+  int words_{1};   ///< 64-bit words of one voxel's bit set
+  int stride_{3};  ///< words of one voxel's record: count, best manipulability, bits
   double inverse_resolution_{0.0};
   template <typename T>
   using Array = std::vector<T, HugePageAllocator<T>>;
   Array<std::uint64_t> keys_;     ///< packed voxel indices
   Array<std::uint64_t> records_;  ///< per voxel: count, float bits of the best, bit set
-  Array<Entry> table_;
+  /// The index: every voxel's key at the end of a run of full slots from its home; empty while
+  /// deferred (built by lookup(), which is const and may run on several threads: mutable).
+  mutable Array<Entry> table_;
+  mutable int index_bits_{0};  ///< log2 of the index's size
+  /// Whether the index is deferred (table_ empty then), and the lock of whoever builds it. A
+  /// copy has a lock of its own.
+  struct Deferred {
+    Deferred() = default;
+    Deferred(const Deferred& other) : pending(other.pending.load()), threads(other.threads) {}
+    Deferred& operator=(const Deferred& other) {
+      pending.store(other.pending.load());
+      threads = other.threads;
+      return *this;
+    }
+    std::atomic<bool> pending{false};
+    int threads{1};
+    std::mutex mutex;
+  };
+  mutable Deferred deferred_;
 };
 
 /// \brief How a map is filled.
@@ -226,6 +250,11 @@ struct EIGEN_ALIGN16 ReachPoint {
 
 /// \brief The map's voxels as points, in the map's order.
 std::vector<ReachPoint, Eigen::aligned_allocator<ReachPoint>> reachPoints(const ReachMap& map);
+/// \brief Voxels first .. first + count - 1 of the map as points into out[0 .. count): a slice
+/// of reachPoints(), for writing a large map a part at a time, by `threads` threads (0: all
+/// cores).
+void reachPoints(const ReachMap& map, std::size_t first, std::size_t count, ReachPoint* out,
+                 int threads = 1);
 
 }  // namespace mcws
 

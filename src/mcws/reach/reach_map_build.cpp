@@ -204,8 +204,8 @@ class ReachMapBuilder {
                                      grid.resolution, empty_.stride_, sampling.dense_bytes);
     for (int t = 0; t < threads_; ++t) {
       if (box_) {
-        owned_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_));
-        parts_.push_back(owned_parts_.back().get());
+        box_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_));
+        parts_.push_back(box_parts_.back().get());
       } else {
         tables_.push_back(std::make_unique<SlotTable>(empty_.words_, threads_));
       }
@@ -289,7 +289,8 @@ class ReachMapBuilder {
     for (int t = 0; t < threads_; ++t) {
       error.run(static_cast<std::size_t>(t), [&] {
         parts_[t]->tryRecord();
-        parts_[t]->dropSpares();  // their memory before the map's
+        parts_[t]->dropSpares();  // their memory before the map's, which reuses it
+        if (box_) box_parts_[t]->dropSorted();
       });
     }
     error.rethrow();
@@ -335,46 +336,64 @@ class ReachMapBuilder {
       map.keys_.push_back(key);
       map.records_.insert(map.records_.end(), record, record + map.stride_);
     }
-    map.rebuildIndex(map.keys_.size(), threads_);
+    map.deferIndex(threads_);
     return map;
   }
 
-  /// The map of the box's reached voxels, in the box's order (the keys'), a slice per thread.
+  /// The map of the box's reached voxels, in the box's order (the keys'): each block's voxels
+  /// placed after those of the blocks before it (counted as the box filled), the blocks never
+  /// reached left unread, the blocks shared out between the threads.
   ReachMap boxMap() const {
-    const std::size_t voxels = box_->voxels();
+    const std::size_t blocks = box_->blocks();
+    std::vector<std::size_t> before(blocks + 1, 0);
+    for (std::size_t b = 0; b < blocks; ++b) {
+      std::size_t reached = 0;  // each block is one part's
+      for (const auto& part : box_parts_) reached += part->reached()[b];
+      before[b + 1] = before[b] + reached;
+    }
     const int stride = empty_.stride_;
-    std::vector<std::size_t> begin(threads_ + 1), reached(threads_ + 1, 0);
-    for (int t = 0; t <= threads_; ++t)
-      begin[t] = voxels / threads_ * t + voxels % threads_ * t / threads_;
-#pragma omp parallel for schedule(static, 1) num_threads(threads_)
-    for (int t = 0; t < threads_; ++t) {
-      for (std::size_t i = begin[t]; i < begin[t + 1]; ++i)
-        reached[t + 1] += box_->record(i)[0] != 0;
-    }
-    for (int t = 0; t < threads_; ++t) reached[t + 1] += reached[t];
     ReachMap map(empty_.grid());
-    map.keys_.resize(reached[threads_]);
-    map.records_.resize(reached[threads_] * stride);
-#pragma omp parallel for schedule(static, 1) num_threads(threads_)
-    for (int t = 0; t < threads_; ++t) {
-      std::size_t v = reached[t];
-      for (std::size_t i = begin[t]; i < begin[t + 1]; ++i) {
-        const std::uint64_t* record = box_->record(i);
-        if (record[0] == 0) continue;
-        map.keys_[v] = box_->keyOf(i);
-        std::copy_n(record, stride, map.records_.data() + v * stride);
-        ++v;
-      }
+    map.keys_.resize(before[blocks]);
+    map.records_.resize(before[blocks] * stride);
+    FirstError error;
+#pragma omp parallel for schedule(dynamic, 8) num_threads(threads_)
+    for (std::int64_t b = 0; b < static_cast<std::int64_t>(blocks); ++b) {
+      const auto block = static_cast<std::size_t>(b);
+      if (before[block + 1] == before[block]) continue;
+      error.run(block, [&] { copyBlock(block, before[block], map); });
     }
-    map.rebuildIndex(map.keys_.size(), threads_);
+    error.rethrow();
+    map.deferIndex(threads_);
     return map;
+  }
+
+  /// A block's reached voxels copied into the map from voxel v on.
+  void copyBlock(std::size_t block, std::size_t v, ReachMap& map) const {
+    const int stride = empty_.stride_;
+    const std::size_t first = block << VoxelBox::kBlockBits;
+    const std::size_t last = std::min(box_->voxels(), first + VoxelBox::kBlock);
+    // The key runs with the index along a column of z; recomputed where a column starts.
+    const std::uint64_t column = box_->size(2);
+    std::uint64_t z = first % column, key = box_->keyOf(first);
+    for (std::size_t i = first; i < last; ++i, ++z, ++key) {
+      if (z == column) {
+        z = 0;
+        key = box_->keyOf(i);
+      }
+      const std::uint64_t* record = box_->record(i);
+      if (record[0] == 0) continue;
+      map.keys_[v] = key;
+      std::copy_n(record, stride, map.records_.data() + v * stride);
+      ++v;
+    }
   }
 
   /// Samples [first, last) mapped to their voxels and bins, posted from thread t.
   void sampleBlock(std::uint64_t first, std::uint64_t last, int t) {
     CollisionChecker::Scratch scratch;
+    // s: the tool points over the voxel edge (ReachMap::keyInGrid()'s products).
     double sample_q[kMaxJoints], q[kMaxJoints * kLanes], p[3 * kLanes], a[3 * kLanes],
-        x[3 * kLanes], w[kLanes] = {};
+        x[3 * kLanes], w[kLanes] = {}, s[3 * kLanes];
     bool counted[kLanes];
     int bins[kLanes];
     for (std::uint64_t i = first; i < last; i += kLanes) {
@@ -390,10 +409,16 @@ class ReachMapBuilder {
       // The tool's x axis only for roll bins.
       batch_.poses(q, p, a, empty_.bins().rolls() > 1 ? x : nullptr, quality_, w);
       empty_.bins().bins(a, x, kLanes, bins);
+      for (int c = 0; c < 3 * kLanes; ++c) s[c] = p[c] * empty_.inverse_resolution_;
       for (int k = 0; k < kLanes; ++k) {
         if (!counted[k]) continue;
         if (static_cast<unsigned>(bins[k]) >= static_cast<unsigned>(empty_.bins().size())) {
           empty_.checkBin(bins[k]);  // throws
+        }
+        // In the box: its index straight from the scaled point (the key's voxel).
+        if (std::uint64_t index; box_ && box_->indexOfScaled(s + k, kLanes, index)) {
+          post(t, BoxPart::partOf(index, threads_), index, bins[k], static_cast<float>(w[k]));
+          continue;
         }
         std::uint64_t key;
         if (!empty_.keyInGrid(p + k, kLanes, key)) {
@@ -415,7 +440,12 @@ class ReachMapBuilder {
   /// Adds a sample to thread t's batch for a part, handing the batch over when full.
   void post(int t, int part, std::uint64_t key, int bin, float manipulability) {
     auto& out = outgoing_[t][part].samples;
-    out.push_back({key, bin, manipulability});
+    // Field by field into the batch: a sample built on the stack and copied in one 16-byte load
+    // waited for its three stores (no store-to-load forwarding), a stall at every sample.
+    PendingSample& sample = out.emplace_back();
+    sample.key = key;
+    sample.bin = bin;
+    sample.manipulability = manipulability;
     if (out.size() >= kPost) out = parts_[part]->exchange(std::move(out), kPost);
   }
 
@@ -427,7 +457,7 @@ class ReachMapBuilder {
   const QualityOptions* quality_;
   int threads_{1};
   std::unique_ptr<VoxelBox> box_;  ///< the dense map, or null: hash tables
-  std::vector<std::unique_ptr<Part>> owned_parts_;
+  std::vector<std::unique_ptr<BoxPart>> box_parts_;
   std::vector<std::unique_ptr<SlotTable>> tables_;
   std::vector<Part*> parts_;
   std::deque<ReachMap> spill_;  ///< per thread: samples outside the box

@@ -68,6 +68,9 @@ VoxelBox::VoxelBox(const std::int64_t low[3], const std::int64_t size[3], int st
   for (int a = 0; a < 3; ++a) {
     low_[a] = static_cast<std::uint64_t>(low[a] + ReachMap::kIndexLimit);
     size_[a] = static_cast<std::uint64_t>(size[a]);
+    first_index_[a] = low[a];
+    first_[a] = static_cast<double>(low[a]);
+    end_[a] = static_cast<double>(low[a] + size[a]);
     voxels_ *= size_[a];
   }
   // Anonymous memory: zero pages from the kernel where first touched, 2 MB aligned and advised
@@ -117,8 +120,7 @@ void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
   std::uint64_t* data = box_.record(0);
   if (cached()) {
     for (const auto& batch : batches) {
-      for (const PendingSample& s : batch)
-        recordSample(data + s.key * stride, s.bin, s.manipulability);
+      for (const PendingSample& s : batch) add(data, stride, s);
     }
     return;
   }
@@ -136,11 +138,10 @@ void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
   for (const auto& batch : batches) {
     for (const PendingSample& s : batch) sorted_[start[s.key >> shift]++] = s;
   }
-  constexpr std::size_t kAhead = 16;  // records fetched ahead of their sample
+  constexpr std::size_t kAhead = 40;  // records fetched ahead of their sample
   for (std::size_t i = 0; i < sorted_.size(); ++i) {
     if (i + kAhead < sorted_.size()) __builtin_prefetch(data + sorted_[i + kAhead].key * stride, 1);
-    const PendingSample& s = sorted_[i];
-    recordSample(data + s.key * stride, s.bin, s.manipulability);
+    add(data, stride, sorted_[i]);
   }
 }
 

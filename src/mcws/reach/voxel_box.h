@@ -93,6 +93,8 @@ class VoxelBox {
   std::size_t voxels() const { return voxels_; }
   std::size_t bytes() const { return voxels_ * stride_ * sizeof(std::uint64_t); }
   int stride() const { return stride_; }
+  /// \brief Voxels along axis a.
+  std::uint64_t size(int a) const { return size_[a]; }
   /// \brief The index of the voxel of a packed key (ReachMap::keyOf); false outside the box.
   bool indexOf(std::uint64_t key, std::uint64_t& index) const {
     std::uint64_t at[3];
@@ -103,15 +105,39 @@ class VoxelBox {
     index = (at[0] * size_[1] + at[1]) * size_[2] + at[2];
     return true;
   }
+  /// \brief The index of the voxel of a point given as its coordinates over the voxel edge, s[a *
+  /// stride] (what ReachMap::keyInGrid() computes from the point): the voxel of the same key,
+  /// floor(s) on each axis; false outside the box (or NaN), where nothing is written.
+  bool indexOfScaled(const double* s, int stride, std::uint64_t& index) const {
+    std::uint64_t at[3];
+    for (int a = 0; a < 3; ++a) {
+      const double v = s[a * stride];
+      // floor(v) within [first, end) exactly when v is (whole numbers, within ReachMap's range).
+      if (!(v >= first_[a] && v < end_[a])) return false;
+      auto i = static_cast<std::int64_t>(v);    // toward zero
+      i -= static_cast<double>(i) > v ? 1 : 0;  // floor
+      at[a] = static_cast<std::uint64_t>(i - first_index_[a]);
+    }
+    index = (at[0] * size_[1] + at[1]) * size_[2] + at[2];
+    return true;
+  }
   /// \brief The packed key of the voxel at an index.
   std::uint64_t keyOf(std::size_t index) const;
   std::uint64_t* record(std::size_t index) { return data_ + index * stride_; }
   const std::uint64_t* record(std::size_t index) const { return data_ + index * stride_; }
+  /// Voxels in a block of the box (its indices [b, b + 1) * kBlock): the unit in which reached
+  /// voxels are counted while the box fills, so the map is copied out without reading the
+  /// blocks never reached.
+  static constexpr std::size_t kBlockBits = 12, kBlock = std::size_t{1} << kBlockBits;
+  /// \brief Blocks of the box (the last may be partial).
+  std::size_t blocks() const { return (voxels_ + kBlock - 1) >> kBlockBits; }
 
  private:
   static constexpr std::uint64_t kFieldMask = (std::uint64_t{1} << 21) - 1;
-  std::uint64_t low_[3]{};   ///< the first voxel's packed fields (index + 2^20)
-  std::uint64_t size_[3]{};  ///< voxels along each axis
+  std::uint64_t low_[3]{};         ///< the first voxel's packed fields (index + 2^20)
+  std::uint64_t size_[3]{};        ///< voxels along each axis
+  std::int64_t first_index_[3]{};  ///< the first voxel's index
+  double first_[3]{}, end_[3]{};   ///< the first voxel's index and the last's + 1
   std::size_t voxels_{0};
   int stride_;
   void* base_{nullptr};           ///< the mapping
@@ -135,15 +161,21 @@ ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
 /// of `parts` (so the parts share the work whatever the shape of the reach).
 class BoxPart : public Part {
  public:
-  static constexpr int kBlockBits = 12;
+  static constexpr int kBlockBits = static_cast<int>(VoxelBox::kBlockBits);
   /// A part of `box` split in `parts`.
-  BoxPart(VoxelBox& box, int parts) : box_(box), parts_(parts) {}
+  BoxPart(VoxelBox& box, int parts) : box_(box), parts_(parts), reached_(box.blocks(), 0) {}
   /// \brief The part holding a box index: Fibonacci hashing of its block (a multiply, where a
   /// modulo would divide).
   static int partOf(std::uint64_t index, int parts) {
     const auto hash = static_cast<std::uint32_t>((index >> kBlockBits) * 0x9E3779B9u);
     return static_cast<int>((std::uint64_t{hash} * static_cast<unsigned>(parts)) >> 32);
   }
+  /// \brief The voxels reached so far in each block of the box (VoxelBox::blocks()) that this
+  /// part holds; 0 for the others.
+  const std::vector<std::uint32_t>& reached() const { return reached_; }
+  /// \brief Frees the memory kept for sorting samples (when no more samples come): the map's
+  /// arrays allocated next then reuse its pages, where new pages cost a fault each.
+  void dropSorted() { decltype(sorted_)().swap(sorted_); }
 
  private:
   void record(const std::vector<std::vector<PendingSample>>& batches) override;
@@ -153,8 +185,15 @@ class BoxPart : public Part {
   std::size_t pending() const override {
     return std::max(kPending, (std::size_t{1} << 23) / static_cast<unsigned>(parts_));
   }
+  /// Adds a sample to its record, counting the voxel in its block when it is its first.
+  void add(std::uint64_t* data, int stride, const PendingSample& s) {
+    std::uint64_t* record = data + s.key * stride;
+    reached_[s.key >> kBlockBits] += record[0] == 0;
+    recordSample(record, s.bin, s.manipulability);
+  }
   VoxelBox& box_;
   int parts_;
+  std::vector<std::uint32_t> reached_;  ///< per block of the box: its voxels reached
   /// The samples sorted; huge pages, as its 2^11 buckets are written at random (and resize
   /// leaves it unset: every element is written).
   std::vector<PendingSample, HugePageAllocator<PendingSample>> sorted_;
