@@ -1,0 +1,58 @@
+#pragma once
+// The reach map tests' byte images of a map and its contents voxel by voxel (reach_map_test.cpp
+// and reach_map_build_test.cpp).
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "mcws/reach/reach_map.h"
+
+namespace mcws::test {
+
+inline std::string bytesOf(const ReachMap& map, const std::string& header = "{}") {
+  std::ostringstream out(std::ios::binary);
+  map.write(out, header);
+  return out.str();
+}
+
+inline ReachMap readBytes(const std::string& bytes, const std::string& source,
+                          std::string* header = nullptr) {
+  std::istringstream in(bytes, std::ios::binary);
+  return ReachMap::read(in, source, header);
+}
+
+using VoxelIndex = std::array<int, 3>;
+inline VoxelIndex key(const Eigen::Vector3i& i) { return {i.x(), i.y(), i.z()}; }
+
+/// What one voxel of a map holds.
+struct Voxel {
+  std::uint64_t count{0};
+  float best{0.f};
+  std::set<int> bins;
+  bool operator==(const Voxel& o) const {
+    return count == o.count && best == o.best && bins == o.bins;
+  }
+};
+
+inline std::map<VoxelIndex, Voxel> contents(const ReachMap& map) {
+  std::map<VoxelIndex, Voxel> out;
+  for (std::size_t v = 0; v < map.size(); ++v) {
+    Voxel& voxel = out[key(map.voxel(v))];
+    voxel.count = map.count(v);
+    voxel.best = map.bestManipulability(v);
+    for (int b = 0; b < map.bins().size(); ++b) {
+      if (map.reached(v, b)) voxel.bins.insert(b);
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand-made maps.
+
+}  // namespace mcws::test
