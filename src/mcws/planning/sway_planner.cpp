@@ -570,15 +570,21 @@ void SwayPlanner::validateRound(SwayPlanningResult& result, const PlanningProgre
                                 const CancelCheck& cancel_check) const {
   const auto started = std::chrono::steady_clock::now();
   const PlanningRound& round = result.rounds[*result.validated];
-  if (progress) progress("validation", 0, 3);
+  // Each path's validation starts with a check on this thread: the checks within it are made by
+  // whichever pose thread 0 takes, which a short validation may leave without one.
+  const auto step = [&](std::size_t done) {
+    if (progress) progress("validation", done, 3);
+    if (cancel_check && done < 3) cancel_check();
+  };
+  step(0);
   result.validation.push_back(
       validate("chosen", round.best->waypoints, round.base_offset, cancel_check));
-  if (progress) progress("validation", 1, 3);
+  step(1);
   result.validation.push_back(
       validate("shortest", round.candidates.front().waypoints, round.base_offset, cancel_check));
-  if (progress) progress("validation", 2, 3);
+  step(2);
   result.validation.push_back(validatePadded(round.base_offset, cancel_check));
-  if (progress) progress("validation", 3, 3);
+  step(3);
   result.validation_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
 }
