@@ -157,16 +157,40 @@ class LeftOut {
       if (found) found->push_back(index_[k]);
       return all;  // one is enough without `all`
     };
-    // The grid cell of the centre (clamped): its node is searched first at each level, where
-    // one point inside ends the search.
-    std::uint32_t cell = 0;
+    // Boxes farther than the reach (a little enlarged for the float rounding) hold none. The
+    // search starts at the deepest level where the cells within that reach of the centre (and a
+    // margin) span at most two nodes per axis, in those nodes: the others hold no point within
+    // it. Of a node's children, the one on the way to the centre's cell comes first.
+    const double bound = reach * reach * (1.0 + 1e-4);
+    const double half =
+        std::sqrt(bound) * 1.001 +
+        1e-6 * std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])});
+    std::array<std::uint32_t, 3> low{0, 0, 0}, high{0, 0, 0}, mid{0, 0, 0};
     for (int a = 0; a < D; ++a) {
-      const double t = (centre[a] - origin_[a]) * scale_[a];
-      const auto q = static_cast<std::uint32_t>(std::clamp(t, 0.0, (1u << kBits) - 1.0));
-      for (int b = 0; b < kBits; ++b) cell |= ((q >> b) & 1u) << (b * D + a);
+      low[a] = cellOf(query[a] - half, a);
+      high[a] = cellOf(query[a] + half, a);
+      mid[a] = cellOf(query[a], a);
     }
-    // Boxes farther than the reach (a little enlarged for the float rounding) hold none.
-    search(0, 0, query, reach * reach * (1.0 + 1e-4), cell, visit);
+    int level = kBits;
+    const auto spans = [&](int shift) {
+      for (int a = 0; a < D; ++a) {
+        if ((high[a] >> shift) - (low[a] >> shift) > 1) return false;
+      }
+      return true;
+    };
+    while (level > 0 && !spans(kBits - level)) --level;
+    const int shift = kBits - level;
+    const std::uint32_t near = interleave(mid, kBits);
+    for (std::uint32_t t = 0; t < (1u << D); ++t) {
+      std::array<std::uint32_t, 3> node{0, 0, 0};
+      bool twice = false;
+      for (int a = 0; a < D; ++a) {
+        const bool upper = (t >> a) & 1u;
+        node[a] = (upper ? high[a] : low[a]) >> shift;
+        twice |= upper && node[a] == low[a] >> shift;
+      }
+      if (!twice && !search(level, interleave(node, level), query, bound, near, visit)) break;
+    }
     return any;
   }
 
@@ -174,6 +198,20 @@ class LeftOut {
   static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   static constexpr int kBits = D == 3 ? kOrderBits3 : kOrderBits2;
   using Box = std::array<float, 2 * D>;  // lower corner, upper corner
+
+  /// The grid cell of coordinate x on axis a (as mortonOrder() places the points).
+  std::uint32_t cellOf(double x, int a) const {
+    const double t = (x - origin_[a]) * scale_[a];
+    return static_cast<std::uint32_t>(std::clamp(t, 0.0, (1u << kBits) - 1.0));
+  }
+  /// The Morton code of the node of integer coordinates `node` at `level` (bits per axis).
+  static std::uint32_t interleave(const std::array<std::uint32_t, 3>& node, int level) {
+    std::uint32_t code = 0;
+    for (int a = 0; a < D; ++a) {
+      for (int b = 0; b < level; ++b) code |= ((node[a] >> b) & 1u) << (b * D + a);
+    }
+    return code;
+  }
 
   std::uint32_t begin(int level, std::uint32_t code) const {
     return first_[std::size_t{code} << (D * (kBits - level))];
