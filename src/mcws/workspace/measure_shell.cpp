@@ -157,11 +157,24 @@ class LeftOut {
       if (found) found->push_back(index_[k]);
       return all;  // one is enough without `all`
     };
-    // Boxes farther than the reach (a little enlarged for the float rounding) hold none. The
-    // search starts at the deepest level where the cells within that reach of the centre (and a
-    // margin) span at most two nodes per axis, in those nodes: the others hold no point within
-    // it. Of a node's children, the one on the way to the centre's cell comes first.
-    const double bound = reach * reach * (1.0 + 1e-4);
+    // Boxes farther than the reach (a little enlarged for the float rounding) hold none.
+    searchNear(query, centre, reach * reach * (1.0 + 1e-4), visit);
+    return any;
+  }
+
+ private:
+  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  static constexpr int kBits = D == 3 ? kOrderBits3 : kOrderBits2;
+  using Box = std::array<float, 2 * D>;  // lower corner, upper corner
+
+  /// search() of the nodes within `bound` (squared) of `query` (`centre` rounded to float).
+  template <typename Visit>
+  void searchNear(const std::array<float, 3>& query, const std::array<double, 3>& centre,
+                  double bound, Visit& visit) const {
+    // It starts at the deepest level where the grid cells within the bound's distance of the
+    // query (and a margin for rounding) span at most two nodes per axis, in those nodes: the
+    // others hold no point within it. Of a node's children, the one on the way to the query's
+    // cell comes first.
     const double half =
         std::sqrt(bound) * 1.001 +
         1e-6 * std::max({std::abs(centre[0]), std::abs(centre[1]), std::abs(centre[2])});
@@ -191,13 +204,7 @@ class LeftOut {
       }
       if (!twice && !search(level, interleave(node, level), query, bound, near, visit)) break;
     }
-    return any;
   }
-
- private:
-  static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-  static constexpr int kBits = D == 3 ? kOrderBits3 : kOrderBits2;
-  using Box = std::array<float, 2 * D>;  // lower corner, upper corner
 
   /// The grid cell of coordinate x on axis a (as mortonOrder() places the points).
   std::uint32_t cellOf(double x, int a) const {
