@@ -27,6 +27,8 @@ constexpr int kOrderBits3 = 6, kOrderBits2 = 9;
 /// Points of a node of the left-out points' tree that are read one by one rather than its
 /// children's boxes.
 constexpr std::uint32_t kScanPoints = 8;
+/// Grid cells up to which a search reads the cells its reach spans one by one, not the tree.
+constexpr std::uint32_t kDirectCells = 64;
 
 /// The points `members` of `points` in the Morton (Z) order of the cells of a 2^bits per axis
 /// grid over their bounding box, in index order within a cell (a counting sort); `first` gets the
@@ -100,6 +102,9 @@ class LeftOut {
       coordinates_.push_back({points[i].x, points[i].y, points[i].z});
     }
     removed_.assign(index_.size(), 0);
+    for (std::uint32_t q = 0; q < spread_.size(); ++q) {
+      for (int b = 0; b < kBits; ++b) spread_[q] |= ((q >> b) & 1u) << (b * D);
+    }
     buildBoxes();
   }
 
@@ -184,6 +189,19 @@ class LeftOut {
       high[a] = cellOf(query[a] + half, a);
       mid[a] = cellOf(query[a], a);
     }
+    std::uint32_t cells = 1;
+    for (int a = 0; a < D; ++a) cells *= high[a] - low[a] + 1;
+    if (cells <= kDirectCells) {  // a small reach: its grid cells one by one
+      std::array<std::uint32_t, 3> cell{0, 0, 0};
+      for (cell[2] = low[2]; cell[2] <= high[2]; ++cell[2]) {
+        for (cell[1] = low[1]; cell[1] <= high[1]; ++cell[1]) {
+          for (cell[0] = low[0]; cell[0] <= high[0]; ++cell[0]) {
+            if (!search(kBits, interleave(cell), query, bound, 0, visit)) return;
+          }
+        }
+      }
+      return;
+    }
     int level = kBits;
     const auto spans = [&](int shift) {
       for (int a = 0; a < D; ++a) {
@@ -193,7 +211,7 @@ class LeftOut {
     };
     while (level > 0 && !spans(kBits - level)) --level;
     const int shift = kBits - level;
-    const std::uint32_t near = interleave(mid, kBits);
+    const std::uint32_t near = interleave(mid);
     for (std::uint32_t t = 0; t < (1u << D); ++t) {
       std::array<std::uint32_t, 3> node{0, 0, 0};
       bool twice = false;
@@ -202,7 +220,7 @@ class LeftOut {
         node[a] = (upper ? high[a] : low[a]) >> shift;
         twice |= upper && node[a] == low[a] >> shift;
       }
-      if (!twice && !search(level, interleave(node, level), query, bound, near, visit)) break;
+      if (!twice && !search(level, interleave(node), query, bound, near, visit)) break;
     }
   }
 
@@ -211,12 +229,10 @@ class LeftOut {
     const double t = (x - origin_[a]) * scale_[a];
     return static_cast<std::uint32_t>(std::clamp(t, 0.0, (1u << kBits) - 1.0));
   }
-  /// The Morton code of the node of integer coordinates `node` at `level` (bits per axis).
-  static std::uint32_t interleave(const std::array<std::uint32_t, 3>& node, int level) {
+  /// The Morton code of the node of integer coordinates `node` (at any level).
+  std::uint32_t interleave(const std::array<std::uint32_t, 3>& node) const {
     std::uint32_t code = 0;
-    for (int a = 0; a < D; ++a) {
-      for (int b = 0; b < level; ++b) code |= ((node[a] >> b) & 1u) << (b * D + a);
-    }
+    for (int a = 0; a < D; ++a) code |= spread_[node[a]] << a;
     return code;
   }
 
@@ -303,7 +319,8 @@ class LeftOut {
   std::vector<std::uint32_t> index_;               // the point's index in the whole cloud
   std::vector<std::uint32_t> slot_of_;             // the point's place in the order, by its index
   std::vector<std::uint32_t> first_;               // the first place of each grid cell's points
-  std::vector<std::vector<Box>> boxes_;            // by level (0: the root), then by code
+  std::array<std::uint32_t, (1u << kBits)> spread_{};  // bit b of a coordinate to bit b D
+  std::vector<std::vector<Box>> boxes_;                // by level (0: the root), then by code
   std::array<double, 3> origin_{}, scale_{};  // of the grid: the cell of x from (x - origin) scale
   std::vector<char> removed_;                 // by place: joined the shell
 };
