@@ -257,10 +257,26 @@ void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
   } else {
     starCells(dt, v, cells);
     const std::size_t first = out.size();
+    // Each vertex once: looked up in a small table on the stack (open addressing) while there
+    // are at most kTable / 2 of them (a star has a few dozen), else in `out` itself.
+    constexpr std::size_t kTable = 128;  // 2^7: the top 7 bits of the hash below
+    std::array<const void*, kTable> table{};
     for (const auto& c : cells) {
       for (int k = 0; k < 4; ++k) {
         const auto u = c->vertex(k);
-        if (u != v && std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+        if (u == v) continue;
+        if (out.size() - first > kTable / 2) {
+          if (std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+          continue;
+        }
+        const void* key = &*u;
+        auto slot = static_cast<std::size_t>(
+            (reinterpret_cast<std::uintptr_t>(key) >> 4) * 0x9E3779B97F4A7C15ull >> 57);
+        for (; table[slot] != nullptr && table[slot] != key; slot = (slot + 1) % kTable) {
+        }
+        if (table[slot] == key) continue;
+        table[slot] = key;
+        out.push_back(u);
       }
     }
   }
