@@ -224,10 +224,11 @@ class LeftOut {
     }
   }
 
-  /// The grid cell of coordinate x on axis a (as mortonOrder() places the points).
+  /// The grid cell of coordinate x on axis a (as mortonOrder() places the points; every point
+  /// in cell 0 of an axis where they all have one coordinate).
   std::uint32_t cellOf(double x, int a) const {
-    const double t = (x - origin_[a]) * scale_[a];
-    return static_cast<std::uint32_t>(std::clamp(t, 0.0, (1u << kBits) - 1.0));
+    const double t = (x - origin_[a]) * scale_[a];  // NaN for an infinite x on a flat axis
+    return t >= 0.0 ? static_cast<std::uint32_t>(std::min(t, (1u << kBits) - 1.0)) : 0u;
   }
   /// The Morton code of the node of integer coordinates `node` (at any level).
   std::uint32_t interleave(const std::array<std::uint32_t, 3>& node) const {
