@@ -36,6 +36,7 @@
 #include "mcws/core/error.h"
 #include "mcws/core/first_error.h"
 #include "mcws/workspace/detail/cancel_pacing.h"
+#include "mcws/workspace/detail/star_locate.h"
 
 namespace mcws::detail {
 
@@ -75,19 +76,24 @@ auto canonicalPoints(const Simplex& s) {
   return p;
 }
 
+/// Whether the circumradius of a triangle (D = 2) or tetrahedron (D = 3), its vertex points `p`
+/// in the order of their indices, is at most `limit`.
+template <int D, typename Points>
+bool withinLimit(const Points& p, double limit) {
+  if constexpr (D == 2) {
+    return CGAL::squared_radius(p[0], p[1], p[2]) <= limit * limit;
+  } else {
+    return CGAL::squared_radius(p[0], p[1], p[2], p[3]) <= limit * limit;
+  }
+}
+
 /// Whether a triangle (D = 2) or tetrahedron (D = 3) belongs to the region: its circumradius is
 /// at most `alpha_factor` times the local spacing at its sparsest vertex.
 template <int D, typename Simplex>
 bool withinAlpha(const Simplex& s, const std::vector<double>& spacing, double alpha_factor) {
   double local = 0.0;
   for (int k = 0; k <= D; ++k) local = std::max(local, spacing[s->vertex(k)->info()]);
-  const double limit = alpha_factor * local;
-  const auto p = canonicalPoints<D>(s);
-  if constexpr (D == 2) {
-    return CGAL::squared_radius(p[0], p[1], p[2]) <= limit * limit;
-  } else {
-    return CGAL::squared_radius(p[0], p[1], p[2], p[3]) <= limit * limit;
-  }
+  return withinLimit<D>(canonicalPoints<D>(s), alpha_factor * local);
 }
 
 /// Area of a triangle (D = 2) or volume of a tetrahedron (D = 3).
@@ -237,7 +243,9 @@ void starCells(const Delaunay& dt, typename Delaunay::Vertex_handle v,
 }
 
 /// The vertices that share an edge with v, the infinite one included, appended to `out` (in 3-D
-/// from v's star cells, found into `cells`). Read-only, so threads may call it at once.
+/// from v's star cells, found into `cells`); the first D of them make a simplex with v (2-D: two
+/// neighbours in turn around v; 3-D: v's cell's other vertices). Read-only, so threads may call
+/// it at once.
 template <int D, typename Delaunay, typename Cells>
 void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
                       std::vector<typename Delaunay::Vertex_handle>& out, Cells& cells) {
@@ -249,10 +257,26 @@ void adjacentVertices(const Delaunay& dt, typename Delaunay::Vertex_handle v,
   } else {
     starCells(dt, v, cells);
     const std::size_t first = out.size();
+    // Each vertex once: looked up in a small table on the stack (open addressing) while there
+    // are at most kTable / 2 of them (a star has a few dozen), else in `out` itself.
+    constexpr std::size_t kTable = 128;  // 2^7: the top 7 bits of the hash below
+    std::array<const void*, kTable> table{};
     for (const auto& c : cells) {
       for (int k = 0; k < 4; ++k) {
         const auto u = c->vertex(k);
-        if (u != v && std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+        if (u == v) continue;
+        if (out.size() - first > kTable / 2) {
+          if (std::find(out.begin() + first, out.end(), u) == out.end()) out.push_back(u);
+          continue;
+        }
+        const void* key = &*u;
+        auto slot = static_cast<std::size_t>(
+            (reinterpret_cast<std::uintptr_t>(key) >> 4) * 0x9E3779B97F4A7C15ull >> 57);
+        for (; table[slot] != nullptr && table[slot] != key; slot = (slot + 1) % kTable) {
+        }
+        if (table[slot] == key) continue;
+        table[slot] = key;
+        out.push_back(u);
       }
     }
   }
@@ -391,6 +415,47 @@ bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
   return !dt.is_infinite(s) && withinAlpha<D>(s, spacing, alpha_factor);
 }
 
+/// Whether point `p` of vertex v, not on the convex hull, lies outside the region of the other
+/// points, from v's `neighbours` (adjacentVertices(): the first D of them with v make a simplex
+/// of v's star): the simplex of the Delaunay triangulation of the neighbours that holds p (the
+/// simplex of the others' triangulation that holds it, outsideByStar()) is not within the alpha
+/// limit. With `shortcut`, that simplex comes from starSimplex() when it gives one, without the
+/// neighbours' triangulation; else (or without `shortcut`) from that triangulation (`Local`),
+/// built from the neighbours sorted by index, as located there. The same answer either way:
+/// where p lies strictly inside a simplex whose circumsphere holds no other neighbour, that
+/// simplex is the triangulation's and the one it locates. `points`, `star`: scratch space.
+template <int D, typename Vertex, typename Point>
+bool outsideOfNeighbours(const Point& p, const std::vector<Vertex>& neighbours,
+                         const std::vector<double>& spacing, double alpha_factor, bool shortcut,
+                         std::vector<Point>& points,
+                         std::vector<std::pair<Point, std::uint32_t>>& star) {
+  std::array<int, D + 1> simplex;
+  std::array<int, D> start;
+  for (int j = 0; j < D; ++j) start[j] = j;
+  if (shortcut && neighbours.size() > static_cast<std::size_t>(D)) {
+    points.clear();
+    for (const auto& u : neighbours) points.push_back(u->point());
+    if (starSimplex<D>(p, points, start, simplex)) {
+      std::array<std::pair<std::uint32_t, int>, D + 1> order;
+      for (int k = 0; k <= D; ++k) order[k] = {neighbours[simplex[k]]->info(), simplex[k]};
+      std::sort(order.begin(), order.end());
+      std::array<Point, D + 1> q;
+      double local = 0.0;
+      for (int k = 0; k <= D; ++k) {
+        q[k] = points[order[k].second];
+        local = std::max(local, spacing[order[k].first]);
+      }
+      return !withinLimit<D>(q, alpha_factor * local);
+    }
+  }
+  star.clear();
+  for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
+  std::sort(star.begin(), star.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  const typename Simplices<D>::Local local(star.begin(), star.end());
+  return !inRegion<D>(local, p, spacing, alpha_factor);
+}
+
 // Leave one out from the star (LeaveOneOut::kStar). Removing a vertex v from a Delaunay
 // triangulation changes only its star: the hole is filled by the part of the Delaunay
 // triangulation of v's neighbours that lies in it (Devillers, "On deletion in Delaunay
@@ -401,22 +466,23 @@ bool inRegion(const Delaunay& dt, const typename Delaunay::Point& p,
 // neighbours are sorted by index before the small triangulation is built: a parallel
 // triangulation lists them in an order that depends on the thread count, and where v's point
 // lies exactly on a facet of the small triangulation (lattice data), the simplex `locate`
-// returns depends on how that triangulation was built.
+// returns depends on how that triangulation was built. Most vertices need no small
+// triangulation (outsideOfNeighbours(), `shortcut`; without it, every vertex builds one).
 /// With `flags` (one per point, by vertex info), also flags each vertex counted. `cancel_check`
 /// (when set) is called on the calling thread every kStarCancelStride of its vertices.
 template <int D, typename Delaunay>
 std::size_t outsideByStar(const Delaunay& dt,
                           const std::vector<typename Delaunay::Vertex_handle>& boundary,
                           const std::vector<double>& spacing, double alpha_factor, int threads,
-                          std::vector<char>* flags = nullptr,
-                          const CancelCheck& cancel_check = {}) {
-  using Local = typename Simplices<D>::Local;
+                          std::vector<char>* flags = nullptr, const CancelCheck& cancel_check = {},
+                          bool shortcut = true) {
   std::size_t outside = 0;
   FirstError error;  // running out of memory or cancelling leaves the parallel region through it
 #pragma omp parallel num_threads(threads) reduction(+ : outside)
   {
     std::vector<typename Delaunay::Vertex_handle> neighbours;
     std::vector<typename SimplexOf<D, Delaunay>::Handle> cells;  // 3-D: the star's
+    std::vector<typename Delaunay::Point> points;
     std::vector<std::pair<typename Delaunay::Point, std::uint32_t>> star;
     CancelPacer pacer = callingThreadPacer(cancel_check, kStarCancelStride);
 #pragma omp for schedule(dynamic, 256)
@@ -426,19 +492,11 @@ std::size_t outsideByStar(const Delaunay& dt,
         const auto v = boundary[i];
         neighbours.clear();
         adjacentVertices<D>(dt, v, neighbours, cells);
-        if (std::any_of(neighbours.begin(), neighbours.end(),
-                        [&](const auto& u) { return dt.is_infinite(u); })) {
-          ++outside;  // on the convex hull
-          if (flags) (*flags)[v->info()] = 1;
-          return;
-        }
-        star.clear();
-        for (const auto& u : neighbours) star.emplace_back(u->point(), u->info());
-        std::sort(star.begin(), star.end(),
-                  [](const auto& a, const auto& b) { return a.second < b.second; });
-        const Local local(star.begin(), star.end());
-        const bool out = !inRegion<D>(local, v->point(), spacing, alpha_factor);
-        outside += out;
+        const bool out = std::any_of(neighbours.begin(), neighbours.end(),
+                                     [&](const auto& u) { return dt.is_infinite(u); }) ||
+                         outsideOfNeighbours<D>(v->point(), neighbours, spacing, alpha_factor,
+                                                shortcut, points, star);
+        outside += out;  // on the convex hull, or outside the others' region
         if (flags && out) (*flags)[v->info()] = 1;
       });
     }
