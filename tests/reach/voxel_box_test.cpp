@@ -4,12 +4,14 @@
 // samples outside a box made too small on purpose; the box's indices (of keys and of scaled
 // points) against brute force; the index of a map built by threads finding every voxel, also
 // when it is built by the first of several threads to look (and in a copy); the voxels a part
-// counts in each block against its records; a part's recorded batches handed back empty with
-// their memory.
+// counts in each block against its records; a part's 8-byte samples (box index and bin in one
+// code) against the plain recording, and the hash tables where the codes do not fit; a part's
+// recorded batches handed back empty with their memory.
 #include "mcws/reach/voxel_box.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -24,11 +26,13 @@
 namespace mcws {
 namespace {
 
+using reach_map_build::BoxPart;
+using reach_map_build::BoxSample;
 using reach_map_build::PendingSample;
 using reach_map_build::VoxelBox;
 
 /// A part that keeps the samples it records, in order.
-class ListPart : public reach_map_build::Part {
+class ListPart : public reach_map_build::Part<PendingSample> {
  public:
   std::vector<PendingSample> recorded;
 
@@ -200,16 +204,17 @@ TEST(VoxelBox, APartCountsTheVoxelsItReachesInEachOfItsBlocks) {
     const int stride = edge == 10 ? 3 : 6;
     VoxelBox box(low, size, stride);
     std::vector<std::unique_ptr<reach_map_build::BoxPart>> parts;
-    for (int p = 0; p < 2; ++p) parts.push_back(std::make_unique<reach_map_build::BoxPart>(box, 2));
+    const int bins = stride == 3 ? 64 : 200;
+    for (int p = 0; p < 2; ++p) parts.push_back(std::make_unique<BoxPart>(box, 2, bins));
     std::mt19937_64 random(5);
     for (int round = 0; round < 3; ++round) {
-      std::vector<std::vector<PendingSample>> batches(2);
+      std::vector<std::vector<BoxSample>> batches(2);
       for (int i = 0; i < 200000; ++i) {
         // Squared: denser near the box's start, so some blocks stay empty.
         const double u = std::uniform_real_distribution<double>(0.0, 1.0)(random);
         const auto index = static_cast<std::uint64_t>(u * u * 0.7 * box.voxels());
-        batches[reach_map_build::BoxPart::partOf(index, 2)].push_back(
-            {index, i % (stride == 3 ? 64 : 200), 0.25f});
+        const int part = BoxPart::partOf(index, 2);
+        batches[part].push_back({parts[part]->code(index, i % bins), 0.25f});
       }
       for (int p = 0; p < 2; ++p) {
         parts[p]->post(std::move(batches[p]));
@@ -232,6 +237,96 @@ TEST(VoxelBox, APartCountsTheVoxelsItReachesInEachOfItsBlocks) {
       EXPECT_GT(empty_blocks, 0u);
     }
   }
+}
+
+TEST(VoxelBox, APartsEightByteSamplesRecordWhatTheSixteenByteOnesDid) {
+  // Samples as 8-byte codes (index and bin) recorded by the box's parts, swept sorted or as they
+  // come, against the same samples recorded one by one with recordSample (the plain path):
+  // every word of every record the same. Bins of 1, 64, 200 and 65536 (0, 6, 8 and 16 bits),
+  // the last box index and the last bin among them.
+  struct Case {
+    std::int64_t edge[3];
+    int bins;
+    int samples;
+  };
+  for (const Case& c : {Case{{10, 10, 10}, 64, 20000}, Case{{80, 80, 80}, 200, 300000},
+                        Case{{40, 41, 43}, 1, 100000}, Case{{16, 64, 64}, 65536, 3000}}) {
+    const std::int64_t low[3] = {-7, 2, 0};
+    const int stride = 2 + (c.bins + 63) / 64;
+    VoxelBox box(low, c.edge, stride);
+    ASSERT_TRUE(BoxPart::fits(box.voxels(), c.bins));
+    std::vector<std::uint64_t> plain(box.voxels() * stride, 0);
+    std::vector<std::unique_ptr<BoxPart>> parts;
+    for (int p = 0; p < 2; ++p) parts.push_back(std::make_unique<BoxPart>(box, 2, c.bins));
+    std::mt19937_64 random(11);
+    std::vector<std::size_t> touched;
+    for (int round = 0; round < 2; ++round) {
+      std::vector<std::vector<BoxSample>> batches(2);
+      for (int i = 0; i < c.samples; ++i) {
+        std::uint64_t index = random() % box.voxels();
+        int bin = static_cast<int>(random() % static_cast<unsigned>(c.bins));
+        if (i % 97 == 0) index = box.voxels() - 1;
+        if (i % 89 == 0) bin = c.bins - 1;
+        if (c.bins == 65536) index = i % 2 == 0 ? index % 64 : box.voxels() - 1 - index % 64;
+        const float w = std::uniform_real_distribution<float>(0.0f, 2.0f)(random);
+        reach_map_build::recordSample(plain.data() + index * stride, bin, w);
+        touched.push_back(index);
+        const int part = BoxPart::partOf(index, 2);
+        const std::uint32_t code = parts[part]->code(index, bin);
+        ASSERT_EQ(code >> BoxPart::binBits(c.bins), index);
+        ASSERT_EQ(code & ((std::uint32_t{1} << BoxPart::binBits(c.bins)) - 1),
+                  static_cast<std::uint32_t>(bin));
+        batches[part].push_back({code, w});
+      }
+      for (int p = 0; p < 2; ++p) {
+        parts[p]->post(std::move(batches[p]));
+        ASSERT_TRUE(parts[p]->tryRecord());
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    std::size_t reached = 0;
+    for (std::size_t b = 0; b < box.blocks(); ++b) {
+      reached += parts[0]->reached()[b] + parts[1]->reached()[b];
+    }
+    EXPECT_EQ(reached, touched.size()) << c.bins;
+    for (const std::size_t i : touched) {
+      for (int w = 0; w < stride; ++w) {
+        ASSERT_EQ(box.record(i)[w], plain[i * stride + w]) << c.bins << " " << i << " " << w;
+      }
+    }
+  }
+}
+
+TEST(VoxelBox, ABoxFitsTheCodesOfItsIndicesAndBinsIn32Bits) {
+  EXPECT_EQ(BoxPart::binBits(1), 0);
+  EXPECT_EQ(BoxPart::binBits(2), 1);
+  EXPECT_EQ(BoxPart::binBits(200), 8);
+  EXPECT_EQ(BoxPart::binBits(256), 8);
+  EXPECT_EQ(BoxPart::binBits(257), 9);
+  EXPECT_EQ(BoxPart::binBits(65536), 16);
+  EXPECT_TRUE(BoxPart::fits(std::size_t{1} << 24, 256));
+  EXPECT_FALSE(BoxPart::fits((std::size_t{1} << 24) + 1, 256));
+  EXPECT_FALSE(BoxPart::fits(std::size_t{1} << 24, 257));
+  EXPECT_TRUE(BoxPart::fits(std::size_t{1} << 32, 1));
+  EXPECT_TRUE(BoxPart::fits(65536, 65536));
+  EXPECT_FALSE(BoxPart::fits(65537, 65536));
+}
+
+TEST(BuildReachMap, ABoxTooLargeForItsCodesGivesWayToTheHashTables) {
+  // The planar arm at 3.5 cm (a box of 43^3 voxels, 652 MB at 65536 bins, within the default
+  // 1 GiB) with 4096 directions x 16 rolls: 16 bits of bin leave 2^16 voxels, fewer than the
+  // box's, so the hash tables record it; the map is theirs.
+  const Robot robot = test::planar2();
+  const auto box = reach_map_build::reachBox(robot, 70.0, 3.5, 2 + 1024, std::uint64_t{1} << 30);
+  ASSERT_NE(box, nullptr);
+  EXPECT_EQ(box->voxels(), 43u * 43u * 43u);
+  EXPECT_FALSE(BoxPart::fits(box->voxels(), 4096 * 16));
+  ReachSampling hash = boxSampling(20011, 2, robot);
+  const ReachSampling dense = hash;
+  hash.dense_bytes = 0;
+  EXPECT_EQ(boxMapBytes(buildReachMap(robot, boxGrid(3.5, 4096, 16), dense)),
+            boxMapBytes(buildReachMap(robot, boxGrid(3.5, 4096, 16), hash)));
 }
 
 TEST(BuildReachMap, ThreadsFindingVoxelsAtOnceInACopyOfAMapWithoutItsIndex) {

@@ -13,7 +13,7 @@
 
 #include "mcws/core/decimal.h"
 #include "mcws/core/error.h"
-#include "mcws/reach/voxel_box.h"  // PendingSample
+#include "mcws/reach/voxel_box.h"  // PendingSample, BoxSample
 
 namespace mcws {
 
@@ -35,6 +35,7 @@ T* HugePageAllocator<T>::allocate(std::size_t n) {
 template struct HugePageAllocator<std::uint64_t>;
 template struct HugePageAllocator<ReachMap::Entry>;
 template struct HugePageAllocator<reach_map_build::PendingSample>;
+template struct HugePageAllocator<reach_map_build::BoxSample>;
 namespace {
 
 constexpr char kMagic[] = "MCWS-REACH-MAP 1";

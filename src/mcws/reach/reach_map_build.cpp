@@ -26,7 +26,7 @@ namespace reach_map_build {
 /// words), so a sample touches one cache line where ReachMap's index and records touch two.
 /// The voxels are split between the parts by their hash, so no voxel is stored twice. Any
 /// thread posts samples to a part; whichever thread finds a part due records its samples.
-class SlotTable : public Part {
+class SlotTable : public Part<PendingSample> {
  public:
   /// A table of voxels with `words` words of bits, one of `parts`.
   SlotTable(int words, int parts)
@@ -172,7 +172,8 @@ class SlotTable : public Part {
 }  // namespace reach_map_build
 
 using reach_map_build::BoxPart;
-using reach_map_build::Part;
+using reach_map_build::BoxSample;
+using reach_map_build::PartBase;
 using reach_map_build::PendingSample;
 using reach_map_build::SlotTable;
 using reach_map_build::VoxelBox;
@@ -202,9 +203,12 @@ class ReachMapBuilder {
     threads_ = sampling.threads > 0 ? sampling.threads : omp_get_num_procs();
     box_ = reach_map_build::reachBox(robot, radius < 0.0 ? chainLengthScale(robot) : radius,
                                      grid.resolution, empty_.stride_, sampling.dense_bytes);
+    const int bins = empty_.bins().size();
+    if (box_ && !BoxPart::fits(box_->voxels(), bins)) box_.reset();  // the hash tables then
+    bin_bits_ = BoxPart::binBits(bins);
     for (int t = 0; t < threads_; ++t) {
       if (box_) {
-        box_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_));
+        box_parts_.push_back(std::make_unique<BoxPart>(*box_, threads_, bins));
         parts_.push_back(box_parts_.back().get());
       } else {
         tables_.push_back(std::make_unique<SlotTable>(empty_.words_, threads_));
@@ -238,7 +242,7 @@ class ReachMapBuilder {
         error.run(static_cast<std::size_t>(b), [&] {
           const std::uint64_t first = begin + static_cast<std::uint64_t>(b) * block;
           sampleBlock(first, std::min(end, first + block), omp_get_thread_num());
-          for (Part* part : parts_) {
+          for (PartBase* part : parts_) {
             if (part->due()) part->tryRecord();
           }
         });
@@ -282,7 +286,13 @@ class ReachMapBuilder {
   /// The samples still on their way recorded (a part per thread).
   void finish() {
     for (int t = 0; t < threads_; ++t) {
-      for (int u = 0; u < threads_; ++u) parts_[u]->post(std::move(outgoing_[t][u].samples));
+      for (int u = 0; u < threads_; ++u) {
+        if (box_) {
+          box_parts_[u]->post(std::move(outgoing_[t][u].box_samples));
+        } else {
+          tables_[u]->post(std::move(outgoing_[t][u].samples));
+        }
+      }
     }
     FirstError error;
 #pragma omp parallel for schedule(static, 1) num_threads(threads_)
@@ -417,7 +427,7 @@ class ReachMapBuilder {
         }
         // In the box: its index straight from the scaled point (the key's voxel).
         if (std::uint64_t index; box_ && box_->indexOfScaled(s + k, kLanes, index)) {
-          post(t, BoxPart::partOf(index, threads_), index, bins[k], static_cast<float>(w[k]));
+          postBox(t, index, bins[k], static_cast<float>(w[k]));
           continue;
         }
         std::uint64_t key;
@@ -428,7 +438,7 @@ class ReachMapBuilder {
         if (!box_) {
           post(t, SlotTable::partOf(key, threads_), key, bins[k], manipulability);
         } else if (std::uint64_t index; box_->indexOf(key, index)) {
-          post(t, BoxPart::partOf(index, threads_), index, bins[k], manipulability);
+          postBox(t, index, bins[k], manipulability);
         } else {  // beyond the reach's bound (only by a rounding error, if ever)
           ReachMap& spill = spill_[t];
           spill.record(spill.slotFor(key), bins[k], manipulability);
@@ -437,7 +447,7 @@ class ReachMapBuilder {
     }
   }
 
-  /// Adds a sample to thread t's batch for a part, handing the batch over when full.
+  /// Adds a sample to thread t's batch for a table, handing the batch over when full.
   void post(int t, int part, std::uint64_t key, int bin, float manipulability) {
     auto& out = outgoing_[t][part].samples;
     // Field by field into the batch: a sample built on the stack and copied in one 16-byte load
@@ -446,7 +456,18 @@ class ReachMapBuilder {
     sample.key = key;
     sample.bin = bin;
     sample.manipulability = manipulability;
-    if (out.size() >= kPost) out = parts_[part]->exchange(std::move(out), kPost);
+    if (out.size() >= kPost) out = tables_[part]->exchange(std::move(out), kPost);
+  }
+
+  /// Adds a sample of box index `index` to thread t's batch for its part of the box, handing
+  /// the batch over when full.
+  void postBox(int t, std::uint64_t index, int bin, float manipulability) {
+    const int part = BoxPart::partOf(index, threads_);
+    auto& out = outgoing_[t][part].box_samples;
+    BoxSample& sample = out.emplace_back();
+    sample.code = BoxPart::code(index, bin, bin_bits_);
+    sample.manipulability = manipulability;
+    if (out.size() >= kPost) out = box_parts_[part]->exchange(std::move(out), kPost);
   }
 
   const ReachMap empty_;  ///< the grid's map: bins, keys
@@ -457,16 +478,18 @@ class ReachMapBuilder {
   const QualityOptions* quality_;
   int threads_{1};
   std::unique_ptr<VoxelBox> box_;  ///< the dense map, or null: hash tables
+  int bin_bits_{0};                ///< of a bin in a BoxSample's code
   std::vector<std::unique_ptr<BoxPart>> box_parts_;
   std::vector<std::unique_ptr<SlotTable>> tables_;
-  std::vector<Part*> parts_;
+  std::vector<PartBase*> parts_;
   std::deque<ReachMap> spill_;  ///< per thread: samples outside the box
   /// A thread's samples for a part, on a cache line of its own: the threads' batches (their
   /// ends written at every sample) would otherwise share lines.
   struct alignas(64) Outgoing {
-    std::vector<PendingSample> samples;
+    std::vector<PendingSample> samples;  ///< for a SlotTable
+    std::vector<BoxSample> box_samples;  ///< for a BoxPart
   };
-  /// outgoing_[t][u]: thread t's samples for part u.
+  /// outgoing_[t][u]: thread t's samples for table u, or for part u of the box.
   std::vector<std::vector<Outgoing>> outgoing_;
 };
 

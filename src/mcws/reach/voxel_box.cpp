@@ -12,56 +12,6 @@
 namespace mcws {
 namespace reach_map_build {
 
-void Part::post(std::vector<PendingSample>&& samples) {
-  const std::lock_guard<std::mutex> lock(inbox_mutex_);
-  inbox_size_ += samples.size();
-  inbox_.push_back(std::move(samples));
-}
-
-std::vector<PendingSample> Part::exchange(std::vector<PendingSample>&& samples, std::size_t room) {
-  std::vector<PendingSample> next;
-  {
-    const std::lock_guard<std::mutex> lock(inbox_mutex_);
-    inbox_size_ += samples.size();
-    inbox_.push_back(std::move(samples));
-    if (!spare_.empty()) {
-      next.swap(spare_.back());
-      spare_.pop_back();
-    }
-  }
-  next.reserve(room);
-  return next;
-}
-
-void Part::dropSpares() {
-  const std::lock_guard<std::mutex> lock(inbox_mutex_);
-  spare_ = {};
-}
-
-bool Part::due() {
-  const std::lock_guard<std::mutex> lock(inbox_mutex_);
-  return inbox_size_ >= due_at_;
-}
-
-bool Part::tryRecord() {
-  const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
-  if (!recording.owns_lock()) return false;
-  std::vector<std::vector<PendingSample>> batches;
-  {
-    const std::lock_guard<std::mutex> lock(inbox_mutex_);
-    batches.swap(inbox_);
-    inbox_size_ = 0;
-  }
-  record(batches);
-  for (auto& batch : batches) batch.clear();  // capacity kept
-  const std::lock_guard<std::mutex> lock(inbox_mutex_);
-  for (auto& batch : batches) {
-    if (batch.capacity() > 0) spare_.push_back(std::move(batch));
-  }
-  due_at_ = cached() ? 1 : pending();
-  return true;
-}
-
 VoxelBox::VoxelBox(const std::int64_t low[3], const std::int64_t size[3], int stride)
     : stride_(stride) {
   voxels_ = 1;
@@ -115,32 +65,34 @@ std::unique_ptr<VoxelBox> reachBox(const Robot& robot, double radius, double res
   }
 }
 
-void BoxPart::record(const std::vector<std::vector<PendingSample>>& batches) {
+void BoxPart::record(const std::vector<std::vector<BoxSample>>& batches) {
   const int stride = box_.stride();
   std::uint64_t* data = box_.record(0);
   if (cached()) {
     for (const auto& batch : batches) {
-      for (const PendingSample& s : batch) add(data, stride, s);
+      for (const BoxSample& s : batch) add(data, stride, s);
     }
     return;
   }
-  // Sorted by their index's leading bits (one counting pass), the samples sweep the box in one
-  // direction, so its pages and lines are fetched ahead instead of at random.
+  // Sorted by their code's leading bits (the index's; one counting pass), the samples sweep the
+  // box in one direction, so its pages and lines are fetched ahead instead of at random.
   constexpr int kBucketBits = 11;
-  int shift = 0;
-  while ((box_.voxels() - 1) >> shift >= (std::size_t{1} << kBucketBits)) ++shift;
+  int shift = bin_bits_;
+  while ((box_.voxels() - 1) >> (shift - bin_bits_) >= (std::size_t{1} << kBucketBits)) ++shift;
   std::array<std::size_t, (1 << kBucketBits) + 1> start{};
   for (const auto& batch : batches) {
-    for (const PendingSample& s : batch) ++start[(s.key >> shift) + 1];
+    for (const BoxSample& s : batch) ++start[(s.code >> shift) + 1];
   }
   for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
   sorted_.resize(start.back());
   for (const auto& batch : batches) {
-    for (const PendingSample& s : batch) sorted_[start[s.key >> shift]++] = s;
+    for (const BoxSample& s : batch) sorted_[start[s.code >> shift]++] = s;
   }
   constexpr std::size_t kAhead = 40;  // records fetched ahead of their sample
   for (std::size_t i = 0; i < sorted_.size(); ++i) {
-    if (i + kAhead < sorted_.size()) __builtin_prefetch(data + sorted_[i + kAhead].key * stride, 1);
+    if (i + kAhead < sorted_.size()) {
+      __builtin_prefetch(data + std::size_t{sorted_[i + kAhead].code >> bin_bits_} * stride, 1);
+    }
     add(data, stride, sorted_[i]);
   }
 }

@@ -40,31 +40,71 @@ inline void recordSample(std::uint64_t* record, int bin, float manipulability) {
   record[2 + bin / 64] |= std::uint64_t{1} << (bin % 64);
 }
 
-/// \brief One part of the map being filled: any thread posts samples to it; whichever thread
-/// finds it due records them (one thread at a time).
-class Part {
+/// \brief A sample waiting to be recorded in a VoxelBox, in 8 bytes: its box index shifted left by
+/// the bits of the orientation bins, or'd with its bin (BoxPart::code()), and its manipulability.
+/// Half a PendingSample: the batches written at every sample and the sorting memory halve.
+struct BoxSample {
+  std::uint32_t code;
+  float manipulability;
+};
+
+/// \brief What the map's builder does with any part, whatever its samples' format.
+class PartBase {
  public:
-  virtual ~Part() = default;
+  virtual ~PartBase() = default;
+  /// \brief Whether enough samples wait to be recorded together: many for a part swept in
+  /// order, any for one that fits in the cache.
+  virtual bool due() = 0;
+  /// \brief Frees the recorded batches kept for exchange() (when no more samples come).
+  virtual void dropSpares() = 0;
+  /// \brief Records the samples posted, unless another thread is recording this part (false).
+  virtual bool tryRecord() = 0;
+};
+
+/// \brief One part of the map being filled, receiving samples of type Sample: any thread posts
+/// samples to it; whichever thread finds it due records them (one thread at a time).
+template <typename Sample>
+class Part : public PartBase {
+ public:
   /// \brief Hands over samples of this part (thread-safe).
-  void post(std::vector<PendingSample>&& samples);
+  void post(std::vector<Sample>&& samples) {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    inbox_size_ += samples.size();
+    inbox_.push_back(std::move(samples));
+  }
   /// \brief Hands over samples of this part (thread-safe) and returns an empty batch with room
   /// for `room` samples to fill next: one this part has recorded, its memory kept (a new
   /// batch's memory is faulted in page by page, and a freed one's unmapped again), or a new one.
-  std::vector<PendingSample> exchange(std::vector<PendingSample>&& samples, std::size_t room);
-  /// \brief Whether enough samples wait to be recorded together: many for a part swept in
-  /// order, any for one that fits in the cache.
-  bool due();
-  /// \brief Frees the recorded batches kept for exchange() (when no more samples come).
-  void dropSpares();
-  /// \brief Records the samples posted, unless another thread is recording this part (false).
-  bool tryRecord();
+  std::vector<Sample> exchange(std::vector<Sample>&& samples, std::size_t room) {
+    std::vector<Sample> next;
+    {
+      const std::lock_guard<std::mutex> lock(inbox_mutex_);
+      inbox_size_ += samples.size();
+      inbox_.push_back(std::move(samples));
+      if (!spare_.empty()) {
+        next.swap(spare_.back());
+        spare_.pop_back();
+      }
+    }
+    next.reserve(room);
+    return next;
+  }
+  bool due() override {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    return inbox_size_ >= due_at_;
+  }
+  void dropSpares() override {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    spare_ = {};
+  }
+  bool tryRecord() override;
 
  protected:
   /// Samples recorded at once into a part larger than the cache: its memory is swept in order.
   static constexpr std::size_t kPending = std::size_t{1} << 20;
   /// Bytes of a part's records up to which samples are recorded as they come.
   static constexpr std::size_t kCached = std::size_t{4} << 20;
-  virtual void record(const std::vector<std::vector<PendingSample>>& batches) = 0;
+  virtual void record(const std::vector<std::vector<Sample>>& batches) = 0;
   virtual bool cached() const = 0;
   /// Samples recorded at once when the part is not cached().
   virtual std::size_t pending() const { return kPending; }
@@ -72,10 +112,30 @@ class Part {
  private:
   std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_, spare_
   std::mutex record_mutex_;  ///< held by the thread recording into the part
-  std::vector<std::vector<PendingSample>> inbox_;
-  std::vector<std::vector<PendingSample>> spare_;  ///< recorded batches, emptied, for reuse
+  std::vector<std::vector<Sample>> inbox_;
+  std::vector<std::vector<Sample>> spare_;  ///< recorded batches, emptied, for reuse
   std::size_t inbox_size_{0}, due_at_{1};
 };
+
+template <typename Sample>
+bool Part<Sample>::tryRecord() {
+  const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
+  if (!recording.owns_lock()) return false;
+  std::vector<std::vector<Sample>> batches;
+  {
+    const std::lock_guard<std::mutex> lock(inbox_mutex_);
+    batches.swap(inbox_);
+    inbox_size_ = 0;
+  }
+  record(batches);
+  for (auto& batch : batches) batch.clear();  // capacity kept
+  const std::lock_guard<std::mutex> lock(inbox_mutex_);
+  for (auto& batch : batches) {
+    if (batch.capacity() > 0) spare_.push_back(std::move(batch));
+  }
+  due_at_ = cached() ? 1 : pending();
+  return true;
+}
 
 /// \brief A box of voxels stored densely: every voxel's record (ReachMap's layout) at an index
 /// computed from its voxel indices, z fastest, then y, then x, which is also the order of the
@@ -158,12 +218,34 @@ ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
                             const ReachSampling& sampling, double radius);
 
 /// \brief A part of a VoxelBox: the blocks of 2^kBlockBits voxels whose number hashes to `part`
-/// of `parts` (so the parts share the work whatever the shape of the reach).
-class BoxPart : public Part {
+/// of `parts` (so the parts share the work whatever the shape of the reach). Its samples are
+/// BoxSamples: a box whose indices and bins do not fit their 32-bit code (fits()) is not used.
+class BoxPart : public Part<BoxSample> {
  public:
   static constexpr int kBlockBits = static_cast<int>(VoxelBox::kBlockBits);
-  /// A part of `box` split in `parts`.
-  BoxPart(VoxelBox& box, int parts) : box_(box), parts_(parts), reached_(box.blocks(), 0) {}
+  /// A part of `box` split in `parts`, for samples of `bins` orientation bins.
+  BoxPart(VoxelBox& box, int parts, int bins)
+      : box_(box),
+        parts_(parts),
+        bin_bits_(binBits(bins)),
+        bin_mask_((std::uint32_t{1} << bin_bits_) - 1),
+        reached_(box.blocks(), 0) {}
+  /// \brief The bits of a bin in a BoxSample's code, for `bins` bins (at least 1).
+  static int binBits(int bins) {
+    int bits = 0;
+    while ((1 << bits) < bins) ++bits;
+    return bits;
+  }
+  /// \brief Whether every index of a box of `voxels` voxels with every bin of `bins` has a code.
+  static bool fits(std::size_t voxels, int bins) {
+    return voxels <= (std::uint64_t{1} << (32 - binBits(bins)));
+  }
+  /// \brief A sample's code (BoxSample): its box index and bin, of `bin_bits` bits (binBits()).
+  static std::uint32_t code(std::uint64_t index, int bin, int bin_bits) {
+    return static_cast<std::uint32_t>(index << bin_bits) | static_cast<std::uint32_t>(bin);
+  }
+  /// \brief A sample's code (BoxSample) in this part.
+  std::uint32_t code(std::uint64_t index, int bin) const { return code(index, bin, bin_bits_); }
   /// \brief The part holding a box index: Fibonacci hashing of its block (a multiply, where a
   /// modulo would divide).
   static int partOf(std::uint64_t index, int parts) {
@@ -178,7 +260,7 @@ class BoxPart : public Part {
   void dropSorted() { decltype(sorted_)().swap(sorted_); }
 
  private:
-  void record(const std::vector<std::vector<PendingSample>>& batches) override;
+  void record(const std::vector<std::vector<BoxSample>>& batches) override;
   bool cached() const override { return box_.bytes() <= kCached; }
   /// 2^23 samples over all parts, 2^20 at least: with few parts, fewer sweeps of the box (each
   /// sweep's traffic is its touched lines, read and written back).
@@ -186,17 +268,20 @@ class BoxPart : public Part {
     return std::max(kPending, (std::size_t{1} << 23) / static_cast<unsigned>(parts_));
   }
   /// Adds a sample to its record, counting the voxel in its block when it is its first.
-  void add(std::uint64_t* data, int stride, const PendingSample& s) {
-    std::uint64_t* record = data + s.key * stride;
-    reached_[s.key >> kBlockBits] += record[0] == 0;
-    recordSample(record, s.bin, s.manipulability);
+  void add(std::uint64_t* data, int stride, const BoxSample& s) {
+    const std::uint32_t index = s.code >> bin_bits_;
+    std::uint64_t* record = data + std::size_t{index} * stride;
+    reached_[index >> kBlockBits] += record[0] == 0;
+    recordSample(record, static_cast<int>(s.code & bin_mask_), s.manipulability);
   }
   VoxelBox& box_;
   int parts_;
+  int bin_bits_;
+  std::uint32_t bin_mask_;
   std::vector<std::uint32_t> reached_;  ///< per block of the box: its voxels reached
   /// The samples sorted; huge pages, as its 2^11 buckets are written at random (and resize
   /// leaves it unset: every element is written).
-  std::vector<PendingSample, HugePageAllocator<PendingSample>> sorted_;
+  std::vector<BoxSample, HugePageAllocator<BoxSample>> sorted_;
 };
 
 }  // namespace reach_map_build
