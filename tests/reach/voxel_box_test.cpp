@@ -208,7 +208,7 @@ TEST(VoxelBox, APartCountsTheVoxelsItReachesInEachOfItsBlocks) {
     for (int p = 0; p < 2; ++p) parts.push_back(std::make_unique<BoxPart>(box, 2, bins));
     std::mt19937_64 random(5);
     for (int round = 0; round < 3; ++round) {
-      std::vector<std::vector<BoxSample>> batches(2);
+      std::vector<reach_map_build::BoxBatch> batches(2);
       for (int i = 0; i < 200000; ++i) {
         // Squared: denser near the box's start, so some blocks stay empty.
         const double u = std::uniform_real_distribution<double>(0.0, 1.0)(random);
@@ -261,7 +261,7 @@ TEST(VoxelBox, APartsEightByteSamplesRecordWhatTheSixteenByteOnesDid) {
     std::mt19937_64 random(11);
     std::vector<std::size_t> touched;
     for (int round = 0; round < 2; ++round) {
-      std::vector<std::vector<BoxSample>> batches(2);
+      std::vector<reach_map_build::BoxBatch> batches(2);
       for (int i = 0; i < c.samples; ++i) {
         std::uint64_t index = random() % box.voxels();
         int bin = static_cast<int>(random() % static_cast<unsigned>(c.bins));

@@ -1,9 +1,13 @@
 #include "mcws/reach/reach_map.h"
 
 #include <omp.h>
+#if defined(__x86_64__)
+#include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -400,6 +404,12 @@ class ReachMapBuilder {
 
   /// Samples [first, last) mapped to their voxels and bins, posted from thread t.
   void sampleBlock(std::uint64_t first, std::uint64_t last, int t) {
+    sampleLanes(first, last, t);
+    storeFence();  // the batches' non-temporal stores (postBox) seen by the other threads
+  }
+
+  /// sampleBlock()'s samples.
+  void sampleLanes(std::uint64_t first, std::uint64_t last, int t) {
     CollisionChecker::Scratch scratch;
     // s: the tool points over the voxel edge (ReachMap::keyInGrid()'s products).
     double sample_q[kMaxJoints], q[kMaxJoints * kLanes], p[3 * kLanes], a[3 * kLanes],
@@ -464,10 +474,30 @@ class ReachMapBuilder {
   void postBox(int t, std::uint64_t index, int bin, float manipulability) {
     const int part = BoxPart::partOf(index, threads_);
     auto& out = outgoing_[t][part].box_samples;
-    BoxSample& sample = out.emplace_back();
-    sample.code = BoxPart::code(index, bin, bin_bits_);
-    sample.manipulability = manipulability;
-    if (out.size() >= kPost) out = box_parts_[part]->exchange(std::move(out), kPost);
+    // A non-temporal store: the batch's line is not fetched before it is written (a recycled
+    // batch left the cache long ago); the element is left unset by emplace_back (its allocator).
+    out.emplace_back();
+#if defined(__x86_64__)
+    std::uint32_t bits;
+    std::memcpy(&bits, &manipulability, sizeof bits);
+    static_assert(sizeof(BoxSample) == sizeof(long long) && offsetof(BoxSample, code) == 0);
+    _mm_stream_si64(
+        reinterpret_cast<long long*>(&out.back()),
+        static_cast<long long>(BoxPart::code(index, bin, bin_bits_) | (std::uint64_t{bits} << 32)));
+#else
+    out.back() = {BoxPart::code(index, bin, bin_bits_), manipulability};
+#endif
+    if (out.size() >= kPost) {
+      storeFence();  // the stores seen by the thread that records them
+      out = box_parts_[part]->exchange(std::move(out), kPost);
+    }
+  }
+
+  /// Orders this thread's non-temporal stores before its later stores (x86-64; else nothing).
+  static void storeFence() {
+#if defined(__x86_64__)
+    _mm_sfence();
+#endif
   }
 
   const ReachMap empty_;  ///< the grid's map: bins, keys
@@ -486,8 +516,8 @@ class ReachMapBuilder {
   /// A thread's samples for a part, on a cache line of its own: the threads' batches (their
   /// ends written at every sample) would otherwise share lines.
   struct alignas(64) Outgoing {
-    std::vector<PendingSample> samples;  ///< for a SlotTable
-    std::vector<BoxSample> box_samples;  ///< for a BoxPart
+    std::vector<PendingSample> samples;     ///< for a SlotTable
+    reach_map_build::BoxBatch box_samples;  ///< for a BoxPart
   };
   /// outgoing_[t][u]: thread t's samples for table u, or for part u of the box.
   std::vector<std::vector<Outgoing>> outgoing_;

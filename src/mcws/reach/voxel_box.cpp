@@ -65,7 +65,7 @@ std::unique_ptr<VoxelBox> reachBox(const Robot& robot, double radius, double res
   }
 }
 
-void BoxPart::record(const std::vector<std::vector<BoxSample>>& batches) {
+void BoxPart::record(const std::vector<BoxBatch>& batches) {
   const int stride = box_.stride();
   std::uint64_t* data = box_.record(0);
   if (cached()) {

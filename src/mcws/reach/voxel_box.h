@@ -48,6 +48,10 @@ struct BoxSample {
   float manipulability;
 };
 
+/// \brief A batch of BoxSamples: its allocator leaves the elements added unset (the builder
+/// writes them with non-temporal stores).
+using BoxBatch = std::vector<BoxSample, HugePageAllocator<BoxSample>>;
+
 /// \brief What the map's builder does with any part, whatever its samples' format.
 class PartBase {
  public:
@@ -63,11 +67,11 @@ class PartBase {
 
 /// \brief One part of the map being filled, receiving samples of type Sample: any thread posts
 /// samples to it; whichever thread finds it due records them (one thread at a time).
-template <typename Sample>
+template <typename Sample, typename Batch = std::vector<Sample>>
 class Part : public PartBase {
  public:
   /// \brief Hands over samples of this part (thread-safe).
-  void post(std::vector<Sample>&& samples) {
+  void post(Batch&& samples) {
     const std::lock_guard<std::mutex> lock(inbox_mutex_);
     inbox_size_ += samples.size();
     inbox_.push_back(std::move(samples));
@@ -75,8 +79,8 @@ class Part : public PartBase {
   /// \brief Hands over samples of this part (thread-safe) and returns an empty batch with room
   /// for `room` samples to fill next: one this part has recorded, its memory kept (a new
   /// batch's memory is faulted in page by page, and a freed one's unmapped again), or a new one.
-  std::vector<Sample> exchange(std::vector<Sample>&& samples, std::size_t room) {
-    std::vector<Sample> next;
+  Batch exchange(Batch&& samples, std::size_t room) {
+    Batch next;
     {
       const std::lock_guard<std::mutex> lock(inbox_mutex_);
       inbox_size_ += samples.size();
@@ -104,7 +108,7 @@ class Part : public PartBase {
   static constexpr std::size_t kPending = std::size_t{1} << 20;
   /// Bytes of a part's records up to which samples are recorded as they come.
   static constexpr std::size_t kCached = std::size_t{4} << 20;
-  virtual void record(const std::vector<std::vector<Sample>>& batches) = 0;
+  virtual void record(const std::vector<Batch>& batches) = 0;
   virtual bool cached() const = 0;
   /// Samples recorded at once when the part is not cached().
   virtual std::size_t pending() const { return kPending; }
@@ -112,16 +116,16 @@ class Part : public PartBase {
  private:
   std::mutex inbox_mutex_;   ///< guards inbox_, inbox_size_, due_at_, spare_
   std::mutex record_mutex_;  ///< held by the thread recording into the part
-  std::vector<std::vector<Sample>> inbox_;
-  std::vector<std::vector<Sample>> spare_;  ///< recorded batches, emptied, for reuse
+  std::vector<Batch> inbox_;
+  std::vector<Batch> spare_;  ///< recorded batches, emptied, for reuse
   std::size_t inbox_size_{0}, due_at_{1};
 };
 
-template <typename Sample>
-bool Part<Sample>::tryRecord() {
+template <typename Sample, typename Batch>
+bool Part<Sample, Batch>::tryRecord() {
   const std::unique_lock<std::mutex> recording(record_mutex_, std::try_to_lock);
   if (!recording.owns_lock()) return false;
-  std::vector<std::vector<Sample>> batches;
+  std::vector<Batch> batches;
   {
     const std::lock_guard<std::mutex> lock(inbox_mutex_);
     batches.swap(inbox_);
@@ -220,7 +224,7 @@ ReachMap buildReachMapInBox(const Robot& robot, const ReachGrid& grid,
 /// \brief A part of a VoxelBox: the blocks of 2^kBlockBits voxels whose number hashes to `part`
 /// of `parts` (so the parts share the work whatever the shape of the reach). Its samples are
 /// BoxSamples: a box whose indices and bins do not fit their 32-bit code (fits()) is not used.
-class BoxPart : public Part<BoxSample> {
+class BoxPart : public Part<BoxSample, BoxBatch> {
  public:
   static constexpr int kBlockBits = static_cast<int>(VoxelBox::kBlockBits);
   /// A part of `box` split in `parts`, for samples of `bins` orientation bins.
@@ -260,7 +264,7 @@ class BoxPart : public Part<BoxSample> {
   void dropSorted() { decltype(sorted_)().swap(sorted_); }
 
  private:
-  void record(const std::vector<std::vector<BoxSample>>& batches) override;
+  void record(const std::vector<BoxBatch>& batches) override;
   bool cached() const override { return box_.bytes() <= kCached; }
   /// 2^23 samples over all parts, 2^20 at least: with few parts, fewer sweeps of the box (each
   /// sweep's traffic is its touched lines, read and written back).
