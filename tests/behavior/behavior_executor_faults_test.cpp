@@ -16,16 +16,14 @@ namespace mcws {
 namespace {
 
 using test::fault;
+using test::faultScript;
 using test::model;
 using test::Recorded;
 using test::runJob;
 
 TEST(Executor, ALinkLostForLessThanTheWaitStopsThenResumes) {
-  FaultScript faults;
-  faults.link_wait_s = 60.0;
-  InjectedFault down = fault(FaultKind::kLinkDown, 10.0);  // during CB1's J3 extension
-  down.duration_s = 40.0;
-  faults.faults = std::vector<InjectedFault>{down};
+  const FaultScript faults =
+      faultScript(60.0, {fault(FaultKind::kLinkDown, 10.0, 40.0)});  // during CB1's J3 extension
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
   EXPECT_EQ(rec.summary.discs_cleaned, 2);
@@ -58,9 +56,7 @@ TEST(Executor, ALinkLostForGoodBringsTheRobotBackToTheStart) {
   // (both clamps closed), CB3 from q4 undoes the half move, then one CB3 for disc 1.
   const Recorded clean = runJob(model(), 3);
   const double second_cb1 = clean.events("subtask_start")[2].t;
-  FaultScript faults;
-  faults.link_wait_s = 30.0;
-  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, second_cb1 + 10.0)};
+  const FaultScript faults = faultScript(30.0, {fault(FaultKind::kLinkDown, second_cb1 + 10.0)});
   const Recorded rec = runJob(model(), 3, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
   EXPECT_EQ(rec.summary.discs_cleaned, 1);
@@ -89,11 +85,8 @@ TEST(Executor, ALinkLostForGoodAtAnyTimeEndsSafelyAtTheStart) {
   const double end = clean.summary.duration_s;
   int returned = 0;
   for (double at = 0.0; at < end; at += 2.5) {
-    FaultScript faults;
-    faults.link_wait_s = 5.0;
-    faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, at)};
     RunOptions options = RunOptions::forModel(model(), 2);
-    options.faults = faults;
+    options.faults = faultScript(5.0, {fault(FaultKind::kLinkDown, at)});
     int unsafe = 0;
     SimSnapshot last;
     RunObserver observer;
@@ -117,10 +110,8 @@ TEST(Executor, ALinkLostForGoodAtAnyTimeEndsSafelyAtTheStart) {
 TEST(Executor, ALinkLostWhileCleaningFinishesTheDiscThenReturns) {
   const Recorded clean = runJob(model(), 2);
   const double first_cb2 = clean.events("subtask_start")[1].t;
-  FaultScript faults;
-  faults.link_wait_s = 5.0;
-  faults.faults = std::vector<InjectedFault>{
-      fault(FaultKind::kLinkDown, first_cb2 + 20.0)};  // the guide turning, q8
+  const FaultScript faults =
+      faultScript(5.0, {fault(FaultKind::kLinkDown, first_cb2 + 20.0)});  // the guide turning, q8
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kReturned);
   EXPECT_EQ(rec.summary.discs_cleaned, 1);
@@ -387,11 +378,8 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtWheneverTheEncoderContradictsIt) {
   {
     // Stuck while the robot stands still, waiting for the link (down 10 s to 50 s): found at
     // 20 s, handed to the operator when the robot would run again (50 s), repaired 5 s later.
-    FaultScript faults;
-    faults.link_wait_s = 60.0;
-    InjectedFault down = fault(FaultKind::kLinkDown, 10.0);
-    down.duration_s = 40.0;
-    faults.faults = std::vector<InjectedFault>{down, stuckSwitch(kMovingClamp, 20.0, true)};
+    FaultScript faults = faultScript(
+        60.0, {fault(FaultKind::kLinkDown, 10.0, 40.0), stuckSwitch(kMovingClamp, 20.0, true)});
     faults.operator_responses = {{5.0, OperatorAction::kRepairAndResume, 0}};
     const Recorded rec = runJob(model(), 1, faults);
     ASSERT_EQ(rec.summary.faults.size(), 2u);
@@ -414,11 +402,8 @@ TEST(Executor, FaultsCarryTheirInjectedDetectedAndResolvedTimes) {
   // is caught (and resent) when the next command goes out: J3's extension after the fixed
   // clamp's release, which takes 25 deg / 10 deg/s = 2.5 s. A stuck switch (never pressed)
   // injected at 0 s times out BB_UG_Release after its 15 s; the operator repairs it 30 s later.
-  FaultScript faults;
-  faults.link_wait_s = 60.0;
-  InjectedFault down = fault(FaultKind::kLinkDown, 10.0);
-  down.duration_s = 40.0;
-  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kCorruptCommand, 2.0), down};
+  FaultScript faults = faultScript(
+      60.0, {fault(FaultKind::kCorruptCommand, 2.0), fault(FaultKind::kLinkDown, 10.0, 40.0)});
   const Recorded rec = runJob(model(), 1, faults);
   ASSERT_EQ(rec.summary.faults.size(), 2u);
   const FaultReaction& corrupt = rec.summary.faults[0];
@@ -445,9 +430,7 @@ TEST(Executor, FaultsCarryTheirInjectedDetectedAndResolvedTimes) {
 
   // Lost for good at 10 s with a 5 s wait: detected at 10 s, resolved when the return it caused
   // reaches the start (the run's end).
-  FaultScript lost;
-  lost.link_wait_s = 5.0;
-  lost.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0)};
+  const FaultScript lost = faultScript(5.0, {fault(FaultKind::kLinkDown, 10.0)});
   const Recorded returned = runJob(model(), 1, lost);
   ASSERT_EQ(returned.summary.status, RunStatus::kReturned);
   ASSERT_FALSE(returned.summary.faults.empty());
@@ -465,11 +448,8 @@ TEST(Executor, TheReturnsDiscCountIsTheNumberOfDiscsItClimbs) {
   const double end = runJob(model(), 2).summary.duration_s;
   int with_cb1_finished = 0;
   for (double at = 0.0; at < end; at += 2.5) {
-    FaultScript faults;
-    faults.link_wait_s = 5.0;
-    faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, at)};
     RunOptions options = RunOptions::forModel(model(), 2);
-    options.faults = faults;
+    options.faults = faultScript(5.0, {fault(FaultKind::kLinkDown, at)});
     Recorded rec;  // the log only: the sweep stays cheap
     RunObserver observer;
     observer.on_log = [&](const LogRecord& r) { rec.log.push_back(r); };
@@ -499,9 +479,7 @@ TEST(Executor, TheOperatorActsOnlyOverALiveLink) {
   // Stuck switch -> timeout at 15 s -> MANUAL; the link drops at 20 s for 60 s; the operator's
   // repair due at 15 + 30 = 45 s waits for the link (80 s).
   FaultScript faults;
-  InjectedFault down = fault(FaultKind::kLinkDown, 20.0);
-  down.duration_s = 60.0;
-  faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 0.0, false), down};
+  faults.faults = {stuckSwitch(kFixedClamp, 0.0, false), fault(FaultKind::kLinkDown, 20.0, 60.0)};
   faults.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
   const Recorded rec = runJob(model(), 1, faults);
   ASSERT_EQ(rec.events("operator").size(), 1u);
@@ -517,11 +495,8 @@ TEST(Executor, TheOperatorActsOnlyOverALiveLink) {
 }
 
 TEST(Executor, AShortOutageDoesNotEndOneForGood) {
-  FaultScript faults;
-  faults.link_wait_s = 10.0;
-  InjectedFault brief = fault(FaultKind::kLinkDown, 12.0);
-  brief.duration_s = 3.0;
-  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0), brief};
+  const FaultScript faults = faultScript(
+      10.0, {fault(FaultKind::kLinkDown, 10.0), fault(FaultKind::kLinkDown, 12.0, 3.0)});
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.events("link_up").size(), 0u);
   EXPECT_EQ(rec.events("link_restored").size(), 0u);
@@ -534,9 +509,7 @@ TEST(Executor, AShortOutageDoesNotEndOneForGood) {
 TEST(Executor, ALinkDownFromTheStartSendsNothingAndMovesNothing) {
   // Nothing has moved: the return is to stay. No command goes over the dead link, J3 never
   // moves, and the robot ends where it was mounted, holding with both clamps.
-  FaultScript faults;
-  faults.link_wait_s = 5.0;
-  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 0.0)};
+  const FaultScript faults = faultScript(5.0, {fault(FaultKind::kLinkDown, 0.0)});
   const Recorded rec = runJob(model(), 2, faults);
   for (const LogRecord& r : rec.events("command"))
     EXPECT_EQ(r.detail.find("echo"), std::string::npos);
@@ -568,10 +541,8 @@ TEST(Executor, TheOperatorsReturnReclosesAStuckReleaseAndUndoesTheHalfMove) {
 
 TEST(Executor, FaultsThatFindNoGroundCommandAreReported) {
   // Armed while the robot returns on its own: no command from the ground station ever comes.
-  FaultScript faults;
-  faults.link_wait_s = 5.0;
-  faults.faults = std::vector<InjectedFault>{fault(FaultKind::kLinkDown, 10.0),
-                                             fault(FaultKind::kCorruptCommand, 20.0)};
+  const FaultScript faults = faultScript(
+      5.0, {fault(FaultKind::kLinkDown, 10.0), fault(FaultKind::kCorruptCommand, 20.0)});
   const Recorded rec = runJob(model(), 2, faults);
   bool reported = false;
   for (const FaultReaction& f : rec.summary.faults) {

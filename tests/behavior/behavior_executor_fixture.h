@@ -3,6 +3,7 @@
 // and behavior_executor_faults_test.cpp).
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mcws/behavior/behavior_executor.h"
@@ -62,6 +63,21 @@ inline InjectedFault fault(FaultKind kind, double at) {
   f.kind = kind;
   f.at_s = at;
   return f;
+}
+
+/// A fault of `kind` at `at` [s] that lasts `duration` [s] (a link outage that ends).
+inline InjectedFault fault(FaultKind kind, double at, double duration) {
+  InjectedFault f = fault(kind, at);
+  f.duration_s = duration;
+  return f;
+}
+
+/// The faults `faults`, the link waited for `link_wait` [s] before the robot returns.
+inline FaultScript faultScript(double link_wait, std::vector<InjectedFault> faults) {
+  FaultScript script;
+  script.link_wait_s = link_wait;
+  script.faults = std::move(faults);
+  return script;
 }
 
 }  // namespace mcws::test

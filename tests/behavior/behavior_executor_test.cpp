@@ -214,9 +214,8 @@ TEST(Executor, AnOwnCommandIsCheckedOnTheSensedPoseAfterAWrongCommandToo) {
 
 TEST(Executor, SameInputsSameLog) {
   FaultScript faults;
-  InjectedFault down = fault(FaultKind::kLinkDown, 70.0);
-  down.duration_s = 12.0;
-  faults.faults = std::vector<InjectedFault>{down, fault(FaultKind::kCorruptCommand, 100.0)};
+  faults.faults = {fault(FaultKind::kLinkDown, 70.0, 12.0),
+                   fault(FaultKind::kCorruptCommand, 100.0)};
   const Recorded a = runJob(model(), 2, faults), b = runJob(model(), 2, faults);
   ASSERT_EQ(a.log.size(), b.log.size());
   for (std::size_t k = 0; k < a.log.size(); ++k) {
