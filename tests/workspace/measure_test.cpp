@@ -15,6 +15,8 @@
 #include "mcws/core/error.h"
 #include "mcws/sampling/sampler.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
+#include "mcws/workspace/detail/measure_steps.h"
+#include "mcws/workspace/exposed_points.h"
 #include "test_support.h"
 #include "workspace/shape_cloud.h"
 
@@ -334,8 +336,10 @@ TEST(DelaunayMeasure, WithEverySimplexKeptTheBoundaryVerticesAreTheHullsCorners)
 }
 
 /// Expects the shell's measure (MeasureOptions::shell) to be what triangulating every point gives.
-void expectShellMeasuresAsTheWhole(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dims,
-                                   double alpha, const std::string& name) {
+/// \return the points that joined the shell to complete the boundary vertices' stars (the
+/// triangulated points less the exposed ones), whose insertions the kept total follows.
+std::size_t expectShellMeasuresAsTheWhole(const pcl::PointCloud<pcl::PointXYZ>& cloud, int dims,
+                                          double alpha, const std::string& name) {
   MeasureOptions whole, shell;
   whole.shell = false;
   whole.alpha_factor = shell.alpha_factor = alpha;
@@ -348,6 +352,12 @@ void expectShellMeasuresAsTheWhole(const pcl::PointCloud<pcl::PointXYZ>& cloud, 
   EXPECT_EQ(part.outside, all.outside) << name;
   EXPECT_EQ(part.points, all.points) << name;
   EXPECT_GT(part.outside, 0u) << name;
+  const std::vector<double> spacing = detail::localSpacing(cloud, dims, 1);  // no copies here
+  std::vector<double> reach(spacing.size());
+  for (std::size_t i = 0; i < spacing.size(); ++i) reach[i] = alpha * spacing[i];
+  const std::size_t exposed = exposedPoints(cloud, dims, reach, 1).count;
+  EXPECT_GE(part.triangulated, exposed) << name;
+  return part.triangulated - exposed;
 }
 
 TEST(DelaunayMeasure, LatticeBallGivesTheSameMeasureForAnyThreadCount) {
@@ -384,14 +394,19 @@ TEST(DelaunayMeasure, LatticeBallGivesTheSameMeasureForAnyThreadCount) {
 TEST(DelaunayMeasure, TheShellMeasuresWhatTriangulatingEveryPointMeasures) {
   // Convex rims, a hole, corners, a ball with a spherical cavity inside, and alpha factors that
   // leave from most to few points out of the shell.
+  std::map<int, std::size_t> joined;  // by dimension
   for (const Shape shape : {Shape::kDisk, Shape::kAnnulus, Shape::kBall, Shape::kBox}) {
     const auto cloud = shapeCloud(shape, 30000 / test::kSanitizerShrink, 7);
+    const int dims = shapeIsPlanar(shape) ? 2 : 3;
     for (const double alpha : {1.5, 3.0, 5.0}) {
-      expectShellMeasuresAsTheWhole(
-          cloud, shapeIsPlanar(shape) ? 2 : 3, alpha,
+      joined[dims] += expectShellMeasuresAsTheWhole(
+          cloud, dims, alpha,
           std::to_string(static_cast<int>(shape)) + " alpha " + std::to_string(alpha));
     }
   }
+  // Points joined in both dimensions: the kept total followed insertions there.
+  EXPECT_GT(joined[2], 0u);
+  EXPECT_GT(joined[3], 0u);
   pcl::PointCloud<pcl::PointXYZ> hollow;
   for (const auto& p : shapeCloud(Shape::kBall, 40000, 8)) {
     if (p.getVector3fMap().norm() > 0.4f) hollow.push_back(p);

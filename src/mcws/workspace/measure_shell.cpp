@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -11,6 +12,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -56,10 +58,12 @@ std::vector<char> shellPoints(const pcl::PointCloud<pcl::PointXYZ>& points, int 
 }
 
 /// Flags every simplex of `dt` kept (1) or dropped (0) as `keep` says, the infinite ones dropped.
-/// \return the finite simplices.
+/// Adds the kept ones' area (D = 2) or volume (D = 3) to `kept_total`. \return the finite
+/// simplices.
 template <int D, typename Delaunay, typename Keep>
 std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(
-    Delaunay& dt, const Keep& keep, int threads, const CancelCheck& cancel_check) {
+    Delaunay& dt, const Keep& keep, OrderFreeSum& kept_total, int threads,
+    const CancelCheck& cancel_check) {
   std::vector<typename SimplexOf<D, Delaunay>::Handle> finite;
   finite.reserve(D == 2 ? 2 * dt.number_of_vertices() : 7 * dt.number_of_vertices());
   for (const auto s : allSimplices<D>(dt)) {
@@ -70,31 +74,91 @@ std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(
 #pragma omp parallel num_threads(threads)
   {
     CancelPacer pacer = callingThreadPacer(cancel_check, kCancelStride);
-#pragma omp for schedule(dynamic, 4096)
+    OrderFreeSum part = kept_total.empty();  // not a copy: other threads may be adding to it
+#pragma omp for schedule(dynamic, 4096) nowait
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
       error.run(i, [&] {
         pacer.step();
-        finite[i]->info() = keep(finite[i]);
+        const char flag = keep(finite[i]);
+        finite[i]->info() = flag;
+        if (flag) part.add(simplexMeasure<D>(finite[i]));
       });
     }
+#pragma omp critical
+    kept_total.add(part);
   }
   error.rethrow();
   return finite;
 }
 
-/// The kept simplices of the boundary vertices' stars (a simplex is in the stars of up to D + 1
-/// vertices, so it may come more than once).
-template <int D, typename Delaunay>
-std::vector<typename SimplexOf<D, Delaunay>::Handle> keptStars(
-    const Delaunay& dt, const std::vector<typename Delaunay::Vertex_handle>& boundary) {
-  std::vector<typename SimplexOf<D, Delaunay>::Handle> around, stars;
-  for (const auto v : boundary) {
-    incidentSimplices<D>(dt, v, around);
-    for (const auto& s : around) {
-      if (s->info()) stars.push_back(s);
+/// The vertices between kept and dropped simplices, as boundaryVertices() finds them, from the
+/// list of the finite simplices `finite` read on all threads.
+template <int D, typename Delaunay, typename Simplex>
+std::vector<typename Delaunay::Vertex_handle> boundaryVerticesOf(const Delaunay& dt,
+                                                                 const std::vector<Simplex>& finite,
+                                                                 std::size_t points, int threads) {
+  // By point index; set by any thread (the same value), read after the parallel region.
+  const std::unique_ptr<std::atomic<char>[]> on_boundary(new std::atomic<char>[points]());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t n = 0; n < static_cast<std::int64_t>(finite.size()); ++n) {
+    const Simplex& s = finite[n];
+    if (!s->info()) continue;
+    for (int i = 0; i <= D; ++i) {
+      if (s->neighbor(i)->info()) continue;
+      for (int j = 0; j <= D; ++j) {  // the facet opposite vertex i
+        if (j != i) on_boundary[s->vertex(j)->info()].store(1, std::memory_order_relaxed);
+      }
     }
   }
-  return stars;
+  std::vector<typename Delaunay::Vertex_handle> boundary;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    if (on_boundary[v->info()].load(std::memory_order_relaxed)) boundary.push_back(v);
+  }
+  return boundary;
+}
+
+/// Sorts `found` and drops its repeats.
+inline void sortUnique(std::vector<std::uint32_t>& found) {
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+}
+
+/// The left-out points in the circumspheres of the kept simplices of the stars of `vertices`
+/// (`on_vertex`: 1 for their points, by index), sorted, each once. The vertices are shared among
+/// the threads; a simplex in several of the stars is searched from the star of its vertex of
+/// lowest index only.
+template <int D, typename Delaunay>
+std::vector<std::uint32_t> leftOutInKeptStars(
+    const Delaunay& dt, const std::vector<typename Delaunay::Vertex_handle>& vertices,
+    const std::vector<char>& on_vertex, const LeftOut<D>& left_out, int threads) {
+  std::vector<std::uint32_t> joining;
+  FirstError error;  // running out of memory leaves the parallel region through it
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<typename SimplexOf<D, Delaunay>::Handle> around;
+    std::vector<std::uint32_t> found;
+#pragma omp for schedule(dynamic, 256)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(vertices.size()); ++i) {
+      error.run(i, [&] {
+        const std::uint32_t self = vertices[i]->info();
+        incidentSimplices<D>(dt, vertices[i], around);
+        for (const auto& s : around) {
+          if (!s->info()) continue;
+          bool first = true;  // no vertex of lower index among `vertices`
+          for (int k = 0; k <= D && first; ++k) {
+            const std::uint32_t other = s->vertex(k)->info();
+            first = other >= self || !on_vertex[other];
+          }
+          if (first) left_out.inside(dt, s, true, &found);
+        }
+      });
+    }
+#pragma omp critical
+    error.run(vertices.size(), [&] { joining.insert(joining.end(), found.begin(), found.end()); });
+  }
+  error.rethrow();
+  sortUnique(joining);
+  return joining;
 }
 
 /// Drops the repeats of `simplices`, each first one staying in its place: a simplex is marked
@@ -132,29 +196,63 @@ std::vector<std::uint32_t> leftOutInStars(const Delaunay& dt, std::vector<Simple
     error.run(stars.size(), [&] { joining.insert(joining.end(), found.begin(), found.end()); });
   }
   error.rethrow();
-  std::sort(joining.begin(), joining.end());
-  joining.erase(std::unique(joining.begin(), joining.end()), joining.end());
+  sortUnique(joining);
   return joining;
 }
 
+/// Orders simplex handles by the simplex they point to.
+struct ByAddress {
+  template <typename Simplex>
+  bool operator()(const Simplex& a, const Simplex& b) const {
+    return std::less<const void*>()(&*a, &*b);
+  }
+};
+template <int D, typename Delaunay>
+using SimplexSet = std::set<typename SimplexOf<D, Delaunay>::Handle, ByAddress>;
+
 /// Inserts the points `joining` into `dt`, each vertex carrying its point's index, and takes them
-/// off the left-out points. \return their vertices.
+/// off the left-out points. With `kept_total`, takes off it the kept simplices each insertion
+/// destroys (those in conflict with its point: their circumsphere holds it) and keeps in `made`
+/// the simplices the insertions make (those around the new vertex; dropped again when a later
+/// one destroys them), not flagged yet. \return the new vertices.
 template <int D, typename Delaunay>
 std::vector<typename Delaunay::Vertex_handle> insertJoining(
     Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
-    const std::vector<std::uint32_t>& joining, LeftOut<D>& left_out) {
+    const std::vector<std::uint32_t>& joining, LeftOut<D>& left_out, OrderFreeSum* kept_total,
+    SimplexSet<D, Delaunay>& made) {
+  using Simplex = typename SimplexOf<D, Delaunay>::Handle;
   std::vector<typename Delaunay::Vertex_handle> joined;
+  std::vector<Simplex> conflicts, around;
   for (const std::uint32_t k : joining) {
     left_out.remove(k);
     const pcl::PointXYZ& p = points[k];
-    typename Delaunay::Vertex_handle v;
+    typename Delaunay::Point point;
     if constexpr (D == 2) {
-      v = dt.insert(typename Delaunay::Point(p.x, p.y));
+      point = typename Delaunay::Point(p.x, p.y);
     } else {
-      v = dt.insert(typename Delaunay::Point(p.x, p.y, p.z));
+      point = typename Delaunay::Point(p.x, p.y, p.z);
     }
+    Simplex start;
+    if (kept_total) {
+      start = dt.locate(point);
+      conflicts.clear();
+      if constexpr (D == 2) {
+        dt.get_conflicts(point, std::back_inserter(conflicts), start);
+      } else {
+        dt.find_conflicts(point, start, CGAL::Emptyset_iterator(), std::back_inserter(conflicts));
+      }
+      for (const Simplex& s : conflicts) {
+        if (made.erase(s) > 0) continue;  // made by this round, not added yet
+        if (!dt.is_infinite(s) && s->info()) kept_total->subtract(simplexMeasure<D>(s));
+      }
+    }
+    const typename Delaunay::Vertex_handle v = dt.insert(point, start);
     v->info() = k;
     joined.push_back(v);
+    if (kept_total) {
+      incidentSimplices<D>(dt, v, around, true);
+      made.insert(around.begin(), around.end());
+    }
   }
   return joined;
 }
@@ -189,24 +287,34 @@ std::vector<typename SimplexOf<D, Delaunay>::Handle> retestAround(
 /// Only simplices with a left-out point in their circumsphere are replaced (the whole
 /// triangulation's are not), and they are all kept (filling in for a covered point), as are the
 /// new ones (the whole triangulation's simplices around a covered point are within its alpha
-/// limit). \return whether a point joined (simplex handles listed before may be gone).
+/// limit). With `kept_total` (the kept simplices' total before), keeps it the kept simplices'
+/// total after. \return whether a point joined (simplex handles listed before may be gone).
 template <int D, typename Delaunay, typename Keep>
 bool completeStars(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
                    const std::vector<typename Delaunay::Vertex_handle>& vertices,
-                   LeftOut<D>& left_out, const Keep& keep, int threads,
+                   LeftOut<D>& left_out, const Keep& keep, OrderFreeSum* kept_total, int threads,
                    const CancelCheck& cancel_check) {
-  std::vector<typename SimplexOf<D, Delaunay>::Handle> stars = keptStars<D>(dt, vertices);
   std::vector<char> on_boundary(points.size(), 0);
   for (const auto v : vertices) on_boundary[v->info()] = 1;
+  if (cancel_check) cancel_check();
+  std::vector<std::uint32_t> joining =
+      leftOutInKeptStars<D>(dt, vertices, on_boundary, left_out, threads);
+  SimplexSet<D, Delaunay> made;
   bool joined_any = false;
-  for (;;) {
-    if (cancel_check) cancel_check();  // between rounds
-    const std::vector<std::uint32_t> joining = leftOutInStars<D>(dt, stars, left_out, threads);
-    if (joining.empty()) return joined_any;
+  while (!joining.empty()) {
     joined_any = true;
-    const auto joined = insertJoining<D>(dt, points, joining, left_out);
-    stars = retestAround<D>(dt, joined, keep, on_boundary);
+    made.clear();
+    const auto joined = insertJoining<D>(dt, points, joining, left_out, kept_total, made);
+    auto stars = retestAround<D>(dt, joined, keep, on_boundary);
+    if (kept_total) {
+      for (const auto& s : made) {
+        if (s->info()) kept_total->add(simplexMeasure<D>(s));
+      }
+    }
+    if (cancel_check) cancel_check();  // between rounds
+    joining = leftOutInStars<D>(dt, stars, left_out, threads);
   }
+  return joined_any;
 }
 
 /// The envelope surface (MeasureOptions::surface) of a shell triangulation whose boundary
@@ -229,27 +337,9 @@ bool repairShellSurface(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& poin
     }
     std::sort(vertices.begin(), vertices.end());
     vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    completeStars<3>(dt, points, vertices, left_out, keep, threads, cancel_check);
+    completeStars<3>(dt, points, vertices, left_out, keep, nullptr, threads, cancel_check);
   };
   return fillForSurface(dt, cancel_check, std::function<void(const std::vector<Cell>&)>(complete));
-}
-
-/// The kept simplices' total area (D = 2) or volume (D = 3), summed on all threads (OrderFreeSum
-/// of `bound`).
-template <int D, typename Simplex>
-double keptTotal(const std::vector<Simplex>& finite, double bound, int threads) {
-  OrderFreeSum kept(bound);
-#pragma omp parallel num_threads(threads)
-  {
-    OrderFreeSum part(bound);  // not a copy of `kept`, which other threads may be adding to
-#pragma omp for schedule(static) nowait
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
-      if (finite[i]->info()) part.add(simplexMeasure<D>(finite[i]));
-    }
-#pragma omp critical
-    kept.add(part);
-  }
-  return kept.value();
 }
 
 }  // namespace
@@ -282,19 +372,22 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   const auto keep = [&](const Simplex& s) -> char {
     return withinAlpha<D>(s, spacing, alpha_factor) || left_out.inside(dt, s, false, nullptr);
   };
-  std::vector<Simplex> finite = flagSimplices<D>(dt, keep, threads, options.cancel_check);
+  // The kept simplices' total, summed on all threads (OrderFreeSum), kept up to date by the joins.
+  OrderFreeSum kept_total(boundingMeasure(points, D));
+  std::vector<Simplex> finite =
+      flagSimplices<D>(dt, keep, kept_total, threads, options.cancel_check);
   // Joins below replace only kept simplices (a dropped one has no left-out point in its
   // circumsphere, and a simplex around a covered point is within its alpha limit), so the
   // boundary vertices are final.
-  const auto boundary = boundaryVertices<D>(dt, points.size());
+  const auto boundary = boundaryVerticesOf<D>(dt, finite, points.size(), threads);
+  finite = {};
   const bool surface = D == 3 && options.surface;
-  if ((options.edge_correction || surface) &&
-      completeStars<D>(dt, points, boundary, left_out, keep, threads, options.cancel_check)) {
-    finite.clear();
-    for (const auto s : finiteSimplices<D>(dt)) finite.push_back(s);
+  if (options.edge_correction || surface) {
+    completeStars<D>(dt, points, boundary, left_out, keep, &kept_total, threads,
+                     options.cancel_check);
   }
   RegionMeasure result;
-  result.uncorrected = keptTotal<D>(finite, boundingMeasure(points, D), threads);
+  result.uncorrected = kept_total.value();
   result.points = points.size();
   result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();

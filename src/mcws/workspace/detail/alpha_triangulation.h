@@ -8,6 +8,7 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_lock_grid_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
@@ -121,8 +122,16 @@ class OrderFreeSum {
     shift_ = 61 - std::ilogb(bound);
   }
   void add(double term) { total_ += std::llround(std::ldexp(term, shift_)); }
+  /// Takes off a term added before (exactly: the same multiple).
+  void subtract(double term) { total_ -= std::llround(std::ldexp(term, shift_)); }
   /// Adds another sum of the same bound (partial sums of threads).
   void add(const OrderFreeSum& other) { total_ += other.total_; }
+  /// A sum of nothing with this one's bound.
+  OrderFreeSum empty() const {
+    OrderFreeSum zero = *this;
+    zero.total_ = 0;
+    return zero;
+  }
   double value() const { return std::ldexp(static_cast<double>(total_), -shift_); }
 
  private:
@@ -161,13 +170,24 @@ struct Simplices<2, Concurrency> {
       CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<VertexBase>>;
 };
 
+/// The parallel 3-D triangulation's lock grid: a thread that finds a cell locked gives up the
+/// point and takes it again later (CGAL::Tag_non_blocking) instead of waiting when it has the
+/// lower priority (CGAL's default, CGAL::Tag_priority_blocking). On the shell of the 10^6-point
+/// ball (1.4 x 10^5 points), 2 threads: 0.29-0.32 s in every run, against 0.29 s to 1.2 s waiting.
+/// The triangulation is the same (CGAL's symbolic perturbation makes it unique).
+template <typename Concurrency>
+using LockGrid =
+    std::conditional_t<std::is_same_v<Concurrency, CGAL::Parallel_tag>,
+                       CGAL::Spatial_lock_grid_3<CGAL::Tag_non_blocking>, CGAL::Default>;
+
 template <typename Concurrency>
 struct Simplices<3, Concurrency> {
   using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Kernel>;
   using Delaunay = CGAL::Delaunay_triangulation_3<
       Kernel,
       CGAL::Triangulation_data_structure_3<
-          VertexBase, CGAL::Triangulation_cell_base_with_info_3<char, Kernel>, Concurrency>>;
+          VertexBase, CGAL::Triangulation_cell_base_with_info_3<char, Kernel>, Concurrency>,
+      CGAL::Default, LockGrid<Concurrency>>;
   using Local =
       CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<VertexBase>>;
 };
