@@ -71,10 +71,11 @@ std::vector<typename SimplexOf<D, Delaunay>::Handle> flagSimplices(
     if (!dt.is_infinite(s)) finite.push_back(s);
   }
   FirstError error;  // what cancel_check throws leaves the parallel region through it
+  const OrderFreeSum zero = kept_total.empty();  // made here: threads add to kept_total below
 #pragma omp parallel num_threads(threads)
   {
     CancelPacer pacer = callingThreadPacer(cancel_check, kCancelStride);
-    OrderFreeSum part = kept_total.empty();  // not a copy: other threads may be adding to it
+    OrderFreeSum part = zero;
 #pragma omp for schedule(dynamic, 4096) nowait
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(finite.size()); ++i) {
       error.run(i, [&] {
