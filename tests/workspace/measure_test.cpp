@@ -430,15 +430,16 @@ TEST(DelaunayMeasure, TheShellGivesTheSameMeasureForAnyThreadCount) {
   }
 }
 
-TEST(DelaunayMeasure, ACancelCheckInEveryPhaseChangesNoNumberAndWhatItThrowsEndsTheCall) {
-  // 150000 points of the ball: a shell of about 40000 points, so two pieces of the insertion.
-  const auto cloud = shapeCloud(Shape::kBall, 150000 / test::kSanitizerShrink, 10);
+/// Expects a cancel check in every phase of measuring `cloud` (3-D, 2 threads) to change no number
+/// and what it throws there to end the call there.
+void expectEveryPhaseChecks(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::string& name) {
+  SCOPED_TRACE(name);
   MeasureOptions options;
   options.threads = 2;
   const RegionMeasure whole = delaunayMeasure(cloud, 3, options);
   std::string phase;
   std::map<std::string, int> checks;  // by phase
-  options.phase = [&](const std::string& name) { phase = name; };
+  options.phase = [&](const std::string& started) { phase = started; };
   options.cancel_check = [&] { ++checks[phase]; };
   const RegionMeasure checked = delaunayMeasure(cloud, 3, options);
   EXPECT_EQ(checked.measure, whole.measure);
@@ -460,6 +461,14 @@ TEST(DelaunayMeasure, ACancelCheckInEveryPhaseChangesNoNumberAndWhatItThrowsEnds
     EXPECT_THROW(delaunayMeasure(cloud, 3, options), Stop) << stop_in;
     EXPECT_EQ(stopped, stop_in);
   }
+}
+
+TEST(DelaunayMeasure, ACancelCheckInEveryPhaseChangesNoNumberAndWhatItThrowsEndsTheCall) {
+  // 150000 points of the ball: a shell of about 40000 points, so two pieces of the insertion.
+  expectEveryPhaseChecks(shapeCloud(Shape::kBall, 150000 / test::kSanitizerShrink, 10), "large");
+  // 3000 points: fewer items in every phase's loops than the calling thread's check stride, so
+  // only the check as each phase starts is certain (the other thread may take every item).
+  expectEveryPhaseChecks(shapeCloud(Shape::kBall, 3000, 11), "small");
 }
 
 TEST(DelaunayMeasure, RejectsNonFiniteCoordinates) {

@@ -67,6 +67,11 @@ pcl::PointCloud<pcl::PointXYZ> checkedPositions(const pcl::PointCloud<pcl::Point
   return uniquePositions(projected, position_of);
 }
 
+void startPhase(const MeasureOptions& options, const char* name) {
+  if (options.phase) options.phase(name);
+  if (options.cancel_check) options.cancel_check();
+}
+
 void checkKeptAndMissing(const RegionMeasure& result, int dimensions,
                          const MeasureOptions& options) {
   if (!(result.uncorrected > 0.0)) {
@@ -112,18 +117,18 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
                             const std::vector<double>& spacing, const MeasureOptions& options) {
   using Delaunay = typename Simplices<D, Concurrency>::Delaunay;
   const double alpha_factor = options.alpha_factor;
-  if (options.phase) options.phase("triangulation");
+  startPhase(options, "triangulation");
   Delaunay dt;
   triangulate<D, Concurrency>(dt, points, {}, options.cancel_check);
 
-  if (options.phase) options.phase("alpha test");
+  startPhase(options, "alpha test");
   RegionMeasure result;
   result.uncorrected = keepWithinAlpha<D>(dt, points, spacing, alpha_factor, options.cancel_check);
   const auto boundary = boundaryVertices<D>(dt, points.size());
   result.points = result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (options.edge_correction) {
-    if (options.phase) options.phase("edge correction");
+    startPhase(options, "edge correction");
     // A boundary vertex counts when its point lies outside the region of the others.
     result.outside = options.leave_one_out == LeaveOneOut::kStar
                          ? outsideByStar<D>(dt, boundary, spacing, alpha_factor, options.threads,
@@ -132,7 +137,7 @@ RegionMeasure measureRegion(const pcl::PointCloud<pcl::PointXYZ>& points,
   }
   if constexpr (D == 3) {
     if (options.surface) {
-      if (options.phase) options.phase("surface");
+      startPhase(options, "surface");
       // last: it changes the kept flags
       result.surface_is_manifold = fillForSurface(dt, options.cancel_check);
       result.surface = keptSurface(dt, points, options.cancel_check);
@@ -157,7 +162,7 @@ RegionMeasure delaunayMeasure(const pcl::PointCloud<pcl::PointXYZ>& points, int 
   auto flat = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(
       detail::checkedPositions(points, dimensions, options.alpha_factor, position_of));
   position_of = {};
-  if (options.phase) options.phase("local spacing");
+  detail::startPhase(options, "local spacing");
   MeasureOptions resolved = options;
   resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const std::vector<double> spacing =

@@ -111,12 +111,12 @@ struct MeasureOptions {
   /// Called as each phase starts ("local spacing", "triangulation", "alpha test", "edge
   /// correction").
   std::function<void(const std::string&)> phase;
-  /// Called on the calling thread every few milliseconds of work within the phases
-  /// (CancelCheck): the local spacing's neighbour searches, the exposed points' passes, the
-  /// insertion (beyond 65536 points then done in pieces sorted along a Hilbert curve: the same
-  /// triangulation), the alpha test (and the shell's completion, round by round), the edge
-  /// correction's stars and the surface repair. What it throws ends the call. It changes no
-  /// number of the result.
+  /// Called on the calling thread as each phase starts (after `phase`) and every few
+  /// milliseconds of work within the phases (CancelCheck): the local spacing's neighbour searches,
+  /// the exposed points' passes, the insertion (beyond 65536 points then done in pieces sorted
+  /// along a Hilbert curve: the same triangulation), the alpha test (and the shell's completion,
+  /// round by round), the edge correction's stars and the surface repair. What it throws ends the
+  /// call. It changes no number of the result.
   CancelCheck cancel_check;
 };
 

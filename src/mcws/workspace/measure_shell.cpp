@@ -19,6 +19,7 @@
 #include "mcws/core/first_error.h"
 #include "mcws/workspace/detail/alpha_triangulation.h"
 #include "mcws/workspace/detail/left_out.h"
+#include "mcws/workspace/detail/measure_steps.h"
 #include "mcws/workspace/detail/surface_repair.h"
 #include "mcws/workspace/exposed_points.h"
 
@@ -352,7 +353,7 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   using Simplex = typename SimplexOf<D, Delaunay>::Handle;
   const double alpha_factor = options.alpha_factor;
   const int threads = options.threads;
-  if (options.phase) options.phase("exposed points");
+  startPhase(options, "exposed points");
   const std::vector<char> in_shell =
       shellPoints(points, D, spacing, alpha_factor, threads, options.cancel_check);
   // The left-out points' tree is built while the shell is triangulated (on a thread of its own
@@ -362,13 +363,13 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   std::future<std::unique_ptr<LeftOut<D>>> building =
       std::async(workers > 1 ? std::launch::async : std::launch::deferred,
                  [&] { return std::make_unique<LeftOut<D>>(points, in_shell); });
-  if (options.phase) options.phase("triangulation");
+  startPhase(options, "triangulation");
   Delaunay dt;
   triangulate<D, Concurrency>(dt, points, in_shell, options.cancel_check);
   const std::unique_ptr<LeftOut<D>> left_out_tree = building.get();
   LeftOut<D>& left_out = *left_out_tree;
 
-  if (options.phase) options.phase("alpha test");
+  startPhase(options, "alpha test");
   // Kept (1): within the alpha limit, or filling in for left-out points; else dropped (0).
   const auto keep = [&](const Simplex& s) -> char {
     return withinAlpha<D>(s, spacing, alpha_factor) || left_out.inside(dt, s, false, nullptr);
@@ -393,13 +394,13 @@ RegionMeasure measureShell(const pcl::PointCloud<pcl::PointXYZ>& points,
   result.triangulated = dt.number_of_vertices();
   result.boundary_vertices = boundary.size();
   if (options.edge_correction) {
-    if (options.phase) options.phase("edge correction");
+    startPhase(options, "edge correction");
     result.outside = outsideByStar<D>(dt, boundary, spacing, alpha_factor, threads, nullptr,
                                       options.cancel_check);
   }
   if constexpr (D == 3) {
     if (surface) {
-      if (options.phase) options.phase("surface");
+      startPhase(options, "surface");
       result.surface_is_manifold =
           repairShellSurface(dt, points, left_out, keep, threads, options.cancel_check);
       result.surface = keptSurface(dt, points, options.cancel_check);

@@ -26,9 +26,9 @@ template <int D, typename Delaunay>
 RegionMeasure measureWhole(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& points,
                            const std::vector<double>& spacing, const MeasureOptions& options,
                            std::vector<char>& outside, std::vector<char>& edge) {
-  if (options.phase) options.phase("triangulation");
+  startPhase(options, "triangulation");
   triangulate<D, CGAL::Sequential_tag>(dt, points, {});
-  if (options.phase) options.phase("alpha test");
+  startPhase(options, "alpha test");
   RegionMeasure all;
   all.uncorrected = keepWithinAlpha<D>(dt, points, spacing, options.alpha_factor);
   const auto boundary = boundaryVertices<D>(dt, points.size());
@@ -39,7 +39,7 @@ RegionMeasure measureWhole(Delaunay& dt, const pcl::PointCloud<pcl::PointXYZ>& p
   for (const auto v : boundary) edge[v->info()] = 1;
   outside.assign(points.size(), 0);
   if (options.edge_correction) {
-    if (options.phase) options.phase("edge correction");
+    startPhase(options, "edge correction");
     all.outside =
         outsideByStar<D>(dt, boundary, spacing, options.alpha_factor, options.threads, &outside);
   }
@@ -168,7 +168,7 @@ SubsetMeasure measureSubset(const pcl::PointCloud<pcl::PointXYZ>& points,
   std::vector<char> outside, edge;
   SubsetMeasure result;
   result.all = measureWhole<D>(dt, points, spacing, options, outside, edge);
-  if (options.phase) options.phase("subset");
+  startPhase(options, "subset");
   std::tie(result.uncorrected, result.outside) =
       subsetPart<D>(dt, points, in_subset, outside, edge, options);
   for (std::size_t i = 0; i < points.size(); ++i) result.points += in_subset[i] != 0;
@@ -202,7 +202,7 @@ SubsetMeasure delaunayMeasureSubset(const pcl::PointCloud<pcl::PointXYZ>& points
   }
   MeasureOptions resolved = options;
   resolved.threads = options.threads > 0 ? options.threads : omp_get_max_threads();
-  if (options.phase) options.phase("local spacing");
+  detail::startPhase(options, "local spacing");
   const std::vector<double> spacing = detail::localSpacing(flat, dimensions, resolved.threads);
   return dimensions == 2 ? detail::measureSubset<2>(flat, flat_subset, spacing, resolved)
                          : detail::measureSubset<3>(flat, flat_subset, spacing, resolved);

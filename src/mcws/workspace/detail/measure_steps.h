@@ -26,6 +26,11 @@ pcl::PointCloud<pcl::PointXYZ> checkedPositions(const pcl::PointCloud<pcl::Point
                                                 int dimensions, double alpha_factor,
                                                 std::vector<pcl::index_t>& position_of);
 
+/// Starts phase `name` of delaunayMeasure(): calls MeasureOptions::phase, then
+/// MeasureOptions::cancel_check (on the calling thread: so that each phase checks at least once,
+/// however its loops' items fall to the threads), each when set.
+void startPhase(const MeasureOptions& options, const char* name);
+
 /// \throws mcws::Error when no simplex passed the alpha test or (with the edge correction) more
 /// than half the points lie outside the region of the others.
 void checkKeptAndMissing(const RegionMeasure& result, int dimensions,
