@@ -9,6 +9,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -208,20 +209,30 @@ std::vector<float> coverRadius(const pcl::PointCloud<pcl::PointXYZ>& cloud,
         far2[a][o + m] = d * d;
       }
     }
-    const int mz = D == 3 ? m : 0;
-    for (int dz = -mz; dz <= mz; ++dz) {
-      if (k[2] + dz < 0 || k[2] + dz >= grid.n[2]) continue;
-      for (int dy = -m; dy <= m; ++dy) {
-        if (k[1] + dy < 0 || k[1] + dy >= grid.n[1]) continue;
-        for (int dx = -m; dx <= m; ++dx) {
-          if (k[0] + dx < 0 || k[0] + dx >= grid.n[0]) continue;
-          const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
-          const auto b = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
-          float& c =
-              cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
-          c = std::min(c, b);
+    constexpr int mz = D == 3 ? m : 0;
+    // Away from the grid's faces no cell of the block needs a check (the loops then unroll).
+    bool inner = true;
+    for (int a = 0; a < D; ++a) inner = inner && k[a] >= m && k[a] + m < grid.n[a];
+    const auto update = [&](auto checked) {
+      for (int dz = -mz; dz <= mz; ++dz) {
+        if (checked && (k[2] + dz < 0 || k[2] + dz >= grid.n[2])) continue;
+        for (int dy = -m; dy <= m; ++dy) {
+          if (checked && (k[1] + dy < 0 || k[1] + dy >= grid.n[1])) continue;
+          for (int dx = -m; dx <= m; ++dx) {
+            if (checked && (k[0] + dx < 0 || k[0] + dx >= grid.n[0])) continue;
+            const double d2 = far2[0][dx + m] + far2[1][dy + m] + (D == 3 ? far2[2][dz + m] : 0.0);
+            const auto b = static_cast<float>(d2 * (1.0 + 2.0 * kMargin));
+            float& c =
+                cover[(k[0] + dx) * stride[0] + (k[1] + dy) * stride[1] + (k[2] + dz) * stride[2]];
+            c = std::min(c, b);
+          }
         }
       }
+    };
+    if (inner) {
+      update(std::false_type{});
+    } else {
+      update(std::true_type{});
     }
   };
   // The points by slab of cells along the last axis, slabs at least 2 m + 1 cells thick: a point
