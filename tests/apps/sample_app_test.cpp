@@ -149,12 +149,19 @@ TEST_F(SampleApp, UnreadableRobotFile) {
 }
 
 TEST_F(SampleApp, RunStoppedBySignalLeavesNoFile) {
-  // 40 million samples take several seconds; SIGTERM after half a second.
+  // SIGTERM once the run has shown progress (its first line comes after about a second), so it
+  // lands mid-run however fast the machine: 10^7 collision-checked samples of the ta1400 take
+  // about 4.5 s here (a 40-million-sample ball, killed after a fixed 0.5 s, took only 1.1 s).
+  test::TempDir logs;
+  const std::string err = logs.file("err.txt");
   const test::RunResult r =
-      test::run("(" + kSample + " --shape ball --samples 40000000 --output " + out() +
-                " & pid=$!; sleep 0.5; kill -TERM $pid; wait $pid; echo \"status $?\")");
+      test::run("(" + kSample + " --robot " + test::robotPath("ta1400") +
+                " --collision --samples 10000000 --output " + out() + " 2>" + err +
+                " & pid=$!; for i in $(seq 600); do grep -q '%' " + err +
+                " && break; sleep 0.05; done; kill -TERM $pid; wait $pid; echo \"status $?\")");
   EXPECT_THAT(r.out, HasSubstr("status 143"));  // 128 + SIGTERM: ended by the signal
   EXPECT_EQ(dir_.fileCount(), 0u);
+  EXPECT_THAT(test::readFile(err), HasSubstr("% ("));  // killed after progress, not before
 }
 
 TEST_F(SampleApp, UnwritableOutputDirectory) {
