@@ -15,6 +15,7 @@
 namespace mcws {
 namespace {
 
+using test::answeredFaults;
 using test::fault;
 using test::faultScript;
 using test::model;
@@ -295,11 +296,9 @@ TEST(Executor, AWrongReleaseThatPassesTheCheckNeverDropsTheRobot) {
   // The moving clamp released by a wrong command in q1 (allowed: the fixed one grips); the
   // state's own release then never went out, times out, and the operator resumes it: sending
   // it would open both clamps, so the run stops before the command (exit 1 in mcws_behave).
-  FaultScript faults;
   InjectedFault wrong = fault(FaultKind::kWrongCommand, 0.0);
   wrong.command = SimCommand::release(kMovingClamp);
-  faults.faults = std::vector<InjectedFault>{wrong};
-  faults.operator_responses = {{10.0, OperatorAction::kResume, 0}};
+  const FaultScript faults = answeredFaults({wrong}, 10.0, OperatorAction::kResume);
   const Recorded rec = runJob(model(), 2, faults);
   EXPECT_EQ(rec.summary.status, RunStatus::kInvariantViolated);
   ASSERT_TRUE(rec.summary.violation);
@@ -313,9 +312,8 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtByTheEncoder) {
   // The fixed clamp's switch reads pressed from 100 s, while its jaw grips the string (CB2 of
   // disc 1; the second CB1 starts at 111.17 s): the encoder (25 deg) contradicts it at once, so
   // the robot stops at 100 s, not at the next release, and the operator repairs the switch.
-  FaultScript faults;
-  faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 100.0, true)};
-  faults.operator_responses = {{20.0, OperatorAction::kRepairAndResume, 0}};
+  const FaultScript faults = answeredFaults({stuckSwitch(kFixedClamp, 100.0, true)}, 20.0,
+                                            OperatorAction::kRepairAndResume);
   const Recorded rec = runJob(model(), 2, faults);
   const std::vector<LogRecord> mismatch = rec.events("sensor_mismatch");
   ASSERT_EQ(mismatch.size(), 1u);
@@ -344,9 +342,8 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtWheneverTheEncoderContradictsIt) {
   // closes the jaw; it is found at the first step whose encoder reads more than 0.5 deg
   // (10 counts), taken from the simulator's own snapshots.
   {
-    FaultScript faults;
-    faults.faults = std::vector<InjectedFault>{stuckSwitch(kMovingClamp, 1.0, true)};
-    faults.operator_responses = {{45.0, OperatorAction::kRepairAndResume, 0}};
+    const FaultScript faults = answeredFaults({stuckSwitch(kMovingClamp, 1.0, true)}, 45.0,
+                                              OperatorAction::kRepairAndResume);
     const Recorded rec = runJob(model(), 1, faults);
     ASSERT_EQ(rec.summary.faults.size(), 1u);
     const FaultReaction& f = rec.summary.faults[0];
@@ -356,9 +353,8 @@ TEST(Executor, AZeroSwitchStuckPressedIsCaughtWheneverTheEncoderContradictsIt) {
     EXPECT_EQ(rec.summary.status, RunStatus::kCompleted);
   }
   {
-    FaultScript faults;
-    faults.faults = std::vector<InjectedFault>{stuckSwitch(kFixedClamp, 5.0, true)};
-    faults.operator_responses = {{10.0, OperatorAction::kRepairAndResume, 0}};
+    const FaultScript faults = answeredFaults({stuckSwitch(kFixedClamp, 5.0, true)}, 10.0,
+                                              OperatorAction::kRepairAndResume);
     const Recorded rec = runJob(model(), 1, faults);
     double contradicted = -1.0;
     for (const SimSnapshot& s : rec.steps) {
@@ -478,9 +474,9 @@ TEST(Executor, TheReturnsDiscCountIsTheNumberOfDiscsItClimbs) {
 TEST(Executor, TheOperatorActsOnlyOverALiveLink) {
   // Stuck switch -> timeout at 15 s -> MANUAL; the link drops at 20 s for 60 s; the operator's
   // repair due at 15 + 30 = 45 s waits for the link (80 s).
-  FaultScript faults;
-  faults.faults = {stuckSwitch(kFixedClamp, 0.0, false), fault(FaultKind::kLinkDown, 20.0, 60.0)};
-  faults.operator_responses = {{30.0, OperatorAction::kRepairAndResume, 0}};
+  FaultScript faults = answeredFaults(
+      {stuckSwitch(kFixedClamp, 0.0, false), fault(FaultKind::kLinkDown, 20.0, 60.0)}, 30.0,
+      OperatorAction::kRepairAndResume);
   const Recorded rec = runJob(model(), 1, faults);
   ASSERT_EQ(rec.events("operator").size(), 1u);
   EXPECT_NEAR(rec.events("operator")[0].t, 80.0, 1e-9);
@@ -526,9 +522,8 @@ TEST(Executor, TheOperatorsReturnReclosesAStuckReleaseAndUndoesTheHalfMove) {
   // The moving clamp's switch sticks (never pressed) in CB1's q4 (fixed clamp already one pitch
   // down): BB_LG_Release times out; the operator orders the return: J2 closes again (q4, both
   // gripping), CB3 from q4 brings the body back up, and the robot ends at the start.
-  FaultScript faults;
-  faults.faults = std::vector<InjectedFault>{stuckSwitch(kMovingClamp, 20.0, false)};
-  faults.operator_responses = {{5.0, OperatorAction::kReturn, 0}};
+  const FaultScript faults =
+      answeredFaults({stuckSwitch(kMovingClamp, 20.0, false)}, 5.0, OperatorAction::kReturn);
   const Recorded rec = runJob(model(), 2, faults);
   ASSERT_EQ(rec.events("reclose").size(), 1u);
   EXPECT_EQ(rec.events("reclose")[0].behavior, "BB_LG_Clamp");

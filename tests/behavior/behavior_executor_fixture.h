@@ -80,4 +80,13 @@ inline FaultScript faultScript(double link_wait, std::vector<InjectedFault> faul
   return script;
 }
 
+/// The faults `faults`, answered by the operator's `action` `after` [s] from the hand-over.
+inline FaultScript answeredFaults(std::vector<InjectedFault> faults, double after,
+                                  OperatorAction action) {
+  FaultScript script;
+  script.faults = std::move(faults);
+  script.operator_responses = {{after, action, 0}};
+  return script;
+}
+
 }  // namespace mcws::test
