@@ -59,24 +59,13 @@ constexpr double kFloatManipulability = 1e-6 * kL1 * kL2;
 /// Samples and grid of the planar maps: not a multiple of the sampling block (16384), 2 cm voxels,
 /// 20 x 6 orientation bins (two 64-bit words per voxel).
 constexpr std::uint64_t kPlanarSamples = 100003;
-ReachGrid planarGrid() {
-  ReachGrid grid;
-  grid.resolution = 2.0;
-  grid.directions = 20;
-  grid.rolls = 6;
-  return grid;
-}
+ReachGrid planarGrid() { return test::reachGrid(2.0, 20, 6); }
 
 // ---------------------------------------------------------------------------------------------
 // buildReachMap on the planar 2R arm.
 
 ReachSampling planarSampling(const Robot& robot, int threads) {
-  ReachSampling sampling;
-  sampling.samples = kPlanarSamples;
-  sampling.seed = 7;
-  sampling.threads = threads;
-  sampling.quality = defaultQualityOptions(robot);
-  return sampling;
+  return test::reachSampling(robot, kPlanarSamples, 7, threads);
 }
 
 /// The map by brute force from the same joint values (RobotSampler::jointValues, same seed,
@@ -451,16 +440,9 @@ TEST(BuildReachMap, SixJointArmMatchesABruteForceMapOfTheSameJointValues) {
   // full-twist manipulability, each sample by toolPose(), OrientationBins::bin() and the SVD of
   // toolJacobian().
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  ReachGrid grid;
-  grid.resolution = 100.0;
-  grid.directions = 30;
-  grid.rolls = 4;
-  ReachSampling sampling;
+  const ReachGrid grid = test::reachGrid(100.0, 30, 4);
+  ReachSampling sampling = test::reachSampling(robot, 20000, 3, 2);
   sampling.first = 1000;
-  sampling.samples = 20000;
-  sampling.seed = 3;
-  sampling.threads = 2;
-  sampling.quality = defaultQualityOptions(robot);
   ASSERT_EQ(sampling.quality.task, QualityTask::kFull);
   const ReachMap map = buildReachMap(robot, grid, sampling);
 
@@ -537,14 +519,8 @@ double maxCosine(const SpherePartition& sphere, int region, const Eigen::Vector3
 
 TEST(BuildReachMap, InspectionArmReachesMostApproachesMidWorkspaceAndFewAtTheRim) {
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  ReachGrid grid;
-  grid.resolution = 100.0;  // mm
-  grid.directions = 50;
-  grid.rolls = 1;
-  ReachSampling sampling;
-  sampling.samples = 1000000;
-  sampling.seed = 1;
-  sampling.threads = 2;
+  const ReachGrid grid = test::reachGrid(100.0, 50, 1);  // mm
+  ReachSampling sampling = test::reachSampling(robot, 1000000, 1, 2);
   sampling.manipulability = false;
   const ReachMap map = buildReachMap(robot, grid, sampling);
   ASSERT_EQ(map.samples(), sampling.samples);

@@ -1,6 +1,6 @@
 #pragma once
-// The reach map tests' byte images of a map and its contents voxel by voxel (reach_map_test.cpp
-// and reach_map_build_test.cpp).
+// The reach map tests' grids and samplings, and the byte images of a map and its contents voxel
+// by voxel (reach_map_test.cpp, reach_map_build_test.cpp and voxel_box_test.cpp).
 
 #include <Eigen/Core>
 #include <array>
@@ -10,9 +10,32 @@
 #include <sstream>
 #include <string>
 
+#include "mcws/kinematics/robot.h"
+#include "mcws/reach/quality.h"
 #include "mcws/reach/reach_map.h"
 
 namespace mcws::test {
+
+/// A map grid of `resolution` voxels [robot length unit] and `directions` x `rolls` orientation
+/// bins.
+inline ReachGrid reachGrid(double resolution, int directions, int rolls) {
+  ReachGrid grid;
+  grid.resolution = resolution;
+  grid.directions = directions;
+  grid.rolls = rolls;
+  return grid;
+}
+
+/// `samples` samples of `robot` from `seed` on `threads` threads, its default manipulability.
+inline ReachSampling reachSampling(const Robot& robot, std::uint64_t samples, std::uint64_t seed,
+                                   int threads) {
+  ReachSampling sampling;
+  sampling.samples = samples;
+  sampling.seed = seed;
+  sampling.threads = threads;
+  sampling.quality = defaultQualityOptions(robot);
+  return sampling;
+}
 
 inline std::string bytesOf(const ReachMap& map, const std::string& header = "{}") {
   std::ostringstream out(std::ios::binary);

@@ -35,13 +35,7 @@ using test::VoxelIndex;
 // Hand-made maps.
 
 /// 0.5 voxels, 100 x 2 = 200 bins (four words, so bins 63/64 and 150/199 sit in different words).
-ReachGrid handGrid() {
-  ReachGrid grid;
-  grid.resolution = 0.5;
-  grid.directions = 100;
-  grid.rolls = 2;
-  return grid;
-}
+ReachGrid handGrid() { return test::reachGrid(0.5, 100, 2); }
 
 ReachMap handMapA() {
   ReachMap map(handGrid());

@@ -21,6 +21,7 @@
 #include "mcws/kinematics/robot_yaml.h"
 #include "mcws/reach/reach_map.h"
 #include "reach/planar2.h"
+#include "reach/reach_map_fixture.h"
 #include "test_support.h"
 
 namespace mcws {
@@ -57,23 +58,6 @@ std::uint64_t boxTestKey(std::int64_t x, std::int64_t y, std::int64_t z) {
   return (field(x) << 42) | (field(y) << 21) | field(z);
 }
 
-ReachSampling boxSampling(std::uint64_t samples, int threads, const Robot& robot) {
-  ReachSampling s;
-  s.samples = samples;
-  s.seed = 3;
-  s.threads = threads;
-  s.quality = defaultQualityOptions(robot);
-  return s;
-}
-
-ReachGrid boxGrid(double resolution, int directions, int rolls) {
-  ReachGrid g;
-  g.resolution = resolution;
-  g.directions = directions;
-  g.rolls = rolls;
-  return g;
-}
-
 TEST(VoxelBox, IndicesRunZFastestAndKeysRoundTrip) {
   const std::int64_t low[3] = {-3, 5, -1}, size[3] = {4, 3, 5};
   VoxelBox box(low, size, 3);
@@ -107,13 +91,13 @@ TEST(BuildReachMap, TheDenseBoxGivesTheHashTablesMap) {
   const Robot robot = test::planar2();
   // 2 cm: a 12 MB box swept in sorted order; 10 cm: one recorded as samples come.
   for (const double resolution : {2.0, 10.0}) {
-    ReachSampling hash = boxSampling(150001, 1, robot);
+    ReachSampling hash = test::reachSampling(robot, 150001, 3, 1);
     hash.dense_bytes = 0;
     const std::string expected =
-        boxMapBytes(buildReachMap(robot, boxGrid(resolution, 20, 6), hash));
+        boxMapBytes(buildReachMap(robot, test::reachGrid(resolution, 20, 6), hash));
     for (const int threads : {1, 2, 3}) {
-      EXPECT_EQ(boxMapBytes(buildReachMap(robot, boxGrid(resolution, 20, 6),
-                                          boxSampling(150001, threads, robot))),
+      EXPECT_EQ(boxMapBytes(buildReachMap(robot, test::reachGrid(resolution, 20, 6),
+                                          test::reachSampling(robot, 150001, 3, threads))),
                 expected)
           << resolution << " " << threads;
     }
@@ -124,12 +108,13 @@ TEST(BuildReachMap, TheInspectionArmsDenseMapIsItsHashMapWithAndWithoutManipulab
   const Robot robot = loadRobot(test::robotPath("inspection6"));  // mm, 1655 mm of reach
   ASSERT_NE(reach_map_build::reachBox(robot, chainLengthScale(robot), 50.0, 6, 1u << 30), nullptr);
   for (const bool manipulability : {true, false}) {
-    ReachSampling hash = boxSampling(200003, 2, robot);
+    ReachSampling hash = test::reachSampling(robot, 200003, 3, 2);
     hash.manipulability = manipulability;
     ReachSampling dense = hash;
     hash.dense_bytes = 0;
-    const ReachMap map = buildReachMap(robot, boxGrid(50.0, 200, 1), dense);
-    EXPECT_EQ(boxMapBytes(map), boxMapBytes(buildReachMap(robot, boxGrid(50.0, 200, 1), hash)));
+    const ReachMap map = buildReachMap(robot, test::reachGrid(50.0, 200, 1), dense);
+    EXPECT_EQ(boxMapBytes(map),
+              boxMapBytes(buildReachMap(robot, test::reachGrid(50.0, 200, 1), hash)));
     EXPECT_GT(map.size(), 10000u);
   }
 }
@@ -137,13 +122,14 @@ TEST(BuildReachMap, TheInspectionArmsDenseMapIsItsHashMapWithAndWithoutManipulab
 TEST(BuildReachMap, SamplesOutsideTheBoxCountAsInTheHashTables) {
   // A box for 30 cm or 0 cm of the planar arm's 70: most samples fall outside it.
   const Robot robot = test::planar2();
-  ReachSampling hash = boxSampling(100003, 1, robot);
+  ReachSampling hash = test::reachSampling(robot, 100003, 3, 1);
   hash.dense_bytes = 0;
-  const std::string expected = boxMapBytes(buildReachMap(robot, boxGrid(2.0, 20, 6), hash));
+  const std::string expected = boxMapBytes(buildReachMap(robot, test::reachGrid(2.0, 20, 6), hash));
   for (const double radius : {30.0, 0.0}) {
     for (const int threads : {1, 2}) {
       EXPECT_EQ(boxMapBytes(reach_map_build::buildReachMapInBox(
-                    robot, boxGrid(2.0, 20, 6), boxSampling(100003, threads, robot), radius)),
+                    robot, test::reachGrid(2.0, 20, 6),
+                    test::reachSampling(robot, 100003, 3, threads), radius)),
                 expected)
           << radius << " " << threads;
     }
@@ -154,10 +140,10 @@ TEST(BuildReachMap, TheIndexBuiltByThreadsFindsEveryVoxel) {
   // Over 65536 voxels: the index is built by both threads, for the box and the hash tables.
   const Robot robot = loadRobot(test::robotPath("inspection6"));
   for (const std::uint64_t dense_bytes : {std::uint64_t{1} << 30, std::uint64_t{0}}) {
-    ReachSampling s = boxSampling(200003, 2, robot);
+    ReachSampling s = test::reachSampling(robot, 200003, 3, 2);
     s.manipulability = false;
     s.dense_bytes = dense_bytes;
-    const ReachMap map = buildReachMap(robot, boxGrid(20.0, 20, 1), s);
+    const ReachMap map = buildReachMap(robot, test::reachGrid(20.0, 20, 1), s);
     ASSERT_GT(map.size(), 65536u);
     for (std::size_t v = 0; v < map.size(); ++v) {
       ASSERT_EQ(map.find(map.voxelCentre(map.voxel(v))), static_cast<long>(v)) << v;
@@ -322,20 +308,20 @@ TEST(BuildReachMap, ABoxTooLargeForItsCodesGivesWayToTheHashTables) {
   ASSERT_NE(box, nullptr);
   EXPECT_EQ(box->voxels(), 43u * 43u * 43u);
   EXPECT_FALSE(BoxPart::fits(box->voxels(), 4096 * 16));
-  ReachSampling hash = boxSampling(20011, 2, robot);
+  ReachSampling hash = test::reachSampling(robot, 20011, 3, 2);
   const ReachSampling dense = hash;
   hash.dense_bytes = 0;
-  EXPECT_EQ(boxMapBytes(buildReachMap(robot, boxGrid(3.5, 4096, 16), dense)),
-            boxMapBytes(buildReachMap(robot, boxGrid(3.5, 4096, 16), hash)));
+  EXPECT_EQ(boxMapBytes(buildReachMap(robot, test::reachGrid(3.5, 4096, 16), dense)),
+            boxMapBytes(buildReachMap(robot, test::reachGrid(3.5, 4096, 16), hash)));
 }
 
 TEST(BuildReachMap, ThreadsFindingVoxelsAtOnceInACopyOfAMapWithoutItsIndex) {
   // The built map's index is left to the first lookup: two threads look up every voxel at once
   // in the map and in a copy made before either looked (the copy builds its own).
   const Robot robot = loadRobot(test::robotPath("inspection6"));
-  ReachSampling s = boxSampling(200003, 2, robot);
+  ReachSampling s = test::reachSampling(robot, 200003, 3, 2);
   s.manipulability = false;
-  const ReachMap map = buildReachMap(robot, boxGrid(20.0, 20, 1), s);
+  const ReachMap map = buildReachMap(robot, test::reachGrid(20.0, 20, 1), s);
   const ReachMap copy = map;  // NOLINT(performance-unnecessary-copy-initialization): the test
   ASSERT_GT(map.size(), 65536u);
   for (const ReachMap* m : {&map, &copy}) {
@@ -367,7 +353,8 @@ TEST(BuildReachMap, ThreadsFindingVoxelsAtOnceInACopyOfAMapWithoutItsIndex) {
   // Bytes are those of the hash tables' map, whose index was built as it filled.
   ReachSampling hash = s;
   hash.dense_bytes = 0;
-  EXPECT_EQ(boxMapBytes(copy), boxMapBytes(buildReachMap(robot, boxGrid(20.0, 20, 1), hash)));
+  EXPECT_EQ(boxMapBytes(copy),
+            boxMapBytes(buildReachMap(robot, test::reachGrid(20.0, 20, 1), hash)));
 }
 
 TEST(BuildReachMap, APartHandsBackTheBatchesItRecordedEmptyWithTheirMemory) {
