@@ -50,6 +50,8 @@ the tool says so with an estimate after its first samples, and shows progress. I
 map cache (--map-cache) and reused by every later run whose map inputs are the same (the robot
 file, its collision model and meshes, --base/--tip, --resolution, --orientations, --rolls,
 --samples, --seed, the manipulability flags, --no-collision); a cached map is also a --map file.
+After a store the cache's oldest maps are removed until they take at most 2 GiB
+(MCWS_MAP_CACHE_LIMIT_MB, in MiB, 0: no limit; docs/place.md).
 --output writes the candidate bases (where the base frame lands) with fields map_share,
 map_score, ik_share and ik_score (-1: not confirmed); --plot the share reached against the
 offset along x.)";

@@ -327,8 +327,11 @@ def place(robot, targets, line, across=(0.0,), up=(0.0,), *, normals=None, map=N
         being built again, and one built is stored in it; True: mcws_place's default folder
         ($XDG_CACHE_HOME/mcws/reach-maps, else ~/.cache/mcws/reach-maps), which the tool then
         shares; None (default): no cache, nothing written. A damaged entry is rebuilt with a
-        RuntimeWarning; so is a failure to store one (the call goes on). The summary then has
-        map_cache (directory, path, reused, stored) as the tool's --json.
+        RuntimeWarning; so is a failure to store one (the call goes on). After a store the
+        folder's oldest maps are removed until they take at most 2 GiB (the environment
+        variable MCWS_MAP_CACHE_LIMIT_MB, in MiB; 0: no limit), as the tool does, with a
+        RuntimeWarning saying what went. The summary then has map_cache (directory, path,
+        reused, stored) as the tool's --json.
     The summary's map.about names where the map came from: the file ReachMap.load read,
     "reach_map()", "built" (here) or "cache" (with built_utc).
 

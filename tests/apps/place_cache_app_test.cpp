@@ -1,10 +1,13 @@
 // mcws_place's map cache through its command line (planar2, a small map): a second run with the
 // same map inputs reuses the map and places exactly as the first; another robot file,
 // resolution or seed builds another; a damaged entry is rebuilt with one warning; off, an
-// unwritable cache and a failed run store nothing.
+// unwritable cache and a failed run store nothing; over MCWS_MAP_CACHE_LIMIT_MB the oldest entries
+// go, and a bad limit stops the run before the map is built.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -163,6 +166,55 @@ TEST_F(PlaceCacheApp, TwoRunsAtOnceLeaveOneGoodEntry) {
   EXPECT_THAT(after.err, HasSubstr("reusing the cached map " + entries()[0]));
   EXPECT_EQ(test::readFile(file("a.pcd")), test::readFile(file("c.pcd")));
   EXPECT_EQ(test::readFile(file("b.pcd")), test::readFile(file("c.pcd")));
+}
+
+/// Sets the environment variable `name` to `value` for the object's life, then puts it back.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) {
+    const char* was = std::getenv(name);
+    if (was) saved_ = was;
+    had_ = was != nullptr;
+    ::setenv(name, value.c_str(), 1);
+  }
+  ~ScopedEnv() {
+    if (had_) {
+      ::setenv(name_, saved_.c_str(), 1);
+    } else {
+      ::unsetenv(name_);
+    }
+  }
+
+ private:
+  const char* name_;
+  std::string saved_;
+  bool had_{false};
+};
+
+TEST_F(PlaceCacheApp, OverTheLimitTheOldestEntriesGoAndABadLimitStopsTheRun) {
+  std::filesystem::create_directories(cache());
+  const std::string old = cache() + "/arm-" + std::string(64, '7') + ".bin";
+  test::writeFile(old, std::string(std::size_t{2} << 20, 'x'));  // 2 MiB, written long ago
+  std::filesystem::last_write_time(
+      old, std::filesystem::file_time_type::clock::now() - std::chrono::hours(48));
+  {
+    const ScopedEnv limit("MCWS_MAP_CACHE_LIMIT_MB", "1");
+    const test::RunResult run = place("--map-cache " + cache() + " --json");
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_THAT(run.err, HasSubstr("mcws_place: the map cache " + cache() +
+                                   " is over its limit of 1.0 MiB: removed the 1 oldest map "
+                                   "(2.0 MiB)\n"));
+    EXPECT_FALSE(std::filesystem::exists(old));
+    ASSERT_EQ(entries().size(), 1u);
+    EXPECT_EQ(nlohmann::json::parse(run.out)["map_cache"]["stored"], true);
+  }
+  const ScopedEnv bad("MCWS_MAP_CACHE_LIMIT_MB", "1GB");
+  const test::RunResult run = place("--map-cache " + cache(), "bad.pcd");
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_EQ(run.err,
+            "mcws_place: MCWS_MAP_CACHE_LIMIT_MB: '1GB' is not a whole number of MiB (0: no "
+            "limit) up to 2^40\n");
+  EXPECT_FALSE(std::filesystem::exists(file("bad.pcd")));
 }
 
 TEST_F(PlaceCacheApp, OffUnwritableAndFailedRunsStoreNothing) {

@@ -1,13 +1,15 @@
 // The reach-map cache (mcws_place's own map): an entry read back is the map that was built, byte
 // for byte; every map input changes the key (a mesh edited behind an unchanged robot file too);
 // a damaged, truncated or foreign entry is reported in one line and not used; a cache that
-// cannot be written says so and stores nothing.
+// cannot be written says so and stores nothing; a store over the size limit removes the oldest
+// entries only (never the new one, nor a file that is not an entry) and says so.
 #include "mcws/reach/map_cache.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -232,6 +234,117 @@ TEST(MapCache, AnUnwritableCacheSaysSoInOneLineAndStoresNothing) {
   EXPECT_THAT(log.str(), ::testing::EndsWith(" (the run goes on)\n"));
   EXPECT_EQ(test::lineCount(log.str()), 1) << log.str();
   EXPECT_FALSE(cache.load(log, "tool"));
+}
+
+/// `bytes` in MiB with one decimal, as the cache's message gives it.
+std::string mebibytes(std::uint64_t bytes) {
+  std::ostringstream text;
+  text.setf(std::ios::fixed);
+  text.precision(1);
+  text << static_cast<double>(bytes) / (1 << 20);
+  return text.str();
+}
+
+/// An entry's file name for `key_digit` repeated (a name the cache would give a map).
+std::string entryName(const std::string& robot, char key_digit) {
+  return robot + "-" + std::string(64, key_digit) + ".bin";
+}
+
+/// Writes `bytes` bytes at `path`, last written `hours_ago` hours ago.
+void writeAged(const std::string& path, std::size_t bytes, int hours_ago) {
+  test::writeFile(path, std::string(bytes, 'x'));
+  std::filesystem::last_write_time(
+      path, std::filesystem::file_time_type::clock::now() - std::chrono::hours(hours_ago));
+}
+
+TEST(MapCache, AStoreOverTheLimitRemovesTheOldestEntriesOnlyAndSaysSo) {
+  const test::TempDir dir;
+  const Planar2Map inputs;
+  const ReachMap built = inputs.build();
+  // The new entry's size, from a store into a cache of its own.
+  const ReachMapCache probe = inputs.cache(dir.file("probe"));
+  std::ostringstream log;
+  ASSERT_TRUE(probe.store(built, 0.5, log, "tool")) << log.str();
+  const std::uint64_t own = std::filesystem::file_size(probe.path());
+
+  const std::string maps = dir.file("maps");
+  std::filesystem::create_directories(maps);
+  writeAged(maps + "/" + entryName("arm", 'a'), 1000, 30);  // oldest: removed
+  writeAged(maps + "/" + entryName("arm", 'b'), 1000, 20);  // removed
+  writeAged(maps + "/" + entryName("arm", 'c'), 1000, 10);  // stays: the limit is met
+  writeAged(maps + "/notes.txt", 5000, 40);                 // not an entry: never removed
+  writeAged(maps + "/arm-short.bin", 5000, 40);             // not an entry's name
+  writeAged(maps + "/" + entryName("arm", 'A'), 5000, 40);  // upper-case key: not an entry
+  ReachMapCache cache = inputs.cache(maps);
+  EXPECT_EQ(cache.limit(), kDefaultMapCacheLimit);
+  cache.setLimit(own + 1500);
+  ASSERT_TRUE(cache.store(built, 0.5, log, "tool")) << log.str();
+  EXPECT_EQ(log.str(), "tool: the map cache " + maps + " is over its limit of " +
+                           mebibytes(own + 1500) + " MiB: removed the 2 oldest maps (0.0 MiB)\n");
+  EXPECT_FALSE(std::filesystem::exists(maps + "/" + entryName("arm", 'a')));
+  EXPECT_FALSE(std::filesystem::exists(maps + "/" + entryName("arm", 'b')));
+  for (const std::string& kept : {entryName("arm", 'c'), std::string("notes.txt"),
+                                  std::string("arm-short.bin"), entryName("arm", 'A')}) {
+    EXPECT_TRUE(std::filesystem::exists(maps + "/" + kept)) << kept;
+  }
+  const std::optional<ReachMap> read = cache.load(log, "tool");
+  ASSERT_TRUE(read) << log.str();
+  EXPECT_EQ(recordBytes(*read), recordBytes(built));
+
+  // Under the limit: nothing removed, nothing said.
+  std::ostringstream quiet;
+  ASSERT_TRUE(cache.store(built, 0.5, quiet, "tool"));
+  EXPECT_EQ(quiet.str(), "");
+  EXPECT_TRUE(std::filesystem::exists(maps + "/" + entryName("arm", 'c')));
+}
+
+TEST(MapCache, TheNewEntryStaysWhenItAloneIsOverTheLimitAndNoLimitRemovesNothing) {
+  const test::TempDir dir;
+  const Planar2Map inputs;
+  const ReachMap built = inputs.build();
+  const std::string maps = dir.file("maps");
+  std::filesystem::create_directories(maps);
+  writeAged(maps + "/" + entryName("arm", 'd'), 3 << 20, 5);  // 3 MiB
+  ReachMapCache cache = inputs.cache(maps);
+  cache.setLimit(0);  // no limit
+  std::ostringstream log;
+  ASSERT_TRUE(cache.store(built, 0.5, log, "tool"));
+  EXPECT_EQ(log.str(), "");
+  EXPECT_TRUE(std::filesystem::exists(maps + "/" + entryName("arm", 'd')));
+  cache.setLimit(1);  // one byte
+  ASSERT_TRUE(cache.store(built, 0.5, log, "tool"));
+  EXPECT_EQ(log.str(), "tool: the map cache " + maps +
+                           " is over its limit of 0.0 MiB: removed the 1 oldest map (3.0 MiB)\n");
+  EXPECT_FALSE(std::filesystem::exists(maps + "/" + entryName("arm", 'd')));
+  EXPECT_TRUE(cache.load(log, "tool"));
+}
+
+TEST(MapCache, TheLimitComesFromTheEnvironmentAndABadOneStopsTheRunBeforeTheBuild) {
+  const char* saved = std::getenv("MCWS_MAP_CACHE_LIMIT_MB");
+  const std::string saved_value = saved ? saved : "";
+  ::unsetenv("MCWS_MAP_CACHE_LIMIT_MB");
+  EXPECT_EQ(mapCacheLimit(), std::uint64_t{2048} << 20);
+  ::setenv("MCWS_MAP_CACHE_LIMIT_MB", "512", 1);
+  EXPECT_EQ(mapCacheLimit(), std::uint64_t{512} << 20);
+  ::setenv("MCWS_MAP_CACHE_LIMIT_MB", "0", 1);
+  EXPECT_EQ(mapCacheLimit(), 0u);
+  for (const char* bad : {"", "-1", "1.5", "2G", " 5", "99999999999999"}) {
+    ::setenv("MCWS_MAP_CACHE_LIMIT_MB", bad, 1);
+    EXPECT_EQ(test::errorOf([] { mapCacheLimit(); }),
+              "MCWS_MAP_CACHE_LIMIT_MB: '" + std::string(bad) +
+                  "' is not a whole number of MiB (0: no limit) up to 2^40");
+  }
+  const Planar2Map inputs;
+  const test::TempDir dir;
+  ::setenv("MCWS_MAP_CACHE_LIMIT_MB", "lots", 1);
+  EXPECT_THAT(test::errorOf([&] { inputs.cache(dir.file("maps")); }),
+              StartsWith("MCWS_MAP_CACHE_LIMIT_MB: 'lots'"));
+  EXPECT_NO_THROW(inputs.cache(""));  // no cache: no limit read
+  if (saved) {
+    ::setenv("MCWS_MAP_CACHE_LIMIT_MB", saved_value.c_str(), 1);
+  } else {
+    ::unsetenv("MCWS_MAP_CACHE_LIMIT_MB");
+  }
 }
 
 TEST(MapCache, NoDirectoryIsNoCache) {

@@ -3,6 +3,7 @@
 #include <gnu/libc-version.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -254,7 +255,57 @@ void checkEntry(std::istream& in, const std::string& json, const std::string& pa
   }
 }
 
+/// Whether `name` is an entry's file name: `<name>-<64 lowercase hex digits>.bin`.
+bool isEntryName(const std::string& name) {
+  constexpr std::size_t kKey = 64, kTail = kKey + 4;  // the key and ".bin"
+  if (name.size() < kTail + 2 || name.compare(name.size() - 4, 4, ".bin") != 0) return false;
+  const std::size_t key = name.size() - kTail;
+  if (name[key - 1] != '-') return false;
+  return std::all_of(name.begin() + key, name.begin() + key + kKey,
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+/// A cache directory's entry: its file, size [bytes] and modification time.
+struct Entry {
+  std::filesystem::path path;
+  std::uint64_t bytes{0};
+  std::filesystem::file_time_type written;
+};
+
+/// The entries of `directory` (regular files named as entries; links and other files left out).
+std::vector<Entry> entriesOf(const std::string& directory) {
+  std::vector<Entry> entries;
+  for (const auto& item : std::filesystem::directory_iterator(directory)) {
+    if (!item.is_regular_file() || item.is_symlink()) continue;
+    if (!isEntryName(item.path().filename().string())) continue;
+    entries.push_back({item.path(), item.file_size(), item.last_write_time()});
+  }
+  return entries;
+}
+
+std::string mebibytes(std::uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", static_cast<double>(bytes) / (1 << 20));
+  return text;
+}
+
 }  // namespace
+
+std::uint64_t mapCacheLimit() {
+  const char* text = std::getenv("MCWS_MAP_CACHE_LIMIT_MB");
+  if (!text) return kDefaultMapCacheLimit;
+  const std::string value(text);
+  constexpr std::uint64_t kLargest = std::uint64_t{1} << 40;  // MiB
+  std::uint64_t mib = 0;
+  bool whole = !value.empty() && value.size() <= 13;
+  for (const char c : value) whole = whole && c >= '0' && c <= '9';
+  if (whole) mib = std::stoull(value);
+  if (!whole || mib > kLargest) {
+    throw Error("MCWS_MAP_CACHE_LIMIT_MB: '" + value +
+                "' is not a whole number of MiB (0: no limit) up to 2^40");
+  }
+  return mib << 20;
+}
 
 std::string defaultMapCacheDirectory() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
@@ -316,6 +367,7 @@ ReachMapCache::ReachMapCache(std::string directory, const Robot& robot, const Re
   header["cache_version"] = kMapCacheVersion;
   header["cache_key"] = key_;
   header_ = dumped(header);
+  limit_ = mapCacheLimit();
 }
 
 ReachMap ReachMapCache::read(const std::string& path, const std::string& key, const ReachGrid& grid,
@@ -370,11 +422,49 @@ bool ReachMapCache::store(const ReachMap& map, double build_seconds, std::ostrea
     writeMapTo(map, dumped(header),
                [&](const char* data, std::size_t size) { file.write(data, size); });
     file.commit();
-    return true;
   } catch (const std::exception& e) {
     log << tool << ": cannot cache the map at " << path_ << ": " << e.what()
         << " (the run goes on)\n";
     return false;
+  }
+  trim(log, tool);
+  return true;
+}
+
+void ReachMapCache::trim(std::ostream& log, const std::string& tool) const {
+  if (limit_ == 0) return;
+  try {
+    std::vector<Entry> entries = entriesOf(directory_);
+    std::uint64_t total = 0;
+    for (const Entry& entry : entries) total += entry.bytes;
+    if (total <= limit_) return;
+    // Oldest first, then by name; the entry just written is never removed.
+    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+      return a.written != b.written ? a.written < b.written : a.path < b.path;
+    });
+    const std::filesystem::path own(path_);
+    std::size_t removed = 0;
+    std::uint64_t freed = 0;
+    for (const Entry& entry : entries) {
+      if (total <= limit_) break;
+      if (entry.path.filename() == own.filename()) continue;
+      std::error_code error;
+      // Gone already (another run trimmed it): no longer counted either.
+      if (!std::filesystem::remove(entry.path, error) && error) {
+        throw Error("cannot remove " + entry.path.string() + ": " + error.message());
+      }
+      total -= entry.bytes;
+      ++removed;
+      freed += entry.bytes;
+    }
+    if (removed > 0) {
+      log << tool << ": the map cache " << directory_ << " is over its limit of "
+          << mebibytes(limit_) << " MiB: removed the " << removed << " oldest map"
+          << (removed == 1 ? "" : "s") << " (" << mebibytes(freed) << " MiB)\n";
+    }
+  } catch (const std::exception& e) {  // mcws::Error, std::filesystem::filesystem_error
+    log << tool << ": cannot trim the map cache " << directory_ << ": " << e.what()
+        << " (the run goes on)\n";
   }
 }
 

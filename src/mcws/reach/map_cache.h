@@ -10,7 +10,8 @@
 /// `build_seconds` and `payload_sha256` (the SHA-256 of the voxel records). An entry is written
 /// through io::AtomicFile (whole or not at all; concurrent writers: the last rename wins, and
 /// both wrote the same map) and is trusted only when its key, version, grid, sample count and
-/// record digest all match.
+/// record digest all match. After a store the directory's oldest entries are removed until the
+/// entries take at most mapCacheLimit() bytes (ReachMapCache::store()).
 
 #include <cstdint>
 #include <iosfwd>
@@ -27,6 +28,16 @@ namespace mcws {
 /// inputs would come out different (the map builder's output, the map file format, what the key
 /// hashes): entries of another version are then rebuilt, never read.
 constexpr int kMapCacheVersion = 1;
+
+/// \brief The size the entries of a cache directory may take by default [bytes]: 2 GiB (24 maps
+/// of 85 MB: the mesh arm's at 2 cm from 5e6 samples).
+constexpr std::uint64_t kDefaultMapCacheLimit = std::uint64_t{2} << 30;
+
+/// \brief The size the entries of a cache directory may take [bytes]: the environment variable
+/// MCWS_MAP_CACHE_LIMIT_MB when set (a whole number of MiB; 0: no limit), else
+/// kDefaultMapCacheLimit. \throws mcws::Error naming the variable and its value when it is not a
+/// whole number of at most 2^40.
+std::uint64_t mapCacheLimit();
 
 /// \brief The default cache directory: `$XDG_CACHE_HOME/mcws/reach-maps` when XDG_CACHE_HOME is
 /// an absolute path (the XDG base directory rule), else `$HOME/.cache/mcws/reach-maps`; empty
@@ -60,7 +71,8 @@ class ReachMapCache {
   /// \param directory the cache directory; empty: no cache (load() finds nothing, store() stores
   ///   nothing). Made on store() when missing.
   /// \param self_collision as for mapCacheKey(); nullptr: samples not checked.
-  /// \throws mcws::Error as mapCacheKey().
+  /// \throws mcws::Error as mapCacheKey(), or as mapCacheLimit() (read here, when enabled, so
+  ///   that a bad limit stops the run before the map is built).
   ReachMapCache(std::string directory, const Robot& robot, const ReachGrid& grid,
                 const ReachSampling& sampling, const CollisionModel* self_collision);
 
@@ -70,6 +82,9 @@ class ReachMapCache {
   /// \brief The entry's file (empty when not enabled).
   const std::string& path() const { return path_; }
   const std::string& key() const { return key_; }
+  /// \brief The size the directory's entries may take after store() [bytes]; 0: no limit.
+  std::uint64_t limit() const { return limit_; }
+  void setLimit(std::uint64_t bytes) { limit_ = bytes; }
 
   /// \brief The cached map, when the entry exists and is good. An entry that cannot be read or
   /// does not match (corrupt, truncated, another version or key, another grid) is reported as
@@ -79,10 +94,16 @@ class ReachMapCache {
                                CachedMapInfo* info = nullptr) const;
 
   /// \brief Writes `map` (built from the inputs of the key, in `build_seconds` [s]) as the entry,
-  /// through io::AtomicFile, making the directory if needed. Nothing throws: a failure (a
-  /// directory that cannot be made or written) is reported as one line on `log`, "<tool>: cannot
-  /// cache the map at <path>: <why> (the run goes on)". Call it with no io::OutputSet alive on
-  /// the thread (the file would join that set). \return whether the entry was written.
+  /// through io::AtomicFile, making the directory if needed, then removes the directory's other
+  /// entries (files named as entries are, `<name>-<64 hex digits>.bin`; nothing else is touched),
+  /// the oldest written first (then by name), until all entries take at most limit() bytes; the
+  /// new entry stays even when it alone is larger. Removals are reported as one line on `log`,
+  /// "<tool>: the map cache <dir> is over its limit of <L> MiB: removed the <n> oldest maps
+  /// (<m> MiB)". Nothing throws: a failure (a directory that cannot be made or written, an entry
+  /// that cannot be removed) is reported as one line on `log`, "<tool>: cannot cache the map at
+  /// <path>: <why> (the run goes on)" or "<tool>: cannot trim the map cache <dir>: <why> (the run
+  /// goes on)". Call it with no io::OutputSet alive on the thread (the file would join that
+  /// set). \return whether the entry was written.
   bool store(const ReachMap& map, double build_seconds, std::ostream& log,
              const std::string& tool) const;
 
@@ -96,6 +117,9 @@ class ReachMapCache {
   std::string header_;  ///< the entry's header members but cache_key, built_* and the digest
   ReachGrid grid_;
   std::uint64_t samples_{0};
+  std::uint64_t limit_{0};
+
+  void trim(std::ostream& log, const std::string& tool) const;
 };
 
 }  // namespace mcws
