@@ -275,6 +275,8 @@ TEST(MapCache, AStoreOverTheLimitRemovesTheOldestEntriesOnlyAndSaysSo) {
   writeAged(maps + "/notes.txt", 5000, 40);                 // not an entry: never removed
   writeAged(maps + "/arm-short.bin", 5000, 40);             // not an entry's name
   writeAged(maps + "/" + entryName("arm", 'A'), 5000, 40);  // upper-case key: not an entry
+  // A link named as an entry: not one (removing it would not free the space it points to).
+  std::filesystem::create_symlink(maps + "/notes.txt", maps + "/" + entryName("arm", '0'));
   ReachMapCache cache = inputs.cache(maps);
   EXPECT_EQ(cache.limit(), kDefaultMapCacheLimit);
   cache.setLimit(own + 1500);
@@ -283,8 +285,9 @@ TEST(MapCache, AStoreOverTheLimitRemovesTheOldestEntriesOnlyAndSaysSo) {
                            mebibytes(own + 1500) + " MiB: removed the 2 oldest maps (0.0 MiB)\n");
   EXPECT_FALSE(std::filesystem::exists(maps + "/" + entryName("arm", 'a')));
   EXPECT_FALSE(std::filesystem::exists(maps + "/" + entryName("arm", 'b')));
-  for (const std::string& kept : {entryName("arm", 'c'), std::string("notes.txt"),
-                                  std::string("arm-short.bin"), entryName("arm", 'A')}) {
+  for (const std::string& kept :
+       {entryName("arm", 'c'), std::string("notes.txt"), std::string("arm-short.bin"),
+        entryName("arm", 'A'), entryName("arm", '0')}) {
     EXPECT_TRUE(std::filesystem::exists(maps + "/" + kept)) << kept;
   }
   const std::optional<ReachMap> read = cache.load(log, "tool");

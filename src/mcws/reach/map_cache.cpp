@@ -272,13 +272,18 @@ struct Entry {
   std::filesystem::file_time_type written;
 };
 
-/// The entries of `directory` (regular files named as entries; links and other files left out).
+/// The entries of `directory` (regular files named as entries; links and other files left out,
+/// and a file gone while it is listed: another run trimmed it).
 std::vector<Entry> entriesOf(const std::string& directory) {
   std::vector<Entry> entries;
   for (const auto& item : std::filesystem::directory_iterator(directory)) {
-    if (!item.is_regular_file() || item.is_symlink()) continue;
     if (!isEntryName(item.path().filename().string())) continue;
-    entries.push_back({item.path(), item.file_size(), item.last_write_time()});
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(item.symlink_status(error)) || error) continue;
+    Entry entry{item.path(), item.file_size(error), {}};
+    if (error) continue;
+    entry.written = item.last_write_time(error);
+    if (!error) entries.push_back(entry);
   }
   return entries;
 }
