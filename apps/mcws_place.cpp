@@ -22,6 +22,7 @@
 #include "mcws/reach/placement_map.h"
 #include "mcws/reach/reach_report.h"
 #include "mcws/sampling/sample_report.h"
+#include "mcws/sampling/sampler.h"
 
 namespace {
 
@@ -298,7 +299,9 @@ int main(int argc, char** argv) {
       io::writeWholeFile(cli.required("plot"), renderPlacementPng(candidates, robot.name, unit));
     }
     const std::vector<BasePoint> points = basePoints(candidates, robot.T_world_base);
-    io::PcdStreamWriter<BasePoint> cloud(output, points.size());
+    // The robot (and so the positions' length unit) recorded, as mcws_reach's clouds.
+    io::PcdStreamWriter<BasePoint> cloud(output, points.size(), io::PcdFormat::kBinary,
+                                         robotProvenance(robot));
     cloud.write(points.data(), points.size());
     cloud.commit();
     outputs.commit();

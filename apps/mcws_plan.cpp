@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
       io::writeWholeFile(plot, renderConfigurationSpacePng(scenario, planner, round, cells));
     }
     if (!plot_offsets.empty()) {
-      io::writeWholeFile(plot_offsets, renderOffsetsPng(scenario, scanOffsets(planner)));
+      io::writeWholeFile(plot_offsets, renderOffsetsPng(scenario, scanOffsets(planner, progress)));
     }
     outputs.commit();
     return app::kExitOk;

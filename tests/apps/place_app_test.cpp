@@ -9,9 +9,12 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "apps/tool_paths.h"
+#include "mcws/io/cloud_io.h"
+#include "mcws/io/sha256.h"
 #include "mcws/reach/base_placement.h"
 #include "mcws/reach/reach_study.h"
 #include "png_image.h"
@@ -203,6 +206,12 @@ TEST_F(StudyApp, PlacementFindsTheOneIntervalOfTheLine) {
   ASSERT_EQ(pcl::io::loadPCDFile(file("bases.pcd"), bases), 0);
   ASSERT_EQ(bases.size(), 51u);
   EXPECT_FLOAT_EQ(bases[0].x, -30.f);  // planar2's base is at the origin
+  // The positions' robot and length unit are recorded in the file, as mcws_reach's clouds.
+  const std::optional<io::CloudProvenance> recorded = io::readProvenance(file("bases.pcd"));
+  ASSERT_TRUE(recorded);
+  EXPECT_EQ(recorded->robot, "planar2");
+  EXPECT_EQ(recorded->length_unit, "cm");
+  EXPECT_EQ(recorded->sha256, io::sha256OfFile(test::robotPath("planar2")));
   // The picture: IK's confirmations (dark red triangles) at 100 % span the confirmed interval,
   // [-8, 48] of the positions [-30, 70]: 56 % of the span of all triangles, whatever the axes.
   const test::PngImage png(file("placement.png"));

@@ -8,8 +8,12 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "mcws/kinematics/robot_yaml.h"
+#include "mcws/planning/plan_report.h"
 #include "mcws/planning/scenario.h"
 #include "test_support.h"
 
@@ -385,6 +389,39 @@ TEST(SwayPlanner, ChosenPathCollidesAtMostHalfAsOftenAsTheShortestOnTheMaintenan
       << "chosen " << chosen.collision_probability << ", shortest "
       << shortest.collision_probability;
   EXPECT_LE(chosen.length, 1.5 * shortest.length);
+}
+
+TEST(SwayPlanner, AnOffsetScanReportsEachRoundAndPlansAsTheRoundsAlone) {
+  // Offsets -2, -1, 0, 1, 2 cm: five rounds, each the round planRound() plans at that offset.
+  SwayPlanningProblem problem =
+      slider("{name: post, type: box, size: [2, 8, 200], xyz: [4, 24, 0]}", 1.0);
+  problem.base_step = 1.0;
+  problem.base_range = 2.0;
+  const SwayPlanner planner(problem);
+  std::vector<std::pair<std::size_t, std::size_t>> scan;  // ("offset scan", done, total)
+  std::size_t inner = 0;                                  // the rounds' own stages
+  const std::vector<PlanningRound> rounds =
+      scanOffsets(planner, [&](const std::string& stage, std::size_t done, std::size_t total) {
+        if (stage == "offset scan") {
+          scan.emplace_back(done, total);
+        } else {
+          EXPECT_EQ(stage.rfind("offset scan: ", 0), 0u) << stage;
+          ++inner;
+        }
+      });
+  const std::vector<std::pair<std::size_t, std::size_t>> expected{{0, 5}, {1, 5}, {2, 5},
+                                                                  {3, 5}, {4, 5}, {5, 5}};
+  EXPECT_EQ(scan, expected);
+  EXPECT_GE(inner, 10u);  // at least the roadmap's start and end in each round
+  ASSERT_EQ(rounds.size(), 5u);
+  for (int k = 0; k < 5; ++k) {
+    const PlanningRound alone = planner.planRound(k - 2.0);
+    EXPECT_EQ(rounds[k].base_offset, k - 2.0);
+    ASSERT_EQ(rounds[k].best.has_value(), alone.best.has_value()) << k;
+    if (alone.best) {
+      EXPECT_EQ(rounds[k].best->probability, alone.best->probability) << k;
+    }
+  }
 }
 
 }  // namespace

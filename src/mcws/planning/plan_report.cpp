@@ -432,15 +432,25 @@ std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& res
   return status + " " + range;
 }
 
-std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner) {
+std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner,
+                                       const PlanningProgress& progress) {
   const SwayPlanningProblem& p = planner.problem();
-  std::vector<PlanningRound> rounds;
-  if (p.base_step <= 0.0) {
-    rounds.push_back(planner.planRound(0.0));
-    return rounds;
+  const int steps = p.base_step <= 0.0
+                        ? 0
+                        : static_cast<int>(std::floor(p.base_range / p.base_step * (1.0 + 1e-12)));
+  const auto total = static_cast<std::size_t>(2 * steps + 1);
+  PlanningProgress inner;
+  if (progress) {
+    inner = [&](const std::string& stage, std::size_t done, std::size_t all) {
+      progress("offset scan: " + stage, done, all);
+    };
   }
-  const int steps = static_cast<int>(std::floor(p.base_range / p.base_step * (1.0 + 1e-12)));
-  for (int k = -steps; k <= steps; ++k) rounds.push_back(planner.planRound(k * p.base_step));
+  std::vector<PlanningRound> rounds;
+  for (int k = -steps; k <= steps; ++k) {
+    if (progress) progress("offset scan", rounds.size(), total);
+    rounds.push_back(planner.planRound(k * p.base_step, inner));
+  }
+  if (progress) progress("offset scan", rounds.size(), total);
   return rounds;
 }
 

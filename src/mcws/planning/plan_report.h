@@ -30,8 +30,10 @@ std::string planReport(const Scenario& scenario, const SwayPlanningResult& resul
 std::string noPathStatus(const Scenario& scenario, const SwayPlanningResult& result);
 
 /// \brief Rounds at every base offset -range, ..., 0, ..., +range (step apart), for a plot of
-/// P against the offset.
-std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner);
+/// P against the offset. `progress` (when set) hears ("offset scan", rounds done, rounds) as each
+/// round starts and ends, and each round's own stages as "offset scan: <stage>".
+std::vector<PlanningRound> scanOffsets(const SwayPlanner& planner,
+                                       const PlanningProgress& progress = {});
 
 /// \brief PNG of P, of the whole-path free fraction and of the lower end of its 95 % interval
 /// (1 - the upper end of the collision rate's) of each round's best path against its base offset,

@@ -60,11 +60,12 @@ void runPlanning(StudyState& state) {
     planned.target = t;
     planned.scenario = stopScenario(study, stop, study.targets[t], reach.q);
     const std::string stage = "planning " + study.targets[t].name;
+    const PlanningProgress progress = [&](const std::string& what, std::size_t done,
+                                          std::size_t total) {
+      if (state.options.progress) state.options.progress(stage + ": " + what, done, total);
+    };
     const SwayPlanner planner(planned.scenario.problem);
-    planned.result =
-        planner.plan(true, [&](const std::string& what, std::size_t done, std::size_t total) {
-          if (state.options.progress) state.options.progress(stage + ": " + what, done, total);
-        });
+    planned.result = planner.plan(true, progress);
     nlohmann::json goal = nlohmann::json::array();
     for (int j = 0; j < reach.q.size(); ++j) goal.push_back(reach.q[j]);
     nlohmann::json item = {{"target", study.targets[t].name},
@@ -76,7 +77,7 @@ void runPlanning(StudyState& state) {
       scan.base_step = study.offsets.step;
       scan.base_range = study.offsets.range;
       const SwayPlanner scanner(scan);
-      item["offsets"] = offsetsJson(scanOffsets(scanner));
+      item["offsets"] = offsetsJson(scanOffsets(scanner, progress));
     }
     if (planned.result.accepted) {
       const PlanningRound& round = planned.result.rounds[*planned.result.accepted];
