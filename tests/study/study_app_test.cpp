@@ -5,11 +5,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "study/study_files.h"
 #include "test_support.h"
@@ -20,6 +22,7 @@ namespace {
 using test::kPlanner;
 using test::StudyFiles;
 
+using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 using Json = nlohmann::json;
@@ -85,6 +88,15 @@ Json runStudy(const StudyFiles& files, const std::string& out, const std::string
   return r.exit_code == 0 ? Json::parse(r.out) : Json();
 }
 
+/// The names in `dir`, sorted.
+std::vector<std::string> entries(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 /// One run of the test study shared by the comparisons (it takes a few seconds).
 class StudyRunTest : public ::testing::Test {
  protected:
@@ -116,6 +128,56 @@ TEST_F(StudyRunTest, WritesTheReportAndItsFiles) {
     EXPECT_EQ(report_->at(Json::json_pointer(answer["source"].get<std::string>())), answer["value"])
         << answer["label"];
   }
+}
+
+TEST_F(StudyRunTest, ReportIsMarkedAsAStudysReport) {
+  EXPECT_EQ((*report_)["format"], "mcws_study report");
+}
+
+TEST_F(StudyRunTest, RefusesAFormerOutputHoldingFilesAStudyDoesNotWriteNamingTheFirst) {
+  const test::TempDir dir;
+  const std::string proj = dir.file("proj");
+  std::filesystem::copy(files_->file("out"), proj, std::filesystem::copy_options::recursive);
+  std::filesystem::create_directory(proj + "/data");
+  test::writeFile(proj + "/data/thesis.tex", "precious\n");
+  test::writeFile(proj + "/notes.txt", "mine");
+  const std::string command =
+      kStudyExe + " --study " + files_->file("study.yaml") + " --output " + proj;
+  const test::RunResult data = test::run(command);
+  EXPECT_EQ(data.exit_code, 2) << data.err;
+  EXPECT_EQ(test::lineCount(data.err), 1) << data.err;
+  // "data" is the first in name order: boundary.pcd, data, drawing.png, ...
+  EXPECT_THAT(data.err, HasSubstr("--output " + proj +
+                                  ": neither empty nor a former study's "
+                                  "output (it holds data, which a study does not write)"));
+  EXPECT_EQ(test::readFile(proj + "/data/thesis.tex"), "precious\n");
+  EXPECT_EQ(test::readFile(proj + "/notes.txt"), "mine");
+  // A path file the report does not name is no study's either.
+  std::filesystem::remove_all(proj + "/data");
+  std::filesystem::remove(proj + "/notes.txt");
+  test::writeFile(proj + "/path_other.csv", "mine");
+  const test::RunResult path = test::run(command);
+  EXPECT_EQ(path.exit_code, 2) << path.err;
+  EXPECT_THAT(path.err, HasSubstr("it holds path_other.csv, which a study does not write"));
+  EXPECT_EQ(test::readFile(proj + "/path_other.csv"), "mine");
+  EXPECT_THAT(entries(dir.file("")), ElementsAre("proj"));  // nothing left beside it
+}
+
+TEST_F(StudyRunTest, ReplacesAFormerOutputNamedWithATrailingSlash) {
+  const test::TempDir dir;
+  const std::string sc1 = dir.file("sc1");
+  std::filesystem::copy(files_->file("out"), sc1, std::filesystem::copy_options::recursive);
+  Json old = Json::parse(test::readFile(sc1 + "/report.json"));
+  old["study"] = "old study";
+  test::writeFile(sc1 + "/report.json", old.dump());
+  std::filesystem::remove(sc1 + "/drawing.png");
+  // The cache's folder shares the name's first letters, not its folder: it is not inside.
+  const test::RunResult r = test::run(kStudyExe + " --study " + files_->file("study.yaml") +
+                                      " --output " + sc1 + "/ --map-cache " + sc1 + "-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(test::readFile(sc1 + "/report.json"))["study"], "test study");
+  EXPECT_TRUE(std::filesystem::exists(sc1 + "/drawing.png"));
+  EXPECT_THAT(entries(dir.file("")), ElementsAre("sc1", "sc1-cache"));
 }
 
 TEST_F(StudyRunTest, VolumeIsMcwsMeasuresOnTheStudysSamples) {
@@ -293,18 +355,26 @@ TEST(StudyApp, RobotWithoutCollisionGeometryIsRefused) {
   EXPECT_THAT(r.err, HasSubstr("study.yaml:2: robot: 'bare.yaml' has no collision geometry"));
 }
 
-TEST(StudyApp, NoStopReachingAnyTargetNamesTheTargetsAndLeavesOutputAlone) {
+/// A former output's report.json, as far as the refusal of other folders reads it.
+const std::string kOldReport = R"({"format": "mcws_study report", "study": "old"})";
+
+/// The test study whose stops reach no target: it fails in the placement stage.
+std::string unreachingStudy() {
   std::string study = defaultStudy();
   test::replaceAll(study, "from: 20 cm, to: 40 cm", "from: 400 cm, to: 420 cm");
-  const StudyFiles files(study);
+  return study;
+}
+
+TEST(StudyApp, NoStopReachingAnyTargetNamesTheTargetsAndLeavesOutputAlone) {
+  const StudyFiles files(unreachingStudy());
   std::filesystem::create_directory(files.file("out"));
-  test::writeFile(files.file("out/report.json"), "old report");
+  test::writeFile(files.file("out/report.json"), kOldReport);
   const test::RunResult r = test::run(kStudyExe + " --study " + files.file("study.yaml") +
                                       " --output " + files.file("out"));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_THAT(r.err, HasSubstr("stops: no stop from 400 to 420 cm reaches any target "
                                "(targets t_1, t_2, t_3, t_4)"));
-  EXPECT_EQ(test::readFile(files.file("out/report.json")), "old report");
+  EXPECT_EQ(test::readFile(files.file("out/report.json")), kOldReport);
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(files.file("out")),
                           std::filesystem::directory_iterator()),
             1);
@@ -312,20 +382,114 @@ TEST(StudyApp, NoStopReachingAnyTargetNamesTheTargetsAndLeavesOutputAlone) {
   EXPECT_EQ(files.dir.fileCount(), 4u);
 }
 
+/// mcws_study run in `files`' folder with --output `output`, ended by SIGTERM as soon as the
+/// directory the study writes into has appeared in that folder: its stdout says how many such
+/// directories were seen ("1\n") and the run's status ("status 143": ended by the signal).
+test::RunResult stoppedBySignal(const StudyFiles& files, const std::string& output) {
+  return test::run("cd " + files.file("") + " && (" + kStudyExe + " --study study.yaml --output " +
+                   output +
+                   " 2>/dev/null & pid=$!; for i in $(seq 500); do "
+                   "ls -a | grep -q mcws-study && break; sleep 0.01; done; "
+                   "ls -a | grep -c mcws-study; kill -TERM $pid; wait $pid; echo \"status $?\")");
+}
+
 TEST(StudyApp, RunStoppedBySignalLeavesNothingBesideTheOutputAndTheOutputAsItWas) {
   const StudyFiles files;
   std::filesystem::create_directory(files.file("out"));
-  test::writeFile(files.file("out/report.json"), "old report");
-  // SIGTERM as soon as the directory the study writes into has appeared beside out/.
-  const test::RunResult r =
-      test::run("cd " + files.file("") + " && (" + kStudyExe +
-                " --study study.yaml --output out 2>/dev/null & pid=$!; for i in $(seq 500); do "
-                "ls -a | grep -q mcws-study && break; sleep 0.01; done; "
-                "ls -a | grep -c mcws-study; kill -TERM $pid; wait $pid; echo \"status $?\")");
+  test::writeFile(files.file("out/report.json"), kOldReport);
+  const test::RunResult r = stoppedBySignal(files, "out");
   EXPECT_THAT(r.out, StartsWith("1\n")) << "the study's directory was not seen: " << r.out;
   EXPECT_THAT(r.out, HasSubstr("status 143"));  // 128 + SIGTERM: ended by the signal
-  EXPECT_EQ(test::readFile(files.file("out/report.json")), "old report");
+  EXPECT_EQ(test::readFile(files.file("out/report.json")), kOldReport);
   EXPECT_EQ(files.dir.fileCount(), 4u);  // robot, targets, study and out/: nothing beside them
+}
+
+TEST(StudyApp, RunToANewNestedOutputStoppedBySignalLeavesNothing) {
+  const StudyFiles files;
+  // The study's directory is made in the nearest existing folder, here the study's own.
+  const test::RunResult r = stoppedBySignal(files, "new/deeper/out");
+  EXPECT_THAT(r.out, StartsWith("1\n")) << "the study's directory was not seen: " << r.out;
+  EXPECT_THAT(r.out, HasSubstr("status 143"));
+  EXPECT_THAT(entries(files.file("")), ElementsAre("robot.yaml", "study.yaml", "targets.csv"));
+}
+
+TEST(StudyApp, MakesANewOutputNamedWithATrailingSlash) {
+  const StudyFiles files;
+  const test::RunResult r = test::run("cd " + files.file("") + " && " + kStudyExe +
+                                      " --study study.yaml --output newdir/");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(test::readFile(files.file("newdir/report.json")))["study"], "test study");
+  EXPECT_THAT(entries(files.file("")),
+              ElementsAre("newdir", "robot.yaml", "study.yaml", "targets.csv"));
+}
+
+TEST(StudyApp, MakesTheMissingParentFoldersOfANewOutput) {
+  const StudyFiles files;
+  const test::RunResult r = test::run("cd " + files.file("") + " && " + kStudyExe +
+                                      " --study study.yaml --output out/study");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(test::readFile(files.file("out/study/report.json")))["study"],
+            "test study");
+  EXPECT_THAT(entries(files.file("")),
+              ElementsAre("out", "robot.yaml", "study.yaml", "targets.csv"));
+  EXPECT_THAT(entries(files.file("out")), ElementsAre("study"));
+}
+
+TEST(StudyApp, FailedRunToANewNestedOutputMakesNoFolder) {
+  const StudyFiles files(unreachingStudy());
+  const test::RunResult r = test::run("cd " + files.file("") + " && " + kStudyExe +
+                                      " --study study.yaml --output out/deeper/study");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("stops: no stop from 400 to 420 cm reaches any target"));
+  EXPECT_THAT(entries(files.file("")), ElementsAre("robot.yaml", "study.yaml", "targets.csv"));
+}
+
+TEST(StudyApp, RefusesAMapCacheInsideTheOutput) {
+  const StudyFiles files;
+  const std::string study = "cd " + files.file("") + " && " + kStudyExe + " --study study.yaml ";
+  const test::RunResult inside = test::run(study + "--output fo2 --map-cache fo2/cache");
+  EXPECT_EQ(inside.exit_code, 2) << inside.err;
+  EXPECT_EQ(test::lineCount(inside.err), 1) << inside.err;
+  EXPECT_THAT(inside.err, HasSubstr("--map-cache fo2/cache: the folder is --output fo2 or inside "
+                                    "it"));
+  const test::RunResult same = test::run(study + "--output fo2/ --map-cache ./fo2");
+  EXPECT_EQ(same.exit_code, 2) << same.err;
+  EXPECT_THAT(same.err, HasSubstr("--map-cache ./fo2: the folder is --output fo2/ or inside it"));
+  std::filesystem::create_directory(files.file("fo2"));
+  const test::RunResult existing = test::run(study + "--output fo2 --map-cache fo2/a/b");
+  EXPECT_EQ(existing.exit_code, 2) << existing.err;
+  EXPECT_THAT(existing.err, HasSubstr("--map-cache fo2/a/b: the folder is --output fo2"));
+  EXPECT_THAT(entries(files.file("")),
+              ElementsAre("fo2", "robot.yaml", "study.yaml", "targets.csv"));
+  EXPECT_TRUE(std::filesystem::is_empty(files.file("fo2")));
+}
+
+TEST(StudyApp, RefusesAFolderWhoseReportJsonIsNoStudysAndKeepsItsFiles) {
+  const StudyFiles files;
+  std::filesystem::create_directories(files.file("proj/data"));
+  test::writeFile(files.file("proj/report.json"), R"({"tool":"x"})");
+  test::writeFile(files.file("proj/data/thesis.tex"), "precious\n");
+  const test::RunResult r = test::run(kStudyExe + " --study " + files.file("study.yaml") +
+                                      " --output " + files.file("proj"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(test::lineCount(r.err), 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--output " + files.file("proj") +
+                               ": neither empty nor a former study's output (its report.json "
+                               "has no \"format\": \"mcws_study report\")"));
+  EXPECT_EQ(test::readFile(files.file("proj/data/thesis.tex")), "precious\n");
+  EXPECT_EQ(test::readFile(files.file("proj/report.json")), R"({"tool":"x"})");
+  EXPECT_EQ(files.dir.fileCount(), 4u);  // robot, targets, study and proj/: nothing beside them
+  // A study's report naming as a path file what is no path file (path_<target>.csv).
+  std::filesystem::remove_all(files.file("proj/data"));
+  test::writeFile(files.file("proj/report.json"),
+                  R"({"format": "mcws_study report", "planning": {"targets": [)"
+                  R"({"path_file": "thesis.tex"}]}})");
+  test::writeFile(files.file("proj/thesis.tex"), "precious\n");
+  const test::RunResult named = test::run(kStudyExe + " --study " + files.file("study.yaml") +
+                                          " --output " + files.file("proj"));
+  EXPECT_EQ(named.exit_code, 2) << named.err;
+  EXPECT_THAT(named.err, HasSubstr("it holds thesis.tex, which a study does not write"));
+  EXPECT_EQ(test::readFile(files.file("proj/thesis.tex")), "precious\n");
 }
 
 TEST(StudyApp, RefusesToReplaceADirectoryOfInputsOrOfOtherFiles) {
@@ -350,7 +514,9 @@ TEST(StudyApp, UsageErrorsExitTwo) {
   EXPECT_THAT(no_output.err, HasSubstr("--output"));
   const test::RunResult help = test::run(kStudyExe + " --help");
   EXPECT_EQ(help.exit_code, 0);
-  EXPECT_THAT(help.out, HasSubstr("mcws_study --study STUDY.yaml --output DIR"));
+  EXPECT_THAT(help.out, HasSubstr("mcws_study --study STUDY.yaml --output DIR [--json] [--seed N] "
+                                  "[--threads N] [--map-cache DIR|off]"));
+  EXPECT_THAT(help.out, HasSubstr("output directory (made, with missing parent folders, or"));
 }
 
 }  // namespace
