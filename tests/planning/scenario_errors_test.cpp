@@ -104,13 +104,23 @@ TEST_F(ScenarioFile, ConfidenceOutsideZeroOne) {
 
 TEST_F(ScenarioFile, PosesAndCandidatesZero) {
   expectError(replaced(kScenario, "poses: 40", "poses: 0"), 12,
-              {"sway: poses: 0 must be a whole number of at least 1"});
+              {"sway: poses: 0 must be a whole number from 1 to 1000000000"});
   expectError(replaced(kScenario, "poses: 40", "poses: 2.5"), 12,
-              {"sway: poses: 2.5 must be a whole number of at least 1"});
+              {"sway: poses: 2.5 must be a whole number from 1 to 1000000000"});
   expectError(replaced(kScenario, "candidates: 4", "candidates: 0"), 15,
-              {"planner: candidates: 0 must be a whole number of at least 1"});
+              {"planner: candidates: 0 must be a whole number from 1 to 1000000000"});
   expectError(replaced(kScenario, "validation: {poses: 500}", "validation: {poses: 0}"), 28,
-              {"validation: poses: 0 must be a whole number of at least 1"});
+              {"validation: poses: 0 must be a whole number from 1 to 1000000000"});
+}
+
+// Counts above 10^9 are refused with the limit they break, not a rule they meet.
+TEST_F(ScenarioFile, CountsAboveTheLimitNameTheLimit) {
+  expectError(replaced(kScenario, "poses: 40", "poses: 2000000000"), 12,
+              {"sway: poses: 2000000000 must be a whole number from 1 to 1000000000"});
+  expectError(replaced(kScenario, "candidates: 4", "candidates: 4294967297"), 15,
+              {"planner: candidates: 4294967297 must be a whole number from 1 to 1000000000"});
+  expectError(replaced(kScenario, "candidates: 4", "candidates: 1000000001"), 15,
+              {"planner: candidates: 1000000001 must be a whole number from 1 to 1000000000"});
 }
 
 TEST_F(ScenarioFile, StartOutsideTheJointLimits) {

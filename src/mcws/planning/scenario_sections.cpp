@@ -114,10 +114,13 @@ double ScenarioSectionReader::number(const YAML::Node& node, const std::string& 
   return out;
 }
 
-std::size_t ScenarioSectionReader::count(const YAML::Node& node, const std::string& field) const {
+std::size_t ScenarioSectionReader::count(const YAML::Node& node, const std::string& field,
+                                         std::size_t least, std::size_t most) const {
   const double value = number(node, field);
-  if (value < 1.0 || value != std::floor(value) || value > 1e9) {
-    fail(node, field + ": " + node.Scalar() + " must be a whole number of at least 1");
+  if (value < static_cast<double>(least) || value != std::floor(value) ||
+      value > static_cast<double>(most)) {
+    fail(node, field + ": " + node.Scalar() + " must be a whole number from " +
+                   std::to_string(least) + " to " + std::to_string(most));
   }
   return static_cast<std::size_t>(value);
 }

@@ -41,8 +41,13 @@ class ScenarioSectionReader : public YamlReader {
   void readValidation(const YAML::Node& node, SwayPlanningProblem& problem);
   /// The length unit quantities are converted to (the robot's).
   LengthUnit lengthUnit() const { return unit_; }
+  /// The largest count read by count() unless it names another.
+  static constexpr std::size_t kMaxCount = 1000000000;
   double number(const YAML::Node& node, const std::string& field) const;
-  std::size_t count(const YAML::Node& node, const std::string& field) const;
+  /// A whole number from `least` to `most`; else fails with "field: VALUE must be a whole number
+  /// from LEAST to MOST".
+  std::size_t count(const YAML::Node& node, const std::string& field, std::size_t least = 1,
+                    std::size_t most = kMaxCount) const;
   std::uint64_t seedOf(const YAML::Node& node, const std::string& field) const;
   double quantity(const YAML::Node& node, char want, const std::string& field) const;
   /// Joint values with units, one per joint, within the limits.

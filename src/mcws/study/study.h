@@ -6,9 +6,11 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mcws/behavior/behavior_model.h"
 #include "mcws/collision/collision_model.h"
 #include "mcws/planning/sway_planner.h"
 #include "mcws/reach/reach_map.h"
@@ -33,8 +35,9 @@ struct StudyTarget {
 /// mcws_envelope with their defaults otherwise).
 struct StudyWorkspace {
   std::size_t samples{20000};
-  /// New samples near the boundary points' configurations (mcws_refine --samples); 0: none. The
-  /// volume and envelope are then those of the refined cloud, without the edge correction (its
+  /// New samples near the boundary points' configurations (mcws_refine --samples), 0 to 10^9;
+  /// 0 (the default): none (no refined cloud; the volume with the edge correction). Else the
+  /// volume and envelope are those of the refined cloud, without the edge correction (its
   /// samples lie on the edge), as mcws_measure --correction none measures it.
   std::size_t refine{0};
   double alpha{3.0};    ///< [local spacings] (mcws_measure --alpha)
@@ -44,9 +47,9 @@ struct StudyWorkspace {
 /// \brief Settings of the reach stage (mcws_reach --map, mcws_reach --targets, mcws_place).
 struct StudyReach {
   ReachGrid grid;                  ///< resolution [length unit], directions, rolls
-  std::uint64_t samples{200000};   ///< map samples
+  std::uint64_t samples{200000};   ///< map samples, 1 to 2^53 (mcws_place --samples)
   double approach_tolerance{0.0};  ///< [rad]
-  int ik_starts{4};
+  int ik_starts{4};                ///< 1 to 1000 (mcws_place --ik-starts)
   std::size_t plan_targets{0};  ///< targets planned at the chosen stop (the first reached); 0 all
 };
 
@@ -61,15 +64,19 @@ struct StudyOffsets {
 /// \brief The optional behaviour rehearsal (mcws_behave): the cleaning job of a behaviour model.
 struct StudyBehaviour {
   std::string model;  ///< the model file, resolved; empty: no rehearsal
-  int insulators{0};  ///< discs of the job
+  int insulators{0};  ///< discs of the job, 1 to 200
+  /// The model as read from `model` when the study was read: validated (as mcws_behave
+  /// --check) and its job set up for `insulators` discs; unset when there is no rehearsal.
+  std::optional<BehaviorModel> loaded;
 };
 
 /// \brief A study file as read.
 struct Study {
   std::string name;
-  std::string source;               ///< the study file
-  std::string robot_path;           ///< the robot file it names, resolved
-  std::vector<std::string> inputs;  ///< the files read: the study, the robot, the targets files
+  std::string source;      ///< the study file
+  std::string robot_path;  ///< the robot file it names, resolved
+  /// The files read: the study, the robot, the targets files, the behaviour model and its robot.
+  std::vector<std::string> inputs;
   /// The robot (its T_world_base the measured pose at stop 0), its collision model with the
   /// study's line as environment, start, sway, planner and validation as a scenario's; goal
   /// unset (each target's is found by IK).
@@ -120,7 +127,10 @@ struct Study {
 /// \throws mcws::Error "file:line: field: ..." for a mistake in any section (as parseScenario()
 ///   for the scenario's sections), an unknown fitting type, a conductor with fewer than two
 ///   points or a radius not > 0, a targets file that cannot be read, an empty stop range (step
-///   not > 0 or to below from), a robot without collision geometry.
+///   not > 0 or to below from), a robot without collision geometry, a count outside its range
+///   ("reach: samples: 0 must be a whole number from 1 to 9007199254740992"), a behaviour model
+///   that cannot be read, is not valid or cannot run the job ("behaviour: model: <model
+///   file>[:line]: <why>").
 Study parseStudy(const std::string& text, const std::string& source);
 
 /// \brief parseStudy() of a file. \throws mcws::Error when it cannot be read.

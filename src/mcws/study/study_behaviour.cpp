@@ -32,7 +32,10 @@ void runBehaviour(StudyState& state) {
     state.report["behaviour"] = {{"run", false}, {"note", "the study names no behaviour model"}};
     return;
   }
-  const BehaviorModel model = loadBehaviorModel(settings.model);
+  // Read and checked with the study (a bad model fails before any stage runs); a Study built
+  // by hand may leave it to this stage.
+  const BehaviorModel model =
+      settings.loaded ? *settings.loaded : loadBehaviorModel(settings.model);
   std::vector<LogRecord> records;
   RunObserver observer;
   observer.on_log = [&](const LogRecord& record) { records.push_back(record); };

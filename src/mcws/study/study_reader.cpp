@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
+#include "mcws/behavior/behavior_executor.h"
+#include "mcws/behavior/behavior_model.h"
 #include "mcws/collision/shape_yaml.h"
 #include "mcws/core/error.h"
 #include "mcws/core/text_file.h"
@@ -18,6 +21,9 @@ namespace {
 
 /// At most this many stops (as mcws_place's positions along one axis).
 constexpr double kMaxStops = 1e5;
+/// At most this many map samples: 2^53, the largest whole number a double (the reader's
+/// numbers) holds exactly; mcws_place --samples takes up to 2^63 - 1.
+constexpr std::size_t kMaxMapSamples = std::size_t{1} << 53;
 
 class StudyReader : ScenarioSectionReader {
  public:
@@ -183,7 +189,7 @@ class StudyReader : ScenarioSectionReader {
   void readWorkspace(const YAML::Node& node, StudyWorkspace& workspace) {
     checkKeys(node, "workspace", {"samples", "refine", "alpha", "azimuth"});
     if (node["samples"]) workspace.samples = count(node["samples"], "workspace: samples");
-    if (node["refine"]) workspace.refine = count(node["refine"], "workspace: refine");
+    if (node["refine"]) workspace.refine = count(node["refine"], "workspace: refine", 0);
     if (node["alpha"]) {
       workspace.alpha = number(node["alpha"], "workspace: alpha");
       if (!(workspace.alpha >= 1.0 && workspace.alpha <= 1000.0))
@@ -193,9 +199,15 @@ class StudyReader : ScenarioSectionReader {
     if (node["azimuth"]) workspace.azimuth = quantity(node["azimuth"], 'a', "workspace: azimuth");
   }
 
+  /// The behaviour model, loaded and checked here so that a bad one fails before any stage
+  /// runs: read (loadBehaviorModel()), validated (validateBehaviorModel(), as mcws_behave
+  /// --check) and its job set up for the study's discs by a run stopped after its first step
+  /// (the task plan's combined behaviours, the clamp's components, a sensor behind every event:
+  /// what runCleaningJob() checks before it runs). Any mistake: "behaviour: model: <why>".
   void readBehaviour(const YAML::Node& node, Study& study) {
     checkKeys(node, "behaviour", {"model", "insulators"});
-    std::filesystem::path file = text(require(node, "model", "behaviour"), "behaviour: model");
+    const YAML::Node model = require(node, "model", "behaviour");
+    std::filesystem::path file = text(model, "behaviour: model");
     if (file.is_relative()) file = std::filesystem::path(source()).parent_path() / file;
     study.behaviour.model = file.string();
     study.inputs.push_back(file.string());
@@ -205,6 +217,17 @@ class StudyReader : ScenarioSectionReader {
       fail(node["insulators"], "behaviour: insulators " + node["insulators"].Scalar() +
                                    " is more than 200 (as mcws_behave --insulators)");
     study.behaviour.insulators = static_cast<int>(discs);
+    try {
+      study.behaviour.loaded = loadBehaviorModel(study.behaviour.model);
+      validateBehaviorModel(*study.behaviour.loaded);
+      RunOptions start = RunOptions::forModel(*study.behaviour.loaded, study.behaviour.insulators);
+      start.max_time_s = std::numeric_limits<double>::min();  // one step, then the time limit
+      runCleaningJob(*study.behaviour.loaded, start);
+    } catch (const Error& e) {
+      fail(model, std::string("behaviour: model: ") + e.what());
+    }
+    if (!study.behaviour.loaded->robot_path.empty())
+      study.inputs.push_back(study.behaviour.loaded->robot_path);
   }
 
   void readOffsets(const YAML::Node& node, StudyOffsets& offsets) {
@@ -221,7 +244,8 @@ class StudyReader : ScenarioSectionReader {
                "plan_targets"});
     reach.grid.resolution =
         quantity(require(node, "resolution", "reach"), 'l', "reach: resolution");
-    if (node["samples"]) reach.samples = count(node["samples"], "reach: samples");
+    if (node["samples"])
+      reach.samples = count(node["samples"], "reach: samples", 1, kMaxMapSamples);
     if (node["orientations"])
       reach.grid.directions = static_cast<int>(count(node["orientations"], "reach: orientations"));
     if (node["rolls"]) reach.grid.rolls = static_cast<int>(count(node["rolls"], "reach: rolls"));
@@ -237,7 +261,7 @@ class StudyReader : ScenarioSectionReader {
         fail(node["approach_tolerance"], "reach: approach_tolerance is outside [0, 180] deg");
     }
     if (node["ik_starts"])
-      reach.ik_starts = static_cast<int>(count(node["ik_starts"], "reach: ik_starts"));
+      reach.ik_starts = static_cast<int>(count(node["ik_starts"], "reach: ik_starts", 1, 1000));
     if (node["plan_targets"]) {
       reach.plan_targets = node["plan_targets"].IsScalar() && node["plan_targets"].Scalar() == "all"
                                ? 0
