@@ -34,7 +34,7 @@ struct StudyRun {
 };
 
 /// \brief Runs every stage of the study, writing its files (samples.pcd, boundary.pcd,
-/// envelope.ply, drawing.png, targets.pcd, bases.pcd, placement.png, path_<target>.csv) into
+/// refined.pcd with a refine count, envelope.ply, drawing.png, path_<target>.csv) into
 /// `directory` (which must exist; the caller makes it appear whole).
 ///
 /// Stages, each calling the library functions the stage tools call, so its numbers are theirs:
