@@ -55,6 +55,13 @@ std::optional<io::CloudProvenance> pointsRecord(const LoadedRobot* robot,
 /// \throws UsageError "provenance: ..." naming what is wrong.
 io::CloudProvenance provenanceFromDict(const py::dict& dict);
 
+/// \brief The sampling record a dict of read_provenance()["sampling"]'s keys (point, collision,
+/// fix) gives; with `defaults` a key left out takes sample()'s default (point "tool", no
+/// collision labels, no joint fixed). \throws Error "where.key: ..." naming the key and the value
+/// of a wrong type, a missing key (without `defaults`) or an unknown one.
+io::SamplingRecord samplingFromDict(const py::handle& value, const std::string& where,
+                                    bool defaults);
+
 /// \brief `call()`, a library mcws::Error it throws prefixed with "points: " (as a tool names its
 /// input file); usage errors pass unchanged.
 template <typename Call>
