@@ -264,7 +264,7 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
     (give hull_depth=0 with a plane); mcws.Error naming the file for one that cannot be read or
     is ascii or compressed PCD.
     """
-    is_path = isinstance(points, (str, _os.PathLike))
+    is_path = isinstance(points, (str, bytes, _os.PathLike))
     if tiles is not None:
         if not is_path:
             raise UsageError("tiles: the cloud is read from a binary PCD file in pieces: give its "
