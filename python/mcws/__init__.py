@@ -16,6 +16,7 @@ messages.
 """
 
 import json as _json
+import numbers as _numbers
 import os as _os
 
 import numpy as _np
@@ -264,6 +265,9 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
     (give hull_depth=0 with a plane); mcws.Error naming the file for one that cannot be read or
     is ascii or compressed PCD.
     """
+    if adaptive is not None and (isinstance(adaptive, bool) or
+                                 not isinstance(adaptive, _numbers.Integral)):
+        raise UsageError(f"adaptive: {adaptive!r} is not a whole number (k, a neighbour count)")
     is_path = isinstance(points, (str, bytes, _os.PathLike))
     if tiles is not None:
         if not is_path:
