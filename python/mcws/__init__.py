@@ -16,6 +16,7 @@ messages.
 """
 
 import json as _json
+import numbers as _numbers
 import os as _os
 
 import numpy as _np
@@ -115,31 +116,64 @@ def _packed_points(points):
     return packed, quality, joints
 
 
-def write_pcd(path, points, robot=None, provenance=None):
+def write_pcd(path, points, robot=None, provenance=None, *, sampling=None):
     """Writes points as a binary PCD file through mcws's writer, as the tools write clouds.
 
-    path: the file (str or os.PathLike); it appears only when complete.
+    path: the file (str, bytes or os.PathLike); it appears only when complete.
     points: a structured array with fields x, y, z [length unit] and any of q1..q8
         [rad | length unit], label, manipulability, inverse_condition (missing ones are written
-        as 0), such as sample() returns; or a plain (N, 3) array of positions.
-    robot: an mcws.Robot: record it in the header (its name, file, SHA-256 and length unit), as
-        the tools do, so that later stages check they are given the same robot.
+        as 0), such as sample() returns; or a plain (N, 3) array of positions. At least one point.
+    robot: an mcws.Robot: record it in the header as mcws_sample does (its name, file, SHA-256,
+        length unit, a URDF robot's chain, and how the points were sampled, see sampling), so that
+        later stages (mcws_refine, measure's tip) read the file as one of mcws_sample's.
+    sampling: with robot, how the points were drawn, a dict as read_provenance()["sampling"]:
+        "point" ("tool" or "flange", sample()'s point), "collision" (bool: the labels are
+        sample(collision=True)'s), "fix" (sample()'s fix, {joint: value [rad | length unit]});
+        a key left out (or sampling None) takes sample()'s default: tool, False, {}. The header
+        records it as mcws_sample records its --point, --collision and --fix.
     provenance: a dict as read_provenance() returns, recorded instead (to carry a cloud's
         provenance through a pipeline); give robot or provenance, not both.
 
     The file has the fields of mcws_sample's PCD (x y z q1..q8 label, and manipulability
-    inverse_condition when points has either): write_pcd(p, sample(...), provenance=...) is byte
-    for byte the file mcws_sample writes with the same arguments and provenance.
+    inverse_condition when points has either): write_pcd(p, sample(robot, n, seed), robot=robot)
+    is byte for byte the file mcws_sample --samples n --seed seed writes (with fix, collision,
+    point: give the same as sampling), and so is write_pcd(p, points, provenance=...) with the
+    provenance of that file.
 
-    Raises mcws.UsageError for points of another shape or with other fields, both robot and
-    provenance, or a malformed provenance; mcws.Error naming the file when it cannot be written.
+    Raises mcws.UsageError for points of another shape or with other fields, no points, both
+    robot and provenance, sampling without robot or malformed (naming the key), points with
+    fewer joint fields than the robot's dof or a joint value beyond it (another robot's), labels
+    other than 0 without sampling's collision, or a malformed provenance (naming the key and the
+    value); mcws.Error naming the file when it cannot be written.
     """
     if robot is not None and provenance is not None:
         raise UsageError("write_pcd: give robot or provenance, not both")
     if robot is not None and not isinstance(robot, Robot):
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")
     packed, quality, joints = _packed_points(points)
-    _write_points(_os.fspath(path), packed, quality, joints, robot, provenance)
+    if robot is not None:
+        if 0 < joints < robot.dof:
+            raise UsageError(
+                f"points: {joints} joint fields (q1..q{joints}), but robot '{robot.name}' has "
+                f"{robot.dof} joints: not points of this robot"
+            )
+        for k in range(robot.dof + 1, joints + 1):  # a file's q1..q8 hold 0 beyond the dof
+            beyond = _np.flatnonzero(packed[f"q{k}"])
+            if beyond.size:
+                value = float(packed[f"q{k}"][beyond[0]])
+                raise UsageError(
+                    f"points: point {int(beyond[0])} has q{k} = {value!r}, but robot "
+                    f"'{robot.name}' has {robot.dof} joints: points of a robot with more joints"
+                )
+        collision = isinstance(sampling, dict) and bool(sampling.get("collision", False))
+        labelled = _np.flatnonzero(packed["label"])
+        if not collision and labelled.size:
+            first = int(labelled[0])
+            raise UsageError(
+                f"points: point {first} has label {int(packed['label'][first])}, a collision "
+                "label: give sampling={'collision': True} (as sample(collision=True) draws them)"
+            )
+    _write_points(path, packed, quality, joints, robot, provenance, sampling)
 
 
 def _positions(points, name="points"):
@@ -231,7 +265,10 @@ def boundary(points, plane=None, *, method="orthant", radius=None, auto_radius=N
     (give hull_depth=0 with a plane); mcws.Error naming the file for one that cannot be read or
     is ascii or compressed PCD.
     """
-    is_path = isinstance(points, (str, _os.PathLike))
+    if adaptive is not None and (isinstance(adaptive, bool) or
+                                 not isinstance(adaptive, _numbers.Integral)):
+        raise UsageError(f"adaptive: {adaptive!r} is not a whole number (k, a neighbour count)")
+    is_path = isinstance(points, (str, bytes, _os.PathLike))
     if tiles is not None:
         if not is_path:
             raise UsageError("tiles: the cloud is read from a binary PCD file in pieces: give its "
@@ -275,8 +312,9 @@ def refine(robot, boundary_points, n, seed=0, threads=0, *, spread=0.1, point="t
     Append them to the cloud (numpy.concatenate) and measure with correction="none".
 
     Raises mcws.UsageError for a bad n, seed, threads, spread, point or fix, boundary points
-    without the joint fields, none at all, or one whose joint values lie outside the robot's
-    limits; mcws.Error for collision=True on a robot file without collision geometry.
+    without the joint fields or with a joint value beyond the robot's dof (another robot's), none
+    at all, or one whose joint values lie outside the robot's limits; mcws.Error for
+    collision=True on a robot file without collision geometry.
     """
     if not isinstance(robot, Robot):
         raise UsageError(f"robot: {type(robot).__name__} is not an mcws.Robot")

@@ -18,10 +18,12 @@ from ._mcws import sample_shape as sample_shape
 _Length = Union[float, str]
 
 def write_pcd(
-    path: Union[str, "os.PathLike[str]"],
+    path: Union[str, bytes, "os.PathLike[str]"],
     points: npt.ArrayLike,
     robot: Optional[Robot] = None,
     provenance: Optional[Dict[str, Any]] = None,
+    *,
+    sampling: Optional[Dict[str, Any]] = None,
 ) -> None: ...
 
 def refine(

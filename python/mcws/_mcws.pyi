@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 import numpy.typing as npt
 
-_Path = Union[str, "os.PathLike[str]"]
+_Path = Union[str, bytes, "os.PathLike[str]"]
 _Floats = npt.ArrayLike
 
 class Error(RuntimeError): ...
@@ -83,6 +83,7 @@ def _write_points(
     joints: int,
     robot: Optional[Robot],
     provenance: Optional[Dict[str, Any]],
+    sampling: Optional[Dict[str, Any]],
 ) -> None: ...
 def _boundary(
     xyz: npt.NDArray[np.float32],

@@ -31,7 +31,8 @@ class ReachMap:
     reachability: float64 (V,) the reachability index D, the share of orientation bins reached
         [1], in (0, 1];
     manipulability: float32 (V,) the best manipulability of the voxel's samples (the unit of
-        .summary["manipulability"]["manipulability_unit"]; 0 without it);
+        .header["manipulability"]["manipulability_unit"], for a map built or loaded alike; 0
+        without it);
     count: uint64 (V,) the samples that fell in the voxel.
 
     header: the map file's header as a dict (robot, robot_file, robot_sha256, length_unit,

@@ -3,6 +3,7 @@
 // its log and timeline files.
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 
 #include "bindings.h"
@@ -22,8 +23,9 @@ std::tuple<std::string, std::string, std::vector<std::string>> behave(
   if (insulators < 1 || insulators > 200) {
     throw UsageError("insulators: " + std::to_string(insulators) + " is not in 1 .. 200");
   }
-  if (!(period > 0.0)) {
-    throw UsageError("timeline_period: " + std::to_string(period) + " is not a positive time [s]");
+  if (!(period > 0.0 && std::isfinite(period))) {
+    throw UsageError("timeline_period: " + py::str(py::float_(period)).cast<std::string>() +
+                     " is not a finite time > 0 [s]");
   }
   try {
     TimelineRecorder(period, RobotSimulatorConfig().dt);

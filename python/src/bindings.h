@@ -9,6 +9,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -88,8 +89,14 @@ DoubleArray doubleArray(const py::handle& value, const std::string& argument);
 /// \brief An array's shape as Python writes it: "(4, 2)", "(3,)".
 std::string shapeText(const py::array& array);
 
-/// \brief A path argument (str or os.PathLike) as a string.
-std::string pathArgument(const py::handle& path);
+/// \brief A path argument (str, bytes or os.PathLike) as a string, bytes decoded as os.fsdecode
+/// decodes them. \throws TypeError (py::type_error) naming `argument` for another type.
+std::string pathArgument(const py::handle& path, const std::string& argument = "path");
+
+/// \brief A homogeneous pose checked as Robot.ik checks its pose (the IK solvers' check): finite,
+/// a last row of 0 0 0 1, a rotation orthonormal to 1e-9 and not a reflection.
+/// \throws UsageError "argument: ..." saying what is wrong.
+Eigen::Isometry3d checkedPose(const Eigen::Matrix4d& M, const std::string& argument);
 
 /// \brief A whole number >= 0 (a seed). \throws UsageError naming `argument` and the value.
 std::uint64_t nonNegative(std::int64_t value, const std::string& argument);

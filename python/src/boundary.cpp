@@ -225,7 +225,7 @@ py::array tiledBoundaryMask(const std::string& path, const std::optional<std::st
     const distributed::FileSummary file = distributed::summarizeFile(reader, plane);
     file.range.check(path);
     requireRegionPoints(file.cloud, path);
-    if (plane == BoundaryPlane::k3D) io::requireVolume(file.range, path);
+    if (plane == BoundaryPlane::k3D) requireVolumeHinted(file.range, path, "give plane");
     asUsageError("plane", [&] { requirePlaneFits(file.cloud, path); });
     CloudSummary region = file.cloud;
     if (a.radius || a.outer_radius) region.spacing = distributed::boundingBoxSpacing(region);

@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <optional>
+#include <type_traits>
 
 #include "bindings.h"
 #include "loaded_robot.h"
@@ -108,8 +109,33 @@ void writePoints(const std::string& path, const py::array& points, int joints,
   writer.commit();
 }
 
+/// The record of `robot` for points drawn as `sampling` says (None: sample()'s defaults, point
+/// "tool", no collision labels, no joint fixed), checked as mcws_sample checks its flags.
+io::CloudProvenance robotRecord(const LoadedRobot& robot, const py::object& sampling) {
+  io::CloudProvenance provenance = robotProvenance(robot.robot);
+  provenance.sampling = io::SamplingRecord{};
+  if (sampling.is_none()) return provenance;
+  try {
+    provenance.sampling = samplingFromDict(sampling, "sampling", true);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  if (provenance.sampling->point != "tool" && provenance.sampling->point != "flange") {
+    throw UsageError("sampling.point: '" + provenance.sampling->point +
+                     "' is not one of tool, flange");
+  }
+  RobotSamplerOptions options;
+  options.fixed = provenance.sampling->fixed;
+  asUsageError("sampling.fix", [&] {
+    const RobotSampler check(robot.robot, options);  // an unknown joint, a value off its limits
+  });
+  return asUsageError(
+      "sampling", [&] { return io::parseProvenanceComment(io::provenanceComment(provenance)); });
+}
+
 void writePcdArray(const py::object& path_value, const py::array& points, bool quality, int joints,
-                   const LoadedRobot* robot, const py::object& provenance_value) {
+                   const LoadedRobot* robot, const py::object& provenance_value,
+                   const py::object& sampling) {
   const std::string path = pathArgument(path_value);
   const py::dtype layout =
       quality ? pointDtype<QualityPoint>(joints) : pointDtype<WorkspacePoint>(joints);
@@ -118,8 +144,14 @@ void writePcdArray(const py::object& path_value, const py::array& points, bool q
     throw UsageError("points: not a C-ordered 1-D array of the layout _point_dtype(" +
                      std::to_string(joints) + ", " + (quality ? "True" : "False") + ")");
   }
+  if (points.shape(0) == 0) {  // as read_pcd() and the tools refuse a cloud without points
+    throw UsageError("points: none given (a cloud file holds at least one point)");
+  }
+  if (!sampling.is_none() && !robot) {
+    throw UsageError("sampling: give robot too (a provenance records its own sampling)");
+  }
   std::optional<io::CloudProvenance> provenance;
-  if (robot) provenance = robotProvenance(robot->robot);
+  if (robot) provenance = robotRecord(*robot, sampling);
   if (!provenance_value.is_none()) {
     if (!py::isinstance<py::dict>(provenance_value)) {
       throw UsageError("provenance: give a dict as read_provenance() returns, or None");
@@ -161,38 +193,99 @@ Raises mcws.Error naming the file as read_pcd() does for a bad header.)";
 
 }  // namespace
 
+namespace {
+
+/// What a message calls a value: its repr and type, "'0.5' (str)".
+std::string described(const py::handle& value) {
+  return std::string(py::repr(value)) + " (" +
+         py::type::of(value).attr("__name__").cast<std::string>() + ")";
+}
+
+/// dict[key] as T. \throws Error naming `where` + key for a missing key or a value that is not
+/// `kind`.
+template <typename T>
+T entry(const py::dict& dict, const char* key, const std::string& where, const char* kind) {
+  if (!dict.contains(key)) throw Error("no key '" + where + key + "'");
+  const py::object value = dict[key];
+  // A bool is an int to Python, but no count; a str no bool.
+  const bool refused =
+      (std::is_integral_v<T> && !std::is_same_v<T, bool> && py::isinstance<py::bool_>(value)) ||
+      (std::is_same_v<T, std::string> && !py::isinstance<py::str>(value));
+  try {
+    if (!refused) return value.cast<T>();
+  } catch (const py::cast_error&) {
+  }
+  throw Error(where + key + ": " + described(value) + " is not " + kind);
+}
+
+}  // namespace
+
+io::SamplingRecord samplingFromDict(const py::handle& value, const std::string& where,
+                                    bool defaults) {
+  if (!py::isinstance<py::dict>(value)) {
+    throw Error(where + ": " + described(value) + " is not a dict (point, collision, fix)");
+  }
+  const auto dict = py::reinterpret_borrow<py::dict>(value);
+  const std::string at = where + ".";
+  io::SamplingRecord record;
+  if (!defaults || dict.contains("point"))
+    record.point = entry<std::string>(dict, "point", at, "a str (tool or flange)");
+  if (!defaults || dict.contains("collision"))
+    record.collision = entry<bool>(dict, "collision", at, "a bool");
+  if (!defaults || dict.contains("fix")) {
+    if (!dict.contains("fix")) throw Error("no key '" + at + "fix'");
+    const py::object fix = dict["fix"];
+    if (!py::isinstance<py::dict>(fix)) {
+      throw Error(at + "fix: " + described(fix) + " is not a dict joint name -> value");
+    }
+    for (const auto& [name, joint_value] : py::reinterpret_borrow<py::dict>(fix)) {
+      if (!py::isinstance<py::str>(name)) {
+        throw Error(at + "fix: joint name " + described(name) + " is not a str");
+      }
+      const std::string joint = name.cast<std::string>();
+      const py::dict one;
+      one[name] = joint_value;
+      record.fixed.emplace_back(
+          joint, entry<double>(one, joint.c_str(), at + "fix.", "a number [rad | length unit]"));
+    }
+  }
+  for (const auto& [key, unused] : dict) {
+    const std::string name = py::str(key);
+    if (name != "point" && name != "collision" && name != "fix") {
+      throw Error(at + name + ": not a key of a sampling record (point, collision, fix)");
+    }
+  }
+  return record;
+}
+
 io::CloudProvenance provenanceFromDict(const py::dict& dict) {
   return asUsageError("provenance", [&] {
-    try {
-      io::CloudProvenance provenance(
-          py::cast<std::string>(dict["robot"]), py::cast<std::string>(dict["file"]),
-          py::cast<std::string>(dict["sha256"]), py::cast<std::string>(dict["length_unit"]));
-      if (dict.contains("base_link"))
-        provenance.base_link = py::cast<std::string>(dict["base_link"]);
-      if (dict.contains("tip_link")) provenance.tip_link = py::cast<std::string>(dict["tip_link"]);
-      if (dict.contains("sampling") && !dict["sampling"].is_none()) {
-        const auto sampling = dict["sampling"].cast<py::dict>();
-        io::SamplingRecord record;
-        record.point = py::cast<std::string>(sampling["point"]);
-        record.collision = py::cast<bool>(sampling["collision"]);
-        for (const auto& [name, value] : sampling["fix"].cast<py::dict>()) {
-          record.fixed.emplace_back(py::cast<std::string>(name), py::cast<double>(value));
-        }
-        provenance.sampling = record;
-      }
-      if (dict.contains("input") && !dict["input"].is_none()) {
-        const auto input = dict["input"].cast<py::dict>();
-        provenance.input = io::InputCloud{py::cast<std::uint64_t>(input["points"]),
-                                          py::cast<std::string>(input["sha256"]),
-                                          py::cast<std::uint64_t>(input["boundary_points"])};
-      }
-      // What a header records must read back: the same checks as a file's line.
-      return io::parseProvenanceComment(io::provenanceComment(provenance));
-    } catch (const py::error_already_set& e) {  // a missing key
-      throw Error(std::string("a key is missing or of the wrong type: ") + e.what());
-    } catch (const py::cast_error& e) {
-      throw Error(std::string("a value is of the wrong type: ") + e.what());
+    const char* text = "a str";
+    io::CloudProvenance provenance(entry<std::string>(dict, "robot", "", text),
+                                   entry<std::string>(dict, "file", "", text),
+                                   entry<std::string>(dict, "sha256", "", text),
+                                   entry<std::string>(dict, "length_unit", "", text));
+    if (dict.contains("base_link"))
+      provenance.base_link = entry<std::string>(dict, "base_link", "", text);
+    if (dict.contains("tip_link"))
+      provenance.tip_link = entry<std::string>(dict, "tip_link", "", text);
+    if (dict.contains("sampling") && !dict["sampling"].is_none()) {
+      provenance.sampling = samplingFromDict(dict["sampling"], "sampling", false);
     }
+    if (dict.contains("input") && !dict["input"].is_none()) {
+      if (!py::isinstance<py::dict>(dict["input"])) {
+        throw Error("input: " + described(dict["input"]) +
+                    " is not a dict (points, sha256, boundary_points)");
+      }
+      const auto input = dict["input"].cast<py::dict>();
+      const char* count = "a whole number >= 0";
+      provenance.input =
+          io::InputCloud{entry<std::uint64_t>(input, "points", "input.", count),
+                         entry<std::string>(input, "sha256", "input.", text),
+                         entry<std::uint64_t>(input, "boundary_points", "input.", count)};
+    }
+    // What a header records must read back: the same checks as a file's line.
+    return io::parseProvenanceComment(io::provenanceComment(provenance));
   });
 }
 
@@ -206,7 +299,8 @@ void bindCloud(py::module_& m) {
         "Writes records of _point_dtype(joints, quality) as binary PCD (mcws.write_pcd's C++ "
         "part).",
         py::arg("path"), py::arg("points"), py::arg("quality"), py::arg("joints"),
-        py::arg("robot").none(true), py::arg("provenance").none(true));
+        py::arg("robot").none(true), py::arg("provenance").none(true),
+        py::arg("sampling").none(true));
 }
 
 }  // namespace mcws::python

@@ -41,7 +41,8 @@ std::unique_ptr<EnvelopeResult> makeEnvelope(const FloatRows& xyz,
   const ResultUnits units = resultUnits(length_unit, recorded);
   const io::WorkspaceCloud::Ptr cloud = cloudOf(xyz);
   py::gil_scoped_release release;
-  checkedRegion(*cloud, BoundaryPlane::k3D, false);
+  checkedRegion(*cloud, BoundaryPlane::k3D, false,
+                "envelope() meshes a volume (measure() and boundary() take a plane)");
   pcl::PointCloud<pcl::PointXYZ> points = projectedToPlane(*cloud, BoundaryPlane::k3D);
   options.phase = [](const std::string&) { checkSignals(); };  // between the envelope's phases
   options.cancel_check = signalCheck();  // and within its triangulation and surface steps

@@ -82,8 +82,15 @@ std::string shapeText(const py::array& array) {
   return text + (array.ndim() == 1 ? ",)" : ")");
 }
 
-std::string pathArgument(const py::handle& path) {
-  return py::str(py::module_::import("os").attr("fspath")(path));
+std::string pathArgument(const py::handle& path, const std::string& argument) {
+  if (!py::isinstance<py::str>(path) && !py::isinstance<py::bytes>(path) &&
+      !py::hasattr(path, "__fspath__")) {
+    throw py::type_error(argument + ": " + std::string(py::repr(path)) + " (" +
+                         py::type::of(path).attr("__name__").cast<std::string>() +
+                         ") is not a path (str, bytes or os.PathLike)");
+  }
+  // os.fsdecode as open() does: a bytes path b"out.pcd" is the file out.pcd.
+  return py::module_::import("os").attr("fsdecode")(path).cast<std::string>();
 }
 
 std::uint64_t nonNegative(std::int64_t value, const std::string& argument) {

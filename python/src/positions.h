@@ -27,9 +27,28 @@ io::WorkspaceCloud::Ptr cloudOf(const FloatRows& xyz);
 BoundaryPlane planeOf(const std::optional<std::string>& name);
 /// \brief A number as a message shows it (6 significant digits).
 std::string number(double value);
+/// \brief io::requireVolume(cloud, name) with `hint` for its "give --plane" (a tool's flag, which
+/// the Python functions do not have).
+template <typename Cloud>
+void requireVolumeHinted(const Cloud& cloud, const std::string& name, const std::string& hint) {
+  try {
+    io::requireVolume(cloud, name);
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    std::string text = e.what();
+    const std::string flag = "give --plane";
+    const std::size_t at = text.rfind(flag);
+    if (at != std::string::npos) text.replace(at, flag.size(), hint);
+    throw Error(text);
+  }
+}
+
 /// \brief The cloud checked as mcws_boundary, mcws_measure and mcws_envelope check theirs (enough
-/// distinct points, a volume in 3-D, not flat in the plane's axes), and summarised.
-CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing);
+/// distinct points, a volume in 3-D, not flat in the plane's axes), and summarised; a flat 3-D
+/// cloud's message ends with `flat_hint`.
+CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing,
+                           const std::string& flat_hint = "give plane");
 /// \brief alpha [local spacings] (default 3, 5 with correction "none"), correction ("efron" or
 /// "none") and threads, checked as the tools' --alpha, --correction and --threads.
 MeasureOptions regionOptions(const std::optional<double>& alpha, const std::string& correction,
@@ -54,6 +73,13 @@ std::optional<io::CloudProvenance> pointsRecord(const LoadedRobot* robot,
 /// \brief The provenance a dict of read_provenance()'s keys records, checked as a header line is.
 /// \throws UsageError "provenance: ..." naming what is wrong.
 io::CloudProvenance provenanceFromDict(const py::dict& dict);
+
+/// \brief The sampling record a dict of read_provenance()["sampling"]'s keys (point, collision,
+/// fix) gives; with `defaults` a key left out takes sample()'s default (point "tool", no
+/// collision labels, no joint fixed). \throws Error "where.key: ..." naming the key and the value
+/// of a wrong type, a missing key (without `defaults`) or an unknown one.
+io::SamplingRecord samplingFromDict(const py::handle& value, const std::string& where,
+                                    bool defaults);
 
 /// \brief `call()`, a library mcws::Error it throws prefixed with "points: " (as a tool names its
 /// input file); usage errors pass unchanged.

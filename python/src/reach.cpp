@@ -71,7 +71,18 @@ std::unique_ptr<MapResult> buildMap(const LoadedRobot& loaded, const MapArgument
   {
     py::gil_scoped_release release;
     // Between chunks of samples, on the calling thread.
-    result->map = buildReachMap(robot, grid, sampling, std::ref(checkpoint));
+    try {
+      result->map = buildReachMap(robot, grid, sampling, std::ref(checkpoint));
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {  // a point beyond the grid's range: "give a coarser --resolution"
+      std::string text = e.what();
+      const std::string flag = "--resolution";
+      const std::size_t at = text.rfind(flag);
+      if (at == std::string::npos) throw;
+      text.replace(at, flag.size(), "resolution");
+      throw UsageError("resolution: " + text);
+    }
   }
   if (result->map.size() == 0) throw Error("no sample counted: every sample collides");
   nlohmann::json summary =

@@ -60,9 +60,10 @@ using PlaceResult = PointsResult<BasePoint>;
 std::vector<ReachTarget> targetsOf(const py::handle& value, const py::handle& normals_value,
                                    double standoff) {
   std::vector<ReachTarget> targets;
-  if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) {
+  if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      py::hasattr(value, "__fspath__")) {
     if (!normals_value.is_none()) throw UsageError("normals: a targets file holds its own");
-    targets = loadTargets(pathArgument(value));
+    targets = loadTargets(pathArgument(value, "targets"));
   } else {
     const DoubleArray array = doubleArray(value, "targets");
     const bool poses = array.ndim() == 3 && array.shape(1) == 4 && array.shape(2) == 4;
@@ -87,10 +88,10 @@ std::vector<ReachTarget> targetsOf(const py::handle& value, const py::handle& no
       const std::string row = "targets: row " + std::to_string(i);
       if (poses) {
         ReachTarget target;
-        target.pose.matrix() =
-            Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(array.data() + 16 * i);
+        target.pose = checkedPose(
+            Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(array.data() + 16 * i),
+            "targets[" + std::to_string(i) + "]");
         target.free_roll = false;
-        if (!target.pose.matrix().allFinite()) throw UsageError(row + ": not finite");
         targets.push_back(target);
         continue;
       }
@@ -103,7 +104,9 @@ std::vector<ReachTarget> targetsOf(const py::handle& value, const py::handle& no
     }
     if (targets.empty()) throw UsageError("targets: none given");
   }
-  if (!std::isfinite(standoff)) throw UsageError("standoff: not a finite length");
+  const std::string standoff_text = py::str(py::float_(standoff));
+  if (!std::isfinite(standoff)) throw UsageError("standoff: " + standoff_text + " is not finite");
+  if (standoff < 0.0) throw UsageError("standoff: " + standoff_text + " is less than 0");
   if (standoff != 0.0) applyStandoff(targets, standoff);
   return targets;
 }
@@ -254,8 +257,10 @@ const ReachMap& placementMap(const LoadedRobot& loaded, const PlaceMap& source,
     }
     const auto& given = source.given.cast<const MapResult&>();
     std::uint64_t samples = 0;
-    checkPlacementMap(given.header, given.source, robot, loaded.path,
-                      qualitySummary(options.quality, robot).dump(), samples);
+    asUsageError("map", [&] {
+      checkPlacementMap(given.header, given.source, robot, loaded.path,
+                        qualitySummary(options.quality, robot).dump(), samples);
+    });
     about = {{"source", given.source}, {"samples", samples}};
     return given.map;
   }

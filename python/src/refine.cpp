@@ -29,6 +29,21 @@ pcl::PointCloud<WorkspacePoint> parentCloud(const py::array& records) {
   return cloud;
 }
 
+/// Refuses parents with a joint value beyond the robot's dof (a file's q1..q8 hold 0 there): the
+/// points of a robot with more joints.
+void checkJointsBeyond(const pcl::PointCloud<WorkspacePoint>& parents, int joints,
+                       const Robot& robot) {
+  for (std::size_t i = 0; i < parents.size(); ++i) {
+    for (int j = robot.dof(); j < joints; ++j) {
+      if (parents[i].q[j] == 0.0f) continue;
+      throw UsageError(
+          "boundary_points: point " + std::to_string(i) + " has q" + std::to_string(j + 1) + " = " +
+          py::str(py::float_(parents[i].q[j])).cast<std::string>() + ", but robot '" + robot.name +
+          "' has " + std::to_string(robot.dof()) + " joints: points of a robot with more joints");
+    }
+  }
+}
+
 py::array refine(const LoadedRobot& loaded, const py::array& records, int joints, std::int64_t n,
                  std::int64_t seed, int threads, double spread, const std::string& point,
                  const py::object& fix, bool collision, const py::object& progress) {
@@ -51,6 +66,7 @@ py::array refine(const LoadedRobot& loaded, const py::array& records, int joints
   options.point = samplePoint(point);
   if (!fix.is_none()) options.fixed = fixedJoints(fix);
   const pcl::PointCloud<WorkspacePoint> parents = parentCloud(records);
+  checkJointsBeyond(parents, joints, robot);
   const std::string checked = fix.is_none() ? "boundary_points" : "boundary_points and fix";
   const RefineSampler refined =
       asUsageError(checked, [&] { return RefineSampler(robot, parents, options); });

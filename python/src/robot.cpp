@@ -17,10 +17,15 @@
 #include "mcws/kinematics/inverse_kinematics.h"
 #include "mcws/kinematics/jacobian.h"
 #include "mcws/kinematics/robot_yaml.h"
+#include "positions.h"
 
 namespace mcws::python {
 
 namespace {
+
+/// Largest |R^T R - I| entry of a pose argument's rotation: the IK solvers' tolerance (far above
+/// the rounding of a rotation composed in double, far below any real mistake).
+constexpr double kPoseRotationTolerance = 1e-9;
 
 bool isUrdf(const std::string& path) { return std::filesystem::path(path).extension() == ".urdf"; }
 
@@ -119,17 +124,8 @@ Eigen::Isometry3d poseArgument(const py::handle& value) {
   if (array.ndim() != 2 || array.shape(0) != 4 || array.shape(1) != 4) {
     throw UsageError("pose: an array of shape " + shapeText(array) + ", not (4, 4)");
   }
-  const Eigen::Matrix4d M =
-      Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(array.data());
-  if (!M.allFinite()) throw UsageError("pose: holds a value that is not a finite number");
-  if (M.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
-    throw UsageError("pose: last row is " + std::to_string(M(3, 0)) + " " +
-                     std::to_string(M(3, 1)) + " " + std::to_string(M(3, 2)) + " " +
-                     std::to_string(M(3, 3)) + ", not 0 0 0 1");
-  }
-  Eigen::Isometry3d T;
-  T.matrix() = M;
-  return T;
+  return checkedPose(Eigen::Map<const Eigen::Matrix<double, 4, 4, Eigen::RowMajor>>(array.data()),
+                     "pose");
 }
 
 py::object inverseKinematics(const LoadedRobot& loaded, const py::handle& pose,
@@ -250,6 +246,24 @@ orthonormal rotation, or a bad q0, tolerance or seed.)";
 
 }  // namespace
 
+Eigen::Isometry3d checkedPose(const Eigen::Matrix4d& M, const std::string& argument) {
+  if (!M.allFinite()) throw UsageError(argument + ": holds a value that is not a finite number");
+  if (M.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) {
+    throw UsageError(argument + ": last row is " + number(M(3, 0)) + " " + number(M(3, 1)) + " " +
+                     number(M(3, 2)) + " " + number(M(3, 3)) + ", not 0 0 0 1");
+  }
+  // The check of the solvers' targets (solveIk's): orthonormal to rounding, not a reflection.
+  const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
+  const double deviation = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(deviation <= kPoseRotationTolerance) || R.determinant() < 0.0) {
+    throw UsageError(argument + ": the rotation is not orthonormal (|R^T R - I| = " +
+                     number(deviation) + ", det R = " + number(R.determinant()) + ")");
+  }
+  Eigen::Isometry3d T;
+  T.matrix() = M;
+  return T;
+}
+
 LoadedRobot loadRobotFile(const std::string& path, const std::string& base, const std::string& tip,
                           const std::vector<std::string>& package_path, const std::string& srdf) {
   const bool chain = !base.empty() || !tip.empty();
@@ -306,15 +320,22 @@ void bindRobot(py::module_& m) {
                        const std::optional<std::string>& tip, const py::object& package_path,
                        const py::object& srdf) {
              std::vector<std::string> folders;
-             if (py::isinstance<py::str>(package_path) || py::hasattr(package_path, "__fspath__")) {
-               folders.push_back(pathArgument(package_path));
+             if (py::isinstance<py::str>(package_path) || py::isinstance<py::bytes>(package_path) ||
+                 py::hasattr(package_path, "__fspath__")) {
+               folders.push_back(pathArgument(package_path, "package_path"));
              } else if (!package_path.is_none()) {
+               if (!py::isinstance<py::iterable>(package_path)) {
+                 throw py::type_error(
+                     "package_path: " + std::string(py::repr(package_path)) + " (" +
+                     py::type::of(package_path).attr("__name__").cast<std::string>() +
+                     ") is neither a folder (str or os.PathLike) nor a list of folders");
+               }
                for (const py::handle folder : package_path) {
-                 folders.push_back(pathArgument(py::reinterpret_borrow<py::object>(folder)));
+                 folders.push_back(pathArgument(folder, "package_path"));
                }
              }
              return loadRobotFile(pathArgument(path), base.value_or(""), tip.value_or(""), folders,
-                                  srdf.is_none() ? "" : pathArgument(srdf));
+                                  srdf.is_none() ? "" : pathArgument(srdf, "srdf"));
            }),
            py::arg("path"), py::kw_only(), py::arg("base") = py::none(),
            py::arg("tip") = py::none(), py::arg("package_path") = py::none(),

@@ -2,6 +2,7 @@
 // module, as mcws_sample draws them) handed to NumPy without a copy.
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <optional>
 
 #include "bindings.h"
@@ -17,6 +18,12 @@ namespace mcws::python {
 
 std::size_t sampleCount(std::int64_t n) {
   if (n < 0) throw UsageError("n: " + std::to_string(n) + " is negative");
+  // The most points of the largest layout an array can address (a vector's max_size()).
+  constexpr std::int64_t kMost = PTRDIFF_MAX / sizeof(QualityPoint);
+  if (n > kMost) {
+    throw UsageError("n: " + std::to_string(n) + " samples are more than an array can hold (" +
+                     std::to_string(kMost) + ")");
+  }
   return static_cast<std::size_t>(n);
 }
 

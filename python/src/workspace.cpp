@@ -46,11 +46,12 @@ std::string number(double value) {
 }
 
 /// The cloud checked as mcws_boundary and mcws_measure check theirs, and summarised.
-CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing) {
+CloudSummary checkedRegion(const io::WorkspaceCloud& cloud, BoundaryPlane plane, bool spacing,
+                           const std::string& flat_hint) {
   const CloudSummary region =
       summarizeCloud(cloud, plane, spacing ? SummaryDetail::kSpacing : SummaryDetail::kCounts);
   requireRegionPoints(region, kPoints);
-  if (plane == BoundaryPlane::k3D) io::requireVolume(cloud, kPoints);
+  if (plane == BoundaryPlane::k3D) requireVolumeHinted(cloud, kPoints, flat_hint);
   asUsageError("plane", [&] { requirePlaneFits(region, kPoints); });
   return region;
 }
@@ -139,7 +140,10 @@ void applyChoices(const MeasureChoices& c, BoundaryPlane plane, const std::optio
           ? LeaveOneOut::kStar
           : LeaveOneOut::kRemoveAndReinsert;
   options.shell = choice(c.triangulate.value_or("shell"), "triangulate", "shell", "all") == "shell";
-  if (c.column_width && !(*c.column_width >= 0.0 && std::isfinite(*c.column_width))) {
+  if (c.column_width && !std::isfinite(*c.column_width)) {
+    throw UsageError("column_width: " + number(*c.column_width) + " is not a finite length");
+  }
+  if (c.column_width && *c.column_width < 0.0) {
     throw UsageError("column_width: " + number(*c.column_width) + " is less than 0");
   }
 }

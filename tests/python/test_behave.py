@@ -47,5 +47,7 @@ def test_behave_errors(tmp_path):
         mcws.behave(MODEL, 0)
     with pytest.raises(mcws.UsageError, match=r"timeline_period: "):
         mcws.behave(MODEL, 1, timeline_period=0.015)
+    with pytest.raises(mcws.UsageError, match=r"^timeline_period: inf is not a finite time > 0"):
+        mcws.behave(MODEL, 1, timeline_period=float("inf"))
     with pytest.raises(mcws.Error, match=r"missing.yaml"):
         mcws.behave(tmp_path / "missing.yaml", 1)

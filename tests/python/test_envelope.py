@@ -98,8 +98,13 @@ def test_envelope_errors(ball, tmp_path):
         mcws.envelope(points, correction="efrom")
     with pytest.raises(mcws.UsageError, match=r"alpha: 0.5 is not in \[1, 1000\]"):
         mcws.envelope(points, alpha=0.5)
-    with pytest.raises(mcws.Error, match=r"^points: .*"):
-        mcws.envelope(mcws.sample_shape("disk", 500, seed=1))  # flat: no volume
+    # Flat: no volume; the message names no tool flag (envelope() has no plane argument).
+    with pytest.raises(mcws.Error, match=r"^points: the cloud is flat in z .*; envelope\(\) "
+                                         r"meshes a volume \(measure\(\) and boundary\(\) take a "
+                                         r"plane\)$"):
+        mcws.envelope(mcws.sample_shape("disk", 500, seed=1))
+    with pytest.raises(mcws.Error, match=r"^points: the cloud is flat in z .*; give plane$"):
+        mcws.measure(mcws.sample_shape("disk", 500, seed=1))
     result = mcws.envelope(points)
     with pytest.raises(mcws.Error, match=r"mesh.obj: not a mesh file name"):
         result.save(tmp_path / "mesh.obj")

@@ -116,3 +116,15 @@ def test_ctrl_c_interrupts_a_long_map():
                           "mcws.reach_map(robot, 100.0, 2_000_000_000, threads=1, "
                           "manipulability=False)")
     assert cpu < 15.0  # seconds; the whole call takes about 400 s of CPU
+
+
+def test_the_manipulability_unit_is_where_the_docstring_says(tmp_path):
+    # planar2 (cm) has 2 joints: manipulability of the position task, l1 l2 |sin q2| [cm^2].
+    arm = mcws.Robot(robot_path("planar2.yaml"))
+    built = mcws.reach_map(arm, 5.0, 3000)
+    built.save(tmp_path / "m.bin")
+    loaded = mcws.ReachMap.load(tmp_path / "m.bin")
+    assert loaded.summary is None
+    assert '.header["manipulability"]["manipulability_unit"]' in mcws.ReachMap.__doc__
+    for reach in (built, loaded):
+        assert reach.header["manipulability"]["manipulability_unit"] == "cm^2"

@@ -189,5 +189,54 @@ def test_reach_study_and_place_errors(planar2, ta1400, targets, tmp_path):
         mcws.place(planar2, points, [0.0], normals=normals, resolution=5, samples=100,
                    confirm_margin=1.5)
     other = mcws.reach_map(ta1400, 200.0, 1000)
-    with pytest.raises(mcws.Error, match=r"reach_map\(\): the map is of robot 'ta1400'"):
+    # A map of another robot is a bad argument, as the docstring says (a UsageError).
+    with pytest.raises(mcws.UsageError,
+                       match=r"map: reach_map\(\): the map is of robot 'ta1400'"):
         mcws.place(planar2, points, [0.0], normals=normals, map=other)
+
+
+def test_a_negative_standoff_is_refused(planar2, targets):
+    # As the string "-20cm" is (mcws_reach --standoff refuses a negative length): the tool point
+    # would otherwise be put inside the surface.
+    points, normals, _ = targets
+    for standoff in (-20.0, -1e-3):
+        with pytest.raises(mcws.UsageError, match=rf"standoff: {standoff!r} is less than 0"):
+            mcws.reach_study(planar2, points, normals, standoff=standoff)
+        with pytest.raises(mcws.UsageError, match=rf"standoff: {standoff!r} is less than 0"):
+            mcws.place(planar2, points, [0.0], normals=normals, resolution=5, samples=100,
+                       standoff=standoff)
+    with pytest.raises(mcws.UsageError, match=r"standoff: nan is not finite"):
+        mcws.reach_study(planar2, points, normals, standoff=float("nan"))
+    # 0 stays accepted: the tool point on the surface.
+    assert mcws.reach_study(planar2, points[:1], normals[:1], standoff=0.0).targets == 1
+
+
+def test_pose_targets_are_checked_as_robot_ik_checks_a_pose(planar2):
+    pose = planar2.fk([0.3, 0.5])
+    good = np.stack([pose, pose])
+    assert mcws.reach_study(planar2, good).reached == 2
+    last_row = good.copy()
+    last_row[1, 3] = [1.0, 2.0, 3.0, 4.0]
+    with pytest.raises(mcws.UsageError, match=r"pose: last row is 1 2 3 4, not 0 0 0 1"):
+        planar2.ik(last_row[1])
+    with pytest.raises(mcws.UsageError, match=r"targets\[1\]: last row is 1 2 3 4, not 0 0 0 1"):
+        mcws.reach_study(planar2, last_row)
+    with pytest.raises(mcws.UsageError, match=r"targets\[1\]: last row is 1 2 3 4"):
+        mcws.place(planar2, last_row, [0.0], resolution=5, samples=100)
+    scaled = good.copy()
+    scaled[1, :3, :3] *= 2  # |R^T R - I| = 3
+    not_orthonormal = r"the rotation is not orthonormal \(\|R\^T R - I\| = "
+    with pytest.raises(mcws.UsageError, match=r"pose: " + not_orthonormal + "3,"):
+        planar2.ik(scaled[1])
+    with pytest.raises(mcws.UsageError,
+                       match=r"targets\[1\]: " + not_orthonormal + r"3, det R = 8\)"):
+        mcws.reach_study(planar2, scaled)
+    mirrored = good.copy()
+    mirrored[0, :3, 2] *= -1  # a reflection: orthonormal, det R = -1
+    with pytest.raises(mcws.UsageError,
+                       match=r"targets\[0\]: " + not_orthonormal + r"0, det R = -1\)"):
+        mcws.reach_study(planar2, mirrored)
+    infinite = good.copy()
+    infinite[1, 0, 3] = np.inf
+    with pytest.raises(mcws.UsageError, match=r"targets\[1\]: holds a value that is not a finite"):
+        mcws.reach_study(planar2, infinite)

@@ -69,3 +69,19 @@ def test_refine_errors(ta1400):
         mcws.refine(ta1400, outside, 10)
     with pytest.raises(mcws.UsageError, match=r"no boundary points to refine"):
         mcws.refine(ta1400, cloud[:0], 10)
+
+
+def test_refine_refuses_the_points_of_a_robot_with_more_joints(deicing):
+    planar2 = mcws.Robot(robot_path("planar2.yaml"))
+    cloud = mcws.sample(deicing, 200, seed=1)  # q1..q4
+    assert deicing.dof == 4 and planar2.dof == 2
+    with pytest.raises(mcws.UsageError,
+                       match=rf"boundary_points: point 0 has q3 = {float(cloud['q3'][0])!r}, "
+                             r"but robot 'planar2' has 2 joints"):
+        mcws.refine(planar2, cloud, 5, seed=1)
+    # A file's q1..q8: 0 beyond the dof, as a cloud of planar2 holds them, is refined.
+    own = mcws.sample(planar2, 200, seed=1)
+    padded = np.zeros(200, dtype=mcws._point_dtype(4, False))
+    for name in own.dtype.names:
+        padded[name] = own[name]
+    assert len(mcws.refine(planar2, padded, 5, seed=1)) == 5
