@@ -315,6 +315,7 @@ std::unique_ptr<PlaceResult> place(const LoadedRobot& loaded, const py::handle& 
     candidates = placeBase(map, study, targets, moves, placement, std::ref(checkpoint));
   }
   auto result = std::make_unique<PlaceResult>();
+  result->provenance = robotProvenance(robot);  // as mcws_place --output records it
   for (const BasePoint& p : basePoints(candidates, robot.T_world_base)) result->points.push_back(p);
   nlohmann::json summary =
       placementSummary(robot, targets.size(), map, about, options, checker != nullptr, candidates,

@@ -88,6 +88,8 @@ def test_place_is_mcws_place(planar2, targets, tmp_path):
     own = tmp_path / "own.pcd"
     result.save(own)
     assert own.read_bytes() == bases.read_bytes()
+    assert mcws.read_provenance(own)["robot"] == "planar2"  # and the positions' length unit
+    assert mcws.read_provenance(own)["length_unit"] == "cm"
     assert list(result.points["x"]) == [-40, -20, 0, 20, 40]  # planar2's base is at the origin
     # With a map file from mcws_reach, read by ReachMap.load, as mcws_place --map.
     map_file = tmp_path / "planar2.bin"
