@@ -134,6 +134,29 @@ TEST_F(StudyRunTest, ReportIsMarkedAsAStudysReport) {
   EXPECT_EQ((*report_)["format"], "mcws_study report");
 }
 
+TEST_F(StudyRunTest, ReplacesTheOutputOfAnEarlierBuildWhoseReportHasNoFormat) {
+  // What scripts/run_main.sh does after an update: out/study of a build before the marker.
+  const test::TempDir dir;
+  const std::string old = dir.file("old");
+  std::filesystem::copy(files_->file("out"), old, std::filesystem::copy_options::recursive);
+  Json report = Json::parse(test::readFile(old + "/report.json"));
+  report.erase("format");
+  report["study"] = "earlier";
+  test::writeFile(old + "/report.json", report.dump());
+  const std::string command =
+      kStudyExe + " --study " + files_->file("study.yaml") + " --output " + old;
+  const test::RunResult r = test::run(command);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(Json::parse(test::readFile(old + "/report.json"))["format"], "mcws_study report");
+  // Without one of a study report's members it is no study's report: refused, kept.
+  report.erase("stages");
+  test::writeFile(old + "/report.json", report.dump());
+  const test::RunResult partial = test::run(command);
+  EXPECT_EQ(partial.exit_code, 2) << partial.err;
+  EXPECT_THAT(partial.err, HasSubstr("its report.json has no \"format\""));
+  EXPECT_EQ(Json::parse(test::readFile(old + "/report.json")), report);
+}
+
 TEST_F(StudyRunTest, RefusesAFormerOutputHoldingFilesAStudyDoesNotWriteNamingTheFirst) {
   const test::TempDir dir;
   const std::string proj = dir.file("proj");

@@ -61,8 +61,22 @@ std::vector<std::string> sortedEntries(const fs::path& path) {
   return names;
 }
 
+/// Whether `report` is a study report of the builds before the "format" member: no "format", and
+/// every top-level member a study report has (so that a run of this build replaces the output
+/// of an earlier one, as scripts/run_main.sh does; the files beside it are checked as for a
+/// marked one).
+bool isUnmarkedStudyReport(const nlohmann::json& report) {
+  if (report.contains("format")) return false;
+  for (const char* name : {"study", "source", "robot", "length_unit", "seed", "stages", "units",
+                           "view", "workspace", "reach", "placement", "planning"}) {
+    if (!report.contains(name)) return false;
+  }
+  return report.at("stages").is_array() && report.at("study").is_string();
+}
+
 /// \throws UsageError unless `directory` is empty or a former study output: a report.json marked
-/// kStudyReportFormat, and regular files only, each a name a study writes.
+/// kStudyReportFormat (or an earlier build's, isUnmarkedStudyReport()), and regular files only,
+/// each a name a study writes.
 void refuseUnlessFormerOutput(const fs::path& directory, const std::string& target) {
   const std::vector<std::string> names = sortedEntries(directory);
   if (names.empty()) return;
@@ -75,7 +89,8 @@ void refuseUnlessFormerOutput(const fs::path& directory, const std::string& targ
     throw UsageError(refused + "no report.json" + whole);
   const nlohmann::json report =
       nlohmann::json::parse(io::readFile(report_file.string()), nullptr, false);
-  if (!report.is_object() || report.value("format", nlohmann::json()) != kStudyReportFormat)
+  if (!report.is_object() || (report.value("format", nlohmann::json()) != kStudyReportFormat &&
+                              !isUnmarkedStudyReport(report)))
     throw UsageError(refused + "its report.json has no \"format\": \"" + kStudyReportFormat + "\"" +
                      whole);
   std::set<std::string> written(std::begin(kStudyOutputFiles), std::end(kStudyOutputFiles));

@@ -30,7 +30,8 @@ class StudyDirectory {
   ///   inside it.
   /// \throws mcws::UsageError when `target` names no folder (empty, "/"), holds one of
   ///   `inputs` or `map_cache`, or is a directory neither empty nor a former output (a
-  ///   report.json whose "format" is kStudyReportFormat, and nothing a study does not write:
+  ///   report.json whose "format" is kStudyReportFormat, or an earlier build's report without
+  ///   it (every top-level member of a study report), and nothing a study does not write:
   ///   `--output ~` must not replace a home); mcws::Error when `target` is an existing file (not
   ///   a directory), when an ancestor of it is a file, or when the new directory cannot be made.
   StudyDirectory(std::string target, const std::vector<std::string>& inputs,
