@@ -102,25 +102,31 @@ TEST_F(ScenarioFile, ConfidenceOutsideZeroOne) {
               {"sway: confidence 1 is outside (0, 1)"});
 }
 
+/// The reader's words for a count out of its range: "FIELD: VALUE must be a whole number from 1
+/// to 1000000000".
+std::string countOutOfRange(const std::string& field_value) {
+  return field_value + " must be a whole number from 1 to 1000000000";
+}
+
 TEST_F(ScenarioFile, PosesAndCandidatesZero) {
   expectError(replaced(kScenario, "poses: 40", "poses: 0"), 12,
-              {"sway: poses: 0 must be a whole number from 1 to 1000000000"});
+              {countOutOfRange("sway: poses: 0")});
   expectError(replaced(kScenario, "poses: 40", "poses: 2.5"), 12,
-              {"sway: poses: 2.5 must be a whole number from 1 to 1000000000"});
+              {countOutOfRange("sway: poses: 2.5")});
   expectError(replaced(kScenario, "candidates: 4", "candidates: 0"), 15,
-              {"planner: candidates: 0 must be a whole number from 1 to 1000000000"});
+              {countOutOfRange("planner: candidates: 0")});
   expectError(replaced(kScenario, "validation: {poses: 500}", "validation: {poses: 0}"), 28,
-              {"validation: poses: 0 must be a whole number from 1 to 1000000000"});
+              {countOutOfRange("validation: poses: 0")});
 }
 
 // Counts above 10^9 are refused with the limit they break, not a rule they meet.
 TEST_F(ScenarioFile, CountsAboveTheLimitNameTheLimit) {
+  for (const char* value : {"2000000000", "4294967297", "1000000001"}) {
+    expectError(replaced(kScenario, "candidates: 4", std::string("candidates: ") + value), 15,
+                {countOutOfRange(std::string("planner: candidates: ") + value)});
+  }
   expectError(replaced(kScenario, "poses: 40", "poses: 2000000000"), 12,
-              {"sway: poses: 2000000000 must be a whole number from 1 to 1000000000"});
-  expectError(replaced(kScenario, "candidates: 4", "candidates: 4294967297"), 15,
-              {"planner: candidates: 4294967297 must be a whole number from 1 to 1000000000"});
-  expectError(replaced(kScenario, "candidates: 4", "candidates: 1000000001"), 15,
-              {"planner: candidates: 1000000001 must be a whole number from 1 to 1000000000"});
+              {countOutOfRange("sway: poses: 2000000000")});
 }
 
 TEST_F(ScenarioFile, StartOutsideTheJointLimits) {

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mcws/behavior/behavior_model.h"
 #include "mcws/core/error.h"
@@ -133,50 +134,62 @@ TEST(StudyBehaviourModel, StageRehearsesTheModelReadWithTheStudy) {
   EXPECT_EQ(state.report["behaviour"]["model"], files.file("model.yaml"));
 }
 
+/// "study.yaml:LINE: FIELD: VALUE must be a whole number from LOW to HIGH", the reader's words.
+std::string outOfRange(int line, const std::string& field_value, const std::string& low = "1",
+                       const std::string& high = "1000000000") {
+  return "study.yaml:" + std::to_string(line) + ": " + field_value +
+         " must be a whole number from " + low + " to " + high;
+}
+
+/// The test study with each `from` replaced by its `to` refused with the message `message`.
+struct RefusedEdit {
+  std::string from, to, message;
+};
+void expectRefused(const std::vector<RefusedEdit>& edits) {
+  for (const RefusedEdit& edit : edits) {
+    EXPECT_THAT(readerError(edit.from, edit.to), HasSubstr(edit.message)) << edit.to;
+  }
+}
+
+/// The test study with `from` replaced by `to`, read.
+Study studyWith(const std::string& from, const std::string& to) {
+  const test::StudyFiles files;
+  return parseStudy(test::replaceOnce(test::defaultStudyText(), from, to),
+                    files.file("study.yaml"));
+}
+
 TEST(StudyCounts, CountsAboveTheirLimitNameTheLimit) {
-  EXPECT_THAT(
-      readerError("orientations: 50", "orientations: 4294967297"),
-      HasSubstr("study.yaml:25: reach: orientations: 4294967297 must be a whole number from 1 "
-                "to 1000000000"));
-  EXPECT_THAT(readerError("{samples: 3000}", "{samples: 2000000000}"),
-              HasSubstr("study.yaml:24: workspace: samples: 2000000000 must be a whole number "
-                        "from 1 to 1000000000"));
-  EXPECT_THAT(readerError("{poses: 200}", "{poses: 0}"),
-              HasSubstr("study.yaml:23: validation: poses: 0 must be a whole number from 1 to "
-                        "1000000000"));
-  // mcws_place takes --ik-starts from 1 to 1000.
-  EXPECT_THAT(readerError("orientations: 50", "orientations: 50, ik_starts: 1001"),
-              HasSubstr("study.yaml:25: reach: ik_starts: 1001 must be a whole number from 1 "
-                        "to 1000"));
+  expectRefused({
+      {"orientations: 50", "orientations: 4294967297",
+       outOfRange(25, "reach: orientations: 4294967297")},
+      {"{samples: 3000}", "{samples: 2000000000}",
+       outOfRange(24, "workspace: samples: 2000000000")},
+      {"{poses: 200}", "{poses: 0}", outOfRange(23, "validation: poses: 0")},
+      // mcws_place takes --ik-starts from 1 to 1000.
+      {"orientations: 50", "orientations: 50, ik_starts: 1001",
+       outOfRange(25, "reach: ik_starts: 1001", "1", "1000")},
+  });
 }
 
 TEST(StudyCounts, MapSamplesAsManyAsMcwsPlaceTakes) {
   // mcws_place --samples 2000000000 builds its map; so does the study.
-  const test::StudyFiles files;
-  const Study study = parseStudy(
-      test::replaceOnce(test::defaultStudyText(), "samples: 40000", "samples: 2000000000"),
-      files.file("study.yaml"));
-  EXPECT_EQ(study.reach.samples, 2000000000u);
-  EXPECT_THAT(readerError("samples: 40000", "samples: 10000000000000000"),
-              HasSubstr("study.yaml:25: reach: samples: 10000000000000000 must be a whole number "
-                        "from 1 to 9007199254740992"));
-  EXPECT_THAT(readerError("samples: 40000", "samples: 0"),
-              HasSubstr("study.yaml:25: reach: samples: 0 must be a whole number from 1 to "
-                        "9007199254740992"));
+  EXPECT_EQ(studyWith("samples: 40000", "samples: 2000000000").reach.samples, 2000000000u);
+  const std::string most = "9007199254740992";
+  expectRefused({
+      {"samples: 40000", "samples: 10000000000000000",
+       outOfRange(25, "reach: samples: 10000000000000000", "1", most)},
+      {"samples: 40000", "samples: 0", outOfRange(25, "reach: samples: 0", "1", most)},
+  });
 }
 
 TEST(StudyRefine, ZeroMeansNoRefinement) {
-  const test::StudyFiles files;
-  const Study study = parseStudy(
-      test::replaceOnce(test::defaultStudyText(), "{samples: 3000}", "{samples: 3000, refine: 0}"),
-      files.file("study.yaml"));
-  EXPECT_EQ(study.workspace.refine, 0u);
-  EXPECT_THAT(readerError("{samples: 3000}", "{samples: 3000, refine: -1}"),
-              HasSubstr("study.yaml:24: workspace: refine: -1 must be a whole number from 0 to "
-                        "1000000000"));
-  EXPECT_THAT(readerError("{samples: 3000}", "{samples: 3000, refine: 2.5}"),
-              HasSubstr("study.yaml:24: workspace: refine: 2.5 must be a whole number from 0 to "
-                        "1000000000"));
+  EXPECT_EQ(studyWith("{samples: 3000}", "{samples: 3000, refine: 0}").workspace.refine, 0u);
+  expectRefused({
+      {"{samples: 3000}", "{samples: 3000, refine: -1}",
+       outOfRange(24, "workspace: refine: -1", "0")},
+      {"{samples: 3000}", "{samples: 3000, refine: 2.5}",
+       outOfRange(24, "workspace: refine: 2.5", "0")},
+  });
 }
 
 }  // namespace
